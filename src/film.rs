@@ -1,0 +1,112 @@
+//! The image being made: per-pixel radiance, its 8-bit quantisation (clamp to [0, 1], no
+//! gamma, as the course's renderer writes), and atomic PNG output.
+
+use glam::DVec3;
+use std::fs;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Radiance per pixel, row 0 at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Film {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<DVec3>,
+}
+
+/// One channel to 8 bits: clamp to [0, 1] (NaN to 0), then round to nearest.
+pub fn quantize(c: f64) -> u8 {
+    let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
+    (c * 255.0 + 0.5).floor() as u8
+}
+
+impl Film {
+    pub fn new(width: u32, height: u32) -> Self {
+        Film {
+            width,
+            height,
+            pixels: vec![DVec3::ZERO; width as usize * height as usize],
+        }
+    }
+
+    pub fn get(&self, x: u32, y: u32) -> DVec3 {
+        self.pixels[(y * self.width + x) as usize]
+    }
+
+    /// Interleaved 8-bit RGB.
+    pub fn to_rgb8(&self) -> Vec<u8> {
+        self.pixels
+            .iter()
+            .flat_map(|p| [quantize(p.x), quantize(p.y), quantize(p.z)])
+            .collect()
+    }
+
+    /// PNG-encodes the 8-bit image.
+    pub fn encode_png(&self) -> Result<Vec<u8>, image::ImageError> {
+        encode_png(self.width, self.height, &self.to_rgb8())
+    }
+}
+
+/// PNG-encodes interleaved 8-bit RGB.
+pub fn encode_png(width: u32, height: u32, rgb: &[u8]) -> Result<Vec<u8>, image::ImageError> {
+    let mut out = Vec::new();
+    let encoder = image::codecs::png::PngEncoder::new(&mut out);
+    image::ImageEncoder::write_image(encoder, rgb, width, height, image::ExtendedColorType::Rgb8)?;
+    Ok(out)
+}
+
+/// Writes `bytes` to `path` atomically: a temporary file in the same directory, flushed,
+/// then renamed over the target. On any error the temporary file is removed, so the target
+/// is either the old file or the complete new one, never half-written.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let tmp = temp_path(path);
+    let result = (|| {
+        let mut f = fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// `dir/.name.tmp-PID` next to `path`.
+fn temp_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quantisation_clamps_and_rounds() {
+        assert_eq!(quantize(-0.5), 0);
+        assert_eq!(quantize(0.0), 0);
+        // 0.5 * 255 = 127.5 rounds up to 128; 1/255 maps to exactly 1.
+        assert_eq!(quantize(0.5), 128);
+        assert_eq!(quantize(1.0 / 255.0), 1);
+        assert_eq!(quantize(1.0), 255);
+        assert_eq!(quantize(7.3), 255);
+        assert_eq!(quantize(f64::NAN), 0);
+    }
+
+    #[test]
+    fn atomic_write_leaves_nothing_on_failure() {
+        let dir = std::env::temp_dir().join(format!("lumiere-film-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        let missing = dir.join("no-such-dir").join("out.png");
+        assert!(write_atomic(&missing, b"x").is_err());
+        let ok = dir.join("out.bin");
+        write_atomic(&ok, b"hello").unwrap();
+        assert_eq!(fs::read(&ok).unwrap(), b"hello");
+        assert_eq!(fs::read_dir(&dir).unwrap().count(), 1);
+        fs::remove_dir_all(&dir).unwrap();
+    }
+}

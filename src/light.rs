@@ -1,0 +1,242 @@
+//! Light sources of chapter 7.4b: ambient, directional, point and spotlight. For a shading
+//! point each light yields the direction and distance to test with a shadow ray and the
+//! light colour arriving there before shadowing (colour x attenuation x spot factor).
+
+use crate::shading::{attenuation, spot_factor};
+use glam::DVec3;
+
+/// Distance attenuation coefficients `C_const, C_lin, C_quad` (each >= 0, not all 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Attenuation {
+    pub constant: f64,
+    pub linear: f64,
+    pub quadratic: f64,
+}
+
+impl Attenuation {
+    /// No attenuation: `A = 1` everywhere.
+    pub const NONE: Attenuation = Attenuation {
+        constant: 1.0,
+        linear: 0.0,
+        quadratic: 0.0,
+    };
+
+    /// `A` at distance `d` (see [`attenuation`]).
+    pub fn factor(&self, d: f64) -> f64 {
+        attenuation(self.constant, self.linear, self.quadratic, d)
+    }
+}
+
+/// A point light (also one point of an area light).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointLight {
+    pub position: DVec3,
+    pub color: DVec3,
+    pub attenuation: Attenuation,
+}
+
+/// A spotlight: a point light restricted to a cone of opening `theta` around `orientation`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpotLight {
+    pub position: DVec3,
+    /// Unit central orientation `o`.
+    pub orientation: DVec3,
+    /// Opening angle `theta` in degrees, in [0, 180].
+    pub angle_deg: f64,
+    /// `cos(theta / 2)`, precomputed.
+    pub cos_half: f64,
+    pub c_min: f64,
+    pub c_max: f64,
+    pub color: DVec3,
+    pub attenuation: Attenuation,
+}
+
+impl SpotLight {
+    pub fn new(
+        position: DVec3,
+        orientation: DVec3,
+        angle_deg: f64,
+        c_min: f64,
+        c_max: f64,
+        color: DVec3,
+        attenuation: Attenuation,
+    ) -> Self {
+        SpotLight {
+            position,
+            orientation: orientation.normalize(),
+            angle_deg,
+            cos_half: libm::cos(angle_deg.to_radians() * 0.5),
+            c_min,
+            c_max,
+            color,
+            attenuation,
+        }
+    }
+}
+
+/// Every kind of light.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Light {
+    /// Uniform ambient light `L_a`; counted once, however many lights there are.
+    Ambient {
+        color: DVec3,
+    },
+    /// Light from a constant unit direction `d` (`L = -d`), no attenuation, no position.
+    Directional {
+        direction: DVec3,
+        color: DVec3,
+    },
+    Point(PointLight),
+    Spot(SpotLight),
+}
+
+/// What one light point sends towards a shading point, before the shadow test.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Incidence {
+    /// Unit vector from the shading point to the light, `L`.
+    pub to_light: DVec3,
+    /// Distance to the light (`t_max` of the shadow ray); infinite for directional lights.
+    pub distance: f64,
+    /// Attenuation factor `A` (1 for directional lights).
+    pub attenuation: f64,
+    /// Spot factor `C_theta` (1 for lights that are not spots).
+    pub spot: f64,
+    /// `A C_theta L`, the colour reaching the point if nothing is in the way.
+    pub color: DVec3,
+}
+
+impl Light {
+    /// Incidence at `p`, or `None` for ambient lights, for a point exactly at the light,
+    /// and for points outside a spot's cone (whose contribution is exactly 0).
+    pub fn incidence(&self, p: DVec3) -> Option<Incidence> {
+        match self {
+            Light::Ambient { .. } => None,
+            Light::Directional { direction, color } => Some(Incidence {
+                to_light: -*direction,
+                distance: f64::INFINITY,
+                attenuation: 1.0,
+                spot: 1.0,
+                color: *color,
+            }),
+            Light::Point(l) => point_incidence(l.position, l.color, &l.attenuation, p, 1.0),
+            Light::Spot(s) => {
+                let to_p = p - s.position;
+                let dist = to_p.length();
+                if dist == 0.0 {
+                    return None;
+                }
+                // d = (r_inter - r_lum) / |r_inter - r_lum|
+                let c = spot_factor(s.orientation.dot(to_p / dist), s.cos_half, s.c_min, s.c_max);
+                if c == 0.0 {
+                    return None;
+                }
+                point_incidence(s.position, s.color, &s.attenuation, p, c)
+            }
+        }
+    }
+
+    /// The ambient colour `L_a` this light adds (zero for other lights).
+    pub fn ambient(&self) -> DVec3 {
+        match self {
+            Light::Ambient { color } => *color,
+            _ => DVec3::ZERO,
+        }
+    }
+
+    /// Largest colour channel this light can deliver at any point (for depth control).
+    pub fn max_intensity(&self) -> f64 {
+        let (color, atten) = match self {
+            Light::Ambient { color } | Light::Directional { color, .. } => (color, None),
+            Light::Point(l) => (&l.color, Some(l.attenuation)),
+            Light::Spot(s) => (&s.color, Some(s.attenuation)),
+        };
+        let spot_max = match self {
+            Light::Spot(s) => s.c_max.max(s.c_min),
+            _ => 1.0,
+        };
+        // A is largest at d = 0 unless C_const = 0, where it is unbounded.
+        let a_max = atten.map_or(1.0, |a| {
+            if a.constant > 0.0 {
+                1.0 / a.constant
+            } else {
+                f64::INFINITY
+            }
+        });
+        color.max_element() * a_max * spot_max
+    }
+}
+
+/// Incidence from a point at `light_pos`: `L = -d`, `d = (p - r_lum)/|p - r_lum|`.
+fn point_incidence(light_pos: DVec3, color: DVec3, atten: &Attenuation, p: DVec3, spot: f64) -> Option<Incidence> {
+    let to_light = light_pos - p;
+    let distance = to_light.length();
+    if distance == 0.0 {
+        return None;
+    }
+    let a = atten.factor(distance);
+    Some(Incidence {
+        to_light: to_light / distance,
+        distance,
+        attenuation: a,
+        spot,
+        color: color * (a * spot),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn point_light_attenuates_with_distance() {
+        // Light at (0, 0, 10), C_quad 0.01, point at the origin: d = 10, A = 0.5.
+        let l = Light::Point(PointLight {
+            position: DVec3::new(0., 0., 10.),
+            color: DVec3::ONE,
+            attenuation: Attenuation {
+                constant: 1.0,
+                linear: 0.0,
+                quadratic: 0.01,
+            },
+        });
+        let i = l.incidence(DVec3::ZERO).unwrap();
+        assert_eq!(i.to_light, DVec3::Z);
+        assert_eq!(i.distance, 10.0);
+        assert_eq!(i.color, DVec3::splat(0.5));
+    }
+
+    #[test]
+    fn spot_light_cone() {
+        // Spot at (0, 0, 10) pointing down, theta = 90 (cos 45 = 0.7071).
+        let s = Light::Spot(SpotLight::new(
+            DVec3::new(0., 0., 10.),
+            -DVec3::Z,
+            90.0,
+            0.0,
+            1.0,
+            DVec3::ONE,
+            Attenuation::NONE,
+        ));
+        // Straight below: full intensity.
+        assert_eq!(s.incidence(DVec3::ZERO).unwrap().color, DVec3::ONE);
+        // 5 off-axis at depth 10: o.d = 10/sqrt(125) = 0.894427; t = (0.894427 - 1)/(0.707107 - 1)
+        // = 0.360437..., C = 1 - t = 0.639562...
+        let c = s.incidence(DVec3::new(5., 0., 0.)).unwrap().spot;
+        assert!((c - 0.639_562_2).abs() < 1e-6, "{c}");
+        // 11 off-axis: o.d = 0.6727 < 0.7071, outside.
+        assert!(s.incidence(DVec3::new(11., 0., 0.)).is_none());
+    }
+
+    #[test]
+    fn directional_light_has_no_distance() {
+        let d = DVec3::new(1., 1., -1.).normalize();
+        let l = Light::Directional {
+            direction: d,
+            color: DVec3::ONE,
+        };
+        let i = l.incidence(DVec3::new(123., -4., 0.)).unwrap();
+        assert_eq!(i.to_light, -d);
+        assert!(i.distance.is_infinite());
+        assert_eq!(i.attenuation, 1.0);
+    }
+}

@@ -1,0 +1,59 @@
+//! Limits on what a scene or a command line may ask for, so an absurd request gets a clear
+//! error instead of exhausting memory. Shared by scene validation and command-line overrides.
+
+/// Largest image side.
+pub const MAX_DIMENSION: u32 = 16_384;
+/// Largest pixel count (the film holds 24 bytes a pixel: 32 Mpixel is 768 MiB).
+pub const MAX_PIXELS: u64 = 1 << 25;
+/// Largest samples per pixel (the sample index must fit 16 bits of the stream index).
+pub const MAX_SAMPLES: u32 = 1024;
+/// Largest recursion depth.
+pub const MAX_DEPTH: u32 = 64;
+/// Most shapes in a scene.
+pub const MAX_OBJECTS: usize = 4_000_000;
+/// Most lights in a scene.
+pub const MAX_LIGHTS: usize = 10_000;
+/// Largest coordinate magnitude (beyond it f64 hit points lose all sub-unit precision).
+pub const MAX_COORDINATE: f64 = 1e9;
+/// Largest light colour channel.
+pub const MAX_LIGHT: f64 = 1e6;
+/// Largest specular exponent.
+pub const MAX_SHININESS: f64 = 1e6;
+/// Largest index of refraction.
+pub const MAX_IOR: f64 = 10.0;
+/// Default adaptive depth control threshold, in 8-bit levels.
+pub const DEFAULT_ADAPTIVE_THRESHOLD: f64 = 0.5;
+
+pub fn check_dimension(v: u32) -> Result<(), String> {
+    if v == 0 || v > MAX_DIMENSION {
+        return Err(format!("must be in [1, {MAX_DIMENSION}] pixels, got {v}"));
+    }
+    Ok(())
+}
+
+pub fn check_pixel_count(w: u32, h: u32) -> Result<(), String> {
+    let n = w as u64 * h as u64;
+    if n > MAX_PIXELS {
+        return Err(format!(
+            "width x height must be at most {MAX_PIXELS} pixels, got {w} x {h} = {n}"
+        ));
+    }
+    Ok(())
+}
+
+pub fn check_samples(v: u32) -> Result<(), String> {
+    let n = (v as f64).sqrt().round() as u32;
+    if v == 0 || v > MAX_SAMPLES || n * n != v {
+        return Err(format!(
+            "must be a perfect square (1, 4, 9, 16, ...) in [1, {MAX_SAMPLES}], got {v}"
+        ));
+    }
+    Ok(())
+}
+
+pub fn check_depth(v: u32) -> Result<(), String> {
+    if v == 0 || v > MAX_DEPTH {
+        return Err(format!("must be in [1, {MAX_DEPTH}] (1 = no secondary rays), got {v}"));
+    }
+    Ok(())
+}

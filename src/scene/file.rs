@@ -1,0 +1,724 @@
+//! The TOML scene format: deserialisation (unknown fields are errors, so a typo cannot
+//! silently change a figure) and validation of every value against its allowed range.
+//! Every error names the file, line and column, the field, and what is allowed.
+//! The format is documented in `scenes/README.md`.
+
+use super::locate::{FieldPath, line_col, locate};
+use super::{CameraSpec, Object, Scene, Settings, ShadingModel, Specular};
+use crate::light::{Attenuation, Light, PointLight, SpotLight};
+use crate::limits;
+use crate::material::Material;
+use crate::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus};
+use glam::DVec3;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Why a scene could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error("{path}: cannot read the scene file: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// Syntax, type or unknown-field error, or a value out of range.
+    #[error("{file}:{line}:{column}: {field}: {message}")]
+    Invalid {
+        file: String,
+        line: usize,
+        column: usize,
+        /// The field path (`shapes[2].radius`), or `TOML` for syntax errors.
+        field: String,
+        message: String,
+    },
+}
+
+/// Reads and validates a scene file.
+pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse(&text, &path.display().to_string())
+}
+
+/// Parses and validates scene text; `file` is the name used in error messages.
+pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
+    let raw: FileScene = toml::from_str(text).map_err(|e| {
+        let (line, column) = line_col(text, e.span().map_or(0, |s| s.start));
+        SceneError::Invalid {
+            file: file.to_string(),
+            line,
+            column,
+            field: "TOML".to_string(),
+            message: e.message().trim().to_string(),
+        }
+    })?;
+    raw.validate().map_err(|e| {
+        let (line, column) = line_col(text, locate(text, &e.path));
+        SceneError::Invalid {
+            file: file.to_string(),
+            line,
+            column,
+            field: e.path.to_string(),
+            message: e.message,
+        }
+    })
+}
+
+/// A value that failed validation, before it is located in the file.
+#[derive(Debug)]
+struct FieldError {
+    path: FieldPath,
+    message: String,
+}
+
+type Check<T> = Result<T, FieldError>;
+
+fn fail<T>(path: &FieldPath, message: impl Into<String>) -> Check<T> {
+    Err(FieldError {
+        path: path.clone(),
+        message: message.into(),
+    })
+}
+
+/// A finite number within `[lo, hi]`.
+fn in_range(path: &FieldPath, x: f64, lo: f64, hi: f64) -> Check<f64> {
+    if !x.is_finite() || x < lo || x > hi {
+        return fail(path, format!("must be a finite number in [{lo}, {hi}], got {x}"));
+    }
+    Ok(x)
+}
+
+/// A finite number `> 0` and at most `hi`.
+fn positive(path: &FieldPath, x: f64, hi: f64) -> Check<f64> {
+    if !x.is_finite() || x <= 0.0 || x > hi {
+        return fail(path, format!("must be a finite number in (0, {hi}], got {x}"));
+    }
+    Ok(x)
+}
+
+/// A point or vector with finite components of magnitude at most `limits::MAX_COORDINATE`.
+fn vec3(path: &FieldPath, v: [f64; 3]) -> Check<DVec3> {
+    let m = limits::MAX_COORDINATE;
+    if v.iter().any(|c| !c.is_finite() || c.abs() > m) {
+        return fail(
+            path,
+            format!("components must be finite numbers in [-{m:e}, {m:e}], got {v:?}"),
+        );
+    }
+    Ok(DVec3::from(v))
+}
+
+/// A direction: finite and of non-zero length; returned normalised.
+fn direction(path: &FieldPath, v: [f64; 3]) -> Check<DVec3> {
+    let d = vec3(path, v)?;
+    let len = d.length();
+    if !(len > 1e-12) {
+        return fail(path, format!("must be a direction of non-zero length, got {v:?}"));
+    }
+    Ok(d / len)
+}
+
+/// A colour: each channel finite in `[0, hi]`.
+fn color(path: &FieldPath, v: [f64; 3], hi: f64) -> Check<DVec3> {
+    if v.iter().any(|c| !c.is_finite() || *c < 0.0 || *c > hi) {
+        return fail(
+            path,
+            format!("each channel must be a finite number in [0, {hi}], got {v:?}"),
+        );
+    }
+    Ok(DVec3::from(v))
+}
+
+fn one() -> [f64; 3] {
+    [1.0; 3]
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileScene {
+    image: FileImage,
+    camera: FileCamera,
+    #[serde(default)]
+    render: FileRender,
+    #[serde(default)]
+    materials: BTreeMap<String, FileMaterial>,
+    #[serde(default)]
+    shapes: Vec<FileShape>,
+    #[serde(default)]
+    lights: Vec<FileLight>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileImage {
+    width: u32,
+    height: u32,
+    #[serde(default = "default_spp")]
+    samples_per_pixel: u32,
+    #[serde(default = "default_seed")]
+    seed: u64,
+}
+
+fn default_spp() -> u32 {
+    4
+}
+fn default_seed() -> u64 {
+    42
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileCamera {
+    position: [f64; 3],
+    look_at: [f64; 3],
+    #[serde(default = "z_up")]
+    up: [f64; 3],
+    #[serde(default = "default_fov")]
+    vfov: f64,
+}
+
+fn z_up() -> [f64; 3] {
+    [0.0, 0.0, 1.0]
+}
+fn default_fov() -> f64 {
+    60.0
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct FileRender {
+    depth: u32,
+    ambient: bool,
+    diffuse: bool,
+    /// "blinn", "phong" or "none".
+    specular: String,
+    shadows: bool,
+    background: [f64; 3],
+    adaptive_threshold: f64,
+}
+
+impl Default for FileRender {
+    fn default() -> Self {
+        FileRender {
+            depth: 1,
+            ambient: true,
+            diffuse: true,
+            specular: "blinn".to_string(),
+            shadows: true,
+            background: [0.0; 3],
+            adaptive_threshold: limits::DEFAULT_ADAPTIVE_THRESHOLD,
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileMaterial {
+    #[serde(default = "one")]
+    color: [f64; 3],
+    ka: Option<f64>,
+    kd: Option<f64>,
+    ks: Option<f64>,
+    shininess: Option<f64>,
+    m: Option<f64>,
+    kr: Option<f64>,
+    kt: Option<f64>,
+    n: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+enum FileShape {
+    Plane {
+        point: [f64; 3],
+        normal: [f64; 3],
+        material: Option<String>,
+        name: Option<String>,
+    },
+    Rectangle {
+        corner: [f64; 3],
+        edge1: [f64; 3],
+        edge2: [f64; 3],
+        material: Option<String>,
+        name: Option<String>,
+    },
+    Disk {
+        center: [f64; 3],
+        normal: [f64; 3],
+        radius: f64,
+        material: Option<String>,
+        name: Option<String>,
+    },
+    Sphere {
+        center: [f64; 3],
+        radius: f64,
+        material: Option<String>,
+        name: Option<String>,
+    },
+    Box {
+        center: [f64; 3],
+        size: [f64; 3],
+        #[serde(default)]
+        rotation: [f64; 3],
+        material: Option<String>,
+        name: Option<String>,
+    },
+    Cylinder {
+        base: [f64; 3],
+        #[serde(default = "z_up")]
+        axis: [f64; 3],
+        height: f64,
+        radius: f64,
+        material: Option<String>,
+        name: Option<String>,
+    },
+    Cone {
+        base: [f64; 3],
+        #[serde(default = "z_up")]
+        axis: [f64; 3],
+        height: f64,
+        radius: f64,
+        material: Option<String>,
+        name: Option<String>,
+    },
+    Torus {
+        center: [f64; 3],
+        #[serde(default = "z_up")]
+        axis: [f64; 3],
+        major_radius: f64,
+        minor_radius: f64,
+        material: Option<String>,
+        name: Option<String>,
+    },
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+struct FileAttenuation {
+    constant: Option<f64>,
+    linear: f64,
+    quadratic: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+enum FileLight {
+    Ambient {
+        #[serde(default = "one")]
+        color: [f64; 3],
+    },
+    Directional {
+        direction: [f64; 3],
+        #[serde(default = "one")]
+        color: [f64; 3],
+    },
+    Point {
+        position: [f64; 3],
+        #[serde(default = "one")]
+        color: [f64; 3],
+        #[serde(default)]
+        attenuation: FileAttenuation,
+    },
+    Spot {
+        position: [f64; 3],
+        direction: [f64; 3],
+        angle: f64,
+        #[serde(default)]
+        c_min: f64,
+        #[serde(default = "one_f")]
+        c_max: f64,
+        #[serde(default = "one")]
+        color: [f64; 3],
+        #[serde(default)]
+        attenuation: FileAttenuation,
+    },
+}
+
+fn one_f() -> f64 {
+    1.0
+}
+
+impl FileScene {
+    fn validate(self) -> Check<Scene> {
+        let root = FieldPath::default();
+        let settings = self.settings(&root)?;
+        let camera = self.camera(&root.key("camera"))?;
+        let (materials, material_names) = self.materials(&root.key("materials"))?;
+        let path = root.key("shapes");
+        if self.shapes.len() > limits::MAX_OBJECTS {
+            return fail(
+                &path,
+                format!("at most {} shapes, got {}", limits::MAX_OBJECTS, self.shapes.len()),
+            );
+        }
+        let objects = self
+            .shapes
+            .into_iter()
+            .enumerate()
+            .map(|(i, s)| s.validate(&path.index(i), i, &material_names))
+            .collect::<Check<Vec<_>>>()?;
+        let path = root.key("lights");
+        if self.lights.len() > limits::MAX_LIGHTS {
+            return fail(
+                &path,
+                format!("at most {} lights, got {}", limits::MAX_LIGHTS, self.lights.len()),
+            );
+        }
+        let lights = self
+            .lights
+            .into_iter()
+            .enumerate()
+            .map(|(i, l)| l.validate(&path.index(i)))
+            .collect::<Check<Vec<_>>>()?;
+        Ok(Scene {
+            settings,
+            camera,
+            materials,
+            material_names,
+            objects,
+            lights,
+        })
+    }
+
+    fn settings(&self, root: &FieldPath) -> Check<Settings> {
+        let img = root.key("image");
+        let r = root.key("render");
+        let check = |path: FieldPath, res: Result<(), String>| res.or_else(|m| fail(&path, m));
+        check(img.key("width"), limits::check_dimension(self.image.width))?;
+        check(img.key("height"), limits::check_dimension(self.image.height))?;
+        check(
+            img.key("width"),
+            limits::check_pixel_count(self.image.width, self.image.height),
+        )?;
+        check(
+            img.key("samples_per_pixel"),
+            limits::check_samples(self.image.samples_per_pixel),
+        )?;
+        check(r.key("depth"), limits::check_depth(self.render.depth))?;
+        let specular = match self.render.specular.as_str() {
+            "blinn" => Specular::Blinn,
+            "phong" => Specular::Phong,
+            "none" => Specular::None,
+            other => {
+                return fail(
+                    &r.key("specular"),
+                    format!("must be \"blinn\", \"phong\" or \"none\", got {other:?}"),
+                );
+            }
+        };
+        Ok(Settings {
+            width: self.image.width,
+            height: self.image.height,
+            samples_per_pixel: self.image.samples_per_pixel,
+            seed: self.image.seed,
+            depth: self.render.depth,
+            shading: ShadingModel {
+                ambient: self.render.ambient,
+                diffuse: self.render.diffuse,
+                specular,
+            },
+            shadows: self.render.shadows,
+            background: color(&r.key("background"), self.render.background, limits::MAX_LIGHT)?,
+            adaptive_threshold: in_range(&r.key("adaptive_threshold"), self.render.adaptive_threshold, 0.0, 255.0)?,
+        })
+    }
+
+    fn camera(&self, path: &FieldPath) -> Check<CameraSpec> {
+        let c = &self.camera;
+        let position = vec3(&path.key("position"), c.position)?;
+        let look_at = vec3(&path.key("look_at"), c.look_at)?;
+        let up = direction(&path.key("up"), c.up)?;
+        let forward = look_at - position;
+        if !(forward.length() > 1e-12) {
+            return fail(&path.key("look_at"), "must differ from the camera position");
+        }
+        if forward.normalize().cross(up).length() < 1e-9 {
+            return fail(
+                &path.key("up"),
+                "must not be parallel to the viewing direction (look_at - position)",
+            );
+        }
+        let vfov_deg = in_range(&path.key("vfov"), c.vfov, 0.0, 179.0)?;
+        if vfov_deg == 0.0 {
+            return fail(&path.key("vfov"), "must be in (0, 179] degrees, got 0");
+        }
+        Ok(CameraSpec {
+            position,
+            look_at,
+            up,
+            vfov_deg,
+        })
+    }
+
+    fn materials(&self, path: &FieldPath) -> Check<(Vec<Material>, Vec<String>)> {
+        let mut materials = vec![Material::default()];
+        let mut names = vec!["default".to_string()];
+        for (name, m) in &self.materials {
+            let p = path.key(name);
+            let d = Material::default();
+            let unit = |key: &str, v: Option<f64>, default: f64| in_range(&p.key(key), v.unwrap_or(default), 0.0, 1.0);
+            let mat = Material {
+                color: color(&p.key("color"), m.color, 1.0)?,
+                ka: unit("ka", m.ka, d.ka)?,
+                kd: unit("kd", m.kd, d.kd)?,
+                ks: unit("ks", m.ks, d.ks)?,
+                shininess: in_range(
+                    &p.key("shininess"),
+                    m.shininess.unwrap_or(d.shininess),
+                    0.0,
+                    limits::MAX_SHININESS,
+                )?,
+                metal: unit("m", m.m, d.metal)?,
+                kr: unit("kr", m.kr, d.kr)?,
+                kt: unit("kt", m.kt, d.kt)?,
+                ior: positive(&p.key("n"), m.n.unwrap_or(d.ior), limits::MAX_IOR)?,
+            };
+            if mat.kr + mat.kt > 1.0 {
+                return fail(
+                    &p.key("kt"),
+                    format!(
+                        "kr + kt must be at most 1 (no ray may carry more than its parent), got {} + {}",
+                        mat.kr, mat.kt
+                    ),
+                );
+            }
+            if name == "default" {
+                materials[0] = mat;
+            } else {
+                materials.push(mat);
+                names.push(name.clone());
+            }
+        }
+        Ok((materials, names))
+    }
+}
+
+impl FileShape {
+    fn validate(self, path: &FieldPath, index: usize, material_names: &[String]) -> Check<Object> {
+        let size = |key: &str, x: f64| positive(&path.key(key), x, limits::MAX_COORDINATE);
+        let (shape, material, name) = match self {
+            FileShape::Plane {
+                point,
+                normal,
+                material,
+                name,
+            } => (
+                Shape::Plane(Plane::new(
+                    vec3(&path.key("point"), point)?,
+                    direction(&path.key("normal"), normal)?,
+                )),
+                material,
+                name,
+            ),
+            FileShape::Rectangle {
+                corner,
+                edge1,
+                edge2,
+                material,
+                name,
+            } => {
+                let e1 = vec3(&path.key("edge1"), edge1)?;
+                let e2 = vec3(&path.key("edge2"), edge2)?;
+                if !(e1.cross(e2).length() > 1e-12 * e1.length() * e2.length()) || e1.length() == 0.0 {
+                    return fail(&path.key("edge2"), "edge1 and edge2 must be non-zero and not parallel");
+                }
+                (
+                    Shape::Rectangle(Rectangle::new(vec3(&path.key("corner"), corner)?, e1, e2)),
+                    material,
+                    name,
+                )
+            }
+            FileShape::Disk {
+                center,
+                normal,
+                radius,
+                material,
+                name,
+            } => (
+                Shape::Disk(Disk::new(
+                    vec3(&path.key("center"), center)?,
+                    direction(&path.key("normal"), normal)?,
+                    size("radius", radius)?,
+                )),
+                material,
+                name,
+            ),
+            FileShape::Sphere {
+                center,
+                radius,
+                material,
+                name,
+            } => (
+                Shape::Sphere(Sphere::new(vec3(&path.key("center"), center)?, size("radius", radius)?)),
+                material,
+                name,
+            ),
+            FileShape::Box {
+                center,
+                size: s,
+                rotation,
+                material,
+                name,
+            } => {
+                let sz = vec3(&path.key("size"), s)?;
+                if sz.min_element() <= 0.0 {
+                    return fail(&path.key("size"), format!("each side must be > 0, got {s:?}"));
+                }
+                let rot = vec3(&path.key("rotation"), rotation)?;
+                if rot.abs().max_element() > 360.0 {
+                    return fail(
+                        &path.key("rotation"),
+                        format!("angles must be in [-360, 360] degrees, got {rotation:?}"),
+                    );
+                }
+                (
+                    Shape::Cuboid(Cuboid::new(vec3(&path.key("center"), center)?, sz, rot)),
+                    material,
+                    name,
+                )
+            }
+            FileShape::Cylinder {
+                base,
+                axis,
+                height,
+                radius,
+                material,
+                name,
+            } => (
+                Shape::Cylinder(Cylinder::new(
+                    vec3(&path.key("base"), base)?,
+                    direction(&path.key("axis"), axis)?,
+                    size("height", height)?,
+                    size("radius", radius)?,
+                )),
+                material,
+                name,
+            ),
+            FileShape::Cone {
+                base,
+                axis,
+                height,
+                radius,
+                material,
+                name,
+            } => (
+                Shape::Cone(Cone::new(
+                    vec3(&path.key("base"), base)?,
+                    direction(&path.key("axis"), axis)?,
+                    size("height", height)?,
+                    size("radius", radius)?,
+                )),
+                material,
+                name,
+            ),
+            FileShape::Torus {
+                center,
+                axis,
+                major_radius,
+                minor_radius,
+                material,
+                name,
+            } => {
+                let major = size("major_radius", major_radius)?;
+                let minor = size("minor_radius", minor_radius)?;
+                if minor > major {
+                    return fail(
+                        &path.key("minor_radius"),
+                        format!(
+                            "must be at most major_radius ({major}) (a self-intersecting spindle torus is not supported), got {minor}"
+                        ),
+                    );
+                }
+                (
+                    Shape::Torus(Torus::new(
+                        vec3(&path.key("center"), center)?,
+                        direction(&path.key("axis"), axis)?,
+                        major,
+                        minor,
+                    )),
+                    material,
+                    name,
+                )
+            }
+        };
+        let material_index = match material {
+            None => 0,
+            Some(m) => match material_names.iter().position(|n| *n == m) {
+                Some(i) => i,
+                None => {
+                    return fail(
+                        &path.key("material"),
+                        format!("unknown material {m:?}; defined: {}", material_names.join(", ")),
+                    );
+                }
+            },
+        };
+        Ok(Object {
+            name: name.unwrap_or_else(|| format!("{}#{index}", shape.kind())),
+            shape,
+            material: material_index,
+        })
+    }
+}
+
+impl FileAttenuation {
+    fn validate(&self, path: &FieldPath) -> Check<Attenuation> {
+        let a = Attenuation {
+            constant: in_range(&path.key("constant"), self.constant.unwrap_or(1.0), 0.0, 1e12)?,
+            linear: in_range(&path.key("linear"), self.linear, 0.0, 1e12)?,
+            quadratic: in_range(&path.key("quadratic"), self.quadratic, 0.0, 1e12)?,
+        };
+        if a.constant + a.linear + a.quadratic == 0.0 {
+            return fail(
+                path,
+                "constant, linear and quadratic cannot all be 0 (A would be infinite)",
+            );
+        }
+        Ok(a)
+    }
+}
+
+impl FileLight {
+    fn validate(self, path: &FieldPath) -> Check<Light> {
+        let light_color = |c: [f64; 3]| color(&path.key("color"), c, limits::MAX_LIGHT);
+        Ok(match self {
+            FileLight::Ambient { color } => Light::Ambient {
+                color: light_color(color)?,
+            },
+            FileLight::Directional { direction: d, color } => Light::Directional {
+                direction: direction(&path.key("direction"), d)?,
+                color: light_color(color)?,
+            },
+            FileLight::Point {
+                position,
+                color,
+                attenuation,
+            } => Light::Point(PointLight {
+                position: vec3(&path.key("position"), position)?,
+                color: light_color(color)?,
+                attenuation: attenuation.validate(&path.key("attenuation"))?,
+            }),
+            FileLight::Spot {
+                position,
+                direction: d,
+                angle,
+                c_min,
+                c_max,
+                color,
+                attenuation,
+            } => Light::Spot(SpotLight::new(
+                vec3(&path.key("position"), position)?,
+                direction(&path.key("direction"), d)?,
+                in_range(&path.key("angle"), angle, 0.0, 180.0)?,
+                in_range(&path.key("c_min"), c_min, 0.0, 1.0)?,
+                in_range(&path.key("c_max"), c_max, 0.0, 1.0)?,
+                light_color(color)?,
+                attenuation.validate(&path.key("attenuation"))?,
+            )),
+        })
+    }
+}

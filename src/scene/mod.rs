@@ -1,0 +1,169 @@
+//! The in-memory scene (what a scene file describes, validated) and the `World` built from
+//! it for rendering (camera, acceleration structure, light sums and bounds).
+
+mod file;
+mod locate;
+
+pub use file::{SceneError, load, parse};
+
+use crate::accel::Accel;
+use crate::camera::Camera;
+use crate::light::Light;
+use crate::material::Material;
+use crate::shape::Shape;
+use glam::DVec3;
+
+/// Which specular term the local illumination model uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Specular {
+    None,
+    /// Phong: `(R.E)^n`.
+    Phong,
+    /// Blinn: `(N.H)^n`.
+    Blinn,
+}
+
+/// The terms of the local illumination model (slides): each can be switched off to draw
+/// the slides' "ambient only", "diffuse only", "specular only" figures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ShadingModel {
+    pub ambient: bool,
+    pub diffuse: bool,
+    pub specular: Specular,
+}
+
+impl Default for ShadingModel {
+    /// Chapter 7.4b's choice: ambient + Lambert + Blinn.
+    fn default() -> Self {
+        ShadingModel {
+            ambient: true,
+            diffuse: true,
+            specular: Specular::Blinn,
+        }
+    }
+}
+
+/// Image and tracing settings (the `[image]` and `[render]` tables).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    pub width: u32,
+    pub height: u32,
+    /// Samples per pixel, a perfect square `n^2` (an `n x n` stratified jittered grid).
+    pub samples_per_pixel: u32,
+    pub seed: u64,
+    /// Recursion depth as counted in the chapter's figures: 1 = no secondary rays.
+    pub depth: u32,
+    pub shading: ShadingModel,
+    /// Cast shadow rays (off: every light reaches every point facing it).
+    pub shadows: bool,
+    /// Colour of rays that hit nothing.
+    pub background: DVec3,
+    /// Adaptive depth control: a secondary ray is not traced when the most it could add to
+    /// the pixel is below this many 8-bit levels (0 = off).
+    pub adaptive_threshold: f64,
+}
+
+impl Settings {
+    /// Side `n` of the `n x n` sample grid.
+    pub fn grid_side(&self) -> u32 {
+        (self.samples_per_pixel as f64).sqrt().round() as u32
+    }
+}
+
+/// Camera as written in the scene file; the aspect ratio comes from the image size.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CameraSpec {
+    pub position: DVec3,
+    pub look_at: DVec3,
+    pub up: DVec3,
+    pub vfov_deg: f64,
+}
+
+/// One object: a shape with a material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Object {
+    /// The name given in the file, or `<kind>#<index>`.
+    pub name: String,
+    pub shape: Shape,
+    /// Index into `Scene::materials`.
+    pub material: usize,
+}
+
+/// A validated scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    pub settings: Settings,
+    pub camera: CameraSpec,
+    pub materials: Vec<Material>,
+    pub material_names: Vec<String>,
+    pub objects: Vec<Object>,
+    pub lights: Vec<Light>,
+}
+
+/// A scene ready to render: the camera for the image's aspect, the acceleration structure,
+/// and per-scene constants the tracer needs at every hit.
+pub struct World<'s> {
+    pub scene: &'s Scene,
+    pub camera: Camera,
+    pub accel: Accel,
+    /// Sum of the ambient lights' colours `L_a`.
+    pub ambient: DVec3,
+    /// Whether any object is transparent (else shadow rays need no filtered walk).
+    pub has_transparent: bool,
+    /// `remaining_bound[level]`: the most (largest channel) a ray traced at `level` can
+    /// return, counting every level it may still recurse to; used by adaptive depth control.
+    pub remaining_bound: Vec<f64>,
+}
+
+impl<'s> World<'s> {
+    pub fn new(scene: &'s Scene) -> Self {
+        let s = &scene.settings;
+        let camera = Camera::new(
+            scene.camera.position,
+            scene.camera.look_at,
+            scene.camera.up,
+            scene.camera.vfov_deg,
+            s.width as f64 / s.height as f64,
+        );
+        let ambient = scene.lights.iter().map(Light::ambient).sum();
+        let has_transparent = scene
+            .objects
+            .iter()
+            .any(|o| scene.materials[o.material].is_transparent());
+        World {
+            scene,
+            camera,
+            accel: Accel::build(&scene.objects),
+            ambient,
+            has_transparent,
+            remaining_bound: remaining_bounds(scene, ambient),
+        }
+    }
+
+    pub fn material_of(&self, object: usize) -> &Material {
+        &self.scene.materials[self.scene.objects[object].material]
+    }
+}
+
+/// Upper bound of what a ray at each level (1-based, index 0 unused) can return: a local
+/// bound `B = max(L_a) max(k_a) + sum_i max(L_i) max(k_d + k_s)` (or the background if
+/// larger) plus `K = max(k_r + k_t)` times the bound one level deeper.
+fn remaining_bounds(scene: &Scene, ambient: DVec3) -> Vec<f64> {
+    let mats = &scene.materials;
+    let max_of = |f: &dyn Fn(&Material) -> f64| mats.iter().map(f).fold(0.0, f64::max);
+    let direct: f64 = scene
+        .lights
+        .iter()
+        .filter(|l| !matches!(l, Light::Ambient { .. }))
+        .map(Light::max_intensity)
+        .sum();
+    let local = (ambient.max_element() * max_of(&|m| m.ka) + direct * max_of(&|m| m.kd + m.ks))
+        .max(scene.settings.background.max_element());
+    let k = max_of(&|m| m.kr + m.kt);
+    let depth = scene.settings.depth as usize;
+    let mut bound = vec![0.0; depth + 2];
+    for level in (1..=depth).rev() {
+        bound[level] = local + k * bound[level + 1];
+    }
+    bound
+}

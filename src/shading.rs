@@ -1,0 +1,168 @@
+//! The formulas of the slides (IFT3355 "shading 1") and chapter 7.4b as small pure
+//! functions. Each function's doc gives the source's notation; the tests check each one
+//! against a value computed by hand.
+
+use glam::DVec3;
+
+/// Distance attenuation (chapter 7.4b): `A = 1 / (C_const + C_lin d + C_quad d^2)`.
+pub fn attenuation(c_const: f64, c_lin: f64, c_quad: f64, d: f64) -> f64 {
+    1.0 / (c_const + c_lin * d + c_quad * d * d)
+}
+
+/// Spotlight angular factor (chapter 7.4b), with `o` the spot's unit orientation and `d`
+/// the unit direction from the light to the point:
+/// `t = (o.d - 1) / (cos(theta/2) - 1)`, `C_theta = (1 - t) C_max + t C_min` inside the cone
+/// `o.d >= cos(theta/2)`, and 0 outside. `cos_half` is `cos(theta/2)`. A cone of zero
+/// opening (`cos_half = 1`) lights nothing.
+pub fn spot_factor(o_dot_d: f64, cos_half: f64, c_min: f64, c_max: f64) -> f64 {
+    if o_dot_d < cos_half || cos_half >= 1.0 {
+        return 0.0;
+    }
+    let t = (o_dot_d - 1.0) / (cos_half - 1.0);
+    (1.0 - t) * c_max + t * c_min
+}
+
+/// Lambert's cosine (slides): `max(N.L, 0)`.
+pub fn lambert(n: DVec3, l: DVec3) -> f64 {
+    n.dot(l).max(0.0)
+}
+
+/// Phong's specular term (slides): `max(R.E, 0)^n` with `R = 2 (N.L) N - L`.
+pub fn phong(n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
+    let r = 2.0 * n.dot(l) * n - l;
+    pow(r.dot(e).max(0.0), exponent)
+}
+
+/// Blinn's specular term (slides): `max(N.H, 0)^n` with `H = (L + E) / |L + E|`.
+/// When `L = -E` the half vector is undefined and the term is 0.
+pub fn blinn(n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
+    let sum = l + e;
+    let len = sum.length();
+    if len == 0.0 {
+        return 0.0;
+    }
+    pow(n.dot(sum / len).max(0.0), exponent)
+}
+
+/// Specular colour factor of the slides' metal/plastic model: `m S + (1 - m)`.
+pub fn specular_tint(metal: f64, color: DVec3) -> DVec3 {
+    metal * color + DVec3::splat(1.0 - metal)
+}
+
+/// Ambient term (slides): `L_a k_a S`.
+pub fn ambient(la: DVec3, ka: f64, color: DVec3) -> DVec3 {
+    la * ka * color
+}
+
+/// One light's share (slides, full model):
+/// `L_i [k_d S max(N.L_i, 0) + k_s [m S + (1 - m)] spec_i]`, where `light` is the light's
+/// colour already multiplied by attenuation, spot factor and shadow filter, and `spec` is
+/// the Phong or Blinn term (0 when N.L <= 0). Summed over lights, plus the ambient term
+/// once, this is `L = L_a k_a S + sum_i A_i L_i [...]`.
+pub fn direct(light: DVec3, kd: f64, color: DVec3, n_dot_l: f64, ks: f64, tint: DVec3, spec: f64) -> DVec3 {
+    light * (kd * color * n_dot_l.max(0.0) + ks * tint * spec)
+}
+
+/// Shadow filter of chapter 7.4b: `L = L_lum prod_g S_g` over the transparent geometries
+/// the shadow ray crosses (each counted once); an empty product is 1.
+pub fn shadow_filter<'a>(colors: impl IntoIterator<Item = &'a DVec3>) -> DVec3 {
+    colors.into_iter().fold(DVec3::ONE, |acc, s| acc * *s)
+}
+
+/// `x^y` through libm, so the result is the same bits on every platform.
+pub fn pow(x: f64, y: f64) -> f64 {
+    libm::pow(x, y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f64, b: f64) {
+        assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+    }
+
+    #[test]
+    fn attenuation_of_the_chapter() {
+        // C = (1, 0, 0.01), d = 10: A = 1 / (1 + 0.01 * 100) = 0.5 (not the chapter's 0.1).
+        close(attenuation(1.0, 0.0, 0.01, 10.0), 0.5);
+        // C = (1, 0.5, 0.25), d = 2: 1 / (1 + 1 + 1) = 1/3.
+        close(attenuation(1.0, 0.5, 0.25, 2.0), 1.0 / 3.0);
+        // No attenuation: A = 1 at any distance.
+        close(attenuation(1.0, 0.0, 0.0, 1234.5), 1.0);
+    }
+
+    #[test]
+    fn spot_factor_centre_edge_and_outside() {
+        // theta = 120: cos 60 = 0.5. On the axis (o.d = 1): t = 0, C = C_max = 1.
+        close(spot_factor(1.0, 0.5, 0.0, 1.0), 1.0);
+        // o.d = 0.75: t = (0.75 - 1)/(0.5 - 1) = 0.5, C = 0.5 * 1 + 0.5 * 0 = 0.5.
+        close(spot_factor(0.75, 0.5, 0.0, 1.0), 0.5);
+        // With C_min = 0.2: C = 0.5 + 0.5 * 0.2 = 0.6.
+        close(spot_factor(0.75, 0.5, 0.2, 1.0), 0.6);
+        // At the edge o.d = cos(theta/2): t = 1, C = C_min.
+        close(spot_factor(0.5, 0.5, 0.2, 1.0), 0.2);
+        // Outside the cone: 0 whatever C_min.
+        close(spot_factor(0.49, 0.5, 0.2, 1.0), 0.0);
+        // Zero opening: dark even on the axis.
+        close(spot_factor(1.0, 1.0, 0.0, 1.0), 0.0);
+    }
+
+    #[test]
+    fn lambert_cosine() {
+        // N = z, L at 60 degrees from N: cos 60 = 0.5.
+        let l = DVec3::new(libm::sin(60f64.to_radians()), 0.0, 0.5);
+        close(lambert(DVec3::Z, l), 0.5);
+        close(lambert(DVec3::Z, -l), 0.0);
+    }
+
+    #[test]
+    fn phong_and_blinn_by_hand() {
+        // N = z, L = (0.6, 0, 0.8), E = (0, 0.6, 0.8).
+        // R = 2 * 0.8 * z - L = (-0.6, 0, 0.8); R.E = 0.64; 0.64^2 = 0.4096.
+        let (n, l, e) = (DVec3::Z, DVec3::new(0.6, 0.0, 0.8), DVec3::new(0.0, 0.6, 0.8));
+        close(phong(n, l, e, 2.0), 0.4096);
+        // H = (0.6, 0.6, 1.6)/|.|, |.| = sqrt(0.36 + 0.36 + 2.56) = sqrt(3.28);
+        // N.H = 1.6/sqrt(3.28) = 0.883452...; squared = 2.56/3.28 = 0.780487804878...
+        close(blinn(n, l, e, 2.0), 2.56 / 3.28);
+        // Mirror direction: R = E gives 1 for any exponent.
+        close(phong(n, l, DVec3::new(-0.6, 0.0, 0.8), 512.0), 1.0);
+        // Opposite L and E: H undefined, term 0.
+        close(blinn(n, l, -l, 20.0), 0.0);
+    }
+
+    #[test]
+    fn metal_and_plastic_tint() {
+        let s = DVec3::new(1.0, 0.5, 0.0);
+        // Plastic (m = 0): the light's colour, (1, 1, 1).
+        assert_eq!(specular_tint(0.0, s), DVec3::ONE);
+        // Metal (m = 1): the surface colour.
+        assert_eq!(specular_tint(1.0, s), s);
+        // m = 0.5: 0.5 S + 0.5 = (1, 0.75, 0.5).
+        assert_eq!(specular_tint(0.5, s), DVec3::new(1.0, 0.75, 0.5));
+    }
+
+    #[test]
+    fn multi_light_sum_counts_ambient_once() {
+        // S = (0.5, 0.5, 0.5), ka 0.2, kd 0.8, ks 0.5, plastic, La = 1.
+        // Light 1: L = 1, N.L = 1, spec 1  -> 0.8 * 0.5 * 1 + 0.5 * 1 * 1 = 0.9.
+        // Light 2: L = 0.5, N.L = 0.5, spec 0.25 -> 0.5 * (0.8 * 0.5 * 0.5 + 0.5 * 0.25) = 0.1625.
+        // Ambient once: 1 * 0.2 * 0.5 = 0.1. Total 0.1 + 0.9 + 0.1625 = 1.1625 (above 1:
+        // clamped only at output).
+        let s = DVec3::splat(0.5);
+        let tint = specular_tint(0.0, s);
+        let total = ambient(DVec3::ONE, 0.2, s)
+            + direct(DVec3::ONE, 0.8, s, 1.0, 0.5, tint, 1.0)
+            + direct(DVec3::splat(0.5), 0.8, s, 0.5, 0.5, tint, 0.25);
+        close(total.x, 1.1625);
+        assert_eq!(total.x, total.z);
+    }
+
+    #[test]
+    fn filtered_shadow_product() {
+        // Yellow (1, 0.9, 0.1) then mauve (0.6, 0.3, 0.8): (0.6, 0.27, 0.08).
+        let f = shadow_filter(&[DVec3::new(1.0, 0.9, 0.1), DVec3::new(0.6, 0.3, 0.8)]);
+        assert!((f - DVec3::new(0.6, 0.27, 0.08)).length() < 1e-15);
+        assert_eq!(shadow_filter(&[]), DVec3::ONE);
+    }
+}

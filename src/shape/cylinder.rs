@@ -1,0 +1,112 @@
+//! A capped cylinder: base centre, unit axis, height, radius.
+
+use super::{Aabb, SurfaceHit, first_root_in, local_cap, nearer};
+use crate::math::{Frame, Ray};
+use crate::solve::quadratic;
+use glam::DVec3;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cylinder {
+    pub base: DVec3,
+    pub axis: DVec3,
+    pub height: f64,
+    pub radius: f64,
+    frame: Frame,
+}
+
+impl Cylinder {
+    pub fn new(base: DVec3, axis: DVec3, height: f64, radius: f64) -> Self {
+        let axis = axis.normalize();
+        Cylinder {
+            base,
+            axis,
+            height,
+            radius,
+            frame: Frame::from_z(axis),
+        }
+    }
+
+    /// In the local frame (axis = +z, base at the origin): side `x^2 + y^2 = r^2` for
+    /// `0 <= z <= h`, and the caps `z = 0`, `z = h` within radius `r`.
+    pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        let o = self.frame.to_local(ray.origin - self.base);
+        let d = self.frame.to_local(ray.dir);
+        let r2 = self.radius * self.radius;
+        let a = d.x * d.x + d.y * d.y;
+        let on_side = |t: f64| {
+            let z = o.z + t * d.z;
+            t > t_min && t < t_max && (0.0..=self.height).contains(&z)
+        };
+        // A ray parallel to the axis (a = 0) never meets the side, only the caps.
+        let side = (a > 0.0)
+            .then(|| quadratic(a, 2.0 * (o.x * d.x + o.y * d.y), o.x * o.x + o.y * o.y - r2))
+            .flatten()
+            .and_then(|(t0, t1)| {
+                let t0 = if on_side(t0) { t0 } else { f64::INFINITY };
+                let t1 = if on_side(t1) { t1 } else { f64::INFINITY };
+                first_root_in((t0.min(t1), t0.max(t1)), t_min, t_max)
+            });
+        let side = side.map(|t| {
+            let p = o + d * t;
+            SurfaceHit {
+                t,
+                normal: self.frame.to_world(DVec3::new(p.x, p.y, 0.0) / self.radius).normalize(),
+            }
+        });
+        let in_disk = |x: f64, y: f64| x * x + y * y <= r2;
+        let bottom = local_cap(o, d, 0.0, t_min, t_max, in_disk).map(|t| SurfaceHit { t, normal: -self.axis });
+        let top = local_cap(o, d, self.height, t_min, t_max, in_disk).map(|t| SurfaceHit { t, normal: self.axis });
+        nearer(nearer(side, bottom), top)
+    }
+
+    pub fn bounds(&self) -> Option<Aabb> {
+        disk_bounds(self.base, self.axis, self.radius)
+            .map(|b| b.union(disk_bounds(self.base + self.axis * self.height, self.axis, self.radius).unwrap()))
+    }
+}
+
+/// Box of a disk (shared by cylinder and cone caps).
+pub(crate) fn disk_bounds(center: DVec3, normal: DVec3, radius: f64) -> Option<Aabb> {
+    super::Disk::new(center, normal, radius).bounds()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_util::*;
+    use super::*;
+
+    fn reference() -> Cylinder {
+        // The reference cylinder: base (-5, 9, 0), radius 1, height 3, axis +z.
+        Cylinder::new(DVec3::new(-5., 9., 0.), DVec3::Z, 3.0, 1.0)
+    }
+
+    #[test]
+    fn side_caps_and_inside() {
+        let c = reference();
+        assert_hit(c.intersect(&ray([-5., 0., 1.], [0., 1., 0.]), 0.0, 1e9), 8.0, -DVec3::Y);
+        assert_hit(
+            c.intersect(&ray([-5., 9., 10.], [0., 0., -1.]), 0.0, 1e9),
+            7.0,
+            DVec3::Z,
+        );
+        assert_hit(
+            c.intersect(&ray([-5.5, 9., -4.], [0., 0., 1.]), 0.0, 1e9),
+            4.0,
+            -DVec3::Z,
+        );
+        // From inside, along +x: exits through the side at t = 1.
+        assert_hit(c.intersect(&ray([-5., 9., 1.5], [1., 0., 0.]), 0.0, 1e9), 1.0, DVec3::X);
+        // Parallel to the caps above the top: miss.
+        assert!(c.intersect(&ray([-5., 0., 3.5], [0., 1., 0.]), 0.0, 1e9).is_none());
+        // Tangent to the side: double root at x = -4.
+        assert_hit(c.intersect(&ray([-4., 0., 1.], [0., 1., 0.]), 0.0, 1e9), 9.0, DVec3::X);
+    }
+
+    #[test]
+    fn tilted_axis() {
+        // Axis along +x from the origin: a ray down -z hits the side at z = 1.
+        let c = Cylinder::new(DVec3::ZERO, DVec3::X, 4.0, 1.0);
+        assert_hit(c.intersect(&ray([2., 0., 5.], [0., 0., -1.]), 0.0, 1e9), 4.0, DVec3::Z);
+        assert_hit(c.intersect(&ray([-3., 0., 0.], [1., 0., 0.]), 0.0, 1e9), 3.0, -DVec3::X);
+    }
+}

@@ -1,0 +1,75 @@
+//! A parallelogram given by a corner and two edges: `corner + u e1 + v e2`, `u, v in [0, 1]`
+//! (the finite mirrors of the `mirrors` figures).
+
+use super::{Aabb, SurfaceHit};
+use crate::math::Ray;
+use glam::DVec3;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rectangle {
+    pub corner: DVec3,
+    pub edge1: DVec3,
+    pub edge2: DVec3,
+    /// `e1 x e2`, not normalised (used for the barycentric solve).
+    cross: DVec3,
+    /// Unit normal, along `e1 x e2`.
+    normal: DVec3,
+}
+
+impl Rectangle {
+    /// The edges must not be parallel (checked when the scene is validated).
+    pub fn new(corner: DVec3, edge1: DVec3, edge2: DVec3) -> Self {
+        let cross = edge1.cross(edge2);
+        Rectangle {
+            corner,
+            edge1,
+            edge2,
+            cross,
+            normal: cross.normalize(),
+        }
+    }
+
+    /// Plane hit, then `u = ((p - c) x e2).n / |n|^2`, `v = (e1 x (p - c)).n / |n|^2`.
+    pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        let denom = ray.dir.dot(self.normal);
+        if denom == 0.0 {
+            return None;
+        }
+        let t = (self.corner - ray.origin).dot(self.normal) / denom;
+        if !(t > t_min && t < t_max) {
+            return None;
+        }
+        let w = ray.at(t) - self.corner;
+        let n2 = self.cross.length_squared();
+        let u = w.cross(self.edge2).dot(self.cross) / n2;
+        let v = self.edge1.cross(w).dot(self.cross) / n2;
+        ((0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)).then_some(SurfaceHit { t, normal: self.normal })
+    }
+
+    pub fn bounds(&self) -> Option<Aabb> {
+        let c = self.corner;
+        Some(
+            Aabb::new(c, c)
+                .include(c + self.edge1)
+                .include(c + self.edge2)
+                .include(c + self.edge1 + self.edge2),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_util::*;
+    use super::*;
+
+    #[test]
+    fn hits_inside_and_misses_outside() {
+        // Unit square in the plane x = 0 spanning y in [0, 2], z in [0, 1]; normal = Y x Z = +x.
+        let r = Rectangle::new(DVec3::ZERO, DVec3::new(0., 2., 0.), DVec3::Z);
+        assert_hit(r.intersect(&ray([3., 1., 0.5], [-1., 0., 0.]), 0.0, 1e9), 3.0, DVec3::X);
+        assert!(r.intersect(&ray([3., 2.5, 0.5], [-1., 0., 0.]), 0.0, 1e9).is_none());
+        assert!(r.intersect(&ray([3., 1., 1.5], [-1., 0., 0.]), 0.0, 1e9).is_none());
+        // Edge-on ray: parallel to the plane, no hit.
+        assert!(r.intersect(&ray([0., -1., 0.5], [0., 1., 0.]), 0.0, 1e9).is_none());
+    }
+}

@@ -1,0 +1,189 @@
+//! Root finders for the shape equations: the numerically stable quadratic (spheres,
+//! cylinders, cones) and a real-root isolator for polynomials up to degree 4 (the torus).
+//!
+//! The quartic solver does not use a closed form (Ferrari and friends lose whole digits to
+//! cancellation on badly scaled coefficients). It isolates roots on a finite interval by
+//! recursion on derivatives: the roots of `p'` split `[a, b]` into pieces where `p` is
+//! monotone, and each piece holding a sign change is solved by safeguarded Newton-bisection
+//! to full precision. The caller passes the exact function to bracket on (for the torus, its
+//! implicit equation evaluated directly, which has no coefficient cancellation).
+
+/// Real roots of `a t^2 + b t + c = 0` in increasing order, computed without catastrophic
+/// cancellation: `q = -(b + sign(b) sqrt(b^2 - 4ac)) / 2`, roots `q / a` and `c / q`
+/// (Numerical Recipes 5.6). Degenerate `a = 0` falls back to the linear root.
+pub fn quadratic(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
+    if a == 0.0 {
+        if b == 0.0 {
+            return None;
+        }
+        let t = -c / b;
+        return Some((t, t));
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let root = disc.sqrt();
+    let q = if b < 0.0 { -0.5 * (b - root) } else { -0.5 * (b + root) };
+    let (t0, t1) = if q == 0.0 {
+        // b = 0 and c = 0: a double root at zero.
+        (0.0, 0.0)
+    } else {
+        (q / a, c / q)
+    };
+    Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+}
+
+/// Evaluates `sum c[i] t^i` by Horner's rule (coefficients in increasing degree).
+pub fn horner(c: &[f64], t: f64) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &ci| acc * t + ci)
+}
+
+/// Coefficients of the derivative (increasing degree).
+fn derivative(c: &[f64]) -> Vec<f64> {
+    c.iter().enumerate().skip(1).map(|(i, &ci)| ci * i as f64).collect()
+}
+
+/// Pushes into `out`, in increasing order, the real roots in `[lo, hi]` of the polynomial
+/// with coefficients `c` (increasing degree, at most degree 4). Double roots are reported
+/// when the polynomial reaches exactly zero at a critical point; grazing roots that round
+/// to a near miss are lost, which is the expected behaviour within the grazing band.
+pub fn poly_roots_in(c: &[f64], lo: f64, hi: f64, out: &mut Vec<f64>) {
+    poly_roots_with(c, lo, hi, &|t| horner(c, t), out)
+}
+
+/// As [`poly_roots_in`], but brackets and refines the roots on `f`, an accurate evaluation
+/// of the same polynomial (for example an unexpanded implicit equation). The expanded
+/// coefficients `c` are only used to find the critical points that split the interval.
+pub fn poly_roots_with(c: &[f64], lo: f64, hi: f64, f: &dyn Fn(f64) -> f64, out: &mut Vec<f64>) {
+    let mut c = c.to_vec();
+    while c.len() > 1 && *c.last().unwrap() == 0.0 {
+        c.pop();
+    }
+    let degree = c.len() - 1;
+    if degree == 0 {
+        return;
+    }
+    // Split points: the critical points of the polynomial (roots of its derivative).
+    let mut splits = Vec::with_capacity(5);
+    splits.push(lo);
+    if degree >= 2 {
+        let d = derivative(&c);
+        let mut crit = Vec::with_capacity(3);
+        poly_roots_in(&d, lo, hi, &mut crit);
+        splits.extend(crit.into_iter().filter(|&t| t > lo && t < hi));
+    }
+    splits.push(hi);
+    let deriv = derivative(&c);
+    for w in splits.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let (fa, fb) = (f(a), f(b));
+        if fa == 0.0 {
+            push_unique(out, a);
+        } else if fa.signum() != fb.signum() && fb != 0.0 {
+            push_unique(out, refine(f, &deriv, a, b, fa));
+        }
+    }
+    if let Some(&last) = splits.last()
+        && f(last) == 0.0
+    {
+        push_unique(out, last);
+    }
+}
+
+fn push_unique(out: &mut Vec<f64>, t: f64) {
+    if out.last() != Some(&t) {
+        out.push(t);
+    }
+}
+
+/// Safeguarded Newton-bisection on a bracket `[a, b]` where `f` changes sign (`fa = f(a)`).
+/// Newton steps use the expanded derivative; a step leaving the bracket is replaced by
+/// bisection. Stops when the bracket cannot shrink further in floating point.
+fn refine(f: &dyn Fn(f64) -> f64, deriv: &[f64], mut a: f64, mut b: f64, fa: f64) -> f64 {
+    let neg_at_a = fa < 0.0;
+    let mut t = 0.5 * (a + b);
+    for _ in 0..200 {
+        let ft = f(t);
+        if ft == 0.0 {
+            return t;
+        }
+        if (ft < 0.0) == neg_at_a {
+            a = t;
+        } else {
+            b = t;
+        }
+        let mid = 0.5 * (a + b);
+        if mid <= a || mid >= b {
+            break;
+        }
+        let d = horner(deriv, t);
+        let newton = t - ft / d;
+        t = if d != 0.0 && newton > a && newton < b {
+            newton
+        } else {
+            mid
+        };
+        // Newton converged to a fixed point inside the bracket: one more bisection check.
+        if t == a || t == b {
+            t = mid;
+        }
+    }
+    // The bracket is a few ulps wide: return the end with the smaller residual.
+    if f(a).abs() <= f(b).abs() { a } else { b }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stable_quadratic_keeps_the_small_root() {
+        // t^2 - 1e8 t + 1 = 0: roots 1e8 and 1e-8 (1e-8 + 1e-24 to first order). The naive
+        // formula loses every digit of the small root to cancellation.
+        let (t0, t1) = quadratic(1.0, -1e8, 1.0).unwrap();
+        assert!((t0 - 1.000_000_000_000_000_1e-8).abs() < 1e-22, "{t0}");
+        assert!((t1 - 1e8).abs() < 1e-6);
+    }
+
+    #[test]
+    fn quadratic_without_real_roots() {
+        assert_eq!(quadratic(1.0, 0.0, 1.0), None);
+        // (t - 2)^2: a double root.
+        assert_eq!(quadratic(1.0, -4.0, 4.0), Some((2.0, 2.0)));
+    }
+
+    #[test]
+    fn quartic_with_four_known_roots() {
+        // (t-1)(t-2)(t-3)(t-4) = t^4 - 10 t^3 + 35 t^2 - 50 t + 24.
+        let c = [24.0, -50.0, 35.0, -10.0, 1.0];
+        let mut r = Vec::new();
+        poly_roots_in(&c, 0.0, 10.0, &mut r);
+        assert_eq!(r, vec![1.0, 2.0, 3.0, 4.0]);
+        r.clear();
+        poly_roots_in(&c, 2.5, 3.5, &mut r);
+        assert_eq!(r, vec![3.0]);
+    }
+
+    #[test]
+    fn quartic_with_clustered_roots() {
+        // (t - 1)(t - 1.000001)(t - 5)(t - 7): two roots 1e-6 apart are still separated.
+        let roots = [1.0, 1.000_001, 5.0, 7.0];
+        let mut c = vec![1.0];
+        for r in roots {
+            // multiply by (t - r)
+            let mut next = vec![0.0; c.len() + 1];
+            for (i, &ci) in c.iter().enumerate() {
+                next[i] -= r * ci;
+                next[i + 1] += ci;
+            }
+            c = next;
+        }
+        let mut r = Vec::new();
+        poly_roots_in(&c, 0.0, 10.0, &mut r);
+        assert_eq!(r.len(), 4, "{r:?}");
+        for (got, want) in r.iter().zip(roots) {
+            assert!((got - want).abs() < 1e-9, "{got} vs {want}");
+        }
+    }
+}

@@ -1,0 +1,295 @@
+//! Whitted recursion (chapter 7.4b): local illumination with filtered shadow rays at every
+//! hit, then a reflected ray (weight `k_r`) and a refracted ray (weight `k_t`), total
+//! internal reflection sending the refracted weight to the reflection, up to the scene's
+//! recursion depth, with adaptive depth control. Every step can be reported to a
+//! [`Recorder`]; the renderer passes [`NoRecord`], which compiles to nothing, and `probe`
+//! passes a recorder that keeps the whole ray tree, so both see the same numbers.
+
+use crate::light::{Incidence, Light};
+use crate::math::{Ray, hit_point_error, offset_origin, reflect, refract};
+use crate::scene::{Specular, World};
+use crate::shading::{ambient, blinn, direct, phong, specular_tint};
+use glam::DVec3;
+
+/// What a ray is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RayKind {
+    Camera,
+    Shadow,
+    Reflection,
+    Refraction,
+}
+
+/// Rays traced, by kind, and work skipped, by reason.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    pub camera: u64,
+    pub shadow: u64,
+    pub reflection: u64,
+    pub refraction: u64,
+    /// Refractions turned into reflections by total internal reflection.
+    pub total_internal_reflections: u64,
+    /// Secondary rays not traced because their weight could not change the 8-bit result.
+    pub adaptive_cutoffs: u64,
+    /// Samples whose radiance was NaN or infinite (replaced by black).
+    pub non_finite: u64,
+}
+
+impl RayCounts {
+    pub fn add(&mut self, o: &RayCounts) {
+        self.camera += o.camera;
+        self.shadow += o.shadow;
+        self.reflection += o.reflection;
+        self.refraction += o.refraction;
+        self.total_internal_reflections += o.total_internal_reflections;
+        self.adaptive_cutoffs += o.adaptive_cutoffs;
+        self.non_finite += o.non_finite;
+    }
+
+    pub fn total_rays(&self) -> u64 {
+        self.camera + self.shadow + self.reflection + self.refraction
+    }
+}
+
+/// One light's share at a hit, as the tracer computed it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightShare {
+    /// Index of the light in the scene's list.
+    pub light: usize,
+    pub incidence: Incidence,
+    /// `N.L` with the normal facing the incoming ray.
+    pub n_dot_l: f64,
+    /// Whether a shadow ray was cast (not when N.L <= 0 or shadows are off).
+    pub shadow_ray: bool,
+    /// Product of the transparent objects' colours crossed (0 if an opaque one blocks).
+    pub filter: DVec3,
+    pub diffuse: DVec3,
+    pub specular: DVec3,
+}
+
+/// Observer of the tracer's steps; every method does nothing by default.
+pub trait Recorder {
+    fn ray(&mut self, _kind: RayKind, _ray: &Ray, _level: u32, _weight: f64) {}
+    fn hit(&mut self, _object: usize, _t: f64, _point: DVec3, _normal: DVec3, _entering: bool) {}
+    fn miss(&mut self) {}
+    fn ambient(&mut self, _color: DVec3) {}
+    fn light(&mut self, _share: &LightShare) {}
+    fn cutoff(&mut self, _kind: RayKind, _weight: f64) {}
+    fn total_internal_reflection(&mut self) {}
+    /// The radiance the ray at the innermost open level returned.
+    fn done(&mut self, _color: DVec3) {}
+}
+
+/// The recorder that records nothing.
+pub struct NoRecord;
+impl Recorder for NoRecord {}
+
+/// Traces rays in a world; one per thread (it keeps counters and scratch space).
+pub struct Tracer<'w, 's> {
+    pub world: &'w World<'s>,
+    pub counts: RayCounts,
+    /// Scratch list of transparent objects crossed by a shadow ray.
+    crossed: Vec<usize>,
+}
+
+impl<'w, 's> Tracer<'w, 's> {
+    pub fn new(world: &'w World<'s>) -> Self {
+        Tracer {
+            world,
+            counts: RayCounts::default(),
+            crossed: Vec::new(),
+        }
+    }
+
+    /// Radiance along a camera ray.
+    pub fn trace_camera<R: Recorder>(&mut self, ray: &Ray, rec: &mut R) -> DVec3 {
+        self.counts.camera += 1;
+        self.radiance(RayKind::Camera, ray, 1, 1.0, rec)
+    }
+
+    /// Radiance along `ray` at recursion `level` (1 = camera ray), whose contribution to the
+    /// pixel is scaled by `weight` (product of the k_r and k_t along the path).
+    fn radiance<R: Recorder>(&mut self, kind: RayKind, ray: &Ray, level: u32, weight: f64, rec: &mut R) -> DVec3 {
+        rec.ray(kind, ray, level, weight);
+        let scene = self.world.scene;
+        let Some((object, hit)) = self.world.accel.closest(&scene.objects, ray, 0.0, f64::INFINITY) else {
+            rec.miss();
+            rec.done(scene.settings.background);
+            return scene.settings.background;
+        };
+        let mat = self.world.material_of(object);
+        let point = ray.at(hit.t);
+        let err = hit_point_error(ray, hit.t);
+        let entering = ray.dir.dot(hit.normal) < 0.0;
+        // Shading normal on the side the ray comes from.
+        let n = if entering { hit.normal } else { -hit.normal };
+        rec.hit(object, hit.t, point, hit.normal, entering);
+
+        let mut color = self.local(point, n, hit.normal, err, -ray.dir, object, rec);
+
+        let settings = &scene.settings;
+        if level < settings.depth && (mat.kr > 0.0 || mat.kt > 0.0) {
+            let mut kr = mat.kr;
+            let mut refracted = None;
+            if mat.kt > 0.0 {
+                let eta = if entering { 1.0 / mat.ior } else { mat.ior };
+                match refract(ray.dir, n, eta) {
+                    Some(t) => refracted = Some(t.normalize()),
+                    None => {
+                        // Total internal reflection: the transmitted energy is reflected.
+                        kr += mat.kt;
+                        self.counts.total_internal_reflections += 1;
+                        rec.total_internal_reflection();
+                    }
+                }
+            }
+            if kr > 0.0 {
+                let dir = reflect(ray.dir, n).normalize();
+                color += kr
+                    * self.secondary(
+                        RayKind::Reflection,
+                        point,
+                        hit.normal,
+                        err,
+                        dir,
+                        level,
+                        weight * kr,
+                        rec,
+                    );
+            }
+            if let Some(dir) = refracted {
+                color += mat.kt
+                    * self.secondary(
+                        RayKind::Refraction,
+                        point,
+                        hit.normal,
+                        err,
+                        dir,
+                        level,
+                        weight * mat.kt,
+                        rec,
+                    );
+            }
+        }
+        rec.done(color);
+        color
+    }
+
+    /// Traces a reflected or refracted ray from `point` unless adaptive depth control finds
+    /// that, with `weight`, it cannot change the 8-bit result.
+    #[allow(clippy::too_many_arguments)]
+    fn secondary<R: Recorder>(
+        &mut self,
+        kind: RayKind,
+        point: DVec3,
+        normal: DVec3,
+        err: f64,
+        dir: DVec3,
+        level: u32,
+        weight: f64,
+        rec: &mut R,
+    ) -> DVec3 {
+        let threshold = self.world.scene.settings.adaptive_threshold;
+        let most = weight * self.world.remaining_bound[level as usize + 1] * 255.0;
+        if threshold > 0.0 && most < threshold {
+            self.counts.adaptive_cutoffs += 1;
+            rec.cutoff(kind, weight);
+            return DVec3::ZERO;
+        }
+        match kind {
+            RayKind::Reflection => self.counts.reflection += 1,
+            _ => self.counts.refraction += 1,
+        }
+        let ray = Ray::new(offset_origin(point, normal, err, dir), dir);
+        self.radiance(kind, &ray, level + 1, weight, rec)
+    }
+
+    /// Local illumination at a hit (slides' full model), with shadow rays.
+    #[allow(clippy::too_many_arguments)]
+    fn local<R: Recorder>(
+        &mut self,
+        point: DVec3,
+        n: DVec3,
+        outward: DVec3,
+        err: f64,
+        eye: DVec3,
+        object: usize,
+        rec: &mut R,
+    ) -> DVec3 {
+        let scene = self.world.scene;
+        let model = scene.settings.shading;
+        let mat = self.world.material_of(object);
+        let mut color = DVec3::ZERO;
+        if model.ambient {
+            let a = ambient(self.world.ambient, mat.ka, mat.color);
+            rec.ambient(a);
+            color += a;
+        }
+        let kd = if model.diffuse { mat.kd } else { 0.0 };
+        let tint = specular_tint(mat.metal, mat.color);
+        for (index, light) in scene.lights.iter().enumerate() {
+            if matches!(light, Light::Ambient { .. }) {
+                continue;
+            }
+            let Some(inc) = light.incidence(point) else { continue };
+            let n_dot_l = n.dot(inc.to_light);
+            // N.L <= 0: no diffuse and (slides) no specular, so no shadow ray either.
+            if n_dot_l <= 0.0 {
+                continue;
+            }
+            let filter = if scene.settings.shadows {
+                self.shadow_filter(point, outward, err, &inc)
+            } else {
+                DVec3::ONE
+            };
+            let arriving = inc.color * filter;
+            let spec = match model.specular {
+                Specular::None => 0.0,
+                Specular::Phong => phong(n, inc.to_light, eye, mat.shininess),
+                Specular::Blinn => blinn(n, inc.to_light, eye, mat.shininess),
+            };
+            let diffuse = direct(arriving, kd, mat.color, n_dot_l, 0.0, tint, 0.0);
+            let specular = direct(arriving, 0.0, mat.color, n_dot_l, mat.ks, tint, spec);
+            rec.light(&LightShare {
+                light: index,
+                incidence: inc,
+                n_dot_l,
+                shadow_ray: scene.settings.shadows,
+                filter,
+                diffuse,
+                specular,
+            });
+            color += diffuse + specular;
+        }
+        color
+    }
+
+    /// Chapter 7.4b's shadow ray from `point` towards the light: 0 if an opaque object is in
+    /// the way, else the product of the colours of the transparent objects crossed, each
+    /// counted once however many of its surfaces the ray crosses.
+    fn shadow_filter(&mut self, point: DVec3, outward: DVec3, err: f64, inc: &Incidence) -> DVec3 {
+        self.counts.shadow += 1;
+        let world = self.world;
+        let objects = &world.scene.objects;
+        let ray = Ray::new(offset_origin(point, outward, err, inc.to_light), inc.to_light);
+        let t_max = inc.distance;
+        let opaque = |i: usize| !world.material_of(i).is_transparent();
+        if world.accel.any_hit(objects, &ray, 0.0, t_max, &opaque) {
+            return DVec3::ZERO;
+        }
+        if !world.has_transparent {
+            return DVec3::ONE;
+        }
+        self.crossed.clear();
+        let transparent = |i: usize| world.material_of(i).is_transparent();
+        let crossed = &mut self.crossed;
+        world
+            .accel
+            .each_hit(objects, &ray, 0.0, t_max, &transparent, &mut |i| crossed.push(i));
+        // Multiply in object order so the bits do not depend on the traversal order.
+        self.crossed.sort_unstable();
+        self.crossed
+            .iter()
+            .fold(DVec3::ONE, |acc, &i| acc * world.material_of(i).color)
+    }
+}
