@@ -159,10 +159,15 @@ mod tests {
         let c = [24.0, -50.0, 35.0, -10.0, 1.0];
         let mut r = Vec::new();
         poly_roots_in(&c, 0.0, 10.0, &mut r);
-        assert_eq!(r, vec![1.0, 2.0, 3.0, 4.0]);
+        assert_eq!(r.len(), 4, "{r:?}");
+        for (got, want) in r.iter().zip([1.0, 2.0, 3.0, 4.0]) {
+            // Horner on expanded coefficients is accurate to a few ulps of the largest term.
+            assert!((got - want).abs() < 1e-13, "{got} vs {want}");
+        }
         r.clear();
         poly_roots_in(&c, 2.5, 3.5, &mut r);
-        assert_eq!(r, vec![3.0]);
+        assert_eq!(r.len(), 1);
+        assert!((r[0] - 3.0).abs() < 1e-13);
     }
 
     #[test]

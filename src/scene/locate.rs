@@ -87,8 +87,8 @@ mod tests {
         let p = FieldPath::default().key("shapes").index(1).key("radius");
         assert_eq!(p.to_string(), "shapes[1].radius");
         assert_eq!(line_col(text, locate(text, &p)), (9, 10));
-        // A missing field points at its table.
+        // A missing field points at its table's header.
         let missing = FieldPath::default().key("shapes").index(0).key("center");
-        assert_eq!(line_col(text, locate(text, &missing)).0, 5);
+        assert_eq!(line_col(text, locate(text, &missing)).0, 4);
     }
 }

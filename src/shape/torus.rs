@@ -170,11 +170,11 @@ mod tests {
     #[test]
     fn tangent_on_top() {
         // Along +x on the top z = 2.5: touches the tube tops at x = 2.5 and x = 5.5 (double
-        // roots); the polynomial is exactly zero there only up to rounding, so accept a hit
-        // at 2.5 - (-6) = 8.5 or a miss, but never a hit elsewhere.
+        // roots, t = 8.5 and 11.5); the polynomial is zero there only up to rounding, so
+        // accept a hit at either tangent point or a miss, but never a hit elsewhere.
         let t = reference();
         if let Some(h) = t.intersect(&ray([-6., 3., 2.5], [1., 0., 0.]), 0.0, 1e9) {
-            assert!((h.t - 8.5).abs() < 1e-4, "{}", h.t);
+            assert!((h.t - 8.5).abs() < 1e-4 || (h.t - 11.5).abs() < 1e-4, "{}", h.t);
         }
     }
 
