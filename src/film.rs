@@ -47,6 +47,14 @@ impl Film {
     }
 }
 
+/// FNV-1a 64-bit hash of 8-bit pixel data, the "pixel hash" of manifests and snapshots:
+/// independent of the PNG encoder, so a student can compare decoded pixels.
+pub fn pixel_hash(rgb: &[u8]) -> u64 {
+    rgb.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
 /// PNG-encodes interleaved 8-bit RGB.
 pub fn encode_png(width: u32, height: u32, rgb: &[u8]) -> Result<Vec<u8>, image::ImageError> {
     let mut out = Vec::new();
@@ -95,6 +103,13 @@ mod tests {
         assert_eq!(quantize(1.0), 255);
         assert_eq!(quantize(7.3), 255);
         assert_eq!(quantize(f64::NAN), 0);
+    }
+
+    #[test]
+    fn fnv1a_reference_values() {
+        // Published FNV-1a 64 test vectors: "" and "a".
+        assert_eq!(pixel_hash(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(pixel_hash(b"a"), 0xaf63_dc4c_8601_ec8c);
     }
 
     #[test]

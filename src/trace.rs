@@ -266,8 +266,9 @@ impl<'w, 's> Tracer<'w, 's> {
 
     /// Chapter 7.4b's shadow ray from `point` towards the light: 0 if an opaque object is in
     /// the way, else the product of the colours of the transparent objects crossed, each
-    /// counted once however many of its surfaces the ray crosses.
-    fn shadow_filter(&mut self, point: DVec3, outward: DVec3, err: f64, inc: &Incidence) -> DVec3 {
+    /// counted once however many of its surfaces the ray crosses. `outward` is the surface
+    /// normal at `point` and `err` the bound on the point's rounding error.
+    pub fn shadow_filter(&mut self, point: DVec3, outward: DVec3, err: f64, inc: &Incidence) -> DVec3 {
         self.counts.shadow += 1;
         let world = self.world;
         let objects = &world.scene.objects;

@@ -116,7 +116,7 @@ fn vec3(path: &FieldPath, v: [f64; 3]) -> Check<DVec3> {
 fn direction(path: &FieldPath, v: [f64; 3]) -> Check<DVec3> {
     let d = vec3(path, v)?;
     let len = d.length();
-    if !(len > 1e-12) {
+    if len <= 1e-12 {
         return fail(path, format!("must be a direction of non-zero length, got {v:?}"));
     }
     Ok(d / len)
@@ -433,7 +433,7 @@ impl FileScene {
         let look_at = vec3(&path.key("look_at"), c.look_at)?;
         let up = direction(&path.key("up"), c.up)?;
         let forward = look_at - position;
-        if !(forward.length() > 1e-12) {
+        if forward.length() <= 1e-12 {
             return fail(&path.key("look_at"), "must differ from the camera position");
         }
         if forward.normalize().cross(up).length() < 1e-9 {
@@ -523,7 +523,7 @@ impl FileShape {
             } => {
                 let e1 = vec3(&path.key("edge1"), edge1)?;
                 let e2 = vec3(&path.key("edge2"), edge2)?;
-                if !(e1.cross(e2).length() > 1e-12 * e1.length() * e2.length()) || e1.length() == 0.0 {
+                if e1.length() == 0.0 || e1.cross(e2).length() <= 1e-12 * e1.length() * e2.length() {
                     return fail(&path.key("edge2"), "edge1 and edge2 must be non-zero and not parallel");
                 }
                 (

@@ -1,0 +1,243 @@
+//! The command line as a user meets it: bad scene files and bad paths give a clear error
+//! naming the file, line, column and field, exit code 2 (bad input) or 1 (work failed), never
+//! a panic, and never a half-written output.
+
+mod common;
+use common::*;
+use std::fs;
+
+/// A small valid scene; tests break one line of it.
+const GOOD: &str = r#"[image]
+width = 16
+height = 12
+samples_per_pixel = 1
+
+[camera]
+position = [0, -8, 5]
+look_at = [0, 1, 0]
+
+[materials.glass]
+color = [1, 1, 1]
+kt = 0.5
+n = 1.5
+
+[[shapes]]
+type = "sphere"
+center = [0, 0, 1]
+radius = 1
+material = "glass"
+
+[[shapes]]
+type = "cylinder"
+base = [2, 0, 0]
+axis = [0, 0, 1]
+height = 1
+radius = 0.5
+
+[[lights]]
+type = "spot"
+position = [0, 0, 10]
+direction = [0, 0, -1]
+angle = 70
+"#;
+
+/// Writes `text` as a scene, renders it, and returns (exit code, stderr, output existed).
+fn run_scene(name: &str, text: &str) -> (i32, String, bool) {
+    let dir = temp_dir(name);
+    let scene = dir.join("scene.toml");
+    fs::write(&scene, text).unwrap();
+    let out = dir.join("out.png");
+    let o = lumiere(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let leftovers = fs::read_dir(&dir).unwrap().count();
+    let existed = out.exists();
+    // Only the scene (and a complete output) may be in the directory: no temporary files.
+    assert_eq!(
+        leftovers,
+        1 + existed as usize,
+        "temporary files left in {}",
+        dir.display()
+    );
+    (o.status.code().unwrap(), stderr, existed)
+}
+
+/// Breaks the scene by replacing `from` with `to`, expects exit 2 and every `needles` in stderr.
+fn expect_bad(name: &str, from: &str, to: &str, needles: &[&str]) {
+    assert!(GOOD.contains(from), "{from}");
+    let (code, stderr, existed) = run_scene(name, &GOOD.replacen(from, to, 1));
+    assert_eq!(code, 2, "{stderr}");
+    assert!(!existed);
+    for n in needles {
+        assert!(stderr.contains(n), "expected {n:?} in: {stderr}");
+    }
+}
+
+#[test]
+fn the_good_scene_renders() {
+    let (code, stderr, existed) = run_scene("good", GOOD);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(existed);
+}
+
+#[test]
+fn syntax_error_names_the_line() {
+    expect_bad(
+        "syntax",
+        "radius = 1\n",
+        "radius = = 1\n",
+        &["scene.toml:18:10", "TOML"],
+    );
+}
+
+#[test]
+fn unknown_field_is_an_error() {
+    expect_bad(
+        "unknown",
+        "radius = 1\n",
+        "radius = 1\nradus = 2\n",
+        &["scene.toml:", "unknown field `radus`"],
+    );
+}
+
+#[test]
+fn negative_radius() {
+    expect_bad(
+        "negative",
+        "radius = 1\n",
+        "radius = -1\n",
+        &["scene.toml:18:10", "shapes[0].radius", "(0,", "got -1"],
+    );
+}
+
+#[test]
+fn zero_length_axis() {
+    expect_bad(
+        "axis",
+        "axis = [0, 0, 1]",
+        "axis = [0, 0, 0]",
+        &["scene.toml:24:8", "shapes[1].axis", "non-zero length"],
+    );
+}
+
+#[test]
+fn nan_is_rejected() {
+    expect_bad(
+        "nan",
+        "position = [0, 0, 10]",
+        "position = [0, nan, 10]",
+        &["lights[0].position", "finite"],
+    );
+}
+
+#[test]
+fn spot_angle_outside_0_180() {
+    expect_bad(
+        "theta",
+        "angle = 70",
+        "angle = 190",
+        &["scene.toml:32:9", "lights[0].angle", "[0, 180]", "got 190"],
+    );
+}
+
+#[test]
+fn refractive_index_must_be_positive() {
+    expect_bad(
+        "ior",
+        "n = 1.5",
+        "n = 0",
+        &["scene.toml:13:5", "materials.glass.n", "(0, 10]"],
+    );
+    expect_bad("ior-neg", "n = 1.5", "n = -1.3", &["materials.glass.n", "got -1.3"]);
+}
+
+#[test]
+fn absurd_resolution_is_refused() {
+    expect_bad("huge", "width = 16", "width = 100000", &["image.width", "[1, 16384]"]);
+    expect_bad(
+        "spp",
+        "samples_per_pixel = 1",
+        "samples_per_pixel = 3",
+        &["perfect square"],
+    );
+}
+
+#[test]
+fn unknown_material_lists_the_defined_ones() {
+    expect_bad(
+        "material",
+        "material = \"glass\"",
+        "material = \"glas\"",
+        &["shapes[0].material", "glass"],
+    );
+}
+
+#[test]
+fn missing_scene_file() {
+    let o = lumiere(&["render", "no/such/scene.toml", "-o", "/tmp/x.png"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no/such/scene.toml: cannot read"));
+}
+
+#[test]
+fn bad_output_paths_leave_nothing() {
+    let dir = temp_dir("outpath");
+    let scene = dir.join("scene.toml");
+    fs::write(&scene, GOOD).unwrap();
+    let s = scene.to_str().unwrap();
+    // Missing directory: refused before rendering.
+    let o = lumiere(&["render", s, "-o", dir.join("nope/out.png").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    // The output path is an existing directory: the write fails (exit 1), nothing left behind.
+    let blocked = dir.join("taken.png");
+    fs::create_dir(&blocked).unwrap();
+    let o = lumiere(&["render", s, "-o", blocked.to_str().unwrap(), "--quiet"]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot write the image"));
+    let names: Vec<_> = fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+    // Not a PNG name, or the input itself: refused.
+    let o = lumiere(&["render", s, "-o", s]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(fs::read_to_string(&scene).unwrap(), GOOD);
+}
+
+#[test]
+fn overrides_are_checked() {
+    let o = lumiere(&["render", "scenes/reference.toml", "-o", "/tmp/x.png", "--spp", "5"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--spp: must be a perfect square"));
+    let o = lumiere(&["render", "scenes/reference.toml", "-o", "/tmp/x.png", "--threads", "0"]);
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn render_overrides_and_stats() {
+    let dir = temp_dir("stats");
+    let out = dir.join("r.png");
+    let o = lumiere(&[
+        "render",
+        repo("scenes/reference.toml").to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--width",
+        "40",
+        "--height",
+        "30",
+        "--spp",
+        "1",
+        "--stats",
+        "--quiet",
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let img = image::open(&out).unwrap();
+    assert_eq!((img.width(), img.height()), (40, 30));
+    // One camera ray per pixel sample: 40 x 30 x 1.
+    assert!(String::from_utf8_lossy(&o.stdout).contains("camera rays   1200\n"));
+}

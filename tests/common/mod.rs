@@ -1,0 +1,53 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use lumiere::film::Film;
+use lumiere::render::render;
+use lumiere::scene::{self, Scene, World};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// Path of a file in the repository.
+pub fn repo(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)
+}
+
+/// Loads a scene from `scenes/`.
+pub fn scene(name: &str) -> Scene {
+    scene::load(&repo(&format!("scenes/{name}"))).expect("scene loads")
+}
+
+/// Renders at a reduced size on a pool of `threads` workers.
+pub fn render_small(scene: &Scene, width: u32, height: u32, spp: u32, threads: usize) -> Film {
+    let mut scene = scene.clone();
+    scene.settings.width = width;
+    scene.settings.height = height;
+    scene.settings.samples_per_pixel = spp;
+    let world = World::new(&scene);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    pool.install(|| render(&world, &|| {})).0
+}
+
+/// Runs the `lumiere` binary with `args`.
+pub fn lumiere(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(args)
+        .output()
+        .expect("lumiere runs")
+}
+
+/// A fresh empty directory for one test.
+pub fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("lumiere-test-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// insta settings that store snapshots in the top-level `snapshots/` folder.
+pub fn snapshot_settings() -> insta::Settings {
+    let mut s = insta::Settings::clone_current();
+    s.set_snapshot_path(repo("snapshots"));
+    s.set_prepend_module_to_snapshot(false);
+    s
+}
