@@ -285,6 +285,17 @@ enum FileShape {
         material: Option<String>,
         name: Option<String>,
     },
+    MirrorPair {
+        #[serde(default)]
+        hinge: [f64; 3],
+        #[serde(default = "minus_y")]
+        bisector: [f64; 3],
+        opening: f64,
+        length: f64,
+        height: f64,
+        material: Option<String>,
+        name: Option<String>,
+    },
     Torus {
         center: [f64; 3],
         #[serde(default = "z_up")]
@@ -338,6 +349,10 @@ enum FileLight {
     },
 }
 
+fn minus_y() -> [f64; 3] {
+    [0.0, -1.0, 0.0]
+}
+
 fn one_f() -> f64 {
     1.0
 }
@@ -360,7 +375,10 @@ impl FileScene {
             .into_iter()
             .enumerate()
             .map(|(i, s)| s.validate(&path.index(i), i, &material_names))
-            .collect::<Check<Vec<_>>>()?;
+            .collect::<Check<Vec<_>>>()?
+            .into_iter()
+            .flatten()
+            .collect();
         let path = root.key("lights");
         if self.lights.len() > limits::MAX_LIGHTS {
             return fail(
@@ -498,7 +516,8 @@ impl FileScene {
 }
 
 impl FileShape {
-    fn validate(self, path: &FieldPath, index: usize, material_names: &[String]) -> Check<Object> {
+    /// The objects this entry describes (one, or two for a mirror pair).
+    fn validate(self, path: &FieldPath, index: usize, material_names: &[String]) -> Check<Vec<Object>> {
         let size = |key: &str, x: f64| positive(&path.key(key), x, limits::MAX_COORDINATE);
         let (shape, material, name) = match self {
             FileShape::Plane {
@@ -615,6 +634,28 @@ impl FileShape {
                 material,
                 name,
             ),
+            FileShape::MirrorPair {
+                hinge,
+                bisector,
+                opening,
+                length,
+                height,
+                material,
+                name,
+            } => {
+                return mirror_pair(
+                    path,
+                    index,
+                    hinge,
+                    bisector,
+                    opening,
+                    length,
+                    height,
+                    material,
+                    name,
+                    material_names,
+                );
+            }
             FileShape::Torus {
                 center,
                 axis,
@@ -645,24 +686,74 @@ impl FileShape {
                 )
             }
         };
-        let material_index = match material {
-            None => 0,
-            Some(m) => match material_names.iter().position(|n| *n == m) {
-                Some(i) => i,
-                None => {
-                    return fail(
-                        &path.key("material"),
-                        format!("unknown material {m:?}; defined: {}", material_names.join(", ")),
-                    );
-                }
-            },
-        };
-        Ok(Object {
+        let material_index = resolve_material(path, material, material_names)?;
+        Ok(vec![Object {
             name: name.unwrap_or_else(|| format!("{}#{index}", shape.kind())),
             shape,
             material: material_index,
-        })
+        }])
     }
+}
+
+/// Index of the named material (`None`: the default material, index 0).
+fn resolve_material(path: &FieldPath, material: Option<String>, names: &[String]) -> Check<usize> {
+    match material {
+        None => Ok(0),
+        Some(m) => match names.iter().position(|n| *n == m) {
+            Some(i) => Ok(i),
+            None => fail(
+                &path.key("material"),
+                format!("unknown material {m:?}; defined: {}", names.join(", ")),
+            ),
+        },
+    }
+}
+
+/// Two vertical rectangular mirrors of `length` x `height` hinged on a vertical line through
+/// `hinge`, opening `opening` degrees symmetrically about the horizontal `bisector` (the
+/// chapter's two-mirror figures). Named `<name> A` (rotated +opening/2 about z from the
+/// bisector) and `<name> B` (-opening/2).
+#[allow(clippy::too_many_arguments)]
+fn mirror_pair(
+    path: &FieldPath,
+    index: usize,
+    hinge: [f64; 3],
+    bisector: [f64; 3],
+    opening: f64,
+    length: f64,
+    height: f64,
+    material: Option<String>,
+    name: Option<String>,
+    names: &[String],
+) -> Check<Vec<Object>> {
+    let hinge = vec3(&path.key("hinge"), hinge)?;
+    let b = vec3(&path.key("bisector"), bisector)?;
+    let b = DVec3::new(b.x, b.y, 0.0);
+    if b.length() <= 1e-12 {
+        return fail(&path.key("bisector"), "must have a non-zero horizontal (x, y) part");
+    }
+    let b = b.normalize();
+    let opening = in_range(&path.key("opening"), opening, 0.0, 180.0)?;
+    if opening == 0.0 || opening == 180.0 {
+        return fail(&path.key("opening"), "must be in (0, 180) degrees");
+    }
+    let length = positive(&path.key("length"), length, limits::MAX_COORDINATE)?;
+    let height = positive(&path.key("height"), height, limits::MAX_COORDINATE)?;
+    let material = resolve_material(path, material, names)?;
+    let base = name.unwrap_or_else(|| format!("mirror_pair#{index}"));
+    let half = (opening * 0.5).to_radians();
+    let (sin, cos) = (libm::sin(half), libm::cos(half));
+    // b rotated by +half and -half about z.
+    let side = |s: f64| DVec3::new(b.x * cos - b.y * s, b.x * s + b.y * cos, 0.0);
+    let up = DVec3::new(0.0, 0.0, height);
+    Ok([("A", sin), ("B", -sin)]
+        .into_iter()
+        .map(|(tag, s)| Object {
+            name: format!("{base} {tag}"),
+            shape: Shape::Rectangle(Rectangle::new(hinge, side(s) * length, up)),
+            material,
+        })
+        .collect())
 }
 
 impl FileAttenuation {
