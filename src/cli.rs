@@ -47,6 +47,28 @@ pub enum Command {
         after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1\n\nExit codes: 0 ok, 1 render failed, 2 bad input."
     )]
     Render(RenderArgs),
+    /// Compare two images: max and RMS difference, PSNR, differing pixels, heat-map.
+    #[command(
+        after_help = "Examples:\n  lumiere compare mine.png figures/lighting/01-ambient.png\n  lumiere compare mine.png ref.png --tolerance 1 --heatmap diff.png --json\n\nExit codes: 0 within tolerance, 1 some pixel differs by more than the tolerance, 2 bad input."
+    )]
+    Compare(CompareArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    /// Your image.
+    pub a: PathBuf,
+    /// The reference image (same size).
+    pub b: PathBuf,
+    /// Largest per-channel difference (8-bit levels) that still counts as equal.
+    #[arg(long, default_value_t = 0)]
+    pub tolerance: u8,
+    /// Write a heat-map of the differences (black equal, blue small, red, white >= 16 levels).
+    #[arg(long)]
+    pub heatmap: Option<PathBuf>,
+    /// Print the result as JSON.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Values that replace the scene file's own.
@@ -133,6 +155,7 @@ pub struct RenderArgs {
 pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Render(args) => render_command(&args),
+        Command::Compare(args) => compare_command(&args),
     }
 }
 
@@ -233,4 +256,46 @@ pub fn stats_report(stats: &RenderStats) -> String {
         c.adaptive_cutoffs,
         c.non_finite
     )
+}
+
+fn compare_command(args: &CompareArgs) -> Result<(), CliError> {
+    use crate::compare::{compare_rgb8, heat_map, load_rgb8};
+    let (wa, ha, a) = load_rgb8(&args.a).map_err(CliError::BadInput)?;
+    let (wb, hb, b) = load_rgb8(&args.b).map_err(CliError::BadInput)?;
+    if (wa, ha) != (wb, hb) {
+        return Err(CliError::BadInput(format!(
+            "the images differ in size: {} is {wa} x {ha}, {} is {wb} x {hb}",
+            args.a.display(),
+            args.b.display()
+        )));
+    }
+    let c = compare_rgb8(&a, &b, wa, ha, args.tolerance);
+    if let Some(path) = &args.heatmap {
+        check_output(path, &args.a)?;
+        let png = crate::film::encode_png(wa, ha, &heat_map(&a, &b, 16))
+            .map_err(|e| CliError::Failed(format!("cannot encode the heat-map: {e}")))?;
+        write_atomic(path, &png).map_err(|e| CliError::Failed(format!("{}: cannot write: {e}", path.display())))?;
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&c).unwrap_or_default());
+    } else {
+        let total = wa as u64 * ha as u64;
+        println!("size               {wa} x {ha}");
+        println!("max difference     {} levels", c.max_diff);
+        println!("RMS difference     {:.4} levels", c.rms);
+        println!("PSNR               {:.2} dB", c.psnr_db);
+        println!(
+            "differing pixels   {} of {total} ({:.4} %) beyond {} levels",
+            c.differing_pixels,
+            100.0 * c.differing_pixels as f64 / total as f64,
+            c.tolerance
+        );
+    }
+    if c.differing_pixels > 0 {
+        return Err(CliError::Failed(format!(
+            "{} pixels differ by more than {} levels",
+            c.differing_pixels, args.tolerance
+        )));
+    }
+    Ok(())
 }

@@ -14,11 +14,13 @@
 //! - [`scene`]: the scene model and its TOML file format with located errors.
 //! - [`trace`]: Whitted recursion with filtered shadow rays and a step recorder.
 //! - [`render`], [`film`]: parallel deterministic rendering, quantisation, atomic output.
+//! - [`compare`]: image differences (max, RMS, PSNR, heat-map) for `lumiere compare`.
 //! - [`cli`]: the `lumiere` command line.
 
 pub mod accel;
 pub mod camera;
 pub mod cli;
+pub mod compare;
 pub mod film;
 pub mod light;
 pub mod limits;

@@ -22,7 +22,7 @@ pub const MAX_SHININESS: f64 = 1e6;
 /// Largest index of refraction.
 pub const MAX_IOR: f64 = 10.0;
 /// Default adaptive depth control threshold, in 8-bit levels.
-pub const DEFAULT_ADAPTIVE_THRESHOLD: f64 = 0.5;
+pub const DEFAULT_ADAPTIVE_THRESHOLD: f64 = 0.25;
 
 pub fn check_dimension(v: u32) -> Result<(), String> {
     if v == 0 || v > MAX_DIMENSION {

@@ -241,3 +241,36 @@ fn render_overrides_and_stats() {
     // One camera ray per pixel sample: 40 x 30 x 1.
     assert!(String::from_utf8_lossy(&o.stdout).contains("camera rays   1200\n"));
 }
+
+#[test]
+fn compare_reports_differences_and_exits_by_tolerance() {
+    let dir = temp_dir("compare");
+    let a = dir.join("a.png");
+    let b = dir.join("b.png");
+    // 2 x 1 images; the second pixel differs by (3, 0, 4).
+    let write = |p: &std::path::Path, px: &[u8]| {
+        fs::write(p, lumiere::film::encode_png(2, 1, px).unwrap()).unwrap();
+    };
+    write(&a, &[10, 20, 30, 100, 100, 100]);
+    write(&b, &[10, 20, 30, 103, 100, 96]);
+    let (sa, sb) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let heat = dir.join("heat.png");
+    let o = lumiere(&["compare", sa, sb, "--json", "--heatmap", heat.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(json["max_diff"], 4);
+    assert_eq!(json["differing_pixels"], 1);
+    assert!((json["rms"].as_f64().unwrap() - (25.0f64 / 6.0).sqrt()).abs() < 1e-12);
+    let heat = image::open(&heat).unwrap().to_rgb8();
+    assert_eq!(heat.get_pixel(0, 0).0, [0, 0, 0]);
+    assert_ne!(heat.get_pixel(1, 0).0, [0, 0, 0]);
+    // Within a tolerance of 4 levels: success.
+    let o = lumiere(&["compare", sa, sb, "--tolerance", "4"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("max difference     4 levels"));
+    // Different sizes, or not an image: bad input.
+    let c = dir.join("c.png");
+    fs::write(&c, lumiere::film::encode_png(1, 1, &[0, 0, 0]).unwrap()).unwrap();
+    assert_eq!(lumiere(&["compare", sa, c.to_str().unwrap()]).status.code(), Some(2));
+    assert_eq!(lumiere(&["compare", sa, "Cargo.toml"]).status.code(), Some(2));
+}
