@@ -52,6 +52,36 @@ pub enum Command {
         after_help = "Examples:\n  lumiere compare mine.png figures/lighting/01-ambient.png\n  lumiere compare mine.png ref.png --tolerance 1 --heatmap diff.png --json\n\nExit codes: 0 within tolerance, 1 some pixel differs by more than the tolerance, 2 bad input."
     )]
     Compare(CompareArgs),
+    /// Regenerate the course's figures (all sets when none is named).
+    #[command(
+        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nExit codes: 0 ok, 1 a figure could not be written, 2 bad input."
+    )]
+    Figures(FiguresArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct FiguresArgs {
+    /// Sets to regenerate (see --list); all when none is given.
+    pub sets: Vec<String>,
+    /// Output directory.
+    #[arg(long, default_value = "figures")]
+    pub out: PathBuf,
+    /// Image size factor, in (0, 4] (0.25 gives 200 x 150 previews).
+    #[arg(long, default_value_t = 1.0)]
+    pub scale: f64,
+    /// List the sets and their images, render nothing.
+    #[arg(long)]
+    pub list: bool,
+    /// Re-render the sets in memory and compare their pixel hashes with the manifests in
+    /// the output directory; write nothing; exit 1 on any difference.
+    #[arg(long)]
+    pub check: bool,
+    /// Worker threads (default: all cores). The images do not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    pub quiet: bool,
 }
 
 #[derive(Args, Debug)]
@@ -156,6 +186,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Render(args) => render_command(&args),
         Command::Compare(args) => compare_command(&args),
+        Command::Figures(args) => figures_command(&args),
     }
 }
 
@@ -295,6 +326,98 @@ fn compare_command(args: &CompareArgs) -> Result<(), CliError> {
         return Err(CliError::Failed(format!(
             "{} pixels differ by more than {} levels",
             c.differing_pixels, args.tolerance
+        )));
+    }
+    Ok(())
+}
+
+fn figures_command(args: &FiguresArgs) -> Result<(), CliError> {
+    use crate::figures::{generate, registry, write_index};
+    let all = registry();
+    if args.list {
+        for set in &all {
+            println!("{}: {}", set.name, set.title);
+            for f in (set.figures)() {
+                println!("  {}.png  {}", f.stem, f.caption);
+            }
+        }
+        return Ok(());
+    }
+    if !(args.scale > 0.0 && args.scale <= 4.0) {
+        return Err(CliError::BadInput(format!(
+            "--scale: must be in (0, 4], got {}",
+            args.scale
+        )));
+    }
+    let names: Vec<&str> = all.iter().map(|s| s.name).collect();
+    for name in &args.sets {
+        if !names.contains(&name.as_str()) {
+            return Err(CliError::BadInput(format!(
+                "unknown figure set {name:?}; the sets are: {}",
+                names.join(", ")
+            )));
+        }
+    }
+    let chosen: Vec<_> = all
+        .iter()
+        .filter(|s| args.sets.is_empty() || args.sets.iter().any(|n| n == s.name))
+        .collect();
+    if args.check {
+        return check_figures(&chosen, args);
+    }
+    std::fs::create_dir_all(&args.out).map_err(|e| {
+        CliError::BadInput(format!(
+            "{}: cannot create the output directory: {e}",
+            args.out.display()
+        ))
+    })?;
+    let start = std::time::Instant::now();
+    for set in chosen {
+        let report = with_threads(args.threads, || generate(set, &args.out, args.scale))?.map_err(CliError::Failed)?;
+        if !args.quiet {
+            println!(
+                "{:<12} {:>3} images  {:>7.2} s  {}",
+                report.name,
+                report.images,
+                report.seconds,
+                report.dir.display()
+            );
+        }
+    }
+    write_index(&args.out).map_err(CliError::Failed)?;
+    if !args.quiet {
+        println!(
+            "total                     {:>7.2} s  {}",
+            start.elapsed().as_secs_f64(),
+            args.out.join("index.html").display()
+        );
+    }
+    Ok(())
+}
+
+fn check_figures(sets: &[&crate::figures::FigureSet], args: &FiguresArgs) -> Result<(), CliError> {
+    let mut failures = 0;
+    for set in sets {
+        let mismatches =
+            with_threads(args.threads, || crate::figures::check(set, &args.out))?.map_err(CliError::BadInput)?;
+        for m in &mismatches {
+            println!(
+                "{}/{}: pixel hash {} (manifest {})",
+                set.name, m.file, m.actual, m.expected
+            );
+        }
+        if !args.quiet {
+            println!(
+                "{:<12} {}",
+                set.name,
+                if mismatches.is_empty() { "ok" } else { "DIFFERS" }
+            );
+        }
+        failures += mismatches.len();
+    }
+    if failures > 0 {
+        return Err(CliError::Failed(format!(
+            "{failures} figures differ from their manifests"
         )));
     }
     Ok(())

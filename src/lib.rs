@@ -15,12 +15,14 @@
 //! - [`trace`]: Whitted recursion with filtered shadow rays and a step recorder.
 //! - [`render`], [`film`]: parallel deterministic rendering, quantisation, atomic output.
 //! - [`compare`]: image differences (max, RMS, PSNR, heat-map) for `lumiere compare`.
+//! - [`figures`]: the course's figure sets, manifests, contact sheets and gallery.
 //! - [`cli`]: the `lumiere` command line.
 
 pub mod accel;
 pub mod camera;
 pub mod cli;
 pub mod compare;
+pub mod figures;
 pub mod film;
 pub mod light;
 pub mod limits;

@@ -6,7 +6,7 @@ use crate::shading::{attenuation, spot_factor};
 use glam::DVec3;
 
 /// Distance attenuation coefficients `C_const, C_lin, C_quad` (each >= 0, not all 0).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Attenuation {
     pub constant: f64,
     pub linear: f64,
@@ -28,7 +28,7 @@ impl Attenuation {
 }
 
 /// A point light (also one point of an area light).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PointLight {
     pub position: DVec3,
     pub color: DVec3,
@@ -36,7 +36,7 @@ pub struct PointLight {
 }
 
 /// A spotlight: a point light restricted to a cone of opening `theta` around `orientation`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct SpotLight {
     pub position: DVec3,
     /// Unit central orientation `o`.
@@ -75,7 +75,8 @@ impl SpotLight {
 }
 
 /// Every kind of light.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
 pub enum Light {
     /// Uniform ambient light `L_a`; counted once, however many lights there are.
     Ambient {
@@ -91,7 +92,7 @@ pub enum Light {
 }
 
 /// What one light point sends towards a shading point, before the shadow test.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Incidence {
     /// Unit vector from the shading point to the light, `L`.
     pub to_light: DVec3,

@@ -5,6 +5,13 @@ use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    // A closed stdout (`lumiere figures --list | head`) ends the program quietly, as for
+    // other command-line tools, instead of a panic on the next print.
+    #[cfg(unix)]
+    // SAFETY: called first thing, before any other thread exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = lumiere::cli::Cli::parse();
     match lumiere::cli::run(cli) {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 /// The course's material parameters (slides IFT3355 and chapter 7.4b).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Material {
     /// Surface colour `S` (each channel in [0, 1]).
     pub color: DVec3,

@@ -178,51 +178,12 @@ position = [0, 0, 1.5]
     assert_eq!(stats.counts.reflection, 24 * 18 * 49);
 }
 
-/// Connected regions (8-neighbourhood) of at least `min_size` pixels where `pred` holds.
-fn count_regions(rgb: &[u8], w: usize, h: usize, min_size: usize, pred: impl Fn(&[u8]) -> bool) -> usize {
-    let mut seen = vec![false; w * h];
-    let mut count = 0;
-    for start in 0..w * h {
-        if seen[start] || !pred(&rgb[start * 3..start * 3 + 3]) {
-            continue;
-        }
-        let (mut stack, mut size) = (vec![start], 0);
-        seen[start] = true;
-        while let Some(i) = stack.pop() {
-            size += 1;
-            let (x, y) = ((i % w) as i64, (i / w) as i64);
-            for (dx, dy) in [(-1, -1), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)] {
-                let (nx, ny) = (x + dx, y + dy);
-                if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
-                    continue;
-                }
-                let j = ny as usize * w + nx as usize;
-                if !seen[j] && pred(&rgb[j * 3..j * 3 + 3]) {
-                    seen[j] = true;
-                    stack.push(j);
-                }
-            }
-        }
-        if size >= min_size {
-            count += 1;
-        }
-    }
-    count
-}
-
 /// Cone images seen for a mirror opening: red regions in the render minus the real cone.
 fn cone_images(opening: u32) -> usize {
-    let text = std::fs::read_to_string(repo("scenes/mirrors.toml")).unwrap();
-    let text = text.replace("opening = 60", &format!("opening = {opening}"));
-    let mut scene = scene::parse(&text, "mirrors.toml").unwrap();
-    scene.settings.depth = 12;
+    let scene = lumiere::figures::sets::mirrors_scene(opening, 12);
     let (w, h) = (480, 360);
     let film = render_small(&scene, w, h, 1, 2);
-    // The cone's red (0.9, 0.1, 0.1), dimmed by 0.9 per mirror bounce and greyed by the
-    // mirrors' own diffuse term: red exceeds green and blue by at least 30 levels (the floor
-    // and the mirrors are grey, r = g = b).
-    let red = |p: &[u8]| p[0] as i32 - (p[1].max(p[2]) as i32) >= 30;
-    count_regions(&film.to_rgb8(), w as usize, h as usize, 6, red) - 1
+    lumiere::figures::measure::red_regions(&film.to_rgb8(), w as usize, h as usize) - 1
 }
 
 #[test]

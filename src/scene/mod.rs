@@ -14,7 +14,8 @@ use crate::shape::Shape;
 use glam::DVec3;
 
 /// Which specular term the local illumination model uses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Specular {
     None,
     /// Phong: `(R.E)^n`.
@@ -25,7 +26,7 @@ pub enum Specular {
 
 /// The terms of the local illumination model (slides): each can be switched off to draw
 /// the slides' "ambient only", "diffuse only", "specular only" figures.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct ShadingModel {
     pub ambient: bool,
     pub diffuse: bool,
@@ -44,7 +45,7 @@ impl Default for ShadingModel {
 }
 
 /// Image and tracing settings (the `[image]` and `[render]` tables).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Settings {
     pub width: u32,
     pub height: u32,
@@ -71,7 +72,7 @@ impl Settings {
 }
 
 /// Camera as written in the scene file; the aspect ratio comes from the image size.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct CameraSpec {
     pub position: DVec3,
     pub look_at: DVec3,
@@ -80,7 +81,7 @@ pub struct CameraSpec {
 }
 
 /// One object: a shape with a material.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Object {
     /// The name given in the file, or `<kind>#<index>`.
     pub name: String,
@@ -90,7 +91,7 @@ pub struct Object {
 }
 
 /// A validated scene.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Scene {
     pub settings: Settings,
     pub camera: CameraSpec,

@@ -5,12 +5,13 @@ use crate::math::{Frame, Ray};
 use crate::solve::quadratic;
 use glam::DVec3;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Cone {
     pub base: DVec3,
     pub axis: DVec3,
     pub height: f64,
     pub radius: f64,
+    #[serde(skip)]
     frame: Frame,
 }
 

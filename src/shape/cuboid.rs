@@ -4,13 +4,15 @@ use super::{Aabb, SurfaceHit};
 use crate::math::{Frame, Ray};
 use glam::{DMat3, DVec3};
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Cuboid {
     pub center: DVec3,
     pub half_size: DVec3,
     /// Local axes: the box's edges are along the frame's x, y, z.
+    #[serde(skip)]
     frame: Frame,
     /// World-space axes (columns), kept for the bounding box.
+    #[serde(skip)]
     axes: DMat3,
 }
 

@@ -4,7 +4,7 @@ use super::{Aabb, SurfaceHit};
 use crate::math::Ray;
 use glam::DVec3;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Disk {
     pub center: DVec3,
     pub normal: DVec3,

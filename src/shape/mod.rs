@@ -81,7 +81,8 @@ impl Aabb {
 }
 
 /// Every kind of shape the scene files can hold.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Shape {
     Plane(Plane),
     Rectangle(Rectangle),

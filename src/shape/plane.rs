@@ -4,7 +4,7 @@ use super::{Aabb, SurfaceHit};
 use crate::math::Ray;
 use glam::DVec3;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Plane {
     pub point: DVec3,
     /// Unit normal; the "outward" side.

@@ -5,14 +5,16 @@ use super::{Aabb, SurfaceHit};
 use crate::math::Ray;
 use glam::DVec3;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Rectangle {
     pub corner: DVec3,
     pub edge1: DVec3,
     pub edge2: DVec3,
     /// `e1 x e2`, not normalised (used for the barycentric solve).
+    #[serde(skip)]
     cross: DVec3,
     /// Unit normal, along `e1 x e2`.
+    #[serde(skip)]
     normal: DVec3,
 }
 

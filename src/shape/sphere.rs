@@ -5,7 +5,7 @@ use crate::math::Ray;
 use crate::solve::quadratic;
 use glam::DVec3;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Sphere {
     pub center: DVec3,
     pub radius: f64,

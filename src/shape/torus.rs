@@ -13,12 +13,13 @@ use crate::math::{Frame, Ray};
 use crate::solve::poly_roots_with;
 use glam::DVec3;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Torus {
     pub center: DVec3,
     pub axis: DVec3,
     pub major: f64,
     pub minor: f64,
+    #[serde(skip)]
     frame: Frame,
 }
 

@@ -1,0 +1,284 @@
+//! The course's figures: a registry of figure sets (one file each in `sets/`), each a list
+//! of scenes with the chapter's captions, and the generator that renders a set into
+//! `<out>/<set>/NN-name.png`, `manifest.json` and `contact-sheet.png`, plus
+//! `<out>/index.html`, a gallery of every set. The specifications are shared/FIGURES.md.
+
+pub mod measure;
+pub mod sets;
+pub mod sheet;
+
+use crate::film::{pixel_hash, write_atomic};
+use crate::render::render;
+use crate::scene::{self, Scene, World};
+use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// A fact measured on a rendered figure and recorded in the manifest.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Measure {
+    /// Minimum and maximum attenuation `A` over visible lit points.
+    AttenuationRange,
+    /// Number of cone images seen in the mirrors (red regions minus the real cone).
+    ConeImages,
+}
+
+/// One image of a set.
+#[derive(Clone, Debug)]
+pub struct Figure {
+    /// File name without extension: `NN-short-name`.
+    pub stem: String,
+    /// The chapter's caption (French), drawn on the contact sheet.
+    pub caption: String,
+    pub scene: Scene,
+    pub measures: Vec<Measure>,
+}
+
+impl Figure {
+    pub fn new(number: usize, short: &str, caption: impl Into<String>, scene: Scene) -> Self {
+        Figure {
+            stem: format!("{number:02}-{short}"),
+            caption: caption.into(),
+            scene,
+            measures: Vec::new(),
+        }
+    }
+
+    pub fn measuring(mut self, m: Measure) -> Self {
+        self.measures.push(m);
+        self
+    }
+}
+
+/// A named set of figures.
+pub struct FigureSet {
+    pub name: &'static str,
+    /// Title of the contact sheet and gallery section.
+    pub title: &'static str,
+    pub figures: fn() -> Vec<Figure>,
+}
+
+/// Every set of FIGURES.md, in the order of the course.
+pub fn registry() -> Vec<FigureSet> {
+    sets::all()
+}
+
+/// Parses one of the scene files shipped in `scenes/` (embedded in the binary, so the
+/// figures do not depend on the working directory).
+pub fn base_scene(name: &str) -> Scene {
+    let text = match name {
+        "reference" => include_str!("../../scenes/reference.toml"),
+        "mirrors" => include_str!("../../scenes/mirrors.toml"),
+        "prism" => include_str!("../../scenes/prism.toml"),
+        "shading" => include_str!("../../scenes/shading.toml"),
+        other => panic!("no embedded scene {other}"),
+    };
+    parse_embedded(text, name)
+}
+
+/// Parses embedded scene text; the shipped scenes are tested, so failure is a bug.
+pub fn parse_embedded(text: &str, name: &str) -> Scene {
+    scene::parse(text, &format!("scenes/{name}.toml")).unwrap_or_else(|e| panic!("embedded scene: {e}"))
+}
+
+/// Scales the image size (at least 1 x 1).
+pub fn scaled(mut scene: Scene, scale: f64) -> Scene {
+    let s = &mut scene.settings;
+    s.width = ((s.width as f64 * scale).round() as u32).max(1);
+    s.height = ((s.height as f64 * scale).round() as u32).max(1);
+    scene
+}
+
+/// A rendered figure and what was measured.
+pub struct RenderedFigure {
+    pub figure: Figure,
+    pub image: image::RgbImage,
+    pub manifest: Value,
+}
+
+/// Renders one figure (at `scale`) and measures its facts.
+pub fn render_figure(figure: Figure, scale: f64) -> RenderedFigure {
+    let scene = scaled(figure.scene.clone(), scale);
+    let world = World::new(&scene);
+    let start = Instant::now();
+    let (film, stats) = render(&world, &|| {});
+    let seconds = start.elapsed().as_secs_f64();
+    let rgb = film.to_rgb8();
+    let (w, h) = (scene.settings.width, scene.settings.height);
+    let mut facts = serde_json::Map::new();
+    for m in &figure.measures {
+        match m {
+            Measure::AttenuationRange => {
+                let range = measure::attenuation_range(&world);
+                facts.insert("attenuation_min".into(), json!(range.map(|r| r.0)));
+                facts.insert("attenuation_max".into(), json!(range.map(|r| r.1)));
+            }
+            Measure::ConeImages => {
+                let regions = measure::red_regions(&rgb, w as usize, h as usize);
+                facts.insert("cone_images".into(), json!(regions.saturating_sub(1)));
+            }
+        }
+    }
+    let c = &stats.counts;
+    let manifest = json!({
+        "file": format!("{}.png", figure.stem),
+        "caption": figure.caption,
+        "width": w,
+        "height": h,
+        "samples_per_pixel": scene.settings.samples_per_pixel,
+        "seed": scene.settings.seed,
+        "renderer": format!("lumiere {}", crate::VERSION),
+        "pixel_hash": format!("fnv1a64:{:016x}", pixel_hash(&rgb)),
+        "render_seconds": (seconds * 1000.0).round() / 1000.0,
+        "rays": {
+            "camera": c.camera,
+            "shadow": c.shadow,
+            "reflection": c.reflection,
+            "refraction": c.refraction,
+            "total_internal_reflections": c.total_internal_reflections,
+            "adaptive_cutoffs": c.adaptive_cutoffs,
+            "non_finite_samples": c.non_finite,
+        },
+        "facts": facts,
+        "scene": scene,
+    });
+    let image = image::RgbImage::from_raw(w, h, rgb).expect("film size");
+    RenderedFigure {
+        figure,
+        image,
+        manifest,
+    }
+}
+
+/// What generating a set wrote.
+pub struct SetReport {
+    pub name: &'static str,
+    pub images: usize,
+    pub seconds: f64,
+    pub dir: PathBuf,
+}
+
+fn write_png(path: &Path, img: &image::RgbImage) -> Result<(), String> {
+    let png = crate::film::encode_png(img.width(), img.height(), img.as_raw()).map_err(|e| e.to_string())?;
+    write_atomic(path, &png).map_err(|e| format!("{}: cannot write: {e}", path.display()))
+}
+
+/// Renders every figure of `set` into `out/<set>/`, with its manifest and contact sheet.
+pub fn generate(set: &FigureSet, out: &Path, scale: f64) -> Result<SetReport, String> {
+    let start = Instant::now();
+    let dir = out.join(set.name);
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
+    let rendered: Vec<RenderedFigure> = (set.figures)().into_iter().map(|f| render_figure(f, scale)).collect();
+    for r in &rendered {
+        write_png(&dir.join(format!("{}.png", r.figure.stem)), &r.image)?;
+    }
+    let sheet_items: Vec<(&image::RgbImage, &str)> =
+        rendered.iter().map(|r| (&r.image, r.figure.caption.as_str())).collect();
+    write_png(
+        &dir.join("contact-sheet.png"),
+        &sheet::contact_sheet(set.title, &sheet_items),
+    )?;
+    let manifest = json!({
+        "set": set.name,
+        "title": set.title,
+        "scale": scale,
+        "specification": "shared/FIGURES.md",
+        "pixel_hash": "FNV-1a 64 over the 8-bit RGB pixels, row 0 at the top",
+        "images": rendered.iter().map(|r| r.manifest.clone()).collect::<Vec<_>>(),
+    });
+    let text = serde_json::to_string_pretty(&manifest).map_err(|e| e.to_string())? + "\n";
+    write_atomic(&dir.join("manifest.json"), text.as_bytes())
+        .map_err(|e| format!("{}: cannot write the manifest: {e}", dir.display()))?;
+    Ok(SetReport {
+        name: set.name,
+        images: rendered.len(),
+        seconds: start.elapsed().as_secs_f64(),
+        dir,
+    })
+}
+
+fn html_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// `out/index.html`: every set of the registry with its contact sheet and captioned images.
+pub fn write_index(out: &Path) -> Result<(), String> {
+    let mut html = String::from(
+        "<!doctype html>\n<html lang=\"fr\">\n<head>\n<meta charset=\"utf-8\">\n<title>lumiere: figures du cours</title>\n\
+         <style>body{font-family:sans-serif;background:#202024;color:#eee;margin:2em}\
+         figure{display:inline-block;margin:0.5em;width:260px;vertical-align:top}\
+         img{max-width:100%}figcaption{font-size:0.85em}a{color:#9cf}</style>\n</head>\n<body>\n\
+         <h1>Figures du chapitre 7.4b et des diapositives IFT3355</h1>\n\
+         <p>Regenerated by <code>lumiere figures</code>; specifications in shared/FIGURES.md.</p>\n",
+    );
+    for set in registry() {
+        html += &format!(
+            "<h2 id=\"{0}\">{1} <small>(<a href=\"{0}/manifest.json\">manifest</a>, <a href=\"{0}/contact-sheet.png\">contact sheet</a>)</small></h2>\n",
+            set.name,
+            html_escape(set.title)
+        );
+        for f in (set.figures)() {
+            html += &format!(
+                "<figure><a href=\"{0}/{1}.png\"><img src=\"{0}/{1}.png\" alt=\"{2}\" loading=\"lazy\"></a><figcaption>{2}</figcaption></figure>\n",
+                set.name,
+                f.stem,
+                html_escape(&f.caption)
+            );
+        }
+    }
+    html += "</body>\n</html>\n";
+    write_atomic(&out.join("index.html"), html.as_bytes()).map_err(|e| format!("{}: cannot write: {e}", out.display()))
+}
+
+/// A figure whose regenerated pixels differ from its committed manifest.
+#[derive(Debug, PartialEq)]
+pub struct Mismatch {
+    pub file: String,
+    pub expected: String,
+    pub actual: String,
+}
+
+/// Re-renders `set` at the scale recorded in `out/<set>/manifest.json` and compares every
+/// image's pixel hash with the manifest's. Renders in memory; writes nothing.
+pub fn check(set: &FigureSet, out: &Path) -> Result<Vec<Mismatch>, String> {
+    let path = out.join(set.name).join("manifest.json");
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+    let manifest: Value = serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", path.display()))?;
+    let scale = manifest["scale"].as_f64().unwrap_or(1.0);
+    let expected: Vec<(String, String)> = manifest["images"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .map(|i| {
+                    let s = |k: &str| i[k].as_str().unwrap_or_default().to_string();
+                    (s("file"), s("pixel_hash"))
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    let mut mismatches = Vec::new();
+    let figures = (set.figures)();
+    if figures.len() != expected.len() {
+        return Err(format!(
+            "{}: lists {} images, the set has {}",
+            path.display(),
+            expected.len(),
+            figures.len()
+        ));
+    }
+    for (figure, (file, hash)) in figures.into_iter().zip(expected) {
+        let r = render_figure(figure, scale);
+        let actual = r.manifest["pixel_hash"].as_str().unwrap_or_default().to_string();
+        if actual != hash || r.manifest["file"] != file.as_str() {
+            mismatches.push(Mismatch {
+                file,
+                expected: hash,
+                actual,
+            });
+        }
+    }
+    Ok(mismatches)
+}

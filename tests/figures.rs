@@ -1,0 +1,93 @@
+//! The figure sets: every figure pinned as a small PNG snapshot, the committed full-size
+//! figures reproduced bit for bit, and the gallery and contact sheets written.
+
+mod common;
+use common::*;
+use lumiere::figures::{self, registry, render_figure};
+
+/// Scale of the snapshot images: 80 x 60 from the 800 x 600 figures.
+const SNAPSHOT_SCALE: f64 = 0.1;
+
+#[test]
+fn every_figure_matches_its_snapshot() {
+    let settings = snapshot_settings();
+    let mut count = 0;
+    for set in registry() {
+        for figure in (set.figures)() {
+            let name = format!("figure__{}__{}.png", set.name, figure.stem);
+            let r = render_figure(figure, SNAPSHOT_SCALE);
+            assert_eq!((r.image.width(), r.image.height()), (80, 60));
+            let png = lumiere::film::encode_png(80, 60, r.image.as_raw()).unwrap();
+            settings.bind(|| insta::assert_binary_snapshot!(name.as_str(), png));
+            count += 1;
+        }
+    }
+    // 3 + 4 + 2 + 2 + 13 + 21 + 25 figures in FIGURES.md's sets so far.
+    assert_eq!(count, 70);
+}
+
+#[test]
+fn committed_lighting_set_is_reproduced_bit_for_bit() {
+    // Full size, 800 x 600 with 4 samples: the pixel hashes of figures/lighting/manifest.json.
+    // `lumiere figures --check` does the same for every set.
+    let set = registry().into_iter().find(|s| s.name == "lighting").unwrap();
+    let mismatches = figures::check(&set, &repo("figures")).unwrap();
+    assert_eq!(mismatches, vec![]);
+}
+
+#[test]
+fn generate_writes_images_manifest_sheet_and_gallery() {
+    let out = temp_dir("figures");
+    let set = registry().into_iter().find(|s| s.name == "spotlight").unwrap();
+    let report = figures::generate(&set, &out, 0.05).unwrap();
+    assert_eq!(report.images, 2);
+    for f in [
+        "01-theta-70.png",
+        "02-theta-120.png",
+        "contact-sheet.png",
+        "manifest.json",
+    ] {
+        assert!(out.join("spotlight").join(f).is_file(), "{f}");
+    }
+    let img = image::open(out.join("spotlight/01-theta-70.png")).unwrap();
+    assert_eq!((img.width(), img.height()), (40, 30));
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("spotlight/manifest.json")).unwrap()).unwrap();
+    let first = &manifest["images"][0];
+    assert_eq!(first["caption"], "Avec un angle d'ouverture θ = 70°");
+    assert_eq!(first["seed"], 42);
+    assert_eq!(first["samples_per_pixel"], 4);
+    assert_eq!(first["rays"]["camera"], 40 * 30 * 4);
+    assert_eq!(first["scene"]["lights"][1]["angle_deg"], 70.0);
+    assert!(first["pixel_hash"].as_str().unwrap().starts_with("fnv1a64:"));
+    figures::write_index(&out).unwrap();
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    for set in registry() {
+        assert!(html.contains(&format!("id=\"{}\"", set.name)), "{}", set.name);
+    }
+    assert!(html.contains("Niveau de récursivité : 3"));
+}
+
+#[test]
+fn attenuation_range_is_measured() {
+    // Point light at (0, 0, 10) with C_quad = 0.01: the highest lit point seen is the cube's top
+    // (z = 4, d = 6): A = 1 / (1 + 0.36) = 0.7353; the far floor drives the minimum to ~0.
+    let set = registry().into_iter().find(|s| s.name == "attenuation").unwrap();
+    let quad = (set.figures)().pop().unwrap();
+    let r = render_figure(quad, 0.2);
+    let max = r.manifest["facts"]["attenuation_max"].as_f64().unwrap();
+    assert!((max - 1.0 / 1.36).abs() < 1e-3, "{max}");
+    assert!(r.manifest["facts"]["attenuation_min"].as_f64().unwrap() < 0.01);
+}
+
+#[test]
+fn figures_command_rejects_bad_requests() {
+    let o = lumiere(&["figures", "no-such-set", "--out", "/tmp/lumiere-nothing"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("the sets are: lighting"));
+    let o = lumiere(&["figures", "--scale", "0", "--out", "/tmp/lumiere-nothing"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = lumiere(&["figures", "--list"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("01-top-depth-01.png  Récursivité : 1 (vue de haut)"));
+}
