@@ -2,14 +2,15 @@
 
 use crate::film::write_atomic;
 use crate::limits;
-use crate::render::{RenderStats, render};
+use crate::render::{RenderStats, render_rows};
 use crate::scene::{self, Scene, World};
 use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
-/// Exit codes: 0 success, 1 the work failed (render, write, comparison), 2 bad input.
+/// Exit codes: 0 success, 1 the work failed (render, write, comparison), 2 bad input,
+/// 130 interrupted by Ctrl-C.
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
     /// The input was wrong: scene file, option value, paths.
@@ -18,6 +19,9 @@ pub enum CliError {
     /// The input was fine but the work failed (e.g. the output could not be written).
     #[error("{0}")]
     Failed(String),
+    /// Ctrl-C: nothing was written (exit 130, the shell's convention for SIGINT).
+    #[error("interrupted; no output was written")]
+    Interrupted,
 }
 
 impl CliError {
@@ -25,6 +29,7 @@ impl CliError {
         match self {
             CliError::BadInput(_) => 2,
             CliError::Failed(_) => 1,
+            CliError::Interrupted => 130,
         }
     }
 }
@@ -42,7 +47,7 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Render a scene file to a PNG image.
+    /// Render a scene file to an image (PNG, or PFM / EXR float radiance).
     #[command(
         after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1\n\nExit codes: 0 ok, 1 render failed, 2 bad input."
     )]
@@ -57,6 +62,12 @@ pub enum Command {
         after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nExit codes: 0 ok, 1 a figure could not be written, 2 bad input."
     )]
     Figures(FiguresArgs),
+    /// Assemble the shard files of a split render (`render --shard K/N`) into one image,
+    /// bit-identical to a one-machine render.
+    #[command(
+        after_help = "Example:\n  for k in 0 1 2; do lumiere render scenes/reference.toml --shard $k/3 -o part$k.shard; done\n  lumiere merge part0.shard part1.shard part2.shard -o reference.png\n\nExit codes: 0 ok, 1 write failed, 2 bad or incomplete shards."
+    )]
+    Merge(MergeArgs),
 }
 
 #[derive(Args, Debug)]
@@ -166,9 +177,12 @@ impl Overrides {
 pub struct RenderArgs {
     /// The scene file (TOML; see scenes/README.md).
     pub scene: PathBuf,
-    /// Output PNG path.
+    /// Output image: .png (8-bit, clamped), .pfm or .exr (32-bit float radiance, unclamped).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Encode PNG output with the sRGB transfer function (default: linear, as the course).
+    #[arg(long)]
+    pub srgb: bool,
     #[command(flatten)]
     pub overrides: Overrides,
     /// Worker threads (default: all cores). The image does not depend on it.
@@ -180,6 +194,23 @@ pub struct RenderArgs {
     /// Print ray counts and time after rendering.
     #[arg(long)]
     pub stats: bool,
+    /// Render only shard K of N (0-based rows [K H / N, (K + 1) H / N)) into a shard file
+    /// for `lumiere merge`.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<crate::shard::ShardSpec>,
+}
+
+#[derive(Args, Debug)]
+pub struct MergeArgs {
+    /// The shard files (any order), all N of one render.
+    #[arg(required = true)]
+    pub shards: Vec<PathBuf>,
+    /// Output image: .png, .pfm or .exr.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Encode PNG output with the sRGB transfer function.
+    #[arg(long)]
+    pub srgb: bool,
 }
 
 pub fn run(cli: Cli) -> Result<(), CliError> {
@@ -187,6 +218,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Render(args) => render_command(&args),
         Command::Compare(args) => compare_command(&args),
         Command::Figures(args) => figures_command(&args),
+        Command::Merge(args) => merge_command(&args),
     }
 }
 
@@ -197,20 +229,20 @@ pub fn load_scene(path: &Path, overrides: &Overrides) -> Result<Scene, CliError>
     Ok(scene)
 }
 
-/// Checks that `output` can be written as a PNG without touching `input`.
-pub fn check_output(output: &Path, input: &Path) -> Result<(), CliError> {
-    let ext = output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    if ext.as_deref() != Some("png") {
-        return Err(CliError::BadInput(format!(
-            "{}: the output must be a .png file",
-            output.display()
-        )));
-    }
+/// Checks that `output` can be written in a known format without touching `input`.
+pub fn check_output(output: &Path, input: &Path) -> Result<crate::output::Format, CliError> {
+    let format = crate::output::Format::of(output).map_err(CliError::BadInput)?;
+    check_output_path(output, input)?;
+    Ok(format)
+}
+
+/// Checks that `output` is not `input` and that its directory exists.
+pub fn check_output_path(output: &Path, input: &Path) -> Result<(), CliError> {
     if let (Ok(a), Ok(b)) = (output.canonicalize(), input.canonicalize())
         && a == b
     {
         return Err(CliError::BadInput(format!(
-            "{}: the output would overwrite the input scene",
+            "{}: the output would overwrite the input",
             output.display()
         )));
     }
@@ -254,22 +286,68 @@ fn progress_bar(rows: u64, quiet: bool) -> ProgressBar {
     bar
 }
 
+/// Set by Ctrl-C; renders stop at the next row and write nothing.
+static INTERRUPTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
 fn render_command(args: &RenderArgs) -> Result<(), CliError> {
     let scene = load_scene(&args.scene, &args.overrides)?;
-    check_output(&args.output, &args.scene)?;
+    let format = match args.shard {
+        None => Some(check_output(&args.output, &args.scene)?),
+        Some(_) => {
+            check_output_path(&args.output, &args.scene)?;
+            None
+        }
+    };
     let world = World::new(&scene);
-    let bar = progress_bar(scene.settings.height as u64, args.quiet);
-    let (film, stats) = with_threads(args.threads, || render(&world, &|| bar.inc(1)))?;
+    let rows = args
+        .shard
+        .map_or(0..scene.settings.height, |s| s.rows(scene.settings.height));
+    let bar = progress_bar(rows.len() as u64, args.quiet);
+    // If the handler cannot be installed (one already is), Ctrl-C keeps its default
+    // behaviour, which also leaves no partial output: files are only written at the end.
+    let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+    let (pixels, stats) = with_threads(args.threads, || {
+        render_rows(&world, rows, &|| bar.inc(1), Some(&INTERRUPTED))
+    })?;
     bar.finish_and_clear();
-    let png = film
-        .encode_png()
-        .map_err(|e| CliError::Failed(format!("cannot encode the PNG: {e}")))?;
-    write_atomic(&args.output, &png)
+    if INTERRUPTED.load(std::sync::atomic::Ordering::Relaxed) {
+        return Err(CliError::Interrupted);
+    }
+    let bytes = match (args.shard, format) {
+        (Some(spec), _) => crate::shard::encode(&scene, spec, &pixels),
+        (None, Some(format)) => {
+            let film = crate::film::Film {
+                width: scene.settings.width,
+                height: scene.settings.height,
+                pixels,
+            };
+            crate::output::encode(&film, format, args.srgb)
+                .map_err(|e| CliError::Failed(format!("cannot encode the image: {e}")))?
+        }
+        (None, None) => unreachable!("format is checked when there is no shard"),
+    };
+    write_atomic(&args.output, &bytes)
         .map_err(|e| CliError::Failed(format!("{}: cannot write the image: {e}", args.output.display())))?;
     if args.stats {
         print!("{}", stats_report(&stats));
     }
     Ok(())
+}
+
+fn merge_command(args: &MergeArgs) -> Result<(), CliError> {
+    let format = check_output(&args.output, &args.shards[0])?;
+    let mut shards = Vec::new();
+    for path in &args.shards {
+        let name = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|e| CliError::BadInput(format!("{name}: cannot read: {e}")))?;
+        let (header, pixels) = crate::shard::decode(&bytes, &name).map_err(CliError::BadInput)?;
+        shards.push((name, header, pixels));
+    }
+    let film = crate::shard::merge(shards).map_err(CliError::BadInput)?;
+    let bytes = crate::output::encode(&film, format, args.srgb)
+        .map_err(|e| CliError::Failed(format!("cannot encode the image: {e}")))?;
+    write_atomic(&args.output, &bytes)
+        .map_err(|e| CliError::Failed(format!("{}: cannot write the image: {e}", args.output.display())))
 }
 
 /// Human-readable ray counts and time.
@@ -302,7 +380,12 @@ fn compare_command(args: &CompareArgs) -> Result<(), CliError> {
     }
     let c = compare_rgb8(&a, &b, wa, ha, args.tolerance);
     if let Some(path) = &args.heatmap {
-        check_output(path, &args.a)?;
+        if check_output(path, &args.a)? != crate::output::Format::Png {
+            return Err(CliError::BadInput(format!(
+                "{}: the heat-map must be a .png",
+                path.display()
+            )));
+        }
         let png = crate::film::encode_png(wa, ha, &heat_map(&a, &b, 16))
             .map_err(|e| CliError::Failed(format!("cannot encode the heat-map: {e}")))?;
         write_atomic(path, &png).map_err(|e| CliError::Failed(format!("{}: cannot write: {e}", path.display())))?;

@@ -13,9 +13,11 @@
 //! - [`camera`], [`sampling`]: pinhole camera, seeded random streams.
 //! - [`scene`]: the scene model and its TOML file format with located errors.
 //! - [`trace`]: Whitted recursion with filtered shadow rays and a step recorder.
-//! - [`render`], [`film`]: parallel deterministic rendering, quantisation, atomic output.
+//! - [`render`], [`film`], [`output`]: parallel deterministic rendering, quantisation,
+//!   atomic PNG / PFM / EXR output.
 //! - [`compare`]: image differences (max, RMS, PSNR, heat-map) for `lumiere compare`.
 //! - [`figures`]: the course's figure sets, manifests, contact sheets and gallery.
+//! - [`shard`]: split renders (`--shard K/N`) and their bit-identical merge.
 //! - [`cli`]: the `lumiere` command line.
 
 pub mod accel;
@@ -28,11 +30,13 @@ pub mod light;
 pub mod limits;
 pub mod material;
 pub mod math;
+pub mod output;
 pub mod render;
 pub mod sampling;
 pub mod scene;
 pub mod shading;
 pub mod shape;
+pub mod shard;
 pub mod solve;
 pub mod trace;
 

@@ -8,6 +8,8 @@ use crate::scene::World;
 use crate::trace::{NoRecord, RayCounts, Recorder, Tracer};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::ops::Range;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 /// What a render measured.
@@ -55,17 +57,38 @@ pub fn render_pixel(tracer: &mut Tracer, x: u32, y: u32) -> DVec3 {
 /// Renders the whole image on the current rayon pool. `progress` is called once per
 /// finished row (from any thread).
 pub fn render(world: &World, progress: &(dyn Fn() + Sync)) -> (Film, RenderStats) {
-    let start = Instant::now();
     let s = &world.scene.settings;
-    let mut film = Film::new(s.width, s.height);
-    let counts = film
-        .pixels
-        .par_chunks_mut(s.width as usize)
+    let (pixels, stats) = render_rows(world, 0..s.height, progress, None);
+    let film = Film {
+        width: s.width,
+        height: s.height,
+        pixels,
+    };
+    (film, stats)
+}
+
+/// Renders the rows `rows` (row-major pixels of those rows). When `cancel` becomes true,
+/// the remaining rows are skipped (left black); the caller checks the flag and discards.
+pub fn render_rows(
+    world: &World,
+    rows: Range<u32>,
+    progress: &(dyn Fn() + Sync),
+    cancel: Option<&AtomicBool>,
+) -> (Vec<DVec3>, RenderStats) {
+    let start = Instant::now();
+    let width = world.scene.settings.width as usize;
+    let mut pixels = vec![DVec3::ZERO; width * rows.len()];
+    let counts = pixels
+        .par_chunks_mut(width)
         .enumerate()
-        .map(|(y, row)| {
+        .map(|(i, row)| {
             let mut tracer = Tracer::new(world);
+            if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                return tracer.counts;
+            }
+            let y = rows.start + i as u32;
             for (x, px) in row.iter_mut().enumerate() {
-                *px = render_pixel(&mut tracer, x as u32, y as u32);
+                *px = render_pixel(&mut tracer, x as u32, y);
             }
             progress();
             tracer.counts
@@ -78,5 +101,5 @@ pub fn render(world: &World, progress: &(dyn Fn() + Sync)) -> (Film, RenderStats
         counts,
         elapsed: start.elapsed(),
     };
-    (film, stats)
+    (pixels, stats)
 }
