@@ -41,15 +41,46 @@ impl CliError {
     about = "A seeded, deterministic Whitted ray tracer for the course on ray-traced illumination"
 )]
 pub struct Cli {
+    /// Print nothing but results and errors (no progress bar, no summaries).
+    #[arg(short, long, global = true)]
+    pub quiet: bool,
+    /// Also print what is being done (scene summary, threads, files written) on stderr.
+    #[arg(short, long, global = true, conflicts_with = "quiet")]
+    pub verbose: bool,
     #[command(subcommand)]
     pub command: Command,
+}
+
+/// How much the commands print besides their results.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Verbosity {
+    Quiet,
+    Normal,
+    Verbose,
+}
+
+impl Verbosity {
+    fn of(cli: &Cli) -> Self {
+        match (cli.quiet, cli.verbose) {
+            (true, _) => Verbosity::Quiet,
+            (_, true) => Verbosity::Verbose,
+            _ => Verbosity::Normal,
+        }
+    }
+
+    /// Prints a progress note on stderr in verbose mode.
+    fn note(self, text: impl FnOnce() -> String) {
+        if self == Verbosity::Verbose {
+            eprintln!("lumiere: {}", text());
+        }
+    }
 }
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Render a scene file to an image (PNG, or PFM / EXR float radiance).
     #[command(
-        after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1\n\nExit codes: 0 ok, 1 render failed, 2 bad input."
+        after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1 --stats\n  lumiere render scenes/prism.toml -o prism.exr --depth 20          # float radiance\n  lumiere render scenes/reference.toml -o part0.shard --shard 0/4    # a quarter, for merge\n\nExit codes: 0 ok, 1 render failed, 2 bad input, 130 interrupted (nothing written)."
     )]
     Render(RenderArgs),
     /// Compare two images: max and RMS difference, PSNR, differing pixels, heat-map.
@@ -68,6 +99,15 @@ pub enum Command {
         after_help = "Example:\n  for k in 0 1 2; do lumiere render scenes/reference.toml --shard $k/3 -o part$k.shard; done\n  lumiere merge part0.shard part1.shard part2.shard -o reference.png\n\nExit codes: 0 ok, 1 write failed, 2 bad or incomplete shards."
     )]
     Merge(MergeArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    #[command(after_help = "Example:\n  lumiere completions bash > ~/.local/share/bash-completion/completions/lumiere")]
+    Completions(CompletionsArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct CompletionsArgs {
+    /// The shell.
+    pub shell: clap_complete::Shell,
 }
 
 #[derive(Args, Debug)]
@@ -90,9 +130,6 @@ pub struct FiguresArgs {
     /// Worker threads (default: all cores). The images do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Print nothing but errors.
-    #[arg(short, long)]
-    pub quiet: bool,
 }
 
 #[derive(Args, Debug)]
@@ -188,12 +225,12 @@ pub struct RenderArgs {
     /// Worker threads (default: all cores). The image does not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
-    /// No progress bar.
-    #[arg(short, long)]
-    pub quiet: bool,
     /// Print ray counts and time after rendering.
     #[arg(long)]
     pub stats: bool,
+    /// Print the statistics as JSON on stdout (implies --stats).
+    #[arg(long)]
+    pub json: bool,
     /// Render only shard K of N (0-based rows [K H / N, (K + 1) H / N)) into a shard file
     /// for `lumiere merge`.
     #[arg(long, value_name = "K/N")]
@@ -214,11 +251,21 @@ pub struct MergeArgs {
 }
 
 pub fn run(cli: Cli) -> Result<(), CliError> {
+    let v = Verbosity::of(&cli);
     match cli.command {
-        Command::Render(args) => render_command(&args),
+        Command::Render(args) => render_command(&args, v),
         Command::Compare(args) => compare_command(&args),
-        Command::Figures(args) => figures_command(&args),
-        Command::Merge(args) => merge_command(&args),
+        Command::Figures(args) => figures_command(&args, v),
+        Command::Merge(args) => merge_command(&args, v),
+        Command::Completions(args) => {
+            clap_complete::generate(
+                args.shell,
+                &mut <Cli as clap::CommandFactory>::command(),
+                "lumiere",
+                &mut std::io::stdout(),
+            );
+            Ok(())
+        }
     }
 }
 
@@ -289,7 +336,7 @@ fn progress_bar(rows: u64, quiet: bool) -> ProgressBar {
 /// Set by Ctrl-C; renders stop at the next row and write nothing.
 static INTERRUPTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
-fn render_command(args: &RenderArgs) -> Result<(), CliError> {
+fn render_command(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     let scene = load_scene(&args.scene, &args.overrides)?;
     let format = match args.shard {
         None => Some(check_output(&args.output, &args.scene)?),
@@ -302,7 +349,22 @@ fn render_command(args: &RenderArgs) -> Result<(), CliError> {
     let rows = args
         .shard
         .map_or(0..scene.settings.height, |s| s.rows(scene.settings.height));
-    let bar = progress_bar(rows.len() as u64, args.quiet);
+    let s = &scene.settings;
+    v.note(|| {
+        format!(
+            "{}: {} objects, {} lights; {} x {} pixels, {} samples, depth {}, seed {}; rows {:?}",
+            args.scene.display(),
+            scene.objects.len(),
+            scene.lights.len(),
+            s.width,
+            s.height,
+            s.samples_per_pixel,
+            s.depth,
+            s.seed,
+            rows
+        )
+    });
+    let bar = progress_bar(rows.len() as u64, v == Verbosity::Quiet);
     // If the handler cannot be installed (one already is), Ctrl-C keeps its default
     // behaviour, which also leaves no partial output: files are only written at the end.
     let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
@@ -328,13 +390,42 @@ fn render_command(args: &RenderArgs) -> Result<(), CliError> {
     };
     write_atomic(&args.output, &bytes)
         .map_err(|e| CliError::Failed(format!("{}: cannot write the image: {e}", args.output.display())))?;
-    if args.stats {
+    v.note(|| {
+        format!(
+            "wrote {} ({} bytes) in {:.3} s",
+            args.output.display(),
+            bytes.len(),
+            stats.elapsed.as_secs_f64()
+        )
+    });
+    if args.json {
+        println!("{}", stats_json(&stats));
+    } else if args.stats {
         print!("{}", stats_report(&stats));
     }
     Ok(())
 }
 
-fn merge_command(args: &MergeArgs) -> Result<(), CliError> {
+/// The statistics as JSON, for programs.
+pub fn stats_json(stats: &RenderStats) -> String {
+    let c = &stats.counts;
+    serde_json::json!({
+        "seconds": stats.elapsed.as_secs_f64(),
+        "rays": {
+            "camera": c.camera,
+            "shadow": c.shadow,
+            "reflection": c.reflection,
+            "refraction": c.refraction,
+            "total": c.total_rays(),
+        },
+        "total_internal_reflections": c.total_internal_reflections,
+        "adaptive_cutoffs": c.adaptive_cutoffs,
+        "non_finite_samples": c.non_finite,
+    })
+    .to_string()
+}
+
+fn merge_command(args: &MergeArgs, v: Verbosity) -> Result<(), CliError> {
     let format = check_output(&args.output, &args.shards[0])?;
     let mut shards = Vec::new();
     for path in &args.shards {
@@ -344,6 +435,14 @@ fn merge_command(args: &MergeArgs) -> Result<(), CliError> {
         shards.push((name, header, pixels));
     }
     let film = crate::shard::merge(shards).map_err(CliError::BadInput)?;
+    v.note(|| {
+        format!(
+            "merged {} shards into {} x {}",
+            args.shards.len(),
+            film.width,
+            film.height
+        )
+    });
     let bytes = crate::output::encode(&film, format, args.srgb)
         .map_err(|e| CliError::Failed(format!("cannot encode the image: {e}")))?;
     write_atomic(&args.output, &bytes)
@@ -414,7 +513,7 @@ fn compare_command(args: &CompareArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn figures_command(args: &FiguresArgs) -> Result<(), CliError> {
+fn figures_command(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     use crate::figures::{generate, registry, write_index};
     let all = registry();
     if args.list {
@@ -446,7 +545,7 @@ fn figures_command(args: &FiguresArgs) -> Result<(), CliError> {
         .filter(|s| args.sets.is_empty() || args.sets.iter().any(|n| n == s.name))
         .collect();
     if args.check {
-        return check_figures(&chosen, args);
+        return check_figures(&chosen, args, v);
     }
     std::fs::create_dir_all(&args.out).map_err(|e| {
         CliError::BadInput(format!(
@@ -457,7 +556,7 @@ fn figures_command(args: &FiguresArgs) -> Result<(), CliError> {
     let start = std::time::Instant::now();
     for set in chosen {
         let report = with_threads(args.threads, || generate(set, &args.out, args.scale))?.map_err(CliError::Failed)?;
-        if !args.quiet {
+        if v != Verbosity::Quiet {
             println!(
                 "{:<12} {:>3} images  {:>7.2} s  {}",
                 report.name,
@@ -468,7 +567,7 @@ fn figures_command(args: &FiguresArgs) -> Result<(), CliError> {
         }
     }
     write_index(&args.out).map_err(CliError::Failed)?;
-    if !args.quiet {
+    if v != Verbosity::Quiet {
         println!(
             "total                     {:>7.2} s  {}",
             start.elapsed().as_secs_f64(),
@@ -478,7 +577,7 @@ fn figures_command(args: &FiguresArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn check_figures(sets: &[&crate::figures::FigureSet], args: &FiguresArgs) -> Result<(), CliError> {
+fn check_figures(sets: &[&crate::figures::FigureSet], args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     let mut failures = 0;
     for set in sets {
         let mismatches =
@@ -489,7 +588,7 @@ fn check_figures(sets: &[&crate::figures::FigureSet], args: &FiguresArgs) -> Res
                 set.name, m.file, m.actual, m.expected
             );
         }
-        if !args.quiet {
+        if v != Verbosity::Quiet {
             println!(
                 "{:<12} {}",
                 set.name,

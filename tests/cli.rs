@@ -274,3 +274,63 @@ fn compare_reports_differences_and_exits_by_tolerance() {
     assert_eq!(lumiere(&["compare", sa, c.to_str().unwrap()]).status.code(), Some(2));
     assert_eq!(lumiere(&["compare", sa, "Cargo.toml"]).status.code(), Some(2));
 }
+
+#[test]
+fn completions_and_help_for_every_command() {
+    let o = lumiere(&["completions", "bash"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("_lumiere()"));
+    assert_eq!(lumiere(&["completions", "tcsh"]).status.code(), Some(2));
+    let help = lumiere(&["--help"]);
+    let text = String::from_utf8_lossy(&help.stdout);
+    // Every subcommand's help has examples.
+    for cmd in text
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+    {
+        let name = cmd.split_whitespace().next().unwrap();
+        if name == "help" {
+            continue;
+        }
+        let sub = lumiere(&[name, "--help"]);
+        assert_eq!(sub.status.code(), Some(0), "{name}");
+        assert!(
+            String::from_utf8_lossy(&sub.stdout).contains("Example"),
+            "{name} --help has no example"
+        );
+    }
+}
+
+#[test]
+fn verbose_notes_go_to_stderr_and_json_stats_to_stdout() {
+    let dir = temp_dir("verbose");
+    let out = dir.join("v.png");
+    let scene = repo("scenes/reference.toml");
+    let o = lumiere(&[
+        "-v",
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--width",
+        "20",
+        "--height",
+        "10",
+        "--spp",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("7 objects, 2 lights; 20 x 10 pixels"), "{stderr}");
+    assert!(stderr.contains("wrote"));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(json["rays"]["camera"], 200);
+    // --quiet and --verbose together are refused.
+    assert_eq!(
+        lumiere(&["-q", "-v", "render", "x.toml", "-o", "y.png"]).status.code(),
+        Some(2)
+    );
+}

@@ -1,0 +1,289 @@
+//! Hostile input, as a proptest harness: mutated scene files and random text must give a
+//! located error or a scene, never a panic; random valid scenes must render without a
+//! panic and with no NaN or infinity in any pixel. The suite runs 256 cases per property;
+//! a longer run: `PROPTEST_CASES=20000 cargo test --release --test fuzz` (see BENCHMARKS.md).
+
+use lumiere::render::render;
+use lumiere::scene::{self, World};
+use proptest::prelude::*;
+
+/// A scene using every section, shape and light kind.
+const VALID: &str = r#"[image]
+width = 8
+height = 6
+samples_per_pixel = 1
+seed = 3
+
+[camera]
+position = [0, -8, 5]
+look_at = [0, 1, 0]
+up = [0, 0, 1]
+vfov = 60
+
+[render]
+depth = 3
+specular = "phong"
+adaptive_threshold = 0.25
+
+[materials.glass]
+color = [0.9, 0.9, 1]
+kt = 0.8
+kr = 0.1
+n = 1.5
+
+[materials.mirror]
+kr = 0.9
+m = 1
+
+[[shapes]]
+type = "plane"
+point = [0, 0, 0]
+normal = [0, 0, 1]
+
+[[shapes]]
+type = "sphere"
+center = [1, -2, 1]
+radius = 1
+material = "glass"
+
+[[shapes]]
+type = "box"
+center = [0, 0, 3]
+size = [2, 2, 2]
+rotation = [10, 20, 30]
+
+[[shapes]]
+type = "cone"
+base = [-3, -3, 0]
+axis = [0, 0.2, 1]
+height = 2.5
+radius = 1
+
+[[shapes]]
+type = "cylinder"
+base = [-5, 9, 0]
+height = 3
+radius = 1
+
+[[shapes]]
+type = "torus"
+center = [4, 3, 2]
+axis = [1, 0, 1]
+major_radius = 1.5
+minor_radius = 0.5
+
+[[shapes]]
+type = "disk"
+center = [0, 5, 0.01]
+normal = [0, 0, 1]
+radius = 2
+
+[[shapes]]
+type = "rectangle"
+corner = [-4, 6, 0]
+edge1 = [8, 0, 0]
+edge2 = [0, 0, 4]
+material = "mirror"
+
+[[shapes]]
+type = "mirror_pair"
+hinge = [6, 6, 0]
+opening = 60
+length = 2
+height = 2
+material = "mirror"
+
+[[lights]]
+type = "ambient"
+color = [0.5, 0.5, 0.5]
+
+[[lights]]
+type = "directional"
+direction = [1, 1, -1]
+
+[[lights]]
+type = "point"
+position = [0, 0, 10]
+attenuation = { constant = 1, linear = 0.1, quadratic = 0.01 }
+
+[[lights]]
+type = "spot"
+position = [0, 0, 10]
+direction = [0, 0, -1]
+angle = 70
+c_min = 0.2
+"#;
+
+fn hostile_value() -> impl Strategy<Value = String> {
+    prop_oneof![
+        prop::sample::select(vec![
+            "nan",
+            "inf",
+            "-inf",
+            "-1",
+            "0",
+            "1e308",
+            "-1e308",
+            "5e-324",
+            "18446744073709551615",
+            "-9223372036854775808",
+            "\"\"",
+            "[]",
+            "[0, 0, 0]",
+            "[nan, 1, 1]",
+            "[1e300, 1e300, 1e300]",
+            "[1, 2]",
+            "true",
+            "{}",
+            "\"sphere\"",
+            "[0, 0, 1e-300]",
+            "1e9",
+            "4294967296",
+            "65536",
+            "180.0000001",
+        ])
+        .prop_map(str::to_string),
+        any::<f64>().prop_map(|x| format!("{x:e}")),
+        any::<i64>().prop_map(|x| x.to_string()),
+        "[a-z_]{0,10}".prop_map(|s| format!("\"{s}\"")),
+    ]
+}
+
+/// One edit of the valid scene's text.
+#[derive(Clone, Debug)]
+enum Mutation {
+    /// Replace the value of the `line`-th `key = value` line.
+    Value(usize, String),
+    DeleteLine(usize),
+    DuplicateLine(usize),
+    /// Add `key = value` after a line (unknown keys, repeated keys).
+    InsertKey(usize, String, String),
+    Truncate(usize),
+    Byte(usize, u8),
+}
+
+fn mutation() -> impl Strategy<Value = Mutation> {
+    prop_oneof![
+        4 => (any::<usize>(), hostile_value()).prop_map(|(l, v)| Mutation::Value(l, v)),
+        1 => any::<usize>().prop_map(Mutation::DeleteLine),
+        1 => any::<usize>().prop_map(Mutation::DuplicateLine),
+        1 => (any::<usize>(), "[a-z_]{1,12}", hostile_value()).prop_map(|(l, k, v)| Mutation::InsertKey(l, k, v)),
+        1 => any::<usize>().prop_map(Mutation::Truncate),
+        1 => (any::<usize>(), any::<u8>()).prop_map(|(i, b)| Mutation::Byte(i, b)),
+    ]
+}
+
+fn apply(text: &str, m: &Mutation) -> String {
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let n = lines.len();
+    match m {
+        Mutation::Value(l, v) => {
+            let keyed: Vec<usize> = (0..n).filter(|&i| lines[i].contains(" = ")).collect();
+            let i = keyed[l % keyed.len()];
+            let key = lines[i].split(" = ").next().unwrap_or_default().to_string();
+            lines[i] = format!("{key} = {v}");
+        }
+        Mutation::DeleteLine(l) => {
+            lines.remove(l % n);
+        }
+        Mutation::DuplicateLine(l) => {
+            let line = lines[l % n].clone();
+            lines.insert(l % n, line);
+        }
+        Mutation::InsertKey(l, k, v) => lines.insert(l % n + 1, format!("{k} = {v}")),
+        Mutation::Truncate(i) => {
+            let mut t = lines.join("\n");
+            let mut cut = i % (t.len() + 1);
+            while !t.is_char_boundary(cut) {
+                cut -= 1;
+            }
+            t.truncate(cut);
+            return t;
+        }
+        Mutation::Byte(i, b) => {
+            let mut bytes = lines.join("\n").into_bytes();
+            let at = i % bytes.len();
+            bytes[at] = *b;
+            return String::from_utf8_lossy(&bytes).into_owned();
+        }
+    }
+    lines.join("\n")
+}
+
+/// Renders a parsed scene at 6 x 4, 1 sample, depth at most 4, and checks every pixel.
+fn render_tiny(mut s: scene::Scene) {
+    s.settings.width = 6;
+    s.settings.height = 4;
+    s.settings.samples_per_pixel = 1;
+    s.settings.depth = s.settings.depth.min(4);
+    let world = World::new(&s);
+    let (film, stats) = render(&world, &|| {});
+    assert_eq!(stats.counts.non_finite, 0);
+    assert!(film.pixels.iter().all(|p| p.is_finite()));
+}
+
+#[test]
+fn the_fuzz_seed_scene_is_valid() {
+    let s = scene::parse(VALID, "fuzz.toml").unwrap();
+    assert_eq!(s.objects.len(), 10);
+    render_tiny(s);
+}
+
+proptest! {
+    #[test]
+    fn mutated_scenes_give_a_scene_or_a_located_error(m in mutation()) {
+        let text = apply(VALID, &m);
+        match scene::parse(&text, "fuzz.toml") {
+            Ok(s) => render_tiny(s),
+            Err(e) => {
+                let msg = e.to_string();
+                // file:line:column: field: message
+                let mut parts = msg.splitn(4, ':');
+                prop_assert_eq!(parts.next(), Some("fuzz.toml"));
+                prop_assert!(parts.next().is_some_and(|l| l.parse::<usize>().is_ok()), "{}", msg);
+                prop_assert!(parts.next().is_some_and(|c| c.parse::<usize>().is_ok()), "{}", msg);
+            }
+        }
+    }
+
+    #[test]
+    fn random_text_never_panics(text in "\\PC{0,300}") {
+        let _ = scene::parse(&text, "random.toml");
+    }
+
+    #[test]
+    fn random_valid_scenes_render_finite(
+        centers in prop::collection::vec((-50.0..50.0f64, -50.0..50.0f64, -5.0..20.0f64), 1..6),
+        sizes in prop::collection::vec(1e-3..10.0f64, 6),
+        axis in (-1.0..1.0f64, -1.0..1.0f64, 0.05..1.0f64),
+        kind in prop::collection::vec(0usize..6, 6),
+        kr in 0.0..0.5f64,
+        kt in 0.0..0.5f64,
+        n in 0.2..3.0f64,
+        light in (-20.0..20.0f64, -20.0..20.0f64, 1.0..30.0f64),
+        camera in (-30.0..30.0f64, -30.0..-1.0f64, 0.5..30.0f64),
+    ) {
+        let (ax, ay, az) = axis;
+        let mut text = format!(
+            "[image]\nwidth = 6\nheight = 4\nsamples_per_pixel = 1\n[camera]\nposition = [{}, {}, {}]\nlook_at = [0, 0, 0]\n\
+             [render]\ndepth = 4\n[materials.m]\nkr = {kr}\nkt = {kt}\nn = {n}\n\
+             [[lights]]\ntype = \"ambient\"\n[[lights]]\ntype = \"point\"\nposition = [{}, {}, {}]\n\
+             [[lights]]\ntype = \"spot\"\nposition = [{}, {}, {}]\ndirection = [0, 0, -1]\nangle = 90\n",
+            camera.0, camera.1, camera.2, light.0, light.1, light.2, light.0, light.1, light.2
+        );
+        for (i, (x, y, z)) in centers.iter().enumerate() {
+            let (r, h) = (sizes[i], sizes[(i + 1) % 6]);
+            text += &match kind[i] {
+                0 => format!("[[shapes]]\ntype = \"sphere\"\ncenter = [{x}, {y}, {z}]\nradius = {r}\nmaterial = \"m\"\n"),
+                1 => format!("[[shapes]]\ntype = \"box\"\ncenter = [{x}, {y}, {z}]\nsize = [{r}, {h}, {r}]\nrotation = [{x}, {y}, {z}]\nmaterial = \"m\"\n"),
+                2 => format!("[[shapes]]\ntype = \"cone\"\nbase = [{x}, {y}, {z}]\naxis = [{ax}, {ay}, {az}]\nheight = {h}\nradius = {r}\nmaterial = \"m\"\n"),
+                3 => format!("[[shapes]]\ntype = \"cylinder\"\nbase = [{x}, {y}, {z}]\naxis = [{ax}, {ay}, {az}]\nheight = {h}\nradius = {r}\nmaterial = \"m\"\n"),
+                4 => format!("[[shapes]]\ntype = \"torus\"\ncenter = [{x}, {y}, {z}]\naxis = [{ax}, {ay}, {az}]\nmajor_radius = {}\nminor_radius = {}\nmaterial = \"m\"\n", r.max(h), r.min(h)),
+                _ => format!("[[shapes]]\ntype = \"disk\"\ncenter = [{x}, {y}, {z}]\nnormal = [{ax}, {ay}, {az}]\nradius = {r}\nmaterial = \"m\"\n"),
+            };
+        }
+        text += "[[shapes]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n";
+        let s = scene::parse(&text, "generated.toml").map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
+        render_tiny(s);
+    }
+}
