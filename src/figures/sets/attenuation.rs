@@ -19,7 +19,7 @@ pub fn figures() -> Vec<Figure> {
         .measuring(Measure::AttenuationRange),
         Figure::new(
             2,
-            "quadratic-0.01",
+            "quadratic-0p01",
             "Avec facteur d'atténuation C_quad = 0.01",
             reference_with(vec![ambient(), point(light, quadratic(0.01))]),
         )
