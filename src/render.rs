@@ -3,7 +3,7 @@
 //! depend on the thread count or the order rows finish in.
 
 use crate::film::Film;
-use crate::sampling::{Purpose, Stream, sample_index};
+use crate::sampling::{Purpose, Stream};
 use crate::scene::World;
 use crate::trace::{NoRecord, RayCounts, Recorder, Tracer};
 use glam::DVec3;
@@ -19,24 +19,38 @@ pub struct RenderStats {
     pub elapsed: Duration,
 }
 
-/// Image position of sample `k` of pixel `(x, y)`: cell `(k mod n, k div n)` of the pixel's
-/// `n x n` grid, jittered uniformly within the cell.
-pub fn sample_position(world: &World, x: u32, y: u32, k: u32) -> (f64, f64) {
+/// The jitter stream of pixel `(x, y)`: sample `k` reads its two numbers from words
+/// `4k .. 4k + 4`, so reading samples in order and seeking to one sample agree.
+fn jitter_stream(world: &World, x: u32, y: u32) -> Stream {
     let s = &world.scene.settings;
-    let n = s.grid_side();
-    let pixel = y as u64 * s.width as u64 + x as u64;
-    let mut rng = Stream::new(s.seed, Purpose::PixelJitter, sample_index(pixel, k));
+    Stream::new(s.seed, Purpose::PixelJitter, y as u64 * s.width as u64 + x as u64)
+}
+
+/// Image position of sample `k` of pixel `(x, y)` with the stream at sample `k`: cell
+/// `(k mod n, k div n)` of the pixel's `n x n` grid, jittered uniformly within the cell.
+fn jittered(rng: &mut Stream, n: u32, x: u32, y: u32, k: u32) -> (f64, f64) {
     let (jx, jy) = (rng.next_f64(), rng.next_f64());
     let (cx, cy) = ((k % n) as f64, (k / n) as f64);
     (x as f64 + (cx + jx) / n as f64, y as f64 + (cy + jy) / n as f64)
 }
 
+/// Image position of sample `k` of pixel `(x, y)` (see [`jittered`]).
+pub fn sample_position(world: &World, x: u32, y: u32, k: u32) -> (f64, f64) {
+    let mut rng = jitter_stream(world, x, y).skip_words(4 * k as u128);
+    jittered(&mut rng, world.scene.settings.grid_side(), x, y, k)
+}
+
 /// Radiance of one sample of one pixel, recorded by `rec`.
 pub fn render_sample<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, k: u32, rec: &mut R) -> DVec3 {
-    let world = tracer.world;
-    let s = &world.scene.settings;
-    let (px, py) = sample_position(world, x, y, k);
-    let ray = world.camera.ray(px, py, s.width, s.height);
+    let position = sample_position(tracer.world, x, y, k);
+    trace_at(tracer, position, x, y, k, rec)
+}
+
+/// Radiance along the camera ray through image position `(px, py)`; a NaN or infinity is
+/// counted and replaced by black (and is a bug: debug builds stop on it).
+fn trace_at<R: Recorder>(tracer: &mut Tracer, (px, py): (f64, f64), x: u32, y: u32, k: u32, rec: &mut R) -> DVec3 {
+    let s = &tracer.world.scene.settings;
+    let ray = tracer.world.camera.ray(px, py, s.width, s.height);
     let c = tracer.trace_camera(&ray, rec);
     if c.is_finite() {
         c
@@ -47,10 +61,17 @@ pub fn render_sample<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, k: u32, r
     }
 }
 
-/// Radiance of a pixel: the mean of its samples.
+/// Radiance of a pixel: the mean of its samples, in sample order (one jitter stream read
+/// sequentially: the same numbers as [`render_sample`] for each `k`).
 pub fn render_pixel(tracer: &mut Tracer, x: u32, y: u32) -> DVec3 {
-    let spp = tracer.world.scene.settings.samples_per_pixel;
-    let sum: DVec3 = (0..spp).map(|k| render_sample(tracer, x, y, k, &mut NoRecord)).sum();
+    let s = &tracer.world.scene.settings;
+    let (spp, n) = (s.samples_per_pixel, s.grid_side());
+    let mut rng = jitter_stream(tracer.world, x, y);
+    let mut sum = DVec3::ZERO;
+    for k in 0..spp {
+        let position = jittered(&mut rng, n, x, y, k);
+        sum += trace_at(tracer, position, x, y, k, &mut NoRecord);
+    }
     sum / spp as f64
 }
 

@@ -9,7 +9,7 @@ use rand_core::{Rng, SeedableRng};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u64)]
 pub enum Purpose {
-    /// Sub-pixel jitter: index = `pixel << 16 | sample`.
+    /// Sub-pixel jitter: index = pixel; sample `k` reads words `4k .. 4k + 4`.
     PixelJitter = 1,
     /// Light points of an area light: index = light number (fixed mode) or
     /// `pixel << 16 | sample` combined with the light (per-sample mode).
@@ -31,6 +31,13 @@ impl Stream {
         let mut rng = ChaCha8Rng::from_seed(key);
         rng.set_stream(index);
         Stream(rng)
+    }
+
+    /// The same stream, positioned `words` 32-bit words from its start (each
+    /// [`Stream::next_f64`] takes two words).
+    pub fn skip_words(mut self, words: u128) -> Self {
+        self.0.set_word_pos(words);
+        self
     }
 
     /// Uniform in [0, 1) with 53 random bits.

@@ -39,3 +39,20 @@ fn different_seeds_give_different_jitter() {
     let b = render_small(&scene, 64, 48, 4, 2).to_rgb8();
     assert_ne!(a, b);
 }
+
+#[test]
+fn a_pixel_is_the_mean_of_its_replayable_samples() {
+    // render_pixel reads the jitter stream in order; render_sample seeks to sample k (as
+    // `probe --sample K` does). Both must see the same numbers, so the mean is bit-identical.
+    use lumiere::render::{render_pixel, render_sample};
+    use lumiere::scene::World;
+    use lumiere::trace::{NoRecord, Tracer};
+    let mut scene = scene("reference.toml");
+    scene.settings.samples_per_pixel = 9;
+    let world = World::new(&scene);
+    let mut tracer = Tracer::new(&world);
+    for (x, y) in [(0, 0), (400, 300), (523, 401), (799, 599)] {
+        let sum: glam::DVec3 = (0..9).map(|k| render_sample(&mut tracer, x, y, k, &mut NoRecord)).sum();
+        assert_eq!(render_pixel(&mut tracer, x, y), sum / 9.0, "pixel ({x}, {y})");
+    }
+}
