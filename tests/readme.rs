@@ -1,0 +1,119 @@
+//! Every command README.md shows is run here, in order, in a scratch directory (with the
+//! repository's `scenes/` linked and `figures/lighting/` copied in), and must succeed.
+//! `cargo` lines are the build and test steps themselves; `parallel` lines are expanded as
+//! GNU parallel would. Only the commands in `SHRUNK` are changed, to keep the suite fast.
+
+mod common;
+use common::*;
+use std::path::Path;
+use std::process::Command;
+
+/// Commands too slow for the suite at full size, and what runs instead.
+const SHRUNK: [(&str, &str); 2] = [
+    // Re-renders every set at full size (about a minute): the lighting set is checked here,
+    // tests/figures.rs checks it too, and the full check is a documented maintainer command.
+    ("lumiere figures --check", "lumiere figures lighting --check"),
+    (
+        "lumiere figures mirrors prism",
+        "lumiere figures mirrors prism --scale 0.05",
+    ),
+];
+
+/// The `cargo` commands the README may show.
+const CARGO: [&str; 3] = [
+    "cargo build --release",
+    "cargo test --release",
+    "cargo run --release -- figures",
+];
+
+/// Lines of the README's ```sh blocks, without trailing comments.
+fn shell_lines() -> Vec<String> {
+    let text = std::fs::read_to_string(repo("README.md")).unwrap();
+    let mut lines = Vec::new();
+    let mut in_sh = false;
+    for line in text.lines() {
+        if line.starts_with("```") {
+            in_sh = line.trim() == "```sh";
+            continue;
+        }
+        if in_sh {
+            let cmd = line.split("  #").next().unwrap().trim();
+            if !cmd.is_empty() {
+                lines.push(cmd.to_string());
+            }
+        }
+    }
+    lines
+}
+
+fn run(dir: &Path, command: &str) {
+    let words: Vec<&str> = command.split_whitespace().collect();
+    assert_eq!(words[0], "lumiere", "{command}");
+    let out = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(&words[1..])
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "README command failed: {command}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn every_readme_command_runs() {
+    let dir = temp_dir("readme");
+    std::os::unix::fs::symlink(repo("scenes"), dir.join("scenes")).unwrap();
+    let lighting = dir.join("figures/lighting");
+    std::fs::create_dir_all(&lighting).unwrap();
+    for f in std::fs::read_dir(repo("figures/lighting")).unwrap() {
+        let f = f.unwrap().path();
+        std::fs::copy(&f, lighting.join(f.file_name().unwrap())).unwrap();
+    }
+    let tmp = format!("{}/", dir.join("tmp").display());
+    std::fs::create_dir_all(dir.join("tmp")).unwrap();
+    let lines = shell_lines();
+    let mut ran = 0;
+    for line in &lines {
+        let line = line
+            .replace("./target/release/lumiere", "lumiere")
+            .replace("/tmp/", &tmp);
+        if line.starts_with("cargo ") {
+            assert!(
+                CARGO.contains(&line.as_str()),
+                "unexpected cargo line in README: {line}"
+            );
+            continue;
+        }
+        let line = SHRUNK
+            .iter()
+            .find(|(from, _)| *from == line)
+            .map_or(line.clone(), |(_, to)| to.to_string());
+        if let Some(rest) = line.strip_prefix("parallel ") {
+            let (template, args) = rest.split_once(" ::: ").unwrap();
+            for arg in args.split_whitespace() {
+                run(&dir, &template.replace("{}", arg));
+                ran += 1;
+            }
+            continue;
+        }
+        run(&dir, &line);
+        ran += 1;
+    }
+    assert!(ran >= 15, "only {ran} commands found in README.md");
+    // The walkthrough's point: the reference scene re-rendered equals the figure exactly.
+    let o = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(["compare", "mine.png", "preview/lighting/03-ambient-directional.png"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(String::from_utf8_lossy(&o.stdout).contains("max difference     0 levels"));
+    // The README's last reference.png is the merge of 8 shards: it must equal a one-machine render.
+    run(&dir, "lumiere render scenes/reference.toml -o whole.png");
+    assert_eq!(
+        std::fs::read(dir.join("reference.png")).unwrap(),
+        std::fs::read(dir.join("whole.png")).unwrap()
+    );
+}
