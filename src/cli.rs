@@ -52,6 +52,16 @@ pub enum Command {
         after_help = "Examples:\n  lumiere compare mine.png figures/lighting/01-ambient.png\n  lumiere compare mine.png ref.png --tolerance 1 --heatmap diff.png --json\n\nExit codes: 0 within tolerance, 1 some pixel differs by more than the tolerance, 2 bad input."
     )]
     Compare(CompareArgs),
+    /// Why is this pixel this colour? Print the whole ray tree of one pixel.
+    #[command(
+        after_help = "Examples:\n  lumiere probe scenes/reference.toml --pixel 400,300\n  lumiere probe scenes/prism.toml --pixel 80,60 --width 160 --height 120 --sample 0 --json\n\nExit codes: 0 ok, 2 bad input (scene, pixel outside the image, sample index)."
+    )]
+    Probe(crate::probe::ProbeArgs),
+    /// Write old | new | difference sheets for pending insta image snapshots.
+    #[command(
+        after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/snapshot-review\n\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written, 2 bad input."
+    )]
+    ReviewSnapshots(crate::review::ReviewArgs),
 }
 
 #[derive(Args, Debug)]
@@ -156,6 +166,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Render(args) => render_command(&args),
         Command::Compare(args) => compare_command(&args),
+        Command::Probe(args) => crate::probe::probe_command(&args),
+        Command::ReviewSnapshots(args) => crate::review::review_command(&args),
     }
 }
 

@@ -15,6 +15,8 @@
 //! - [`trace`]: Whitted recursion with filtered shadow rays and a step recorder.
 //! - [`render`], [`film`]: parallel deterministic rendering, quantisation, atomic output.
 //! - [`compare`]: image differences (max, RMS, PSNR, heat-map) for `lumiere compare`.
+//! - [`probe`]: `lumiere probe`, the recorded ray tree of one pixel.
+//! - [`review`]: `lumiere review-snapshots`, old | new | difference sheets of pending snapshots.
 //! - [`cli`]: the `lumiere` command line.
 
 pub mod accel;
@@ -26,7 +28,9 @@ pub mod light;
 pub mod limits;
 pub mod material;
 pub mod math;
+pub mod probe;
 pub mod render;
+pub mod review;
 pub mod sampling;
 pub mod scene;
 pub mod shading;

@@ -34,21 +34,29 @@ pub fn render_sample<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, k: u32, r
     let world = tracer.world;
     let s = &world.scene.settings;
     let (px, py) = sample_position(world, x, y, k);
+    rec.sample(k, px, py);
     let ray = world.camera.ray(px, py, s.width, s.height);
     let c = tracer.trace_camera(&ray, rec);
-    if c.is_finite() {
+    let c = if c.is_finite() {
         c
     } else {
         debug_assert!(false, "non-finite radiance {c} at pixel ({x}, {y}) sample {k}");
         tracer.counts.non_finite += 1;
         DVec3::ZERO
-    }
+    };
+    rec.sample_done(c);
+    c
 }
 
 /// Radiance of a pixel: the mean of its samples.
 pub fn render_pixel(tracer: &mut Tracer, x: u32, y: u32) -> DVec3 {
+    render_pixel_recorded(tracer, x, y, &mut NoRecord)
+}
+
+/// [`render_pixel`] with every sample recorded by `rec` (what `lumiere probe` uses).
+pub fn render_pixel_recorded<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, rec: &mut R) -> DVec3 {
     let spp = tracer.world.scene.settings.samples_per_pixel;
-    let sum: DVec3 = (0..spp).map(|k| render_sample(tracer, x, y, k, &mut NoRecord)).sum();
+    let sum: DVec3 = (0..spp).map(|k| render_sample(tracer, x, y, k, rec)).sum();
     sum / spp as f64
 }
 
