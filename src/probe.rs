@@ -4,7 +4,7 @@
 //! quantisation.
 //!
 //! The numbers are the renderer's own: [`TreeRecorder`] is a [`Recorder`] driven through
-//! [`render::render_sample`] / [`render::render_pixel_recorded`], the functions `render`
+//! [`crate::render::render_sample`] / [`crate::render::render_pixel_recorded`], the functions `render`
 //! uses, so the probe never recomputes anything the tracer computed.
 
 use crate::cli::{CliError, Overrides, load_scene};
