@@ -102,6 +102,16 @@ pub enum Command {
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     #[command(after_help = "Example:\n  lumiere completions bash > ~/.local/share/bash-completion/completions/lumiere")]
     Completions(CompletionsArgs),
+    /// Why is this pixel this colour? Print the whole ray tree of one pixel.
+    #[command(
+        after_help = "Examples:\n  lumiere probe scenes/reference.toml --pixel 400,300\n  lumiere probe scenes/prism.toml --pixel 80,60 --width 160 --height 120 --sample 0 --json\n\nExit codes: 0 ok, 2 bad input (scene, pixel outside the image, sample index)."
+    )]
+    Probe(crate::probe::ProbeArgs),
+    /// Write old | new | difference sheets for pending insta image snapshots.
+    #[command(
+        after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/snapshot-review\n\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written, 2 bad input."
+    )]
+    ReviewSnapshots(crate::review::ReviewArgs),
 }
 
 #[derive(Args, Debug)]
@@ -266,6 +276,8 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
             );
             Ok(())
         }
+        Command::Probe(args) => crate::probe::probe_command(&args),
+        Command::ReviewSnapshots(args) => crate::review::review_command(&args),
     }
 }
 

@@ -14,10 +14,14 @@ pub struct Film {
     pub pixels: Vec<DVec3>,
 }
 
+/// One channel clamped to [0, 1], NaN to 0: the value [`quantize`] rounds.
+pub fn clamp_unit(c: f64) -> f64 {
+    if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) }
+}
+
 /// One channel to 8 bits: clamp to [0, 1] (NaN to 0), then round to nearest.
 pub fn quantize(c: f64) -> u8 {
-    let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
-    (c * 255.0 + 0.5).floor() as u8
+    (clamp_unit(c) * 255.0 + 0.5).floor() as u8
 }
 
 impl Film {

@@ -18,6 +18,8 @@
 //! - [`compare`]: image differences (max, RMS, PSNR, heat-map) for `lumiere compare`.
 //! - [`figures`]: the course's figure sets, manifests, contact sheets and gallery.
 //! - [`shard`]: split renders (`--shard K/N`) and their bit-identical merge.
+//! - [`probe`]: `lumiere probe`, the recorded ray tree of one pixel.
+//! - [`review`]: `lumiere review-snapshots`, old | new | difference sheets of pending snapshots.
 //! - [`cli`]: the `lumiere` command line.
 
 pub mod accel;
@@ -31,7 +33,9 @@ pub mod limits;
 pub mod material;
 pub mod math;
 pub mod output;
+pub mod probe;
 pub mod render;
+pub mod review;
 pub mod sampling;
 pub mod scene;
 pub mod shading;

@@ -49,28 +49,37 @@ pub fn render_sample<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, k: u32, r
 /// Radiance along the camera ray through image position `(px, py)`; a NaN or infinity is
 /// counted and replaced by black (and is a bug: debug builds stop on it).
 fn trace_at<R: Recorder>(tracer: &mut Tracer, (px, py): (f64, f64), x: u32, y: u32, k: u32, rec: &mut R) -> DVec3 {
+    rec.sample(k, px, py);
     let s = &tracer.world.scene.settings;
     let ray = tracer.world.camera.ray(px, py, s.width, s.height);
     let c = tracer.trace_camera(&ray, rec);
-    if c.is_finite() {
+    let c = if c.is_finite() {
         c
     } else {
         debug_assert!(false, "non-finite radiance {c} at pixel ({x}, {y}) sample {k}");
         tracer.counts.non_finite += 1;
         DVec3::ZERO
-    }
+    };
+    rec.sample_done(c);
+    c
 }
 
-/// Radiance of a pixel: the mean of its samples, in sample order (one jitter stream read
-/// sequentially: the same numbers as [`render_sample`] for each `k`).
+/// Radiance of a pixel: the mean of its samples.
 pub fn render_pixel(tracer: &mut Tracer, x: u32, y: u32) -> DVec3 {
+    render_pixel_recorded(tracer, x, y, &mut NoRecord)
+}
+
+/// [`render_pixel`] with every sample recorded by `rec` (what `lumiere probe` uses): the
+/// mean of the samples in sample order, one jitter stream read sequentially (the same
+/// numbers as [`render_sample`] for each `k`).
+pub fn render_pixel_recorded<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, rec: &mut R) -> DVec3 {
     let s = &tracer.world.scene.settings;
     let (spp, n) = (s.samples_per_pixel, s.grid_side());
     let mut rng = jitter_stream(tracer.world, x, y);
     let mut sum = DVec3::ZERO;
     for k in 0..spp {
         let position = jittered(&mut rng, n, x, y, k);
-        sum += trace_at(tracer, position, x, y, k, &mut NoRecord);
+        sum += trace_at(tracer, position, x, y, k, rec);
     }
     sum / spp as f64
 }

@@ -74,10 +74,26 @@ pub trait Recorder {
     fn miss(&mut self) {}
     fn ambient(&mut self, _color: DVec3) {}
     fn light(&mut self, _share: &LightShare) {}
+    /// A light that adds nothing at this hit and casts no shadow ray: `n_dot_l` is `None`
+    /// when no light arrives at all (outside a spot's cone, or exactly at the light), else
+    /// the `N.L <= 0` of a surface facing away from it.
+    fn unlit(&mut self, _light: usize, _n_dot_l: Option<f64>) {}
+    /// A shadow ray towards a light, tested up to `t_max` (infinite for directional
+    /// lights), before the [`Recorder::light`] event of the same light.
+    fn shadow_ray(&mut self, _ray: &Ray, _t_max: f64) {}
+    /// The transparent objects (indices, ascending) whose colours filter the last shadow
+    /// ray; not reported when an opaque object blocks it or nothing is transparent.
+    fn shadow_crossed(&mut self, _objects: &[usize]) {}
+    /// The local illumination of the current hit (ambient + every light's share).
+    fn local(&mut self, _color: DVec3) {}
     fn cutoff(&mut self, _kind: RayKind, _weight: f64) {}
     fn total_internal_reflection(&mut self) {}
     /// The radiance the ray at the innermost open level returned.
     fn done(&mut self, _color: DVec3) {}
+    /// Sample `k` of a pixel starts, at image position `(px, py)` (before its camera ray).
+    fn sample(&mut self, _k: u32, _px: f64, _py: f64) {}
+    /// The sample's radiance as it enters the pixel mean (non-finite replaced by black).
+    fn sample_done(&mut self, _radiance: DVec3) {}
 }
 
 /// The recorder that records nothing.
@@ -126,6 +142,7 @@ impl<'w, 's> Tracer<'w, 's> {
         rec.hit(object, hit.t, point, hit.normal, entering);
 
         let mut color = self.local(point, n, hit.normal, err, -ray.dir, object, rec);
+        rec.local(color);
 
         let settings = &scene.settings;
         if level < settings.depth && (mat.kr > 0.0 || mat.kt > 0.0) {
@@ -231,14 +248,18 @@ impl<'w, 's> Tracer<'w, 's> {
             if matches!(light, Light::Ambient { .. }) {
                 continue;
             }
-            let Some(inc) = light.incidence(point) else { continue };
+            let Some(inc) = light.incidence(point) else {
+                rec.unlit(index, None);
+                continue;
+            };
             let n_dot_l = n.dot(inc.to_light);
             // N.L <= 0: no diffuse and (slides) no specular, so no shadow ray either.
             if n_dot_l <= 0.0 {
+                rec.unlit(index, Some(n_dot_l));
                 continue;
             }
             let filter = if scene.settings.shadows {
-                self.shadow_filter(point, outward, err, &inc)
+                self.shadow_filter_recorded(point, outward, err, &inc, rec)
             } else {
                 DVec3::ONE
             };
@@ -269,11 +290,24 @@ impl<'w, 's> Tracer<'w, 's> {
     /// counted once however many of its surfaces the ray crosses. `outward` is the surface
     /// normal at `point` and `err` the bound on the point's rounding error.
     pub fn shadow_filter(&mut self, point: DVec3, outward: DVec3, err: f64, inc: &Incidence) -> DVec3 {
+        self.shadow_filter_recorded(point, outward, err, inc, &mut NoRecord)
+    }
+
+    /// [`Tracer::shadow_filter`], reporting the shadow ray to `rec`.
+    fn shadow_filter_recorded<R: Recorder>(
+        &mut self,
+        point: DVec3,
+        outward: DVec3,
+        err: f64,
+        inc: &Incidence,
+        rec: &mut R,
+    ) -> DVec3 {
         self.counts.shadow += 1;
         let world = self.world;
         let objects = &world.scene.objects;
         let ray = Ray::new(offset_origin(point, outward, err, inc.to_light), inc.to_light);
         let t_max = inc.distance;
+        rec.shadow_ray(&ray, t_max);
         let opaque = |i: usize| !world.material_of(i).is_transparent();
         if world.accel.any_hit(objects, &ray, 0.0, t_max, &opaque) {
             return DVec3::ZERO;
@@ -289,6 +323,7 @@ impl<'w, 's> Tracer<'w, 's> {
             .each_hit(objects, &ray, 0.0, t_max, &transparent, &mut |i| crossed.push(i));
         // Multiply in object order so the bits do not depend on the traversal order.
         self.crossed.sort_unstable();
+        rec.shadow_crossed(&self.crossed);
         self.crossed
             .iter()
             .fold(DVec3::ONE, |acc, &i| acc * world.material_of(i).color)
