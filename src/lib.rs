@@ -10,6 +10,7 @@
 //! - [`shape`]: plane, rectangle, disk, sphere, box, cylinder, cone, torus.
 //! - [`accel`]: closest-hit / any-hit queries over a scene's objects.
 //! - [`material`], [`light`], [`shading`]: the course's parameters and formulas.
+//! - [`area_light`], [`placement`]: N-point area lights and where their points go.
 //! - [`camera`], [`sampling`]: pinhole camera, seeded random streams.
 //! - [`scene`]: the scene model and its TOML file format with located errors.
 //! - [`trace`]: Whitted recursion with filtered shadow rays and a step recorder.
@@ -23,6 +24,7 @@
 //! - [`cli`]: the `lumiere` command line.
 
 pub mod accel;
+pub mod area_light;
 pub mod camera;
 pub mod cli;
 pub mod compare;
@@ -33,6 +35,7 @@ pub mod limits;
 pub mod material;
 pub mod math;
 pub mod output;
+pub mod placement;
 pub mod probe;
 pub mod render;
 pub mod review;

@@ -89,6 +89,8 @@ pub enum Light {
     },
     Point(PointLight),
     Spot(SpotLight),
+    /// N point lights spread over a sphere, tube or window (see [`crate::area_light`]).
+    Area(crate::area_light::AreaLight),
 }
 
 /// What one light point sends towards a shading point, before the shadow test.
@@ -108,10 +110,11 @@ pub struct Incidence {
 
 impl Light {
     /// Incidence at `p`, or `None` for ambient lights, for a point exactly at the light,
-    /// and for points outside a spot's cone (whose contribution is exactly 0).
+    /// and for points outside a spot's cone (whose contribution is exactly 0). Area lights
+    /// have one incidence per point: see [`point_incidence`].
     pub fn incidence(&self, p: DVec3) -> Option<Incidence> {
         match self {
-            Light::Ambient { .. } => None,
+            Light::Ambient { .. } | Light::Area(_) => None,
             Light::Directional { direction, color } => Some(Incidence {
                 to_light: -*direction,
                 distance: f64::INFINITY,
@@ -150,6 +153,8 @@ impl Light {
             Light::Ambient { color } | Light::Directional { color, .. } => (color, None),
             Light::Point(l) => (&l.color, Some(l.attenuation)),
             Light::Spot(s) => (&s.color, Some(s.attenuation)),
+            // N points of colour L / N: at most L in all.
+            Light::Area(a) => (&a.color, Some(a.attenuation)),
         };
         let spot_max = match self {
             Light::Spot(s) => s.c_max.max(s.c_min),
@@ -168,7 +173,7 @@ impl Light {
 }
 
 /// Incidence from a point at `light_pos`: `L = -d`, `d = (p - r_lum)/|p - r_lum|`.
-fn point_incidence(light_pos: DVec3, color: DVec3, atten: &Attenuation, p: DVec3, spot: f64) -> Option<Incidence> {
+pub fn point_incidence(light_pos: DVec3, color: DVec3, atten: &Attenuation, p: DVec3, spot: f64) -> Option<Incidence> {
     let to_light = light_pos - p;
     let distance = to_light.length();
     if distance == 0.0 {

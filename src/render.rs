@@ -51,6 +51,7 @@ pub fn render_sample<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, k: u32, r
 fn trace_at<R: Recorder>(tracer: &mut Tracer, (px, py): (f64, f64), x: u32, y: u32, k: u32, rec: &mut R) -> DVec3 {
     rec.sample(k, px, py);
     let s = &tracer.world.scene.settings;
+    tracer.sample_key = (y as u64 * s.width as u64 + x as u64, k);
     let ray = tracer.world.camera.ray(px, py, s.width, s.height);
     let c = tracer.trace_camera(&ray, rec);
     let c = if c.is_finite() {

@@ -5,7 +5,8 @@
 //! [`Recorder`]; the renderer passes [`NoRecord`], which compiles to nothing, and `probe`
 //! passes a recorder that keeps the whole ray tree, so both see the same numbers.
 
-use crate::light::{Incidence, Light};
+use crate::area_light::PointMode;
+use crate::light::{Incidence, Light, point_incidence};
 use crate::math::{Ray, hit_point_error, offset_origin, reflect, refract};
 use crate::scene::{Specular, World};
 use crate::shading::{ambient, blinn, direct, phong, specular_tint};
@@ -100,10 +101,23 @@ pub trait Recorder {
 pub struct NoRecord;
 impl Recorder for NoRecord {}
 
+/// A shaded surface point: position, shading normal `n` (facing the incoming ray), outward
+/// normal and rounding-error bound (for shadow-ray origins), direction to the eye, object.
+struct Surface {
+    point: DVec3,
+    n: DVec3,
+    outward: DVec3,
+    err: f64,
+    eye: DVec3,
+    object: usize,
+}
+
 /// Traces rays in a world; one per thread (it keeps counters and scratch space).
 pub struct Tracer<'w, 's> {
     pub world: &'w World<'s>,
     pub counts: RayCounts,
+    /// The pixel index and sample being traced (keys the points of `per_sample` lights).
+    pub sample_key: (u64, u32),
     /// Scratch list of transparent objects crossed by a shadow ray.
     crossed: Vec<usize>,
 }
@@ -113,6 +127,7 @@ impl<'w, 's> Tracer<'w, 's> {
         Tracer {
             world,
             counts: RayCounts::default(),
+            sample_key: (0, 0),
             crossed: Vec::new(),
         }
     }
@@ -221,7 +236,9 @@ impl<'w, 's> Tracer<'w, 's> {
         self.radiance(kind, &ray, level + 1, weight, rec)
     }
 
-    /// Local illumination at a hit (slides' full model), with shadow rays.
+    /// Local illumination at a hit (slides' full model), with shadow rays:
+    /// `L = L_a k_a S + sum_i A_i L_i [k_d S max(N.L_i, 0) + k_s [m S + (1 - m)] spec_i]`,
+    /// where an area light counts as its N points of colour `L / N`.
     #[allow(clippy::too_many_arguments)]
     fn local<R: Recorder>(
         &mut self,
@@ -234,55 +251,86 @@ impl<'w, 's> Tracer<'w, 's> {
         rec: &mut R,
     ) -> DVec3 {
         let scene = self.world.scene;
-        let model = scene.settings.shading;
         let mat = self.world.material_of(object);
         let mut color = DVec3::ZERO;
-        if model.ambient {
+        if scene.settings.shading.ambient {
             let a = ambient(self.world.ambient, mat.ka, mat.color);
             rec.ambient(a);
             color += a;
         }
-        let kd = if model.diffuse { mat.kd } else { 0.0 };
-        let tint = specular_tint(mat.metal, mat.color);
+        let surface = Surface {
+            point,
+            n,
+            outward,
+            err,
+            eye,
+            object,
+        };
         for (index, light) in scene.lights.iter().enumerate() {
-            if matches!(light, Light::Ambient { .. }) {
-                continue;
+            match light {
+                Light::Ambient { .. } => {}
+                Light::Area(area) => {
+                    let fresh;
+                    let points = match area.mode {
+                        PointMode::Fixed => &self.world.light_points[index],
+                        PointMode::PerSample => {
+                            let (pixel, k) = self.sample_key;
+                            fresh = area.sample_points(scene.settings.seed, index, pixel, k);
+                            &fresh
+                        }
+                    };
+                    let point_color = area.point_color();
+                    for &p in points {
+                        let inc = point_incidence(p, point_color, &area.attenuation, point, 1.0);
+                        color += self.light_share(index, inc, &surface, rec);
+                    }
+                }
+                _ => color += self.light_share(index, light.incidence(point), &surface, rec),
             }
-            let Some(inc) = light.incidence(point) else {
-                rec.unlit(index, None);
-                continue;
-            };
-            let n_dot_l = n.dot(inc.to_light);
-            // N.L <= 0: no diffuse and (slides) no specular, so no shadow ray either.
-            if n_dot_l <= 0.0 {
-                rec.unlit(index, Some(n_dot_l));
-                continue;
-            }
-            let filter = if scene.settings.shadows {
-                self.shadow_filter_recorded(point, outward, err, &inc, rec)
-            } else {
-                DVec3::ONE
-            };
-            let arriving = inc.color * filter;
-            let spec = match model.specular {
-                Specular::None => 0.0,
-                Specular::Phong => phong(n, inc.to_light, eye, mat.shininess),
-                Specular::Blinn => blinn(n, inc.to_light, eye, mat.shininess),
-            };
-            let diffuse = direct(arriving, kd, mat.color, n_dot_l, 0.0, tint, 0.0);
-            let specular = direct(arriving, 0.0, mat.color, n_dot_l, mat.ks, tint, spec);
-            rec.light(&LightShare {
-                light: index,
-                incidence: inc,
-                n_dot_l,
-                shadow_ray: scene.settings.shadows,
-                filter,
-                diffuse,
-                specular,
-            });
-            color += diffuse + specular;
         }
         color
+    }
+
+    /// One point light's share at a surface point: `A L [k_d S max(N.L, 0) + k_s tint spec]`
+    /// times the shadow filter. Nothing (and no shadow ray) when no light arrives or when
+    /// N.L <= 0, where neither the diffuse nor (slides) the specular term counts.
+    fn light_share<R: Recorder>(&mut self, index: usize, inc: Option<Incidence>, at: &Surface, rec: &mut R) -> DVec3 {
+        let Some(inc) = inc else {
+            rec.unlit(index, None);
+            return DVec3::ZERO;
+        };
+        let n_dot_l = at.n.dot(inc.to_light);
+        if n_dot_l <= 0.0 {
+            rec.unlit(index, Some(n_dot_l));
+            return DVec3::ZERO;
+        }
+        let settings = &self.world.scene.settings;
+        let mat = self.world.material_of(at.object);
+        let filter = if settings.shadows {
+            self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, rec)
+        } else {
+            DVec3::ONE
+        };
+        let arriving = inc.color * filter;
+        let spec = match settings.shading.specular {
+            Specular::None => 0.0,
+            Specular::Phong => phong(at.n, inc.to_light, at.eye, mat.shininess),
+            Specular::Blinn => blinn(at.n, inc.to_light, at.eye, mat.shininess),
+        };
+        let kd = if settings.shading.diffuse { mat.kd } else { 0.0 };
+        let tint = specular_tint(mat.metal, mat.color);
+        let diffuse = direct(arriving, kd, mat.color, n_dot_l, 0.0, tint, 0.0);
+        let specular = direct(arriving, 0.0, mat.color, n_dot_l, mat.ks, tint, spec);
+        rec.light(&LightShare {
+            light: index,
+            incidence: inc,
+            n_dot_l,
+            shadow_ray: settings.shadows,
+            filter,
+            diffuse,
+            specular,
+        });
+        diffuse + specular
     }
 
     /// Chapter 7.4b's shadow ray from `point` towards the light: 0 if an opaque object is in

@@ -7,6 +7,7 @@ mod locate;
 pub use file::{SceneError, load, parse};
 
 use crate::accel::Accel;
+use crate::area_light::PointMode;
 use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
@@ -114,6 +115,8 @@ pub struct World<'s> {
     /// `remaining_bound[level]`: the most (largest channel) a ray traced at `level` can
     /// return, counting every level it may still recurse to; used by adaptive depth control.
     pub remaining_bound: Vec<f64>,
+    /// For each light, the points of a `fixed` area light (empty for other lights).
+    pub light_points: Vec<Vec<DVec3>>,
 }
 
 impl<'s> World<'s> {
@@ -138,6 +141,15 @@ impl<'s> World<'s> {
             ambient,
             has_transparent,
             remaining_bound: remaining_bounds(scene, ambient),
+            light_points: scene
+                .lights
+                .iter()
+                .enumerate()
+                .map(|(i, l)| match l {
+                    Light::Area(a) if a.mode == PointMode::Fixed => a.fixed_points(s.seed, i),
+                    _ => Vec::new(),
+                })
+                .collect(),
         }
     }
 
