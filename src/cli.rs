@@ -47,6 +47,9 @@ pub enum Command {
         after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1\n\nExit codes: 0 ok, 1 render failed, 2 bad input."
     )]
     Render(RenderArgs),
+    /// Numerical stress campaign: hard rays against every shape, checked against double-double references.
+    #[command(after_help = "Example:\n  lumiere stress --rays 2000 --seed 7")]
+    Stress(crate::stress::StressArgs),
 }
 
 /// Values that replace the scene file's own.
@@ -133,6 +136,7 @@ pub struct RenderArgs {
 pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Render(args) => render_command(&args),
+        Command::Stress(args) => crate::stress::run(&args),
     }
 }
 

@@ -15,6 +15,7 @@
 //! - [`trace`]: Whitted recursion with filtered shadow rays and a step recorder.
 //! - [`render`], [`film`]: parallel deterministic rendering, quantisation, atomic output.
 //! - [`cli`]: the `lumiere` command line.
+//! - [`stress`]: the numerical stress campaign against double-double references.
 
 pub mod accel;
 pub mod camera;
@@ -30,6 +31,7 @@ pub mod scene;
 pub mod shading;
 pub mod shape;
 pub mod solve;
+pub mod stress;
 pub mod trace;
 
 /// The renderer version recorded in manifests.

@@ -31,6 +31,14 @@ impl Cylinder {
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let o = self.frame.to_local(ray.origin - self.base);
         let d = self.frame.to_local(ray.dir);
+        // Far origins: solve from the point of the ray nearest the shape (see `recentre`).
+        let shift = super::recentre(o, d, DVec3::new(0.0, 0.0, 0.5 * self.height), self.height + self.radius);
+        self.intersect_local(o + d * shift, d, t_min - shift, t_max - shift)
+            .map(|h| SurfaceHit { t: h.t + shift, ..h })
+    }
+
+    /// The intersection in the local frame, for the ray `o + t d`.
+    fn intersect_local(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let r2 = self.radius * self.radius;
         let a = d.x * d.x + d.y * d.y;
         let on_side = |t: f64| {

@@ -20,7 +20,7 @@ pub use disk::Disk;
 pub use plane::Plane;
 pub use rectangle::Rectangle;
 pub use sphere::Sphere;
-pub use torus::Torus;
+pub use torus::{QuarticMethod, Torus};
 
 use crate::math::Ray;
 use glam::DVec3;
@@ -161,6 +161,21 @@ pub(crate) fn first_root_in(roots: (f64, f64), t_min: f64, t_max: f64) -> Option
         Some(t1)
     } else {
         None
+    }
+}
+
+/// Parameter shift that moves a far ray origin `o` (local frame) to the point of the ray
+/// nearest `mid`, the middle of a shape of radius about `size`: `s = (mid - o).d` when `o`
+/// is more than `16 size` away, else 0. A quadric's constant coefficient grows with `|o|^2`
+/// and its rounding error with it (relative errors of `t` near 1e-9 from 1e7 away); from the
+/// shifted origin the coefficients are of the shape's own size. The shifted origin itself is
+/// exact to one rounding of `|o|`, which the hit point error bound covers.
+pub(crate) fn recentre(o: DVec3, d: DVec3, mid: DVec3, size: f64) -> f64 {
+    let to_mid = mid - o;
+    if to_mid.length_squared() > 256.0 * size * size {
+        to_mid.dot(d)
+    } else {
+        0.0
     }
 }
 

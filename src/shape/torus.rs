@@ -10,8 +10,27 @@
 
 use super::{Aabb, SurfaceHit};
 use crate::math::{Frame, Ray};
-use crate::solve::poly_roots_with;
+use crate::solve::{ferrari, horner, orellana, poly_roots_with};
 use glam::DVec3;
+
+/// Which quartic solver the torus uses (see BENCHMARKS.md, "Numerical stability"); the
+/// renderer always uses [`QuarticMethod::Isolator`], the others are kept for comparison.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum QuarticMethod {
+    /// Derivative-recursion root isolation with Newton-bisection on the implicit equation.
+    Isolator,
+    /// Textbook Ferrari closed form, then Newton polish.
+    Ferrari,
+    /// Orellana and De Michele (ACM TOMS Algorithm 1010), then Newton polish.
+    OrellanaDeMichele,
+}
+
+/// `gamma(n) = n u / (1 - n u)`, the relative error bound of `n` rounded operations
+/// (Higham, "Accuracy and Stability of Numerical Algorithms", 3.1), `u = 2^-53`.
+fn gamma(n: u32) -> f64 {
+    let nu = n as f64 * f64::EPSILON * 0.5;
+    nu / (1.0 - nu)
+}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Torus {
@@ -43,6 +62,18 @@ impl Torus {
 
     /// All roots in `(t_min, t_max)`, increasing, calling `visit` until it returns true.
     fn roots(&self, ray: &Ray, t_min: f64, t_max: f64, visit: &mut dyn FnMut(f64, DVec3, DVec3) -> bool) {
+        self.roots_with(QuarticMethod::Isolator, ray, t_min, t_max, visit)
+    }
+
+    /// As [`Torus::roots`] with a chosen quartic solver (the solver comparison uses the others).
+    fn roots_with(
+        &self,
+        method: QuarticMethod,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        visit: &mut dyn FnMut(f64, DVec3, DVec3) -> bool,
+    ) {
         let o = self.frame.to_local(ray.origin - self.center);
         let d = self.frame.to_local(ray.dir);
         let Some((enter, exit)) = self.clip(o, d, t_min, t_max) else {
@@ -55,16 +86,61 @@ impl Torus {
         let n = o2.dot(d);
         let m = d.length_squared();
         let four_r2 = 4.0 * big * big;
-        let coeffs = [
-            k * k - four_r2 * (o2.x * o2.x + o2.y * o2.y),
+        let rho2 = o2.x * o2.x + o2.y * o2.y;
+        let mut coeffs = [
+            k * k - four_r2 * rho2,
             4.0 * n * k - 2.0 * four_r2 * (o2.x * d.x + o2.y * d.y),
             4.0 * n * n + 2.0 * m * k - four_r2 * (d.x * d.x + d.y * d.y),
             4.0 * m * n,
             m * m,
         ];
-        let f = |s: f64| self.implicit(o2 + d * s);
+        // A ray starting on the surface (a secondary ray from a hit on this torus, with no
+        // clip shift): `f(o)` is zero up to its own rounding error, and any sign it has is
+        // noise that would make a spurious root next to `s = 0`. Force the constant
+        // coefficient to exactly zero so that root is exactly 0 and excluded by `t > t_min`.
+        // Bound on the rounding of `k^2 - 4 R^2 rho^2`: gamma(8) (k^2 + 4 R^2 rho^2).
+        let on_surface = enter == t_min && coeffs[0].abs() <= gamma(8) * (k * k + four_r2 * rho2);
+        if on_surface {
+            coeffs[0] = 0.0;
+        }
+        let f = |s: f64| {
+            if on_surface && s == 0.0 {
+                0.0
+            } else {
+                self.implicit(o2 + d * s)
+            }
+        };
         let mut found = Vec::with_capacity(4);
-        poly_roots_with(&coeffs, 0.0, exit - enter, &f, &mut found);
+        let len = exit - enter;
+        match method {
+            QuarticMethod::Isolator => poly_roots_with(&coeffs, 0.0, len, &f, &mut found),
+            QuarticMethod::Ferrari | QuarticMethod::OrellanaDeMichele => {
+                if method == QuarticMethod::Ferrari {
+                    ferrari::quartic_roots(&coeffs, &mut found);
+                } else {
+                    orellana::quartic_roots(&coeffs, &mut found);
+                }
+                // Newton polish on the original (unexpanded) equation: two steps, each kept
+                // only if it lowers the residual.
+                let deriv = [coeffs[1], 2.0 * coeffs[2], 3.0 * coeffs[3], 4.0 * coeffs[4]];
+                for s in found.iter_mut() {
+                    for _ in 0..2 {
+                        let (fs, ds) = (f(*s), horner(&deriv, *s));
+                        if fs == 0.0 || ds == 0.0 {
+                            break;
+                        }
+                        let next = *s - fs / ds;
+                        if f(next).abs() < fs.abs() {
+                            *s = next;
+                        } else {
+                            break;
+                        }
+                    }
+                }
+                found.retain(|s| s.is_finite() && *s >= 0.0 && *s <= len);
+                found.sort_by(f64::total_cmp);
+            }
+        }
         for s in found {
             let t = enter + s;
             if t > t_min && t < t_max && visit(t, o, d) {
@@ -107,6 +183,19 @@ impl Torus {
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let mut hit = None;
         self.roots(ray, t_min, t_max, &mut |t, o, d| {
+            hit = Some(SurfaceHit {
+                t,
+                normal: self.normal_at(o + d * t),
+            });
+            true
+        });
+        hit
+    }
+
+    /// Closest hit computed with a chosen quartic solver (solver comparison and stress tests).
+    pub fn intersect_with(&self, method: QuarticMethod, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        let mut hit = None;
+        self.roots_with(method, ray, t_min, t_max, &mut |t, o, d| {
             hit = Some(SurfaceHit {
                 t,
                 normal: self.normal_at(o + d * t),
