@@ -115,7 +115,12 @@ impl Torus {
         match method {
             QuarticMethod::Isolator => poly_roots_with(&coeffs, 0.0, len, &f, &mut found),
             QuarticMethod::Ferrari | QuarticMethod::OrellanaDeMichele => {
-                if method == QuarticMethod::Ferrari {
+                if coeffs[0] == 0.0 {
+                    // On the surface: deflate, s = 0 exactly and the cubic's roots.
+                    found.push(0.0);
+                    let c4 = coeffs[4];
+                    found.extend(ferrari::cubic_roots(coeffs[3] / c4, coeffs[2] / c4, coeffs[1] / c4));
+                } else if method == QuarticMethod::Ferrari {
                     ferrari::quartic_roots(&coeffs, &mut found);
                 } else {
                     orellana::quartic_roots(&coeffs, &mut found);

@@ -12,7 +12,8 @@
 //! 3. the factors' coefficients are refined by Newton's method on the four equations
 //!    `alpha1 + alpha2 = a`, `beta1 + beta2 + alpha1 alpha2 = b`,
 //!    `alpha1 beta2 + alpha2 beta1 = c`, `beta1 beta2 = d` while the relative backward error
-//!    decreases, and the candidate with the smaller backward error is kept;
+//!    decreases, and the candidate with the smaller backward error is kept (a third
+//!    candidate, `d2 = 0`, covers quartics that are squares of a quadratic);
 //! 4. each quadratic is solved without cancellation.
 
 use super::ferrari::cubic_roots;
@@ -121,11 +122,16 @@ pub fn quartic_roots(c: &[f64; 5], out: &mut Vec<f64>) {
         // s l from either expression: e / (2 s), or sign(e) sqrt(d3).
         candidates.push(e / (2.0 * s));
         candidates.push(if e < 0.0 { -1.0 } else { 1.0 } * d3.max(0.0).sqrt());
-    } else {
-        // d2 = 0: the bracket is the constant d3, a square only when d3 >= 0.
-        candidates.push(d3.max(0.0).sqrt());
     }
-    let mut best: Option<([f64; 4], f64)> = None;
+    // When d2 is zero up to rounding (a quartic that is the square of a quadratic, e.g. a
+    // ray down the axis of a torus), e / (2 s) is noise over noise: also try s = 0.
+    let flat = [
+        0.5 * a,
+        0.5 * phi0 + d3.max(0.0).sqrt(),
+        0.5 * a,
+        0.5 * phi0 - d3.max(0.0).sqrt(),
+    ];
+    let mut best: Option<([f64; 4], f64)> = Some(refine(flat, &coef));
     for sl in candidates {
         let f = [0.5 * a + s, 0.5 * phi0 + sl, 0.5 * a - s, 0.5 * phi0 - sl];
         let (f, err) = refine(f, &coef);

@@ -418,11 +418,17 @@ fn solve(shape: &Shape, method: QuarticMethod, ray: &Ray, t_min: f64) -> Option<
 
 type SurfaceHitT = f64;
 
-/// Runs `n` rays of one family against one shape kind.
-pub fn run_cell(shape: &'static str, family: Family, n: usize, seed: u64, method: QuarticMethod) -> Row {
+/// The seeded rays of one (shape, family) cell: the shape, the ray and the `t_min` the f64
+/// code gets. Also used by `benches/solvers.rs`.
+pub fn cases(shape: &'static str, family: Family, n: usize, seed: u64) -> Vec<(Spec, Ray, f64)> {
     let cell = SHAPES.iter().position(|&s| s == shape).unwrap_or(0) as u64 * 16
         + Family::ALL.iter().position(|&f| f == family).unwrap_or(0) as u64;
     let mut g = Gen(Stream::new(seed, Purpose::Generator, (1 << 40) | cell));
+    (0..n).map(|_| make_case(shape, family, &mut g)).collect()
+}
+
+/// Runs `n` rays of one family against one shape kind (the torus with quartic `method`).
+pub fn run_cell(shape: &'static str, family: Family, n: usize, seed: u64, method: QuarticMethod) -> Row {
     let mut row = Row {
         shape,
         family: family.name(),
@@ -436,8 +442,7 @@ pub fn run_cell(shape: &'static str, family: Family, n: usize, seed: u64, method
         max_rel_error: 0.0,
     };
     let mut errors = Vec::with_capacity(n);
-    for _ in 0..n {
-        let (spec, ray, t_min) = make_case(shape, family, &mut g);
+    for (spec, ray, t_min) in cases(shape, family, n, seed) {
         let t_min_ref = if family == Family::TorusOnSurface {
             1e-9 * spec.size()
         } else {
