@@ -219,6 +219,12 @@ fn render_command(args: &RenderArgs) -> Result<(), CliError> {
     if args.stats {
         print!("{}", stats_report(&stats));
     }
+    if stats.counts.non_finite > 0 {
+        eprintln!(
+            "warning: {} samples were NaN or infinite and were written as black",
+            stats.counts.non_finite
+        );
+    }
     Ok(())
 }
 

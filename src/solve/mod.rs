@@ -125,6 +125,16 @@ fn refine(f: &dyn Fn(f64) -> f64, deriv: &[f64], mut a: f64, mut b: f64, fa: f64
         }
         let d = horner(deriv, t);
         let newton = t - ft / d;
+        // Newton from one side never moves the far end of the bracket, so bisection would
+        // spend ~50 steps shrinking it. Once the step is a few ulps, probe one more step
+        // past the Newton point: a sign change there brackets the root within two steps.
+        let step = newton - t;
+        if d != 0.0 && step != 0.0 && step.abs() <= 8.0 * f64::EPSILON * t.abs() {
+            let probe = newton + step;
+            if probe > a && probe < b && (f(probe) < 0.0) != (ft < 0.0) {
+                return newton;
+            }
+        }
         t = if d != 0.0 && newton > a && newton < b {
             newton
         } else {
