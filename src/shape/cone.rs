@@ -1,6 +1,7 @@
 //! A capped cone: base centre, unit axis towards the apex, height, base radius.
 
 use super::{Aabb, SurfaceHit, cylinder::disk_bounds, first_root_in, local_cap, nearer};
+use super::{gamma, l1};
 use crate::math::{Frame, Ray};
 use crate::solve::quadratic;
 use glam::DVec3;
@@ -73,6 +74,17 @@ impl Cone {
         let base = local_cap(o, d, 0.0, t_min, t_max, |x, y| x * x + y * y <= r2)
             .map(|t| SurfaceHit { t, normal: -self.axis });
         nearer(side, base)
+    }
+
+    /// Bound on the distance from `p` to the cone: the smallest of the distance to the side,
+    /// `| sqrt(x^2 + y^2) - k (h - z) | / sqrt(1 + k^2)`, and to the base plane, plus its
+    /// evaluation error.
+    pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
+        let l = self.frame.to_local(p - self.base);
+        let k = self.radius / self.height;
+        let side = (l.truncate().length() - k * (self.height - l.z)).abs() / (1.0 + k * k).sqrt();
+        let residual = side.min(l.z.abs());
+        residual + gamma(16) * (l1(p) + l1(self.base) + self.radius + self.height)
     }
 
     pub fn bounds(&self) -> Option<Aabb> {

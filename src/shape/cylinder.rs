@@ -1,6 +1,7 @@
 //! A capped cylinder: base centre, unit axis, height, radius.
 
 use super::{Aabb, SurfaceHit, first_root_in, local_cap, nearer};
+use super::{gamma, l1};
 use crate::math::{Frame, Ray};
 use crate::solve::quadratic;
 use glam::DVec3;
@@ -65,6 +66,15 @@ impl Cylinder {
         let bottom = local_cap(o, d, 0.0, t_min, t_max, in_disk).map(|t| SurfaceHit { t, normal: -self.axis });
         let top = local_cap(o, d, self.height, t_min, t_max, in_disk).map(|t| SurfaceHit { t, normal: self.axis });
         nearer(nearer(side, bottom), top)
+    }
+
+    /// Bound on the distance from `p` to the cylinder: the smallest of the distances to the
+    /// side `| sqrt(x^2 + y^2) - r |` and to the cap planes, plus its evaluation error.
+    pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
+        let l = self.frame.to_local(p - self.base);
+        let side = (l.truncate().length() - self.radius).abs();
+        let residual = side.min(l.z.abs()).min((l.z - self.height).abs());
+        residual + gamma(16) * (l1(p) + l1(self.base) + self.radius + self.height)
     }
 
     pub fn bounds(&self) -> Option<Aabb> {

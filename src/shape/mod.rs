@@ -123,6 +123,16 @@ impl Shape {
         }
     }
 
+    /// Bound on the absolute distance from `p`, a hit point computed on this shape, to the
+    /// shape's surface (pbrt-v4 style per-shape error bound, a posteriori): the residual of
+    /// the shape's own equation at `p` in distance units, plus a `gamma(16)` bound on
+    /// evaluating it and on the arithmetic the intersection routines do near the surface.
+    /// The tracer adds the rounding of `o + t d` ([`crate::math::hit_point_error`]) and
+    /// offsets secondary origins by the sum.
+    pub fn surface_error(&self, p: DVec3) -> f64 {
+        dispatch!(self, s => s.surface_error(p))
+    }
+
     /// Bounding box, `None` for unbounded shapes (planes).
     pub fn bounds(&self) -> Option<Aabb> {
         dispatch!(self, s => s.bounds())
@@ -141,6 +151,18 @@ impl Shape {
             Shape::Torus(_) => "torus",
         }
     }
+}
+
+/// `gamma(n) = n u / (1 - n u)`, the relative error bound of `n` rounded operations
+/// (Higham, "Accuracy and Stability of Numerical Algorithms", 3.1), `u = 2^-53`.
+pub(crate) fn gamma(n: u32) -> f64 {
+    let nu = n as f64 * f64::EPSILON * 0.5;
+    nu / (1.0 - nu)
+}
+
+/// Sum of the absolute components: the magnitude that bounds rounding errors of sums.
+pub(crate) fn l1(v: DVec3) -> f64 {
+    v.abs().element_sum()
 }
 
 /// Keeps the smaller of two optional hits.

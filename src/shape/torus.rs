@@ -8,7 +8,7 @@
 //! origins). Roots are isolated and refined on `f` evaluated directly at the point, not on
 //! the expanded coefficients, so a hit point lies on the surface to rounding precision.
 
-use super::{Aabb, SurfaceHit};
+use super::{Aabb, SurfaceHit, gamma, l1};
 use crate::math::{Frame, Ray};
 use crate::solve::{ferrari, horner, orellana, poly_roots_with};
 use glam::DVec3;
@@ -23,13 +23,6 @@ pub enum QuarticMethod {
     Ferrari,
     /// Orellana and De Michele (ACM TOMS Algorithm 1010), then Newton polish.
     OrellanaDeMichele,
-}
-
-/// `gamma(n) = n u / (1 - n u)`, the relative error bound of `n` rounded operations
-/// (Higham, "Accuracy and Stability of Numerical Algorithms", 3.1), `u = 2^-53`.
-fn gamma(n: u32) -> f64 {
-    let nu = n as f64 * f64::EPSILON * 0.5;
-    nu / (1.0 - nu)
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -217,6 +210,22 @@ impl Torus {
             true
         });
         any
+    }
+
+    /// Bound on the distance from `p` to the torus: the exact distance
+    /// `| sqrt((rho - R)^2 + z^2) - r |` plus the distance-equivalent of the rounding of the
+    /// quartic the intersection evaluates, `gamma(16) (k^2 + 4 R^2 rho^2) / |grad f|`, which
+    /// grows like `R^2 / r` for thin tubes: a secondary ray must start farther out than the
+    /// quartic's noise for its sign at the origin to be right.
+    pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
+        let l = self.frame.to_local(p - self.center);
+        let (big, small) = (self.major, self.minor);
+        let rho = l.truncate().length();
+        let residual = ((rho - big).hypot(l.z) - small).abs();
+        let k = l.length_squared() + big * big - small * small;
+        let grad = (4.0 * k * l - 8.0 * big * big * DVec3::new(l.x, l.y, 0.0)).length();
+        let noise = gamma(16) * (k * k + 4.0 * big * big * rho * rho) / grad.max(f64::MIN_POSITIVE);
+        residual + noise.min(small) + gamma(16) * (l1(p) + l1(self.center) + big + small)
     }
 
     pub fn bounds(&self) -> Option<Aabb> {
