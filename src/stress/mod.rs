@@ -62,7 +62,8 @@ pub enum Family {
     Scale,
     /// Torus only: rays parallel to the axis.
     TorusAxis,
-    /// Torus only: rays in the equatorial plane, from 1e1 to 1e6 sizes away.
+    /// Torus only: rays in (half) or within 1e-12 to 1e-4 rad of (half) the equatorial
+    /// plane, from 1e1 to 1e6 sizes away.
     TorusEquator,
     /// Torus only: origins on the surface of a large torus (R = 1e2 to 1e3), leaving it.
     TorusOnSurface,
@@ -319,8 +320,13 @@ fn make_case(shape: &str, family: Family, g: &mut Gen) -> (Spec, Ray, f64) {
             let r = 1.1 * size * g.0.next_f64().sqrt();
             let b = g.uniform(0.0, std::f64::consts::TAU);
             let target = c + DVec3::new(r * libm::cos(b), r * libm::sin(b), 0.0);
-            let mut d = target - o;
-            d.z = 0.0;
+            let mut d = (target - o).normalize();
+            // Half exactly in the plane, half nearly: tilted by 1e-12 to 1e-4 rad.
+            d.z = if g.0.next_f64() < 0.5 {
+                0.0
+            } else {
+                g.log_uniform(-12.0, -4.0) * if g.0.next_f64() < 0.5 { -1.0 } else { 1.0 }
+            };
             (spec, Ray::new(o, d.normalize()), 0.0)
         }
         Family::TorusOnSurface => {
@@ -526,4 +532,33 @@ pub fn run(args: &StressArgs) -> Result<(), CliError> {
         print!("{}", table(&rows));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_ray_counts_are_rejected() {
+        for rays in [0, 10_000_001] {
+            let err = run(&StressArgs {
+                rays,
+                seed: 1,
+                json: false,
+            })
+            .unwrap_err();
+            assert_eq!(err.exit_code(), 2);
+            assert!(err.to_string().contains("--rays"), "{err}");
+        }
+    }
+
+    #[test]
+    fn table_lists_every_cell() {
+        // 4 shared families x 8 shapes + 3 torus-only families.
+        let rows = campaign(2, 1);
+        assert_eq!(rows.len(), 35);
+        let t = table(&rows);
+        assert_eq!(t.lines().count(), 2 + 35);
+        assert!(t.contains("| torus | torus-equator | 2 |"));
+    }
 }
