@@ -300,4 +300,30 @@ mod tests {
         assert_hit(t.intersect(&r, 4.5, 1e9), 6.0, -DVec3::X);
         assert_hit(t.intersect(&r, 6.5, 1e9), 7.0, DVec3::X);
     }
+
+    #[test]
+    fn ray_leaving_a_large_torus_does_not_hit_its_origin() {
+        // R = 1e3, r = 250: points on the surface (computed in f64, so off it by rounding)
+        // with rays leaving along the normal tilted in 8 ways, t_min = 0. The constant
+        // coefficient is forced to zero there, so the only roots are real crossings at least
+        // the tube's scale away, never a spurious one at t ~ 1e-13.
+        let (big, small) = (1e3, 250.0);
+        let t = Torus::new(DVec3::ZERO, DVec3::Z, big, small);
+        for i in 0..16 {
+            let (theta, phi) = (0.4 * i as f64, 0.9 * i as f64 + 0.1);
+            let radial = DVec3::new(libm::cos(theta), libm::sin(theta), 0.0);
+            let n = radial * libm::cos(phi) + DVec3::Z * libm::sin(phi);
+            let p = radial * big + n * small;
+            for k in 0..8 {
+                let tilt = DVec3::new(libm::cos(k as f64), libm::sin(k as f64), 0.3).normalize();
+                let d = (n + tilt * 0.9).normalize();
+                if d.dot(n) <= 0.0 {
+                    continue;
+                }
+                if let Some(h) = t.intersect(&Ray::new(p, d), 0.0, f64::INFINITY) {
+                    assert!(h.t > 1.0, "spurious root at t = {} from {p} along {d}", h.t);
+                }
+            }
+        }
+    }
 }
