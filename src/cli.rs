@@ -112,6 +112,9 @@ pub enum Command {
         after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/snapshot-review\n\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written, 2 bad input."
     )]
     ReviewSnapshots(crate::review::ReviewArgs),
+    /// Numerical stress campaign: hard rays against every shape, checked against double-double references.
+    #[command(after_help = "Example:\n  lumiere stress --rays 2000 --seed 7")]
+    Stress(crate::stress::StressArgs),
 }
 
 #[derive(Args, Debug)]
@@ -278,6 +281,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         }
         Command::Probe(args) => crate::probe::probe_command(&args),
         Command::ReviewSnapshots(args) => crate::review::review_command(&args),
+        Command::Stress(args) => crate::stress::run(&args),
     }
 }
 
@@ -414,6 +418,12 @@ fn render_command(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
         println!("{}", stats_json(&stats));
     } else if args.stats {
         print!("{}", stats_report(&stats));
+    }
+    if stats.counts.non_finite > 0 {
+        eprintln!(
+            "warning: {} samples were NaN or infinite and were written as black",
+            stats.counts.non_finite
+        );
     }
     Ok(())
 }

@@ -22,6 +22,7 @@
 //! - [`probe`]: `lumiere probe`, the recorded ray tree of one pixel.
 //! - [`review`]: `lumiere review-snapshots`, old | new | difference sheets of pending snapshots.
 //! - [`cli`]: the `lumiere` command line.
+//! - [`stress`]: the numerical stress campaign against double-double references.
 
 pub mod accel;
 pub mod area_light;
@@ -45,6 +46,7 @@ pub mod shading;
 pub mod shape;
 pub mod shard;
 pub mod solve;
+pub mod stress;
 pub mod trace;
 
 /// The renderer version recorded in manifests.

@@ -86,16 +86,15 @@ pub fn max_abs(v: DVec3) -> f64 {
     v.abs().max_element()
 }
 
-/// Relative rounding-error allowance for a hit point `p = o + t d`. Every shape returns `t`
-/// within a few ulps of the exact root of its own equation (stable quadratic, polished
-/// quartic), so the computed point is within about `k eps (|o| + |t d|)` of the surface;
-/// `2^-40` (≈ 9e-13, about 4000 ulps) covers that with a wide margin while staying far
-/// below anything visible at any scene scale.
-const HIT_POINT_REL_ERROR: f64 = 1.0 / (1u64 << 40) as f64;
-
-/// Bound on the absolute error of the hit point `origin + t dir` (see [`HIT_POINT_REL_ERROR`]).
+/// Bound on the rounding error of forming the hit point `origin + t dir` in f64: each
+/// component is one product and one sum, `gamma(2) (|o| + |t d|)`, taken as `gamma(4)` of
+/// the largest components for margin (pbrt-v4, section 6.8.1). The error of `t` itself
+/// (how far the exact point `o + t d` is from the surface) is the shape's part, bounded by
+/// [`crate::shape::Shape::surface_error`]; the tracer offsets secondary rays by the sum.
 pub fn hit_point_error(ray: &Ray, t: f64) -> f64 {
-    HIT_POINT_REL_ERROR * (max_abs(ray.origin) + max_abs(ray.dir * t)) + f64::MIN_POSITIVE
+    let u = f64::EPSILON * 0.5;
+    let gamma4 = 4.0 * u / (1.0 - 4.0 * u);
+    gamma4 * (max_abs(ray.origin) + max_abs(ray.dir * t)) + f64::MIN_POSITIVE
 }
 
 /// Origin for a ray leaving a surface at `p` (absolute error bound `err`) in direction `dir`:

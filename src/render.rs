@@ -54,15 +54,22 @@ fn trace_at<R: Recorder>(tracer: &mut Tracer, (px, py): (f64, f64), x: u32, y: u
     tracer.sample_key = (y as u64 * s.width as u64 + x as u64, k);
     let ray = tracer.world.camera.ray(px, py, s.width, s.height);
     let c = tracer.trace_camera(&ray, rec);
-    let c = if c.is_finite() {
-        c
-    } else {
-        debug_assert!(false, "non-finite radiance {c} at pixel ({x}, {y}) sample {k}");
-        tracer.counts.non_finite += 1;
-        DVec3::ZERO
-    };
+    debug_assert!(c.is_finite(), "non-finite radiance {c} at pixel ({x}, {y}) sample {k}");
+    let c = finite_or_black(c, &mut tracer.counts);
     rec.sample_done(c);
     c
+}
+
+/// The guard between the tracer and the film: a NaN or infinite sample becomes black and is
+/// counted in `counts.non_finite` (reported by `render --stats` and as a warning), so no
+/// non-finite value ever reaches a pixel. Debug builds assert before calling it.
+pub fn finite_or_black(c: DVec3, counts: &mut RayCounts) -> DVec3 {
+    if c.is_finite() {
+        c
+    } else {
+        counts.non_finite += 1;
+        DVec3::ZERO
+    }
 }
 
 /// Radiance of a pixel: the mean of its samples.
@@ -133,4 +140,25 @@ pub fn render_rows(
         elapsed: start.elapsed(),
     };
     (pixels, stats)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn non_finite_samples_become_black_and_are_counted() {
+        let mut counts = RayCounts::default();
+        let c = DVec3::new(0.25, 0.5, 1.0);
+        assert_eq!(finite_or_black(c, &mut counts), c);
+        assert_eq!(counts.non_finite, 0);
+        for bad in [
+            DVec3::new(f64::NAN, 0.5, 0.5),
+            DVec3::new(0.1, f64::INFINITY, 0.0),
+            DVec3::splat(f64::NEG_INFINITY),
+        ] {
+            assert_eq!(finite_or_black(bad, &mut counts), DVec3::ZERO);
+        }
+        assert_eq!(counts.non_finite, 3);
+    }
 }

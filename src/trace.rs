@@ -150,7 +150,7 @@ impl<'w, 's> Tracer<'w, 's> {
         };
         let mat = self.world.material_of(object);
         let point = ray.at(hit.t);
-        let err = hit_point_error(ray, hit.t);
+        let err = hit_point_error(ray, hit.t) + scene.objects[object].shape.surface_error(point);
         let entering = ray.dir.dot(hit.normal) < 0.0;
         // Shading normal on the side the ray comes from.
         let n = if entering { hit.normal } else { -hit.normal };

@@ -3,6 +3,7 @@
 
 mod file;
 mod locate;
+pub mod transform;
 
 pub use file::{SceneError, load, parse};
 

@@ -1,6 +1,7 @@
 //! A capped cone: base centre, unit axis towards the apex, height, base radius.
 
 use super::{Aabb, SurfaceHit, cylinder::disk_bounds, first_root_in, local_cap, nearer};
+use super::{gamma, l1};
 use crate::math::{Frame, Ray};
 use crate::solve::quadratic;
 use glam::DVec3;
@@ -33,6 +34,14 @@ impl Cone {
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let o = self.frame.to_local(ray.origin - self.base);
         let d = self.frame.to_local(ray.dir);
+        // Far origins: solve from the point of the ray nearest the shape (see `recentre`).
+        let shift = super::recentre(o, d, DVec3::new(0.0, 0.0, 0.5 * self.height), self.height + self.radius);
+        self.intersect_local(o + d * shift, d, t_min - shift, t_max - shift)
+            .map(|h| SurfaceHit { t: h.t + shift, ..h })
+    }
+
+    /// The intersection in the local frame, for the ray `o + t d`.
+    fn intersect_local(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let (h, k) = (self.height, self.radius / self.height);
         let k2 = k * k;
         let w = h - o.z;
@@ -66,6 +75,17 @@ impl Cone {
         let base = local_cap(o, d, 0.0, t_min, t_max, |x, y| x * x + y * y <= r2)
             .map(|t| SurfaceHit { t, normal: -self.axis });
         nearer(side, base)
+    }
+
+    /// Bound on the distance from `p` to the cone: the smallest of the distance to the side,
+    /// `| sqrt(x^2 + y^2) - k (h - z) | / sqrt(1 + k^2)`, and to the base plane, plus its
+    /// evaluation error.
+    pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
+        let l = self.frame.to_local(p - self.base);
+        let k = self.radius / self.height;
+        let side = (l.truncate().length() - k * (self.height - l.z)).abs() / (1.0 + k * k).sqrt();
+        let residual = side.min(l.z.abs());
+        residual + gamma(16) * (l1(p) + l1(self.base) + self.radius + self.height)
     }
 
     pub fn bounds(&self) -> Option<Aabb> {

@@ -1,6 +1,7 @@
 //! A box: centre, full size along its three axes, optional rotation (the reference cube).
 
 use super::{Aabb, SurfaceHit};
+use super::{gamma, l1};
 use crate::math::{Frame, Ray};
 use glam::{DMat3, DVec3};
 
@@ -74,6 +75,14 @@ impl Cuboid {
             t,
             normal: self.frame.to_world(local_n),
         })
+    }
+
+    /// Bound on the distance from `p` (a hit on a face) to the box: the distance to the
+    /// nearest face plane in the box's frame, plus its evaluation error.
+    pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
+        let l = self.frame.to_local(p - self.center);
+        let residual = (l.abs() - self.half_size).abs().min_element();
+        residual + gamma(16) * (l1(p) + l1(self.center) + l1(self.half_size))
     }
 
     /// Box of the rotated box: each world axis extends `sum_j |A_ij| h_j`.

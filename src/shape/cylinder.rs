@@ -1,6 +1,7 @@
 //! A capped cylinder: base centre, unit axis, height, radius.
 
 use super::{Aabb, SurfaceHit, first_root_in, local_cap, nearer};
+use super::{gamma, l1};
 use crate::math::{Frame, Ray};
 use crate::solve::quadratic;
 use glam::DVec3;
@@ -32,6 +33,14 @@ impl Cylinder {
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let o = self.frame.to_local(ray.origin - self.base);
         let d = self.frame.to_local(ray.dir);
+        // Far origins: solve from the point of the ray nearest the shape (see `recentre`).
+        let shift = super::recentre(o, d, DVec3::new(0.0, 0.0, 0.5 * self.height), self.height + self.radius);
+        self.intersect_local(o + d * shift, d, t_min - shift, t_max - shift)
+            .map(|h| SurfaceHit { t: h.t + shift, ..h })
+    }
+
+    /// The intersection in the local frame, for the ray `o + t d`.
+    fn intersect_local(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let r2 = self.radius * self.radius;
         let a = d.x * d.x + d.y * d.y;
         let on_side = |t: f64| {
@@ -58,6 +67,15 @@ impl Cylinder {
         let bottom = local_cap(o, d, 0.0, t_min, t_max, in_disk).map(|t| SurfaceHit { t, normal: -self.axis });
         let top = local_cap(o, d, self.height, t_min, t_max, in_disk).map(|t| SurfaceHit { t, normal: self.axis });
         nearer(nearer(side, bottom), top)
+    }
+
+    /// Bound on the distance from `p` to the cylinder: the smallest of the distances to the
+    /// side `| sqrt(x^2 + y^2) - r |` and to the cap planes, plus its evaluation error.
+    pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
+        let l = self.frame.to_local(p - self.base);
+        let side = (l.truncate().length() - self.radius).abs();
+        let residual = side.min(l.z.abs()).min((l.z - self.height).abs());
+        residual + gamma(16) * (l1(p) + l1(self.base) + self.radius + self.height)
     }
 
     pub fn bounds(&self) -> Option<Aabb> {

@@ -1,6 +1,7 @@
 //! A flat disk: centre, unit normal, radius.
 
 use super::{Aabb, SurfaceHit};
+use super::{gamma, l1};
 use crate::math::Ray;
 use glam::DVec3;
 
@@ -31,6 +32,11 @@ impl Disk {
         }
         let inside = (ray.at(t) - self.center).length_squared() <= self.radius * self.radius;
         inside.then_some(SurfaceHit { t, normal: self.normal })
+    }
+
+    /// Bound on the distance from `p` (a hit inside the disk) to the disk's plane.
+    pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
+        (p - self.center).dot(self.normal).abs() + gamma(16) * (l1(p) + l1(self.center) + self.radius)
     }
 
     /// Tight box: along each axis the disk extends `r sqrt(1 - n_i^2)`.

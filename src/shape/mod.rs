@@ -20,7 +20,7 @@ pub use disk::Disk;
 pub use plane::Plane;
 pub use rectangle::Rectangle;
 pub use sphere::Sphere;
-pub use torus::Torus;
+pub use torus::{QuarticMethod, Torus};
 
 use crate::math::Ray;
 use glam::DVec3;
@@ -124,6 +124,16 @@ impl Shape {
         }
     }
 
+    /// Bound on the absolute distance from `p`, a hit point computed on this shape, to the
+    /// shape's surface (pbrt-v4 style per-shape error bound, a posteriori): the residual of
+    /// the shape's own equation at `p` in distance units, plus a `gamma(16)` bound on
+    /// evaluating it and on the arithmetic the intersection routines do near the surface.
+    /// The tracer adds the rounding of `o + t d` ([`crate::math::hit_point_error`]) and
+    /// offsets secondary origins by the sum.
+    pub fn surface_error(&self, p: DVec3) -> f64 {
+        dispatch!(self, s => s.surface_error(p))
+    }
+
     /// Bounding box, `None` for unbounded shapes (planes).
     pub fn bounds(&self) -> Option<Aabb> {
         dispatch!(self, s => s.bounds())
@@ -144,6 +154,18 @@ impl Shape {
     }
 }
 
+/// `gamma(n) = n u / (1 - n u)`, the relative error bound of `n` rounded operations
+/// (Higham, "Accuracy and Stability of Numerical Algorithms", 3.1), `u = 2^-53`.
+pub(crate) fn gamma(n: u32) -> f64 {
+    let nu = n as f64 * f64::EPSILON * 0.5;
+    nu / (1.0 - nu)
+}
+
+/// Sum of the absolute components: the magnitude that bounds rounding errors of sums.
+pub(crate) fn l1(v: DVec3) -> f64 {
+    v.abs().element_sum()
+}
+
 /// Keeps the smaller of two optional hits.
 pub(crate) fn nearer(a: Option<SurfaceHit>, b: Option<SurfaceHit>) -> Option<SurfaceHit> {
     match (a, b) {
@@ -162,6 +184,21 @@ pub(crate) fn first_root_in(roots: (f64, f64), t_min: f64, t_max: f64) -> Option
         Some(t1)
     } else {
         None
+    }
+}
+
+/// Parameter shift that moves a far ray origin `o` (local frame) to the point of the ray
+/// nearest `mid`, the middle of a shape of radius about `size`: `s = (mid - o).d` when `o`
+/// is more than `16 size` away, else 0. A quadric's constant coefficient grows with `|o|^2`
+/// and its rounding error with it (relative errors of `t` near 1e-9 from 1e7 away); from the
+/// shifted origin the coefficients are of the shape's own size. The shifted origin itself is
+/// exact to one rounding of `|o|`, which the hit point error bound covers.
+pub(crate) fn recentre(o: DVec3, d: DVec3, mid: DVec3, size: f64) -> f64 {
+    let to_mid = mid - o;
+    if to_mid.length_squared() > 256.0 * size * size {
+        to_mid.dot(d)
+    } else {
+        0.0
     }
 }
 

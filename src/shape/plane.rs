@@ -1,6 +1,7 @@
 //! The infinite plane through a point with a given normal.
 
 use super::{Aabb, SurfaceHit};
+use super::{gamma, l1};
 use crate::math::Ray;
 use glam::DVec3;
 
@@ -27,6 +28,11 @@ impl Plane {
         }
         let t = (self.point - ray.origin).dot(self.normal) / denom;
         (t > t_min && t < t_max).then_some(SurfaceHit { t, normal: self.normal })
+    }
+
+    /// Bound on the distance from `p` to the plane: `|(p - p0).N|` plus its evaluation error.
+    pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
+        (p - self.point).dot(self.normal).abs() + gamma(16) * (l1(p) + l1(self.point))
     }
 
     pub fn bounds(&self) -> Option<Aabb> {

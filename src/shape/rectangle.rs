@@ -2,6 +2,7 @@
 //! (the finite mirrors of the `mirrors` figures).
 
 use super::{Aabb, SurfaceHit};
+use super::{gamma, l1};
 use crate::math::Ray;
 use glam::DVec3;
 
@@ -46,6 +47,12 @@ impl Rectangle {
         let u = w.cross(self.edge2).dot(self.cross) / n2;
         let v = self.edge1.cross(w).dot(self.cross) / n2;
         ((0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)).then_some(SurfaceHit { t, normal: self.normal })
+    }
+
+    /// Bound on the distance from `p` (a hit inside the rectangle) to its plane.
+    pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
+        let size = l1(self.edge1) + l1(self.edge2);
+        (p - self.corner).dot(self.normal).abs() + gamma(16) * (l1(p) + l1(self.corner) + size)
     }
 
     pub fn bounds(&self) -> Option<Aabb> {

@@ -1,6 +1,7 @@
 //! The sphere `|p - c| = r`.
 
 use super::{Aabb, SurfaceHit, first_root_in};
+use super::{gamma, l1};
 use crate::math::Ray;
 use crate::solve::quadratic;
 use glam::DVec3;
@@ -48,6 +49,13 @@ impl Sphere {
 
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         self.roots(ray).and_then(|r| first_root_in(r, t_min, t_max)).is_some()
+    }
+
+    /// Bound on the distance from `p` (a computed hit point) to the sphere: the residual
+    /// `| |p - c| - r |` plus its own evaluation error (see [`super::surface_error`]).
+    pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
+        let residual = ((p - self.center).length() - self.radius).abs();
+        residual + gamma(16) * (l1(p) + l1(self.center) + self.radius)
     }
 
     pub fn bounds(&self) -> Option<Aabb> {

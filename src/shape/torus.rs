@@ -8,10 +8,22 @@
 //! origins). Roots are isolated and refined on `f` evaluated directly at the point, not on
 //! the expanded coefficients, so a hit point lies on the surface to rounding precision.
 
-use super::{Aabb, SurfaceHit};
+use super::{Aabb, SurfaceHit, gamma, l1};
 use crate::math::{Frame, Ray};
-use crate::solve::poly_roots_with;
+use crate::solve::{ferrari, horner, orellana, poly_roots_with};
 use glam::DVec3;
+
+/// Which quartic solver the torus uses (see BENCHMARKS.md, "Numerical stability"); the
+/// renderer always uses [`QuarticMethod::Isolator`], the others are kept for comparison.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum QuarticMethod {
+    /// Derivative-recursion root isolation with Newton-bisection on the implicit equation.
+    Isolator,
+    /// Textbook Ferrari closed form, then Newton polish.
+    Ferrari,
+    /// Orellana and De Michele (ACM TOMS Algorithm 1010), then Newton polish.
+    OrellanaDeMichele,
+}
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Torus {
@@ -44,6 +56,18 @@ impl Torus {
 
     /// All roots in `(t_min, t_max)`, increasing, calling `visit` until it returns true.
     fn roots(&self, ray: &Ray, t_min: f64, t_max: f64, visit: &mut dyn FnMut(f64, DVec3, DVec3) -> bool) {
+        self.roots_with(QuarticMethod::Isolator, ray, t_min, t_max, visit)
+    }
+
+    /// As [`Torus::roots`] with a chosen quartic solver (the solver comparison uses the others).
+    fn roots_with(
+        &self,
+        method: QuarticMethod,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        visit: &mut dyn FnMut(f64, DVec3, DVec3) -> bool,
+    ) {
         let o = self.frame.to_local(ray.origin - self.center);
         let d = self.frame.to_local(ray.dir);
         let Some((enter, exit)) = self.clip(o, d, t_min, t_max) else {
@@ -56,16 +80,66 @@ impl Torus {
         let n = o2.dot(d);
         let m = d.length_squared();
         let four_r2 = 4.0 * big * big;
-        let coeffs = [
-            k * k - four_r2 * (o2.x * o2.x + o2.y * o2.y),
+        let rho2 = o2.x * o2.x + o2.y * o2.y;
+        let mut coeffs = [
+            k * k - four_r2 * rho2,
             4.0 * n * k - 2.0 * four_r2 * (o2.x * d.x + o2.y * d.y),
             4.0 * n * n + 2.0 * m * k - four_r2 * (d.x * d.x + d.y * d.y),
             4.0 * m * n,
             m * m,
         ];
-        let f = |s: f64| self.implicit(o2 + d * s);
+        // A ray starting on the surface (a secondary ray from a hit on this torus, with no
+        // clip shift): `f(o)` is zero up to its own rounding error, and any sign it has is
+        // noise that would make a spurious root next to `s = 0`. Force the constant
+        // coefficient to exactly zero so that root is exactly 0 and excluded by `t > t_min`.
+        // Bound on the rounding of `k^2 - 4 R^2 rho^2`: gamma(8) (k^2 + 4 R^2 rho^2).
+        let on_surface = enter == t_min && coeffs[0].abs() <= gamma(8) * (k * k + four_r2 * rho2);
+        if on_surface {
+            coeffs[0] = 0.0;
+        }
+        let f = |s: f64| {
+            if on_surface && s == 0.0 {
+                0.0
+            } else {
+                self.implicit(o2 + d * s)
+            }
+        };
         let mut found = Vec::with_capacity(4);
-        poly_roots_with(&coeffs, 0.0, exit - enter, &f, &mut found);
+        let len = exit - enter;
+        match method {
+            QuarticMethod::Isolator => poly_roots_with(&coeffs, 0.0, len, &f, &mut found),
+            QuarticMethod::Ferrari | QuarticMethod::OrellanaDeMichele => {
+                if coeffs[0] == 0.0 {
+                    // On the surface: deflate, s = 0 exactly and the cubic's roots.
+                    found.push(0.0);
+                    let c4 = coeffs[4];
+                    found.extend(ferrari::cubic_roots(coeffs[3] / c4, coeffs[2] / c4, coeffs[1] / c4));
+                } else if method == QuarticMethod::Ferrari {
+                    ferrari::quartic_roots(&coeffs, &mut found);
+                } else {
+                    orellana::quartic_roots(&coeffs, &mut found);
+                }
+                // Newton polish on the original (unexpanded) equation: two steps, each kept
+                // only if it lowers the residual.
+                let deriv = [coeffs[1], 2.0 * coeffs[2], 3.0 * coeffs[3], 4.0 * coeffs[4]];
+                for s in found.iter_mut() {
+                    for _ in 0..2 {
+                        let (fs, ds) = (f(*s), horner(&deriv, *s));
+                        if fs == 0.0 || ds == 0.0 {
+                            break;
+                        }
+                        let next = *s - fs / ds;
+                        if f(next).abs() < fs.abs() {
+                            *s = next;
+                        } else {
+                            break;
+                        }
+                    }
+                }
+                found.retain(|s| s.is_finite() && *s >= 0.0 && *s <= len);
+                found.sort_by(f64::total_cmp);
+            }
+        }
         for s in found {
             let t = enter + s;
             if t > t_min && t < t_max && visit(t, o, d) {
@@ -117,6 +191,19 @@ impl Torus {
         hit
     }
 
+    /// Closest hit computed with a chosen quartic solver (solver comparison and stress tests).
+    pub fn intersect_with(&self, method: QuarticMethod, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        let mut hit = None;
+        self.roots_with(method, ray, t_min, t_max, &mut |t, o, d| {
+            hit = Some(SurfaceHit {
+                t,
+                normal: self.normal_at(o + d * t),
+            });
+            true
+        });
+        hit
+    }
+
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let mut any = false;
         self.roots(ray, t_min, t_max, &mut |_, _, _| {
@@ -124,6 +211,22 @@ impl Torus {
             true
         });
         any
+    }
+
+    /// Bound on the distance from `p` to the torus: the exact distance
+    /// `| sqrt((rho - R)^2 + z^2) - r |` plus the distance-equivalent of the rounding of the
+    /// quartic the intersection evaluates, `gamma(16) (k^2 + 4 R^2 rho^2) / |grad f|`, which
+    /// grows like `R^2 / r` for thin tubes: a secondary ray must start farther out than the
+    /// quartic's noise for its sign at the origin to be right.
+    pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
+        let l = self.frame.to_local(p - self.center);
+        let (big, small) = (self.major, self.minor);
+        let rho = l.truncate().length();
+        let residual = ((rho - big).hypot(l.z) - small).abs();
+        let k = l.length_squared() + big * big - small * small;
+        let grad = (4.0 * k * l - 8.0 * big * big * DVec3::new(l.x, l.y, 0.0)).length();
+        let noise = gamma(16) * (k * k + 4.0 * big * big * rho * rho) / grad.max(f64::MIN_POSITIVE);
+        residual + noise.min(small) + gamma(16) * (l1(p) + l1(self.center) + big + small)
     }
 
     pub fn bounds(&self) -> Option<Aabb> {
@@ -197,5 +300,31 @@ mod tests {
         assert_hit(t.intersect(&r, 3.5, 1e9), 4.0, DVec3::X);
         assert_hit(t.intersect(&r, 4.5, 1e9), 6.0, -DVec3::X);
         assert_hit(t.intersect(&r, 6.5, 1e9), 7.0, DVec3::X);
+    }
+
+    #[test]
+    fn ray_leaving_a_large_torus_does_not_hit_its_origin() {
+        // R = 1e3, r = 250: points on the surface (computed in f64, so off it by rounding)
+        // with rays leaving along the normal tilted in 8 ways, t_min = 0. The constant
+        // coefficient is forced to zero there, so the only roots are real crossings at least
+        // the tube's scale away, never a spurious one at t ~ 1e-13.
+        let (big, small) = (1e3, 250.0);
+        let t = Torus::new(DVec3::ZERO, DVec3::Z, big, small);
+        for i in 0..16 {
+            let (theta, phi) = (0.4 * i as f64, 0.9 * i as f64 + 0.1);
+            let radial = DVec3::new(libm::cos(theta), libm::sin(theta), 0.0);
+            let n = radial * libm::cos(phi) + DVec3::Z * libm::sin(phi);
+            let p = radial * big + n * small;
+            for k in 0..8 {
+                let tilt = DVec3::new(libm::cos(k as f64), libm::sin(k as f64), 0.3).normalize();
+                let d = (n + tilt * 0.9).normalize();
+                if d.dot(n) <= 0.0 {
+                    continue;
+                }
+                if let Some(h) = t.intersect(&Ray::new(p, d), 0.0, f64::INFINITY) {
+                    assert!(h.t > 1.0, "spurious root at t = {} from {p} along {d}", h.t);
+                }
+            }
+        }
     }
 }

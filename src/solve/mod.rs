@@ -7,6 +7,12 @@
 //! monotone, and each piece holding a sign change is solved by safeguarded Newton-bisection
 //! to full precision. The caller passes the exact function to bracket on (for the torus, its
 //! implicit equation evaluated directly, which has no coefficient cancellation).
+//!
+//! The closed-form alternatives measured against it live in [`ferrari`] (textbook Ferrari)
+//! and [`orellana`] (Orellana and De Michele 2020); see BENCHMARKS.md, "Numerical stability".
+
+pub mod ferrari;
+pub mod orellana;
 
 /// Real roots of `a t^2 + b t + c = 0` in increasing order, computed without catastrophic
 /// cancellation: `q = -(b + sign(b) sqrt(b^2 - 4ac)) / 2`, roots `q / a` and `c / q`
@@ -39,11 +45,6 @@ pub fn horner(c: &[f64], t: f64) -> f64 {
     c.iter().rev().fold(0.0, |acc, &ci| acc * t + ci)
 }
 
-/// Coefficients of the derivative (increasing degree).
-fn derivative(c: &[f64]) -> Vec<f64> {
-    c.iter().enumerate().skip(1).map(|(i, &ci)| ci * i as f64).collect()
-}
-
 /// Pushes into `out`, in increasing order, the real roots in `[lo, hi]` of the polynomial
 /// with coefficients `c` (increasing degree, at most degree 4). Double roots are reported
 /// when the polynomial reaches exactly zero at a critical point; grazing roots that round
@@ -56,38 +57,79 @@ pub fn poly_roots_in(c: &[f64], lo: f64, hi: f64, out: &mut Vec<f64>) {
 /// of the same polynomial (for example an unexpanded implicit equation). The expanded
 /// coefficients `c` are only used to find the critical points that split the interval.
 pub fn poly_roots_with(c: &[f64], lo: f64, hi: f64, f: &dyn Fn(f64) -> f64, out: &mut Vec<f64>) {
-    let mut c = c.to_vec();
-    while c.len() > 1 && *c.last().unwrap() == 0.0 {
-        c.pop();
+    debug_assert!(c.len() <= 5, "degree at most 4");
+    let mut few = Few::default();
+    roots_into(c, lo, hi, f, &mut few);
+    for &t in few.as_slice() {
+        push_unique(out, t);
     }
-    let degree = c.len() - 1;
+}
+
+/// A handful of roots on the stack (the isolator allocates nothing; the torus calls it
+/// once per ray).
+#[derive(Default)]
+struct Few {
+    v: [f64; 6],
+    n: usize,
+}
+
+impl Few {
+    fn push_unique(&mut self, t: f64) {
+        if (self.n == 0 || self.v[self.n - 1] != t) && self.n < self.v.len() {
+            self.v[self.n] = t;
+            self.n += 1;
+        }
+    }
+
+    fn as_slice(&self) -> &[f64] {
+        &self.v[..self.n]
+    }
+}
+
+/// The isolator proper (see the module doc), for at most 5 coefficients.
+fn roots_into(c: &[f64], lo: f64, hi: f64, f: &dyn Fn(f64) -> f64, out: &mut Few) {
+    let mut len = c.len().min(5);
+    while len > 1 && c[len - 1] == 0.0 {
+        len -= 1;
+    }
+    let degree = len.saturating_sub(1);
     if degree == 0 {
         return;
     }
-    // Split points: the critical points of the polynomial (roots of its derivative).
-    let mut splits = Vec::with_capacity(5);
-    splits.push(lo);
-    if degree >= 2 {
-        let d = derivative(&c);
-        let mut crit = Vec::with_capacity(3);
-        poly_roots_in(&d, lo, hi, &mut crit);
-        splits.extend(crit.into_iter().filter(|&t| t > lo && t < hi));
+    // Coefficients of the derivative (increasing degree).
+    let mut deriv = [0.0; 4];
+    for i in 1..len {
+        deriv[i - 1] = c[i] * i as f64;
     }
-    splits.push(hi);
-    let deriv = derivative(&c);
+    let deriv = &deriv[..degree];
+    // Split points: the critical points of the polynomial (roots of its derivative).
+    let mut splits = [0.0; 8];
+    splits[0] = lo;
+    let mut ns = 1;
+    if degree >= 2 {
+        let mut crit = Few::default();
+        roots_into(deriv, lo, hi, &|t| horner(deriv, t), &mut crit);
+        for &t in crit.as_slice() {
+            if t > lo && t < hi {
+                splits[ns] = t;
+                ns += 1;
+            }
+        }
+    }
+    splits[ns] = hi;
+    ns += 1;
+    let splits = &splits[..ns];
     for w in splits.windows(2) {
         let (a, b) = (w[0], w[1]);
         let (fa, fb) = (f(a), f(b));
         if fa == 0.0 {
-            push_unique(out, a);
+            out.push_unique(a);
         } else if fa.signum() != fb.signum() && fb != 0.0 {
-            push_unique(out, refine(f, &deriv, a, b, fa));
+            out.push_unique(refine(f, deriv, a, b, fa));
         }
     }
-    if let Some(&last) = splits.last()
-        && f(last) == 0.0
-    {
-        push_unique(out, last);
+    if f(hi) == 0.0 {
+        out.push_unique(hi);
     }
 }
 
@@ -119,6 +161,16 @@ fn refine(f: &dyn Fn(f64) -> f64, deriv: &[f64], mut a: f64, mut b: f64, fa: f64
         }
         let d = horner(deriv, t);
         let newton = t - ft / d;
+        // Newton from one side never moves the far end of the bracket, so bisection would
+        // spend ~50 steps shrinking it. Once the step is a few ulps, probe one more step
+        // past the Newton point: a sign change there brackets the root within two steps.
+        let step = newton - t;
+        if d != 0.0 && step != 0.0 && step.abs() <= 8.0 * f64::EPSILON * t.abs() {
+            let probe = newton + step;
+            if probe > a && probe < b && (f(probe) < 0.0) != (ft < 0.0) {
+                return newton;
+            }
+        }
         t = if d != 0.0 && newton > a && newton < b {
             newton
         } else {
