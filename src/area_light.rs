@@ -86,6 +86,15 @@ impl AreaLight {
         self.points(&mut Stream::new(seed, Purpose::LightPoints, index))
     }
 
+    /// A sphere (centre, radius) containing every point the light can place.
+    pub fn bounding_sphere(&self) -> (DVec3, f64) {
+        match &self.shape {
+            AreaShape::Sphere { center, radius } => (*center, *radius),
+            AreaShape::Tube { start, end } => (0.5 * (*start + *end), 0.5 * (*end - *start).length()),
+            AreaShape::Window { center, edge1, edge2 } => (*center, 0.5 * (edge1.length() + edge2.length())),
+        }
+    }
+
     /// Colour each point carries: `L / N`.
     pub fn point_color(&self) -> DVec3 {
         self.color / self.count as f64

@@ -13,6 +13,8 @@ pub const MAX_DEPTH: u32 = 64;
 pub const MAX_OBJECTS: usize = 4_000_000;
 /// Most lights in a scene.
 pub const MAX_LIGHTS: usize = 10_000;
+/// Most points in one area light (each is a shadow ray per shading point).
+pub const MAX_LIGHT_POINTS: u32 = 100_000;
 /// Largest coordinate magnitude (beyond it f64 hit points lose all sub-unit precision).
 pub const MAX_COORDINATE: f64 = 1e9;
 /// Largest light colour channel.

@@ -210,19 +210,14 @@ fn kind_name(kind: RayKind) -> &'static str {
     }
 }
 
-/// The kind of a light as written in scene files.
+/// The kind of a light as written in scene files (an area light has one entry per point).
 fn light_kind(light: &Light) -> &'static str {
-    // An if-chain rather than a match so new kinds of light need no change here.
-    if matches!(light, Light::Directional { .. }) {
-        "directional"
-    } else if matches!(light, Light::Point(_)) {
-        "point"
-    } else if matches!(light, Light::Spot(_)) {
-        "spot"
-    } else if matches!(light, Light::Ambient { .. }) {
-        "ambient"
-    } else {
-        "light"
+    match light {
+        Light::Ambient { .. } => "ambient",
+        Light::Directional { .. } => "directional",
+        Light::Point(_) => "point",
+        Light::Spot(_) => "spot",
+        Light::Area(_) => "area",
     }
 }
 

@@ -120,6 +120,8 @@ pub struct Tracer<'w, 's> {
     pub sample_key: (u64, u32),
     /// Scratch list of transparent objects crossed by a shadow ray.
     crossed: Vec<usize>,
+    /// Scratch list of the objects that can shadow the current area light.
+    candidates: Vec<usize>,
 }
 
 impl<'w, 's> Tracer<'w, 's> {
@@ -129,6 +131,7 @@ impl<'w, 's> Tracer<'w, 's> {
             counts: RayCounts::default(),
             sample_key: (0, 0),
             crossed: Vec::new(),
+            candidates: Vec::new(),
         }
     }
 
@@ -280,12 +283,20 @@ impl<'w, 's> Tracer<'w, 's> {
                         }
                     };
                     let point_color = area.point_color();
+                    // Only objects near the hull of this point and the light can block any
+                    // of its N shadow rays: find them once, not N times (exact: see
+                    // `shadow_candidates`).
+                    let (centre, radius) = area.bounding_sphere();
+                    let mut candidates = std::mem::take(&mut self.candidates);
+                    self.world
+                        .shadow_candidates(point, centre, radius + 4.0 * err, &mut candidates);
                     for &p in points {
                         let inc = point_incidence(p, point_color, &area.attenuation, point, 1.0);
-                        color += self.light_share(index, inc, &surface, rec);
+                        color += self.light_share(index, inc, &surface, Some(&candidates), rec);
                     }
+                    self.candidates = candidates;
                 }
-                _ => color += self.light_share(index, light.incidence(point), &surface, rec),
+                _ => color += self.light_share(index, light.incidence(point), &surface, None, rec),
             }
         }
         color
@@ -294,7 +305,15 @@ impl<'w, 's> Tracer<'w, 's> {
     /// One point light's share at a surface point: `A L [k_d S max(N.L, 0) + k_s tint spec]`
     /// times the shadow filter. Nothing (and no shadow ray) when no light arrives or when
     /// N.L <= 0, where neither the diffuse nor (slides) the specular term counts.
-    fn light_share<R: Recorder>(&mut self, index: usize, inc: Option<Incidence>, at: &Surface, rec: &mut R) -> DVec3 {
+    /// `candidates`, when given, are the only objects that can block the shadow ray.
+    fn light_share<R: Recorder>(
+        &mut self,
+        index: usize,
+        inc: Option<Incidence>,
+        at: &Surface,
+        candidates: Option<&[usize]>,
+        rec: &mut R,
+    ) -> DVec3 {
         let Some(inc) = inc else {
             rec.unlit(index, None);
             return DVec3::ZERO;
@@ -307,7 +326,7 @@ impl<'w, 's> Tracer<'w, 's> {
         let settings = &self.world.scene.settings;
         let mat = self.world.material_of(at.object);
         let filter = if settings.shadows {
-            self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, rec)
+            self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, candidates, rec)
         } else {
             DVec3::ONE
         };
@@ -338,7 +357,7 @@ impl<'w, 's> Tracer<'w, 's> {
     /// counted once however many of its surfaces the ray crosses. `outward` is the surface
     /// normal at `point` and `err` the bound on the point's rounding error.
     pub fn shadow_filter(&mut self, point: DVec3, outward: DVec3, err: f64, inc: &Incidence) -> DVec3 {
-        self.shadow_filter_recorded(point, outward, err, inc, &mut NoRecord)
+        self.shadow_filter_recorded(point, outward, err, inc, None, &mut NoRecord)
     }
 
     /// [`Tracer::shadow_filter`], reporting the shadow ray to `rec`.
@@ -348,6 +367,7 @@ impl<'w, 's> Tracer<'w, 's> {
         outward: DVec3,
         err: f64,
         inc: &Incidence,
+        candidates: Option<&[usize]>,
         rec: &mut R,
     ) -> DVec3 {
         self.counts.shadow += 1;
@@ -357,18 +377,31 @@ impl<'w, 's> Tracer<'w, 's> {
         let t_max = inc.distance;
         rec.shadow_ray(&ray, t_max);
         let opaque = |i: usize| !world.material_of(i).is_transparent();
-        if world.accel.any_hit(objects, &ray, 0.0, t_max, &opaque) {
+        let transparent = |i: usize| world.material_of(i).is_transparent();
+        let blocked = match candidates {
+            Some(c) => c
+                .iter()
+                .any(|&i| opaque(i) && objects[i].shape.occludes(&ray, 0.0, t_max)),
+            None => world.accel.any_hit(objects, &ray, 0.0, t_max, &opaque),
+        };
+        if blocked {
             return DVec3::ZERO;
         }
         if !world.has_transparent {
             return DVec3::ONE;
         }
         self.crossed.clear();
-        let transparent = |i: usize| world.material_of(i).is_transparent();
         let crossed = &mut self.crossed;
-        world
-            .accel
-            .each_hit(objects, &ray, 0.0, t_max, &transparent, &mut |i| crossed.push(i));
+        match candidates {
+            Some(c) => crossed.extend(
+                c.iter()
+                    .copied()
+                    .filter(|&i| transparent(i) && objects[i].shape.occludes(&ray, 0.0, t_max)),
+            ),
+            None => world
+                .accel
+                .each_hit(objects, &ray, 0.0, t_max, &transparent, &mut |i| crossed.push(i)),
+        }
         // Multiply in object order so the bits do not depend on the traversal order.
         self.crossed.sort_unstable();
         rec.shadow_crossed(&self.crossed);

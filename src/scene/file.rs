@@ -5,9 +5,11 @@
 
 use super::locate::{FieldPath, line_col, locate};
 use super::{CameraSpec, Object, Scene, Settings, ShadingModel, Specular};
+use crate::area_light::{AreaLight, AreaShape, PointMode};
 use crate::light::{Attenuation, Light, PointLight, SpotLight};
 use crate::limits;
 use crate::material::Material;
+use crate::placement::Placement;
 use crate::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus};
 use glam::DVec3;
 use serde::Deserialize;
@@ -347,6 +349,34 @@ enum FileLight {
         #[serde(default)]
         attenuation: FileAttenuation,
     },
+    /// N point lights on a sphere (`center`, `radius`), a tube (`start`, `end`) or a window
+    /// (`center`, `edge1`, `edge2`).
+    Area {
+        shape: String,
+        center: Option<[f64; 3]>,
+        radius: Option<f64>,
+        start: Option<[f64; 3]>,
+        end: Option<[f64; 3]>,
+        edge1: Option<[f64; 3]>,
+        edge2: Option<[f64; 3]>,
+        points: u32,
+        #[serde(default = "chapter")]
+        placement: String,
+        #[serde(default = "fixed")]
+        mode: String,
+        #[serde(default = "one")]
+        color: [f64; 3],
+        #[serde(default)]
+        attenuation: FileAttenuation,
+    },
+}
+
+fn chapter() -> String {
+    "chapter".to_string()
+}
+
+fn fixed() -> String {
+    "fixed".to_string()
 }
 
 fn minus_y() -> [f64; 3] {
@@ -810,6 +840,102 @@ impl FileLight {
                 light_color(color)?,
                 attenuation.validate(&path.key("attenuation"))?,
             )),
+            FileLight::Area {
+                shape,
+                center,
+                radius,
+                start,
+                end,
+                edge1,
+                edge2,
+                points,
+                placement,
+                mode,
+                color,
+                attenuation,
+            } => {
+                // Which geometry fields each shape takes; any other one is an error.
+                let given = [
+                    ("center", center.is_some()),
+                    ("radius", radius.is_some()),
+                    ("start", start.is_some()),
+                    ("end", end.is_some()),
+                    ("edge1", edge1.is_some()),
+                    ("edge2", edge2.is_some()),
+                ];
+                let wanted: &[&str] = match shape.as_str() {
+                    "sphere" => &["center", "radius"],
+                    "tube" => &["start", "end"],
+                    "window" => &["center", "edge1", "edge2"],
+                    other => {
+                        return fail(
+                            &path.key("shape"),
+                            format!("must be \"sphere\", \"tube\" or \"window\", got {other:?}"),
+                        );
+                    }
+                };
+                for (field, present) in given {
+                    if present != wanted.contains(&field) {
+                        let why = if present {
+                            "does not apply to"
+                        } else {
+                            "is required for"
+                        };
+                        return fail(&path.key(field), format!("{field} {why} a {shape} light"));
+                    }
+                }
+                let at = |key: &str, v: Option<[f64; 3]>| vec3(&path.key(key), v.unwrap_or_default());
+                let area_shape = match shape.as_str() {
+                    "sphere" => AreaShape::Sphere {
+                        center: at("center", center)?,
+                        radius: in_range(
+                            &path.key("radius"),
+                            radius.unwrap_or_default(),
+                            0.0,
+                            limits::MAX_COORDINATE,
+                        )?,
+                    },
+                    "tube" => AreaShape::Tube {
+                        start: at("start", start)?,
+                        end: at("end", end)?,
+                    },
+                    _ => AreaShape::Window {
+                        center: at("center", center)?,
+                        edge1: at("edge1", edge1)?,
+                        edge2: at("edge2", edge2)?,
+                    },
+                };
+                if points == 0 || points > limits::MAX_LIGHT_POINTS {
+                    return fail(
+                        &path.key("points"),
+                        format!("must be in [1, {}], got {points}", limits::MAX_LIGHT_POINTS),
+                    );
+                }
+                let Some(placement) = Placement::parse(&placement) else {
+                    return fail(
+                        &path.key("placement"),
+                        format!("must be \"chapter\", \"uniform\", \"stratified\" or \"fibonacci\", got {placement:?}"),
+                    );
+                };
+                let mode = match mode.as_str() {
+                    "fixed" => PointMode::Fixed,
+                    "per_sample" => PointMode::PerSample,
+                    other => {
+                        return fail(
+                            &path.key("mode"),
+                            format!("must be \"fixed\" or \"per_sample\", got {other:?}"),
+                        );
+                    }
+                };
+                Light::Area(AreaLight {
+                    shape: area_shape,
+                    count: points,
+                    placement,
+                    mode,
+                    color: light_color(color)?,
+                    attenuation: attenuation.validate(&path.key("attenuation"))?,
+                })
+            }
         })
     }
 }

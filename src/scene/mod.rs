@@ -118,6 +118,8 @@ pub struct World<'s> {
     pub remaining_bound: Vec<f64>,
     /// For each light, the points of a `fixed` area light (empty for other lights).
     pub light_points: Vec<Vec<DVec3>>,
+    /// Bounding sphere (centre, radius) of each object; `None` for unbounded ones.
+    pub object_spheres: Vec<Option<(DVec3, f64)>>,
 }
 
 impl<'s> World<'s> {
@@ -151,6 +153,39 @@ impl<'s> World<'s> {
                     _ => Vec::new(),
                 })
                 .collect(),
+            object_spheres: scene
+                .objects
+                .iter()
+                .map(|o| o.shape.bounds().map(|b| (b.centroid(), 0.5 * (b.max - b.min).length())))
+                .collect(),
+        }
+    }
+
+    /// Into `out` (ascending), the objects that may block a segment from `p` to any point of
+    /// the ball of centre `c` and radius `r`: every such segment lies in the convex hull of
+    /// `p` and the ball, which lies within `r` of the segment `[p, c]`, so an object whose
+    /// bounding sphere is farther than its radius plus `r` from `[p, c]` cannot block any.
+    /// Unbounded objects are always kept.
+    pub fn shadow_candidates(&self, p: DVec3, c: DVec3, r: f64, out: &mut Vec<usize>) {
+        out.clear();
+        let axis = c - p;
+        let len2 = axis.length_squared();
+        for (i, sphere) in self.object_spheres.iter().enumerate() {
+            let keep = match sphere {
+                None => true,
+                Some((centre, radius)) => {
+                    let s = if len2 > 0.0 {
+                        ((*centre - p).dot(axis) / len2).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let reach = radius + r;
+                    (p + s * axis - *centre).length_squared() <= reach * reach
+                }
+            };
+            if keep {
+                out.push(i);
+            }
         }
     }
 
