@@ -238,9 +238,13 @@ pub struct RenderArgs {
     /// Worker threads (default: all cores). The image does not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Print ray counts and time after rendering.
+    /// Print ray counts, work skipped by reason and time by phase after rendering.
     #[arg(long)]
     pub stats: bool,
+    /// Switch a shortcut off (repeatable or comma-separated), to measure what it saves: the
+    /// image does not change, only ray counts and time.
+    #[arg(long, value_name = "NAME", value_delimiter = ',')]
+    pub no_skip: Vec<crate::skips::Skip>,
     /// Print the statistics as JSON on stdout (implies --stats).
     #[arg(long)]
     pub json: bool,
@@ -353,7 +357,9 @@ fn progress_bar(rows: u64, quiet: bool) -> ProgressBar {
 static INTERRUPTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
 fn render_command(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
+    let start = std::time::Instant::now();
     let scene = load_scene(&args.scene, &args.overrides)?;
+    let loaded = start.elapsed();
     let format = match args.shard {
         None => Some(check_output(&args.output, &args.scene)?),
         Some(_) => {
@@ -361,7 +367,9 @@ fn render_command(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
             None
         }
     };
-    let world = World::new(&scene);
+    let mut world = World::new(&scene);
+    world.skips = args.no_skip.iter().fold(world.skips, |s, &k| s.without(k));
+    let built = start.elapsed();
     let rows = args
         .shard
         .map_or(0..scene.settings.height, |s| s.rows(scene.settings.height));
@@ -406,6 +414,12 @@ fn render_command(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     };
     write_atomic(&args.output, &bytes)
         .map_err(|e| CliError::Failed(format!("{}: cannot write the image: {e}", args.output.display())))?;
+    let phases = Phases {
+        load: loaded.as_secs_f64(),
+        build: (built - loaded).as_secs_f64(),
+        render: stats.elapsed.as_secs_f64(),
+        write: (start.elapsed() - built - stats.elapsed).as_secs_f64(),
+    };
     v.note(|| {
         format!(
             "wrote {} ({} bytes) in {:.3} s",
@@ -415,9 +429,9 @@ fn render_command(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
         )
     });
     if args.json {
-        println!("{}", stats_json(&stats));
+        println!("{}", stats_json(&stats, &phases));
     } else if args.stats {
-        print!("{}", stats_report(&stats));
+        print!("{}", stats_report(&stats, &phases));
     }
     if stats.counts.non_finite > 0 {
         eprintln!(
@@ -428,11 +442,34 @@ fn render_command(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Wall time of each phase of a render command, in seconds.
+pub struct Phases {
+    /// Reading and validating the scene file.
+    pub load: f64,
+    /// Building the world (acceleration structure, light points, bounds).
+    pub build: f64,
+    /// Tracing every pixel.
+    pub render: f64,
+    /// Encoding and writing the output.
+    pub write: f64,
+}
+
+/// Work each shortcut saved, by name, as JSON.
+fn skipped_json(c: &crate::trace::RayCounts) -> serde_json::Value {
+    crate::skips::Skip::ALL
+        .iter()
+        .map(|&s| (s.name().to_string(), serde_json::json!(c.saved.get(s))))
+        .collect::<serde_json::Map<_, _>>()
+        .into()
+}
+
 /// The statistics as JSON, for programs.
-pub fn stats_json(stats: &RenderStats) -> String {
+pub fn stats_json(stats: &RenderStats, phases: &Phases) -> String {
     let c = &stats.counts;
     serde_json::json!({
         "seconds": stats.elapsed.as_secs_f64(),
+        "phases": { "load": phases.load, "build": phases.build, "render": phases.render, "write": phases.write },
+        "skipped": skipped_json(c),
         "rays": {
             "camera": c.camera,
             "shadow": c.shadow,
@@ -471,21 +508,31 @@ fn merge_command(args: &MergeArgs, v: Verbosity) -> Result<(), CliError> {
         .map_err(|e| CliError::Failed(format!("{}: cannot write the image: {e}", args.output.display())))
 }
 
-/// Human-readable ray counts and time.
-pub fn stats_report(stats: &RenderStats) -> String {
+/// Human-readable ray counts, skipped work and time by phase.
+pub fn stats_report(stats: &RenderStats, phases: &Phases) -> String {
     let c = &stats.counts;
-    format!(
-        "time          {:.3} s\ncamera rays   {}\nshadow rays   {}\nreflection    {}\nrefraction    {}\ntotal rays    {}\ntotal internal reflections {}\nadaptive cutoffs {}\nnon-finite samples {}\n",
-        stats.elapsed.as_secs_f64(),
-        c.camera,
-        c.shadow,
-        c.reflection,
-        c.refraction,
-        c.total_rays(),
-        c.total_internal_reflections,
-        c.adaptive_cutoffs,
-        c.non_finite
-    )
+    let mut skipped = String::from("skipped (switch off with --no-skip NAME):\n");
+    for s in crate::skips::Skip::ALL {
+        skipped += &format!("  {:<18} {:>14}  {}\n", s.name(), c.saved.get(s), s.unit());
+    }
+    let phases = format!(
+        "time by phase: load {:.3} s, build {:.3} s, render {:.3} s, write {:.3} s\n",
+        phases.load, phases.build, phases.render, phases.write
+    );
+    phases
+        + &skipped
+        + &format!(
+            "time          {:.3} s\ncamera rays   {}\nshadow rays   {}\nreflection    {}\nrefraction    {}\ntotal rays    {}\ntotal internal reflections {}\nadaptive cutoffs {}\nnon-finite samples {}\n",
+            stats.elapsed.as_secs_f64(),
+            c.camera,
+            c.shadow,
+            c.reflection,
+            c.refraction,
+            c.total_rays(),
+            c.total_internal_reflections,
+            c.adaptive_cutoffs,
+            c.non_finite
+        )
 }
 
 fn compare_command(args: &CompareArgs) -> Result<(), CliError> {

@@ -45,6 +45,7 @@ pub mod scene;
 pub mod shading;
 pub mod shape;
 pub mod shard;
+pub mod skips;
 pub mod solve;
 pub mod stress;
 pub mod trace;

@@ -109,8 +109,8 @@ pub struct Incidence {
 }
 
 impl Light {
-    /// Incidence at `p`, or `None` for ambient lights, for a point exactly at the light,
-    /// and for points outside a spot's cone (whose contribution is exactly 0). Area lights
+    /// Incidence at `p`, or `None` for ambient lights and for a point exactly at the light.
+    /// Outside a spot's cone the incidence is black (spot factor 0). Area lights
     /// have one incidence per point: see [`point_incidence`].
     pub fn incidence(&self, p: DVec3) -> Option<Incidence> {
         match self {
@@ -130,10 +130,8 @@ impl Light {
                     return None;
                 }
                 // d = (r_inter - r_lum) / |r_inter - r_lum|
+                // Outside the cone c = 0: the light arrives black (the tracer skips it).
                 let c = spot_factor(s.orientation.dot(to_p / dist), s.cos_half, s.c_min, s.c_max);
-                if c == 0.0 {
-                    return None;
-                }
                 point_incidence(s.position, s.color, &s.attenuation, p, c)
             }
         }
@@ -230,7 +228,8 @@ mod tests {
         let c = s.incidence(DVec3::new(5., 0., 0.)).unwrap().spot;
         assert!((c - 0.639_551_9).abs() < 1e-7, "{c}");
         // 11 off-axis: o.d = 0.6727 < 0.7071, outside.
-        assert!(s.incidence(DVec3::new(11., 0., 0.)).is_none());
+        let outside = s.incidence(DVec3::new(11., 0., 0.)).unwrap();
+        assert_eq!((outside.spot, outside.color), (0.0, DVec3::ZERO));
     }
 
     #[test]

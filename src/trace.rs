@@ -8,8 +8,9 @@
 use crate::area_light::PointMode;
 use crate::light::{Incidence, Light, point_incidence};
 use crate::math::{Ray, hit_point_error, offset_origin, reflect, refract};
-use crate::scene::{Specular, World};
+use crate::scene::{Candidate, Specular, World};
 use crate::shading::{ambient, blinn, direct, phong, specular_tint};
+use crate::skips::{Saved, Skip};
 use glam::DVec3;
 
 /// What a ray is for.
@@ -34,6 +35,8 @@ pub struct RayCounts {
     pub adaptive_cutoffs: u64,
     /// Samples whose radiance was NaN or infinite (replaced by black).
     pub non_finite: u64,
+    /// Work left out, by shortcut (see [`crate::skips`]).
+    pub saved: Saved,
 }
 
 impl RayCounts {
@@ -45,6 +48,7 @@ impl RayCounts {
         self.total_internal_reflections += o.total_internal_reflections;
         self.adaptive_cutoffs += o.adaptive_cutoffs;
         self.non_finite += o.non_finite;
+        self.saved.add(&o.saved);
     }
 
     pub fn total_rays(&self) -> u64 {
@@ -79,6 +83,8 @@ pub trait Recorder {
     /// when no light arrives at all (outside a spot's cone, or exactly at the light), else
     /// the `N.L <= 0` of a surface facing away from it.
     fn unlit(&mut self, _light: usize, _n_dot_l: Option<f64>) {}
+    /// An area light wholly below the surface's horizon: none of its points is looked at.
+    fn below_horizon(&mut self, _light: usize) {}
     /// A shadow ray towards a light, tested up to `t_max` (infinite for directional
     /// lights), before the [`Recorder::light`] event of the same light.
     fn shadow_ray(&mut self, _ray: &Ray, _t_max: f64) {}
@@ -121,7 +127,7 @@ pub struct Tracer<'w, 's> {
     /// Scratch list of transparent objects crossed by a shadow ray.
     crossed: Vec<usize>,
     /// Scratch list of the objects that can shadow the current area light.
-    candidates: Vec<usize>,
+    candidates: Vec<Candidate>,
 }
 
 impl<'w, 's> Tracer<'w, 's> {
@@ -163,10 +169,12 @@ impl<'w, 's> Tracer<'w, 's> {
         rec.local(color);
 
         let settings = &scene.settings;
-        if level < settings.depth && (mat.kr > 0.0 || mat.kt > 0.0) {
+        // Without the zero-weight skip, rays of weight 0 are traced (and add 0).
+        let all = !self.world.skips.on(Skip::ZeroWeight);
+        if level < settings.depth {
             let mut kr = mat.kr;
             let mut refracted = None;
-            if mat.kt > 0.0 {
+            if mat.kt > 0.0 || all {
                 let eta = if entering { 1.0 / mat.ior } else { mat.ior };
                 match refract(ray.dir, n, eta) {
                     Some(t) => refracted = Some(t.normalize()),
@@ -178,7 +186,13 @@ impl<'w, 's> Tracer<'w, 's> {
                     }
                 }
             }
-            if kr > 0.0 {
+            if kr == 0.0 && !all {
+                self.counts.saved.count(Skip::ZeroWeight, 1);
+            }
+            if mat.kt == 0.0 && !all {
+                self.counts.saved.count(Skip::ZeroWeight, 1);
+            }
+            if kr > 0.0 || all {
                 let dir = reflect(ray.dir, n).normalize();
                 color += kr
                     * self.secondary(
@@ -283,16 +297,26 @@ impl<'w, 's> Tracer<'w, 's> {
                         }
                     };
                     let point_color = area.point_color();
+                    let (centre, radius) = area.bounding_sphere();
+                    let skips = self.world.skips;
+                    if skips.on(Skip::Horizon) && below_horizon(point, n, centre, radius) {
+                        self.counts.saved.count(Skip::Horizon, points.len() as u64);
+                        rec.below_horizon(index);
+                        continue;
+                    }
                     // Only objects near the hull of this point and the light can block any
                     // of its N shadow rays: find them once, not N times (exact: see
                     // `shadow_candidates`).
-                    let (centre, radius) = area.bounding_sphere();
                     let mut candidates = std::mem::take(&mut self.candidates);
-                    self.world
-                        .shadow_candidates(point, centre, radius + 4.0 * err, &mut candidates);
+                    let culled = skips.on(Skip::ShadowCandidates);
+                    if culled {
+                        self.world
+                            .shadow_candidates(point, centre, radius, 4.0 * err, &mut candidates);
+                    }
+                    let shadowing = culled.then_some(candidates.as_slice());
                     for &p in points {
                         let inc = point_incidence(p, point_color, &area.attenuation, point, 1.0);
-                        color += self.light_share(index, inc, &surface, Some(&candidates), rec);
+                        color += self.light_share(index, inc, &surface, shadowing, rec);
                     }
                     self.candidates = candidates;
                 }
@@ -311,25 +335,50 @@ impl<'w, 's> Tracer<'w, 's> {
         index: usize,
         inc: Option<Incidence>,
         at: &Surface,
-        candidates: Option<&[usize]>,
+        candidates: Option<&[Candidate]>,
         rec: &mut R,
     ) -> DVec3 {
         let Some(inc) = inc else {
             rec.unlit(index, None);
             return DVec3::ZERO;
         };
+        let skips = self.world.skips;
+        let settings = &self.world.scene.settings;
+        if inc.color == DVec3::ZERO && skips.on(Skip::Unlit) {
+            self.counts.saved.count(Skip::Unlit, u64::from(settings.shadows));
+            rec.unlit(index, None);
+            return DVec3::ZERO;
+        }
         let n_dot_l = at.n.dot(inc.to_light);
         if n_dot_l <= 0.0 {
+            if skips.on(Skip::BackFacing) {
+                self.counts.saved.count(Skip::BackFacing, u64::from(settings.shadows));
+            } else if settings.shadows {
+                self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, candidates, &mut NoRecord);
+            }
             rec.unlit(index, Some(n_dot_l));
             return DVec3::ZERO;
         }
-        let settings = &self.world.scene.settings;
         let mat = self.world.material_of(at.object);
         let filter = if settings.shadows {
             self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, candidates, rec)
         } else {
             DVec3::ONE
         };
+        if filter == DVec3::ZERO && skips.on(Skip::BlockedShading) {
+            // Everything below is a product with `arriving` = 0: exactly 0.
+            self.counts.saved.count(Skip::BlockedShading, 1);
+            rec.light(&LightShare {
+                light: index,
+                incidence: inc,
+                n_dot_l,
+                shadow_ray: settings.shadows,
+                filter,
+                diffuse: DVec3::ZERO,
+                specular: DVec3::ZERO,
+            });
+            return DVec3::ZERO;
+        }
         let arriving = inc.color * filter;
         let spec = match settings.shading.specular {
             Specular::None => 0.0,
@@ -367,7 +416,7 @@ impl<'w, 's> Tracer<'w, 's> {
         outward: DVec3,
         err: f64,
         inc: &Incidence,
-        candidates: Option<&[usize]>,
+        candidates: Option<&[Candidate]>,
         rec: &mut R,
     ) -> DVec3 {
         self.counts.shadow += 1;
@@ -376,32 +425,69 @@ impl<'w, 's> Tracer<'w, 's> {
         let ray = Ray::new(offset_origin(point, outward, err, inc.to_light), inc.to_light);
         let t_max = inc.distance;
         rec.shadow_ray(&ray, t_max);
+        let skips = world.skips;
         let opaque = |i: usize| !world.material_of(i).is_transparent();
         let transparent = |i: usize| world.material_of(i).is_transparent();
-        let blocked = match candidates {
-            Some(c) => c
-                .iter()
-                .any(|&i| opaque(i) && objects[i].shape.occludes(&ray, 0.0, t_max)),
-            None => world.accel.any_hit(objects, &ray, 0.0, t_max, &opaque),
-        };
-        if blocked {
-            return DVec3::ZERO;
+        if let Some(c) = candidates {
+            let not_tested = (objects.len() - c.len()) as u64;
+            self.counts.saved.count(Skip::ShadowCandidates, not_tested);
         }
-        if !world.has_transparent {
-            return DVec3::ONE;
+        // Exact test of object `i`, after its bounding sphere where that is cheaper: through
+        // the candidate's cone of directions, or a ray-sphere test for costly shapes.
+        let sphere_rejects = std::cell::Cell::new(0);
+        let cones = skips.on(Skip::BoundingSpheres);
+        let meets_sphere = |i: usize| match world.object_spheres[i] {
+            Some((centre, radius)) if cones && world.costly[i] => segment_meets_sphere(&ray, t_max, centre, radius),
+            _ => true,
+        };
+        let meets = |i: usize| {
+            if !meets_sphere(i) {
+                sphere_rejects.set(sphere_rejects.get() + 1);
+                return false;
+            }
+            objects[i].shape.occludes(&ray, 0.0, t_max)
+        };
+        let meets_candidate = |c: &Candidate| {
+            if cones && let Some((axis, cos)) = c.cone {
+                if ray.dir.dot(axis) < cos {
+                    sphere_rejects.set(sphere_rejects.get() + 1);
+                    return false;
+                }
+                return objects[c.object].shape.occludes(&ray, 0.0, t_max);
+            }
+            meets(c.object)
+        };
+        let blocked = match candidates {
+            Some(c) => c.iter().any(|c| opaque(c.object) && meets_candidate(c)),
+            None if skips.on(Skip::OpaqueOnly) => world.accel.any_hit(objects, &ray, 0.0, t_max, &opaque),
+            None => {
+                // Without the any-hit shortcut: visit every opaque hit.
+                let mut any = false;
+                world
+                    .accel
+                    .each_hit(objects, &ray, 0.0, t_max, &opaque, &mut |_| any = true);
+                any
+            }
+        };
+        if blocked || (!world.has_transparent && skips.on(Skip::OpaqueOnly)) {
+            let saved = &mut self.counts.saved;
+            saved.count(Skip::BoundingSpheres, sphere_rejects.get());
+            saved.count(Skip::OpaqueOnly, u64::from(!blocked));
+            return if blocked { DVec3::ZERO } else { DVec3::ONE };
         }
         self.crossed.clear();
         let crossed = &mut self.crossed;
         match candidates {
             Some(c) => crossed.extend(
                 c.iter()
-                    .copied()
-                    .filter(|&i| transparent(i) && objects[i].shape.occludes(&ray, 0.0, t_max)),
+                    .filter(|c| transparent(c.object) && meets_candidate(c))
+                    .map(|c| c.object),
             ),
             None => world
                 .accel
                 .each_hit(objects, &ray, 0.0, t_max, &transparent, &mut |i| crossed.push(i)),
         }
+        self.counts.saved.count(Skip::BoundingSpheres, sphere_rejects.get());
         // Multiply in object order so the bits do not depend on the traversal order.
         self.crossed.sort_unstable();
         rec.shadow_crossed(&self.crossed);
@@ -409,4 +495,23 @@ impl<'w, 's> Tracer<'w, 's> {
             .iter()
             .fold(DVec3::ONE, |acc, &i| acc * world.material_of(i).color)
     }
+}
+
+/// Whether the whole ball (`centre`, `radius`) lies below the tangent plane at `point` with
+/// normal `n`, so that N.L < 0 for every light point in it: `n.(c - p) + r < 0`, with a
+/// relative margin far above the rounding of N.L (a few ulps of |L|).
+fn below_horizon(point: DVec3, n: DVec3, centre: DVec3, radius: f64) -> bool {
+    let to_centre = centre - point;
+    let margin = 1e-9 * (to_centre.length() + radius);
+    n.dot(to_centre) + radius < -margin
+}
+
+/// Whether the segment `o + t d`, `t` in [0, t_max], passes within `radius` of `centre`
+/// (padded by a relative 1e-9 so rounding never rejects a real hit). `d` is unit length.
+fn segment_meets_sphere(ray: &Ray, t_max: f64, centre: DVec3, radius: f64) -> bool {
+    let to_centre = centre - ray.origin;
+    let t = to_centre.dot(ray.dir).clamp(0.0, t_max);
+    // 1e-9 of the 1-norm (>= the length) pads without a square root.
+    let reach = radius * (1.0 + 1e-9) + 1e-9 * to_centre.abs().element_sum();
+    (ray.origin + t * ray.dir - centre).length_squared() <= reach * reach
 }

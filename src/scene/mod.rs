@@ -13,6 +13,7 @@ use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
 use crate::shape::Shape;
+use crate::skips::Skips;
 use glam::DVec3;
 
 /// Which specular term the local illumination model uses.
@@ -103,6 +104,32 @@ pub struct Scene {
     pub lights: Vec<Light>,
 }
 
+/// An object that may block some shadow ray from one shading point (see
+/// [`World::shadow_candidates`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Candidate {
+    pub object: usize,
+    /// The cone of directions from the shading point that meet the object's bounding
+    /// sphere: unit axis and cosine of its half-angle (a ray whose direction `d` has
+    /// `d.axis < cos` misses the object). `None` for unbounded objects and when the point
+    /// is inside the sphere.
+    pub cone: Option<(DVec3, f64)>,
+}
+
+/// The cone of directions from `p` meeting the ball (`centre`, `radius`), widened by a
+/// relative 1e-9 so rounding never excludes a direction that meets it; `None` if `p` is
+/// (nearly) inside the ball.
+fn direction_cone(p: DVec3, centre: DVec3, radius: f64) -> Option<(DVec3, f64)> {
+    let to_centre = centre - p;
+    let dist = to_centre.length();
+    let padded = radius * (1.0 + 1e-9) + 1e-9 * dist;
+    if padded >= dist {
+        return None;
+    }
+    let sin = padded / dist;
+    Some((to_centre / dist, (1.0 - sin * sin).sqrt() - 1e-12))
+}
+
 /// A scene ready to render: the camera for the image's aspect, the acceleration structure,
 /// and per-scene constants the tracer needs at every hit.
 pub struct World<'s> {
@@ -120,6 +147,11 @@ pub struct World<'s> {
     pub light_points: Vec<Vec<DVec3>>,
     /// Bounding sphere (centre, radius) of each object; `None` for unbounded ones.
     pub object_spheres: Vec<Option<(DVec3, f64)>>,
+    /// Whether an object's exact test costs more than a ray-sphere test (boxes, cylinders,
+    /// cones, tori), so a bounding-sphere test first pays off.
+    pub costly: Vec<bool>,
+    /// The shortcuts switched on (all by default; tests switch them off one at a time).
+    pub skips: Skips,
 }
 
 impl<'s> World<'s> {
@@ -158,33 +190,45 @@ impl<'s> World<'s> {
                 .iter()
                 .map(|o| o.shape.bounds().map(|b| (b.centroid(), 0.5 * (b.max - b.min).length())))
                 .collect(),
+            costly: scene
+                .objects
+                .iter()
+                .map(|o| {
+                    matches!(
+                        o.shape,
+                        Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_) | Shape::Torus(_)
+                    )
+                })
+                .collect(),
+            skips: Skips::all(),
         }
     }
 
-    /// Into `out` (ascending), the objects that may block a segment from `p` to any point of
-    /// the ball of centre `c` and radius `r`: every such segment lies in the convex hull of
-    /// `p` and the ball, which lies within `r` of the segment `[p, c]`, so an object whose
-    /// bounding sphere is farther than its radius plus `r` from `[p, c]` cannot block any.
-    /// Unbounded objects are always kept.
-    pub fn shadow_candidates(&self, p: DVec3, c: DVec3, r: f64, out: &mut Vec<usize>) {
+    /// Into `out` (ascending), the objects that may block a segment from `p` (give or take
+    /// `slack`) to any point of the ball of centre `c` and radius `r`. Every such segment lies
+    /// in the hull of `p` and the ball, whose points are `p + s (c - p) + w`, `|w| <= s r`,
+    /// `s` in [0, 1]: an object whose bounding sphere is farther than its radius plus `r`
+    /// from the segment `[p, c]` cannot block any. Unbounded objects are always kept.
+    pub fn shadow_candidates(&self, p: DVec3, c: DVec3, r: f64, slack: f64, out: &mut Vec<Candidate>) {
         out.clear();
         let axis = c - p;
         let len2 = axis.length_squared();
-        for (i, sphere) in self.object_spheres.iter().enumerate() {
-            let keep = match sphere {
-                None => true,
-                Some((centre, radius)) => {
-                    let s = if len2 > 0.0 {
-                        ((*centre - p).dot(axis) / len2).clamp(0.0, 1.0)
-                    } else {
-                        0.0
-                    };
-                    let reach = radius + r;
-                    (p + s * axis - *centre).length_squared() <= reach * reach
-                }
+        for (object, sphere) in self.object_spheres.iter().enumerate() {
+            let Some((centre, radius)) = *sphere else {
+                out.push(Candidate { object, cone: None });
+                continue;
             };
-            if keep {
-                out.push(i);
+            let s = if len2 > 0.0 {
+                ((centre - p).dot(axis) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let reach = radius + r + slack;
+            if (p + s * axis - centre).length_squared() <= reach * reach {
+                out.push(Candidate {
+                    object,
+                    cone: direction_cone(p, centre, radius + slack),
+                });
             }
         }
     }

@@ -1,0 +1,142 @@
+//! The work the renderer leaves out when a scene does not need it, one named switch per
+//! shortcut. Every shortcut is exact — switching it off changes ray counts and time, never a
+//! pixel (tests/skips.rs renders each scene with each switch off and compares bytes) — except
+//! adaptive depth control, which has its own threshold (`--adaptive`, 0 = off) and a
+//! measured error bound. `lumiere render --no-skip NAME` switches one off; `--stats` counts
+//! the work each one saved.
+
+use clap::ValueEnum;
+
+/// One shortcut.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, ValueEnum, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Skip {
+    /// No shadow ray (and no shading) for a light whose direction makes N.L <= 0: neither
+    /// the diffuse nor, per the slides, the specular term counts there.
+    BackFacing,
+    /// No shadow ray for a light that brings nothing: outside a spot's cone, or black.
+    Unlit,
+    /// Shadow rays stop at the first opaque hit (any-hit), and the filtered walk over
+    /// transparent objects happens only when the scene has some.
+    OpaqueOnly,
+    /// No reflected or refracted ray when k_r or k_t is 0.
+    ZeroWeight,
+    /// Area lights: the objects that can block any of a shading point's N shadow rays are
+    /// found once (those near the hull of the point and the light's bounding sphere).
+    ShadowCandidates,
+    /// Area lights: a light wholly below the surface's horizon (its bounding sphere behind
+    /// the tangent plane) is passed over without looking at its N points.
+    Horizon,
+    /// Shadow rays meet an object's bounding sphere before its exact (costly) test.
+    BoundingSpheres,
+    /// Shading terms (specular power, tints) are not evaluated for a fully blocked light.
+    BlockedShading,
+}
+
+impl Skip {
+    pub const ALL: [Skip; 8] = [
+        Skip::BackFacing,
+        Skip::Unlit,
+        Skip::OpaqueOnly,
+        Skip::ZeroWeight,
+        Skip::ShadowCandidates,
+        Skip::Horizon,
+        Skip::BoundingSpheres,
+        Skip::BlockedShading,
+    ];
+
+    /// The name used on the command line and in `--stats`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Skip::BackFacing => "back-facing",
+            Skip::Unlit => "unlit",
+            Skip::OpaqueOnly => "opaque-only",
+            Skip::ZeroWeight => "zero-weight",
+            Skip::ShadowCandidates => "shadow-candidates",
+            Skip::Horizon => "horizon",
+            Skip::BoundingSpheres => "bounding-spheres",
+            Skip::BlockedShading => "blocked-shading",
+        }
+    }
+
+    /// What the `--stats` count of this skip counts.
+    pub fn unit(self) -> &'static str {
+        match self {
+            Skip::BackFacing | Skip::Unlit => "shadow rays not traced",
+            Skip::OpaqueOnly => "filtered walks not done",
+            Skip::ZeroWeight => "secondary rays not traced",
+            Skip::ShadowCandidates => "object tests not done",
+            Skip::Horizon => "light points not looked at",
+            Skip::BoundingSpheres => "exact shape tests not done",
+            Skip::BlockedShading => "shading terms not evaluated",
+        }
+    }
+}
+
+/// The set of shortcuts switched on (all by default).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Skips(u16);
+
+impl Skips {
+    pub fn all() -> Skips {
+        Skips(Skip::ALL.iter().fold(0, |bits, s| bits | 1 << *s as u16))
+    }
+
+    pub fn none() -> Skips {
+        Skips(0)
+    }
+
+    /// This set without `skip`.
+    pub fn without(self, skip: Skip) -> Skips {
+        Skips(self.0 & !(1 << skip as u16))
+    }
+
+    pub fn on(self, skip: Skip) -> bool {
+        self.0 & 1 << skip as u16 != 0
+    }
+}
+
+impl Default for Skips {
+    fn default() -> Self {
+        Skips::all()
+    }
+}
+
+/// Work saved by each shortcut, indexed by `Skip as usize`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Saved(pub [u64; Skip::ALL.len()]);
+
+impl Saved {
+    pub fn add(&mut self, o: &Saved) {
+        for (a, b) in self.0.iter_mut().zip(o.0) {
+            *a += b;
+        }
+    }
+
+    pub fn count(&mut self, skip: Skip, n: u64) {
+        self.0[skip as usize] += n;
+    }
+
+    pub fn get(&self, skip: Skip) -> u64 {
+        self.0[skip as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sets_switch_one_skip_at_a_time() {
+        let all = Skips::all();
+        assert!(Skip::ALL.iter().all(|&s| all.on(s)));
+        let some = all.without(Skip::Horizon);
+        assert!(!some.on(Skip::Horizon));
+        assert_eq!(Skip::ALL.iter().filter(|&&s| some.on(s)).count(), Skip::ALL.len() - 1);
+        assert!(Skip::ALL.iter().all(|&s| !Skips::none().on(s)));
+        // Names are the clap names, so `--no-skip NAME` and `--stats` agree.
+        for s in Skip::ALL {
+            assert_eq!(s.to_possible_value().unwrap().get_name(), s.name());
+        }
+    }
+}
