@@ -168,7 +168,27 @@ pub fn generate(set: &FigureSet, out: &Path, scale: f64) -> Result<SetReport, St
     let start = Instant::now();
     let dir = out.join(set.name);
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
-    let rendered: Vec<RenderedFigure> = (set.figures)().into_iter().map(|f| render_figure(f, scale)).collect();
+    let mut rendered: Vec<RenderedFigure> = Vec::new();
+    for figure in (set.figures)() {
+        // A figure whose scene is an earlier one's (soft-shadows 02 is 07, shown beside the
+        // hard shadows) is rendered once: same scene and seed, same bytes.
+        match rendered.iter().find(|r| r.figure.scene == figure.scene) {
+            Some(twin) => {
+                let mut manifest = twin.manifest.clone();
+                manifest["file"] = json!(format!("{}.png", figure.stem));
+                manifest["caption"] = json!(figure.caption);
+                manifest["same_image_as"] = twin.manifest["file"].clone();
+                manifest["render_seconds"] = json!(0.0);
+                let image = twin.image.clone();
+                rendered.push(RenderedFigure {
+                    figure,
+                    image,
+                    manifest,
+                });
+            }
+            None => rendered.push(render_figure(figure, scale)),
+        }
+    }
     for r in &rendered {
         write_png(&dir.join(format!("{}.png", r.figure.stem)), &r.image)?;
     }

@@ -2,15 +2,19 @@
 
 mod attenuation;
 mod directional;
+mod light_shapes;
 mod lighting;
 mod mirrors;
 pub use mirrors::mirrors_scene;
 mod prism;
 mod shading;
+mod soft_shadows;
 mod spotlight;
 
 use super::FigureSet;
+use crate::area_light::{AreaLight, AreaShape, PointMode};
 use crate::light::{Attenuation, Light, PointLight, SpotLight};
+use crate::placement::Placement;
 use crate::scene::Scene;
 use glam::DVec3;
 
@@ -36,6 +40,16 @@ pub fn all() -> Vec<FigureSet> {
             name: "spotlight",
             title: "Source ponctuelle orientée (spotlight)",
             figures: spotlight::figures,
+        },
+        FigureSet {
+            name: "soft-shadows",
+            title: "Ombres dures et molles : source sphérique de N points",
+            figures: soft_shadows::figures,
+        },
+        FigureSet {
+            name: "light-shapes",
+            title: "Formes de sources : sphère, tube, fenêtre (N = 100)",
+            figures: light_shapes::figures,
         },
         FigureSet {
             name: "mirrors",
@@ -88,6 +102,29 @@ pub(crate) fn spot(position: [f64; 3], orientation: [f64; 3], angle_deg: f64) ->
         DVec3::ONE,
         Attenuation::NONE,
     ))
+}
+
+/// White area light of `n` points on `shape`, placed by the chapter's recipe and fixed for
+/// the whole image (the figures' look: N distinct shadows).
+pub(crate) fn area(shape: AreaShape, n: u32, attenuation: Attenuation) -> Light {
+    Light::Area(AreaLight {
+        shape,
+        count: n,
+        placement: Placement::Chapter,
+        mode: PointMode::Fixed,
+        color: DVec3::ONE,
+        attenuation,
+    })
+}
+
+/// The spherical light of the soft-shadow figures: `n` points, centre (0, 0, 10), radius
+/// 2, `C_quad` 0.005.
+pub(crate) fn area_sphere(n: u32) -> Light {
+    let shape = AreaShape::Sphere {
+        center: DVec3::from(soft_shadows::CENTRE),
+        radius: 2.0,
+    };
+    area(shape, n, quadratic(soft_shadows::C_QUAD))
 }
 
 /// Quadratic attenuation `C_const = 1`, `C_quad = q`.
