@@ -146,9 +146,10 @@ pub struct Hit {
 #[derive(Clone, Debug, Serialize)]
 pub struct LightRecord {
     pub index: usize,
-    /// `directional`, `point`, `spot`.
+    /// `directional`, `point`, `spot`, `area` (one record per point of an area light).
     pub kind: &'static str,
-    /// `lit`, `facing_away` (N.L <= 0) or `no_light` (outside a spot's cone, or at the light).
+    /// `lit`, `facing_away` (N.L <= 0), `no_light` (outside a spot's cone, black, or at the
+    /// light), or `below_horizon` (a whole area light behind the surface: one record).
     pub status: &'static str,
     /// `N.L` with the normal facing the incoming ray (absent for `no_light`).
     pub n_dot_l: Option<f64>,
@@ -297,6 +298,17 @@ impl Recorder for TreeRecorder<'_> {
             kind,
             status: if n_dot_l.is_some() { "facing_away" } else { "no_light" },
             n_dot_l,
+            share: None,
+        });
+    }
+
+    fn below_horizon(&mut self, light: usize) {
+        let kind = light_kind(&self.scene.lights[light]);
+        self.top().lights.push(LightRecord {
+            index: light,
+            kind,
+            status: "below_horizon",
+            n_dot_l: None,
             share: None,
         });
     }

@@ -1,10 +1,6 @@
 //! `lumiere probe`: snapshots of the ray trees of pixels chosen for each feature (checked
 //! by hand before the snapshot is taken), the probe agreeing bit for bit with the
 //! renderer, the JSON output and the errors.
-//!
-//! TODO(area lights): add the N-point soft shadow pixel (a floor point in the penumbra of
-//! an area light, with its N shadow rays and the fraction that reach the light) once area
-//! lights exist; they are built on another branch.
 
 mod common;
 use common::*;
@@ -327,12 +323,46 @@ fn check_agreement(scene: &Scene) {
 }
 
 #[test]
+fn soft_shadow_penumbra() {
+    // scenes/soft-shadows.toml with N = 5 fixed points: a floor point behind the cube where
+    // 4 of the 5 shadow rays are blocked by the cube and 1 reaches its point.
+    let mut s = small("soft-shadows.toml", None);
+    let lumiere::light::Light::Area(area) = &mut s.lights[1] else {
+        panic!("light 1 of soft-shadows.toml is the area light");
+    };
+    area.count = 5;
+    let p = snap("soft_shadows_penumbra", &s, 75, 72);
+    let r = camera_ray(&p);
+    assert_eq!(r.hit.as_ref().unwrap().name, "floor");
+    assert_eq!(r.lights.len(), 5, "one record per point");
+    let results: Vec<&str> = r
+        .lights
+        .iter()
+        .map(|l| l.share.as_ref().unwrap().shadow_ray.as_ref().unwrap().result)
+        .collect();
+    assert_eq!(results.iter().filter(|&&r| r == "blocked").count(), 4, "{results:?}");
+    assert_eq!(results.iter().filter(|&&r| r == "open").count(), 1, "{results:?}");
+    // Each point carries L / N = 0.2 before attenuation: incident = 0.2 A.
+    let mut sum = DVec3::ZERO;
+    for l in &r.lights {
+        let share = l.share.as_ref().unwrap();
+        assert_eq!((l.index, l.kind), (1, "area"));
+        assert_eq!(v(share.incident), DVec3::splat(0.2 * share.attenuation));
+        sum += v(share.diffuse) + v(share.specular);
+    }
+    // Local colour = ambient 0.2 x 0.85 + the one open point's share, summed in point order.
+    assert_eq!(v(r.local.unwrap()), v(r.ambient.unwrap()) + sum);
+    assert!(close(v(r.ambient.unwrap()), DVec3::splat(0.17), 1e-15));
+}
+
+#[test]
 fn probe_and_render_agree_bit_for_bit() {
     for (name, depth) in [
         ("reference.toml", None),
         ("mirrors.toml", None),
         ("prism.toml", None),
         ("spot", None),
+        ("soft-shadows.toml", None),
     ] {
         let mut s = small(name, depth);
         s.settings.width = 48;
