@@ -115,6 +115,11 @@ pub enum Command {
     /// Numerical stress campaign: hard rays against every shape, checked against double-double references.
     #[command(after_help = "Example:\n  lumiere stress --rays 2000 --seed 7")]
     Stress(crate::stress::StressArgs),
+    /// Measurement studies: soft shadows' render time against error (N, placement, mode).
+    #[command(
+        after_help = "Example:\n  lumiere study soft-shadows --width 200 --height 150 --out /tmp/study\n\nSee `lumiere study soft-shadows --help`."
+    )]
+    Study(crate::study::StudyArgs),
 }
 
 #[derive(Args, Debug)]
@@ -286,6 +291,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Probe(args) => crate::probe::probe_command(&args),
         Command::ReviewSnapshots(args) => crate::review::review_command(&args),
         Command::Stress(args) => crate::stress::run(&args),
+        Command::Study(args) => crate::study::study_command(&args, v),
     }
 }
 

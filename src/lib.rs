@@ -23,6 +23,7 @@
 //! - [`review`]: `lumiere review-snapshots`, old | new | difference sheets of pending snapshots.
 //! - [`cli`]: the `lumiere` command line.
 //! - [`stress`]: the numerical stress campaign against double-double references.
+//! - [`study`]: `lumiere study soft-shadows`, render time against error of area lights.
 
 pub mod accel;
 pub mod area_light;
@@ -48,6 +49,7 @@ pub mod shard;
 pub mod skips;
 pub mod solve;
 pub mod stress;
+pub mod study;
 pub mod trace;
 
 /// The renderer version recorded in manifests.

@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::{render_small, scene};
+use common::{lumiere, render_small, repo, scene, temp_dir};
 use glam::DVec3;
 use lumiere::area_light::{AreaLight, AreaShape, PointMode};
 use lumiere::light::{Attenuation, Light, PointLight, point_incidence};
@@ -384,4 +384,107 @@ fn per_sample_points_differ_from_fixed_and_are_deterministic() {
     assert_eq!(l.sample_points(42, 1, 123, 0), l.sample_points(42, 1, 123, 0));
     assert_ne!(l.sample_points(42, 1, 123, 0), l.sample_points(42, 1, 123, 1));
     assert_ne!(l.sample_points(42, 1, 123, 0), l.fixed_points(42, 1));
+}
+
+// ---------------------------------------------------------------------------------------
+// 5. `lumiere study soft-shadows`.
+// ---------------------------------------------------------------------------------------
+
+#[test]
+fn study_writes_csv_and_plot_and_error_falls_with_n() {
+    let dir = temp_dir("study");
+    let out = dir.join("out");
+    let o = lumiere(&[
+        "study",
+        "soft-shadows",
+        repo("scenes/soft-shadows.toml").to_str().unwrap(),
+        "--width",
+        "40",
+        "--height",
+        "30",
+        "--spp",
+        "1",
+        "--points",
+        "64,4",
+        "--placements",
+        "uniform,chapter",
+        "--reference-points",
+        "1024",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("study.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "placement,mode,points,seconds,shadow_rays,rmse,rmse_unrounded,max_diff,within_1_level,psnr_db"
+    );
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    // 2 placements x 2 modes (both by default) x 2 N.
+    assert_eq!(rows.len(), 8);
+    let rmse = |placement: &str, mode: &str, n: &str| -> f64 {
+        let r = rows
+            .iter()
+            .find(|r| r[0] == placement && r[1] == mode && r[2] == n)
+            .unwrap_or_else(|| panic!("no row {placement} {mode} {n}"));
+        assert_eq!(r.len(), 10);
+        r[5].parse().unwrap()
+    };
+    for mode in ["per_sample", "fixed"] {
+        let (few, many) = (rmse("uniform", mode, "4"), rmse("uniform", mode, "64"));
+        // sigma / sqrt(N): 16 times the points, about a quarter of the error.
+        assert!(
+            many < 0.6 * few,
+            "uniform {mode}: RMSE {few} at N = 4, {many} at N = 64"
+        );
+    }
+    let png = image::open(out.join("study.png")).unwrap();
+    assert_eq!((png.width(), png.height()), (960, 600));
+    for f in ["study.md", "reference.png"] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    let md = std::fs::read_to_string(out.join("study.md")).unwrap();
+    assert!(md.contains("Speed-up over chapter/fixed") && md.contains("N for max <= 1"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn study_refuses_bad_input() {
+    let dir = temp_dir("study-bad");
+    let out = dir.join("out");
+    let run = |scene: &str, extra: &[&str]| {
+        let scene = repo(scene);
+        let mut args = vec![
+            "study",
+            "soft-shadows",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--width",
+            "8",
+            "--height",
+            "6",
+        ];
+        args.extend_from_slice(extra);
+        let o = lumiere(&args);
+        (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
+    };
+    let (code, err) = run("scenes/reference.toml", &[]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("no area light"), "{err}");
+    for (points, needle) in [("0,4", "[1, 100000]"), ("4,x", "\"x\""), ("", "not a whole number")] {
+        let (code, err) = run("scenes/soft-shadows.toml", &["--points", points]);
+        assert_eq!(code, Some(2), "{points}");
+        assert!(err.contains("--points") && err.contains(needle), "{points}: {err}");
+    }
+    let (code, err) = run("scenes/soft-shadows.toml", &["--placements", "uniform,random"]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("\"random\""), "{err}");
+    let (code, _) = run("scenes/soft-shadows.toml", &["--modes", "fixed,sometimes"]);
+    assert_eq!(code, Some(2));
+    // Nothing was written.
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -1,0 +1,882 @@
+//! `lumiere study soft-shadows`: render time against error for an area light (chapter 7.4b,
+//! "La source de lumière à multiple points ponctuelles"), over the number of points N, the
+//! placement (chapter, uniform, stratified, fibonacci) and the mode (fixed, per_sample).
+//!
+//! Every configuration renders the scene with the first area light changed to it, and is
+//! compared with a converged reference the study renders itself: by default N = 4096
+//! `stratified` points drawn afresh for every pixel sample (`per_sample`), at the same size,
+//! samples per pixel and seed, so the pixel jitter is the same and only the light's sampling
+//! differs. The reference is unbiased (each Latin-hypercube point is uniform over the area)
+//! and its random streams are independent of every configuration's: its area light is moved
+//! one place down the light list (a black ambient light is inserted before it; the points'
+//! streams are keyed by the light's index). `--check-reference` renders a second reference
+//! with 2N points and reports their difference: the two are independent, so that difference
+//! bounds the reference's own error.
+//!
+//! The plot is drawn with the `image` crate and the 8x8 bitmap glyphs the contact sheets
+//! use (no system fonts): log-log, one line per (placement, mode), colour = placement,
+//! solid = fixed, dashed = per_sample.
+
+use crate::area_light::PointMode;
+use crate::cli::{CliError, Verbosity, with_threads};
+use crate::compare::compare_rgb8;
+use crate::figures::sheet::draw_text;
+use crate::film::{Film, clamp_unit, encode_png, write_atomic};
+use crate::light::Light;
+use crate::limits;
+use crate::placement::Placement;
+use crate::render::render;
+use crate::scene::{Scene, World};
+use clap::{Args, Subcommand};
+use glam::DVec3;
+use image::{Rgb, RgbImage};
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(Args, Debug)]
+pub struct StudyArgs {
+    #[command(subcommand)]
+    pub kind: StudyKind,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum StudyKind {
+    /// Time against error of an area light for N points x placements x modes.
+    #[command(
+        after_help = "Examples:\n  lumiere study soft-shadows                       # scenes/soft-shadows.toml, 200 x 150, into study/\n  lumiere study soft-shadows --points 1,16,256 --placements uniform,fibonacci --modes per_sample\n  lumiere study soft-shadows scenes/soft-shadows.toml --width 400 --height 300 --repeats 3 --check-reference --out /tmp/study\n\nWrites <out>/study.csv, study.png (log-log RMSE against time), study.md (tables), reference.png.\nExit codes: 0 ok, 1 an output could not be written, 2 bad input (no area light, bad list)."
+    )]
+    SoftShadows(SoftShadowArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct SoftShadowArgs {
+    /// The scene file; its first area light is studied.
+    #[arg(default_value = "scenes/soft-shadows.toml")]
+    pub scene: PathBuf,
+    /// Numbers of points N, comma-separated, each in [1, 100000].
+    #[arg(long, default_value = "1,4,16,64,256,1024")]
+    pub points: String,
+    /// Placements, comma-separated: chapter, uniform, stratified, fibonacci.
+    #[arg(long, default_value = "chapter,uniform,stratified,fibonacci")]
+    pub placements: String,
+    /// Modes, comma-separated: fixed, per_sample.
+    #[arg(long, default_value = "fixed,per_sample")]
+    pub modes: String,
+    /// Image width in pixels.
+    #[arg(long, default_value_t = 200)]
+    pub width: u32,
+    /// Image height in pixels.
+    #[arg(long, default_value_t = 150)]
+    pub height: u32,
+    /// Samples per pixel (a perfect square); default: the scene's.
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Seed (default: the scene's).
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Renders per configuration; the median time is reported (the images are identical).
+    #[arg(long, default_value_t = 1)]
+    pub repeats: u32,
+    /// Points of the reference.
+    #[arg(long, default_value_t = 4096)]
+    pub reference_points: u32,
+    /// Placement of the reference's points.
+    #[arg(long, default_value = "stratified")]
+    pub reference_placement: String,
+    /// Mode of the reference's points.
+    #[arg(long, default_value = "per_sample")]
+    pub reference_mode: String,
+    /// Also render a reference with twice the points and report how much the two differ.
+    #[arg(long)]
+    pub check_reference: bool,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Output directory (created if missing).
+    #[arg(long, default_value = "study")]
+    pub out: PathBuf,
+}
+
+/// One way of drawing the light's points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Config {
+    pub placement: Placement,
+    pub mode: PointMode,
+    pub points: u32,
+}
+
+/// Name of a placement as in scene files.
+pub fn placement_name(p: Placement) -> &'static str {
+    match p {
+        Placement::Chapter => "chapter",
+        Placement::Uniform => "uniform",
+        Placement::Stratified => "stratified",
+        Placement::Fibonacci => "fibonacci",
+    }
+}
+
+/// Name of a mode as in scene files.
+pub fn mode_name(m: PointMode) -> &'static str {
+    match m {
+        PointMode::Fixed => "fixed",
+        PointMode::PerSample => "per_sample",
+    }
+}
+
+fn parse_mode(name: &str) -> Option<PointMode> {
+    match name {
+        "fixed" => Some(PointMode::Fixed),
+        "per_sample" => Some(PointMode::PerSample),
+        _ => None,
+    }
+}
+
+/// Parses a comma-separated list of point counts (ascending, duplicates removed).
+pub fn parse_points(text: &str) -> Result<Vec<u32>, String> {
+    let mut out = Vec::new();
+    for item in text.split(',').map(str::trim) {
+        let n: u32 = item
+            .parse()
+            .map_err(|_| format!("--points: {item:?} is not a whole number (expected e.g. 1,4,16,64)"))?;
+        if n == 0 || n > limits::MAX_LIGHT_POINTS {
+            return Err(format!(
+                "--points: each N must be in [1, {}], got {n}",
+                limits::MAX_LIGHT_POINTS
+            ));
+        }
+        out.push(n);
+    }
+    out.sort_unstable();
+    out.dedup();
+    Ok(out)
+}
+
+fn parse_list<T: PartialEq>(
+    flag: &str,
+    text: &str,
+    parse: fn(&str) -> Option<T>,
+    names: &str,
+) -> Result<Vec<T>, String> {
+    let mut out = Vec::new();
+    for item in text.split(',').map(str::trim) {
+        let v = parse(item).ok_or_else(|| format!("--{flag}: unknown {item:?}; expected some of {names}"))?;
+        if !out.contains(&v) {
+            out.push(v);
+        }
+    }
+    Ok(out)
+}
+
+/// Index of the first area light of a scene.
+pub fn first_area_light(scene: &Scene) -> Option<usize> {
+    scene.lights.iter().position(|l| matches!(l, Light::Area(_)))
+}
+
+/// The scene with area light `light` drawing its points as `config` says. With `shift`, a
+/// black ambient light is inserted before it, so its index, and with it every random stream
+/// of its points, differs from the unshifted scene's (the image's distribution does not).
+pub fn configured(scene: &Scene, light: usize, config: Config, shift: bool) -> Scene {
+    let mut s = scene.clone();
+    let Light::Area(area) = &mut s.lights[light] else {
+        panic!("light {light} is not an area light");
+    };
+    area.count = config.points;
+    area.placement = config.placement;
+    area.mode = config.mode;
+    if shift {
+        s.lights.insert(light, Light::Ambient { color: DVec3::ZERO });
+    }
+    s
+}
+
+/// Renders `scene` `repeats` times (on the current rayon pool); the film, the median wall
+/// time of building the world and rendering, and the shadow rays traced.
+pub fn render_timed(scene: &Scene, repeats: u32) -> (Film, f64, u64) {
+    let mut times = Vec::new();
+    let mut last = None;
+    for _ in 0..repeats.max(1) {
+        let start = Instant::now();
+        let world = World::new(scene);
+        let (film, stats) = render(&world, &|| {});
+        times.push(start.elapsed().as_secs_f64());
+        last = Some((film, stats.counts.shadow));
+    }
+    times.sort_by(f64::total_cmp);
+    let (film, shadow) = last.expect("at least one render");
+    (film, times[times.len() / 2], shadow)
+}
+
+/// Differences between an image and the reference.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Error {
+    /// RMS of the per-channel 8-bit differences (as `lumiere compare`).
+    pub rmse: f64,
+    /// RMS of the per-channel differences before rounding to 8 bits (clamped to [0, 1],
+    /// in levels): no rounding floor.
+    pub rmse_unrounded: f64,
+    /// Largest per-channel 8-bit difference.
+    pub max_diff: u8,
+    /// Fraction of the pixels with every channel within 1 level.
+    pub within_one: f64,
+}
+
+/// `a` against the reference `b` (same size).
+pub fn error(a: &Film, b: &Film) -> Error {
+    let c = compare_rgb8(&a.to_rgb8(), &b.to_rgb8(), a.width, a.height, 1);
+    let sum: f64 = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .flat_map(|(p, q)| (0..3).map(move |i| 255.0 * (clamp_unit(p[i]) - clamp_unit(q[i]))))
+        .map(|d| d * d)
+        .sum();
+    let total = a.pixels.len().max(1) as f64;
+    Error {
+        rmse: c.rms,
+        rmse_unrounded: (sum / (3.0 * total)).sqrt(),
+        max_diff: c.max_diff,
+        within_one: 1.0 - c.differing_pixels as f64 / total,
+    }
+}
+
+/// One configuration's measurements.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Row {
+    pub config: Config,
+    /// Median wall time (world + render), seconds.
+    pub seconds: f64,
+    pub shadow_rays: u64,
+    pub error: Error,
+}
+
+/// The reference and, with `--check-reference`, how far one with 2N points is from it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reference {
+    pub config: Config,
+    pub seconds: f64,
+    pub check: Option<(u32, Error)>,
+}
+
+/// A whole study.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Study {
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+    pub seed: u64,
+    pub repeats: u32,
+    pub reference: Reference,
+    pub rows: Vec<Row>,
+}
+
+/// What to measure.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    pub points: Vec<u32>,
+    pub placements: Vec<Placement>,
+    pub modes: Vec<PointMode>,
+    pub repeats: u32,
+    pub reference: Config,
+    pub check_reference: bool,
+}
+
+/// Runs the study on the current rayon pool; `progress` hears each step.
+pub fn run(scene: &Scene, light: usize, plan: &Plan, progress: &mut dyn FnMut(&str)) -> (Study, Film) {
+    let s = &scene.settings;
+    progress(&format!(
+        "reference: {} {} N = {}",
+        placement_name(plan.reference.placement),
+        mode_name(plan.reference.mode),
+        plan.reference.points
+    ));
+    let (reference, ref_seconds, _) = render_timed(&configured(scene, light, plan.reference, true), 1);
+    let check = plan.check_reference.then(|| {
+        let twice = Config {
+            points: plan.reference.points.saturating_mul(2),
+            ..plan.reference
+        };
+        progress(&format!("reference check: N = {}", twice.points));
+        let (film, _, _) = render_timed(&configured(scene, light, twice, true), 1);
+        (twice.points, error(&film, &reference))
+    });
+    let mut rows = Vec::new();
+    for &mode in &plan.modes {
+        for &placement in &plan.placements {
+            for &points in &plan.points {
+                let config = Config {
+                    placement,
+                    mode,
+                    points,
+                };
+                let (film, seconds, shadow_rays) = render_timed(&configured(scene, light, config, false), plan.repeats);
+                let row = Row {
+                    config,
+                    seconds,
+                    shadow_rays,
+                    error: error(&film, &reference),
+                };
+                progress(&format!(
+                    "{:<10} {:<10} N = {:>5}: {:>8.3} s, RMSE {:.4}, max {}",
+                    placement_name(placement),
+                    mode_name(mode),
+                    points,
+                    seconds,
+                    row.error.rmse,
+                    row.error.max_diff
+                ));
+                rows.push(row);
+            }
+        }
+    }
+    let study = Study {
+        width: s.width,
+        height: s.height,
+        spp: s.samples_per_pixel,
+        seed: s.seed,
+        repeats: plan.repeats,
+        reference: Reference {
+            config: plan.reference,
+            seconds: ref_seconds,
+            check,
+        },
+        rows,
+    };
+    (study, reference)
+}
+
+/// The CSV columns, in order.
+pub const CSV_COLUMNS: [&str; 10] = [
+    "placement",
+    "mode",
+    "points",
+    "seconds",
+    "shadow_rays",
+    "rmse",
+    "rmse_unrounded",
+    "max_diff",
+    "within_1_level",
+    "psnr_db",
+];
+
+/// The measurements as CSV, one row per configuration.
+pub fn csv(study: &Study) -> String {
+    let mut out = CSV_COLUMNS.join(",") + "\n";
+    for r in &study.rows {
+        let e = &r.error;
+        let psnr = if e.rmse == 0.0 {
+            f64::INFINITY
+        } else {
+            20.0 * libm::log10(255.0 / e.rmse)
+        };
+        out += &format!(
+            "{},{},{},{:.6},{},{:.6},{:.6},{},{:.6},{:.3}\n",
+            placement_name(r.config.placement),
+            mode_name(r.config.mode),
+            r.config.points,
+            r.seconds,
+            r.shadow_rays,
+            e.rmse,
+            e.rmse_unrounded,
+            e.max_diff,
+            e.within_one,
+            psnr
+        );
+    }
+    out
+}
+
+/// The rows of one (placement, mode), in order of N.
+fn curve(study: &Study, placement: Placement, mode: PointMode) -> Vec<&Row> {
+    let mut rows: Vec<&Row> = study
+        .rows
+        .iter()
+        .filter(|r| r.config.placement == placement && r.config.mode == mode)
+        .collect();
+    rows.sort_by_key(|r| r.config.points);
+    rows
+}
+
+/// The (placement, mode) pairs measured, in order of appearance.
+fn curves(study: &Study) -> Vec<(Placement, PointMode)> {
+    let mut out = Vec::new();
+    for r in &study.rows {
+        let key = (r.config.placement, r.config.mode);
+        if !out.contains(&key) {
+            out.push(key);
+        }
+    }
+    out
+}
+
+/// When a curve of `(time, error)` points (in order of N) first reaches `target` error.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Reach {
+    /// Interpolated linearly in (log time, log error) between two consecutive points.
+    At(f64),
+    /// Already at or below the target at its first point (time of that point: an upper bound).
+    AtMost(f64),
+    /// Never reaches it.
+    Never,
+}
+
+/// Time at which the curve first comes down to `target`.
+pub fn time_to_reach(points: &[(f64, f64)], target: f64) -> Reach {
+    let Some(&(t0, e0)) = points.first() else {
+        return Reach::Never;
+    };
+    if e0 <= target {
+        return Reach::AtMost(t0);
+    }
+    for w in points.windows(2) {
+        let ((ta, ea), (tb, eb)) = (w[0], w[1]);
+        if eb <= target && ea > target {
+            if eb <= 0.0 {
+                return Reach::AtMost(tb);
+            }
+            let f = (target.ln() - ea.ln()) / (eb.ln() - ea.ln());
+            return Reach::At((ta.ln() + f * (tb.ln() - ta.ln())).exp());
+        }
+    }
+    Reach::Never
+}
+
+/// The report: the measurements, the reference, and the two derived tables (speed-up over
+/// `chapter`/`fixed` at equal RMSE, and the N needed to stay within 1 level), as Markdown.
+pub fn report(study: &Study) -> String {
+    let r = &study.reference;
+    let mut out = format!(
+        "{} x {} pixels, {} samples per pixel, seed {}, median of {} run(s) per configuration.\n\
+         Reference: {} {} N = {} ({:.3} s).\n",
+        study.width,
+        study.height,
+        study.spp,
+        study.seed,
+        study.repeats,
+        placement_name(r.config.placement),
+        mode_name(r.config.mode),
+        r.config.points,
+        r.seconds
+    );
+    if let Some((n, e)) = &r.check {
+        out += &format!(
+            "Reference check: the reference with N = {n} differs from it by RMSE {:.4} levels \
+             ({:.4} before rounding), max {} levels, {:.3} % of pixels within 1 level.\n",
+            e.rmse,
+            e.rmse_unrounded,
+            e.max_diff,
+            100.0 * e.within_one
+        );
+    }
+    out += "\n| placement | mode | N | time (s) | shadow rays | RMSE | RMSE unrounded | max diff | within 1 level |\n";
+    out += "|---|---|---|---|---|---|---|---|---|\n";
+    for row in &study.rows {
+        let e = &row.error;
+        out += &format!(
+            "| {} | {} | {} | {:.3} | {} | {:.4} | {:.4} | {} | {:.3} % |\n",
+            placement_name(row.config.placement),
+            mode_name(row.config.mode),
+            row.config.points,
+            row.seconds,
+            row.shadow_rays,
+            e.rmse,
+            e.rmse_unrounded,
+            e.max_diff,
+            100.0 * e.within_one
+        );
+    }
+    let keys = curves(study);
+    let base = curve(study, Placement::Chapter, PointMode::Fixed);
+    if !base.is_empty() && keys.len() > 1 {
+        out += "\nSpeed-up over chapter/fixed at equal RMSE: for each chapter/fixed point, the time \
+                each curve needs to come down to its RMSE (interpolated in log time - log RMSE \
+                between measured points), as chapter's time / that time.\n\n";
+        out += "| chapter/fixed N | RMSE | time (s) |";
+        for (p, m) in &keys {
+            out += &format!(" {}/{} |", placement_name(*p), mode_name(*m));
+        }
+        out += "\n|---|---|---|";
+        out += &"---|".repeat(keys.len());
+        out += "\n";
+        for b in &base {
+            out += &format!("| {} | {:.4} | {:.3} |", b.config.points, b.error.rmse, b.seconds);
+            for (p, m) in &keys {
+                let c: Vec<(f64, f64)> = curve(study, *p, *m).iter().map(|r| (r.seconds, r.error.rmse)).collect();
+                out += &match time_to_reach(&c, b.error.rmse) {
+                    Reach::At(t) => format!(" x{:.2} |", b.seconds / t),
+                    Reach::AtMost(t) => format!(" >= x{:.2} |", b.seconds / t),
+                    Reach::Never => " not reached |".to_string(),
+                };
+            }
+            out += "\n";
+        }
+    }
+    out += "\nN needed (smallest measured) for max 8-bit difference <= 1, and for 99.9 % of the \
+            pixels within 1 level, with the time of that render:\n\n";
+    out += "| placement | mode | N for max <= 1 | N for 99.9 % within 1 |\n|---|---|---|---|\n";
+    for (p, m) in &keys {
+        let c = curve(study, *p, *m);
+        let first = |ok: &dyn Fn(&Error) -> bool| {
+            c.iter().find(|r| ok(&r.error)).map_or("not reached".to_string(), |r| {
+                format!("{} ({:.3} s)", r.config.points, r.seconds)
+            })
+        };
+        out += &format!(
+            "| {} | {} | {} | {} |\n",
+            placement_name(*p),
+            mode_name(*m),
+            first(&|e| e.max_diff <= 1),
+            first(&|e| e.within_one >= 0.999)
+        );
+    }
+    out
+}
+
+// ---------------------------------------------------------------------------------------
+// The plot.
+// ---------------------------------------------------------------------------------------
+
+const WHITE: Rgb<u8> = Rgb([255, 255, 255]);
+const BLACK: Rgb<u8> = Rgb([0, 0, 0]);
+const GRID: Rgb<u8> = Rgb([225, 225, 225]);
+const MINOR: Rgb<u8> = Rgb([242, 242, 242]);
+
+/// Colour of a placement's lines.
+fn placement_color(p: Placement) -> Rgb<u8> {
+    match p {
+        Placement::Chapter => Rgb([214, 39, 40]),
+        Placement::Uniform => Rgb([31, 119, 180]),
+        Placement::Stratified => Rgb([44, 160, 44]),
+        Placement::Fibonacci => Rgb([148, 103, 189]),
+    }
+}
+
+/// Draws a 2-pixel-wide line; `dash` = (on, off) lengths in pixels for dashed lines.
+fn line(img: &mut RgbImage, a: (f64, f64), b: (f64, f64), color: Rgb<u8>, dash: Option<(f64, f64)>) {
+    let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+    let steps = (len * 2.0).ceil().max(1.0) as usize;
+    for i in 0..=steps {
+        let s = i as f64 / steps as f64;
+        if let Some((on, off)) = dash
+            && (s * len) % (on + off) >= on
+        {
+            continue;
+        }
+        let (x, y) = (a.0 + s * (b.0 - a.0), a.1 + s * (b.1 - a.1));
+        dot(img, x, y, 1, color);
+    }
+}
+
+/// A filled square of half-side `r` around `(x, y)`.
+fn dot(img: &mut RgbImage, x: f64, y: f64, r: i64, color: Rgb<u8>) {
+    let (cx, cy) = (x.round() as i64, y.round() as i64);
+    for dy in -r..=r {
+        for dx in -r..=r {
+            let (px, py) = (cx + dx, cy + dy);
+            if px >= 0 && py >= 0 && (px as u32) < img.width() && (py as u32) < img.height() {
+                img.put_pixel(px as u32, py as u32, color);
+            }
+        }
+    }
+}
+
+/// A decade's label: 0.001 ... 1000, else 1e-5 style.
+fn decade_label(e: i32) -> String {
+    if (-3..=3).contains(&e) {
+        let v = 10f64.powi(e);
+        if e < 0 {
+            format!("{v:.*}", (-e) as usize)
+        } else {
+            format!("{v:.0}")
+        }
+    } else {
+        format!("1e{e}")
+    }
+}
+
+/// Log-log plot of RMSE (8-bit levels) against time, one line per (placement, mode).
+/// Configurations whose RMSE is 0 (identical to the reference) cannot be drawn and are left out.
+pub fn plot(study: &Study) -> RgbImage {
+    let (w, h) = (960u32, 600u32);
+    let (left, right, top, bottom) = (80.0, 700.0, 50.0, 530.0);
+    let mut img = RgbImage::from_pixel(w, h, WHITE);
+    let pts: Vec<(f64, f64)> = study
+        .rows
+        .iter()
+        .filter(|r| r.error.rmse > 0.0 && r.seconds > 0.0)
+        .map(|r| (r.seconds, r.error.rmse))
+        .collect();
+    let span = |v: &mut dyn Iterator<Item = f64>| {
+        let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+        if lo.is_finite() {
+            let (a, b) = (libm::floor(libm::log10(lo)), libm::ceil(libm::log10(hi)));
+            (a as i32, (b as i32).max(a as i32 + 1))
+        } else {
+            (-1, 1)
+        }
+    };
+    let (x0, x1) = span(&mut pts.iter().map(|p| p.0));
+    let (y0, y1) = span(&mut pts.iter().map(|p| p.1));
+    let px = |t: f64| left + (libm::log10(t) - x0 as f64) / (x1 - x0) as f64 * (right - left);
+    let py = |e: f64| bottom - (libm::log10(e) - y0 as f64) / (y1 - y0) as f64 * (bottom - top);
+    // Minor grid (2..9 x each decade), then decades with labels.
+    for d in x0..x1 {
+        for k in 2..10 {
+            let x = px(k as f64 * 10f64.powi(d));
+            line(&mut img, (x, top), (x, bottom), MINOR, None);
+        }
+    }
+    for d in y0..y1 {
+        for k in 2..10 {
+            let y = py(k as f64 * 10f64.powi(d));
+            line(&mut img, (left, y), (right, y), MINOR, None);
+        }
+    }
+    for d in x0..=x1 {
+        let x = px(10f64.powi(d));
+        line(&mut img, (x, top), (x, bottom), GRID, None);
+        let label = decade_label(d);
+        let lx = (x - 4.0 * label.len() as f64).max(0.0) as u32;
+        draw_text(&mut img, lx, bottom as u32 + 8, &label, 1, BLACK);
+    }
+    for d in y0..=y1 {
+        let y = py(10f64.powi(d));
+        line(&mut img, (left, y), (right, y), GRID, None);
+        let label = decade_label(d);
+        let lx = (left as u32).saturating_sub(8 * label.len() as u32 + 8);
+        draw_text(&mut img, lx, (y - 4.0).max(0.0) as u32, &label, 1, BLACK);
+    }
+    // Frame.
+    for (a, b) in [
+        ((left, top), (right, top)),
+        ((left, bottom), (right, bottom)),
+        ((left, top), (left, bottom)),
+        ((right, top), (right, bottom)),
+    ] {
+        line(&mut img, a, b, BLACK, None);
+    }
+    let title = format!(
+        "Soft shadows: RMSE against render time ({} x {}, {} spp; reference {} {} N = {})",
+        study.width,
+        study.height,
+        study.spp,
+        placement_name(study.reference.config.placement),
+        mode_name(study.reference.config.mode),
+        study.reference.config.points
+    );
+    draw_text(&mut img, 10, 12, &title, 1, BLACK);
+    draw_text(&mut img, 10, 30, "RMSE (8-bit levels, log)", 1, BLACK);
+    draw_text(&mut img, 300, bottom as u32 + 28, "render time (s, log)", 1, BLACK);
+    // Curves and legend.
+    let mut ly = top as u32 + 10;
+    draw_text(&mut img, right as u32 + 20, ly, "placement / mode", 1, BLACK);
+    ly += 20;
+    for (p, m) in curves(study) {
+        let color = placement_color(p);
+        let dash = (m == PointMode::PerSample).then_some((8.0, 5.0));
+        let c: Vec<(f64, f64)> = curve(study, p, m)
+            .iter()
+            .filter(|r| r.error.rmse > 0.0 && r.seconds > 0.0)
+            .map(|r| (px(r.seconds), py(r.error.rmse)))
+            .collect();
+        for s in c.windows(2) {
+            line(&mut img, s[0], s[1], color, dash);
+        }
+        for &(x, y) in &c {
+            dot(&mut img, x, y, 3, color);
+            if m == PointMode::PerSample {
+                dot(&mut img, x, y, 1, WHITE);
+            }
+        }
+        let (lx, lyf) = (right + 20.0, ly as f64 + 4.0);
+        line(&mut img, (lx, lyf), (lx + 40.0, lyf), color, dash);
+        dot(&mut img, lx + 20.0, lyf, 3, color);
+        if m == PointMode::PerSample {
+            dot(&mut img, lx + 20.0, lyf, 1, WHITE);
+        }
+        draw_text(
+            &mut img,
+            right as u32 + 70,
+            ly,
+            &format!("{} / {}", placement_name(p), mode_name(m)),
+            1,
+            BLACK,
+        );
+        ly += 18;
+    }
+    let ns: Vec<String> = {
+        let mut n: Vec<u32> = study.rows.iter().map(|r| r.config.points).collect();
+        n.sort_unstable();
+        n.dedup();
+        n.iter().map(u32::to_string).collect()
+    };
+    ly += 10;
+    draw_text(&mut img, right as u32 + 20, ly, "points along each line:", 1, BLACK);
+    draw_text(
+        &mut img,
+        right as u32 + 20,
+        ly + 14,
+        &format!("N = {}", ns.join(", ")),
+        1,
+        BLACK,
+    );
+    draw_text(&mut img, right as u32 + 20, ly + 34, "solid, filled: fixed", 1, BLACK);
+    draw_text(
+        &mut img,
+        right as u32 + 20,
+        ly + 48,
+        "dashed, hollow: per_sample",
+        1,
+        BLACK,
+    );
+    img
+}
+
+// ---------------------------------------------------------------------------------------
+// The command.
+// ---------------------------------------------------------------------------------------
+
+pub fn study_command(args: &StudyArgs, v: Verbosity) -> Result<(), CliError> {
+    match &args.kind {
+        StudyKind::SoftShadows(a) => soft_shadows_command(a, v),
+    }
+}
+
+fn soft_shadows_command(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {
+    let bad = CliError::BadInput;
+    let mut scene = crate::scene::load(&args.scene).map_err(|e| bad(e.to_string()))?;
+    let light = first_area_light(&scene).ok_or_else(|| {
+        bad(format!(
+            "{}: the scene has no area light ([[lights]] type = \"area\") to study",
+            args.scene.display()
+        ))
+    })?;
+    let points = parse_points(&args.points).map_err(bad)?;
+    let placements = parse_list(
+        "placements",
+        &args.placements,
+        Placement::parse,
+        "chapter, uniform, stratified, fibonacci",
+    )
+    .map_err(bad)?;
+    let modes = parse_list("modes", &args.modes, parse_mode, "fixed, per_sample").map_err(bad)?;
+    let reference = Config {
+        placement: Placement::parse(&args.reference_placement).ok_or_else(|| {
+            bad(format!(
+                "--reference-placement: unknown {:?}; expected chapter, uniform, stratified or fibonacci",
+                args.reference_placement
+            ))
+        })?,
+        mode: parse_mode(&args.reference_mode).ok_or_else(|| {
+            bad(format!(
+                "--reference-mode: unknown {:?}; expected fixed or per_sample",
+                args.reference_mode
+            ))
+        })?,
+        points: args.reference_points,
+    };
+    let max_ref = if args.check_reference {
+        limits::MAX_LIGHT_POINTS / 2
+    } else {
+        limits::MAX_LIGHT_POINTS
+    };
+    if reference.points == 0 || reference.points > max_ref {
+        return Err(bad(format!(
+            "--reference-points: must be in [1, {max_ref}], got {}",
+            reference.points
+        )));
+    }
+    if args.repeats == 0 || args.repeats > 100 {
+        return Err(bad(format!("--repeats: must be in [1, 100], got {}", args.repeats)));
+    }
+    let flag = |f: &'static str| move |m: String| bad(format!("--{f}: {m}"));
+    limits::check_dimension(args.width).map_err(flag("width"))?;
+    limits::check_dimension(args.height).map_err(flag("height"))?;
+    limits::check_pixel_count(args.width, args.height).map_err(flag("width/--height"))?;
+    let s = &mut scene.settings;
+    s.width = args.width;
+    s.height = args.height;
+    if let Some(n) = args.spp {
+        limits::check_samples(n).map_err(flag("spp"))?;
+        s.samples_per_pixel = n;
+    }
+    if let Some(seed) = args.seed {
+        s.seed = seed;
+    }
+    std::fs::create_dir_all(&args.out).map_err(|e| {
+        bad(format!(
+            "{}: cannot create the output directory: {e}",
+            args.out.display()
+        ))
+    })?;
+    let plan = Plan {
+        points,
+        placements,
+        modes,
+        repeats: args.repeats,
+        reference,
+        check_reference: args.check_reference,
+    };
+    let quiet = v == Verbosity::Quiet;
+    let (study, reference_film) = with_threads(args.threads, || {
+        run(&scene, light, &plan, &mut |line| {
+            if !quiet {
+                eprintln!("lumiere: {line}");
+            }
+        })
+    })?;
+    let write = |name: &str, bytes: &[u8]| {
+        let path = args.out.join(name);
+        write_atomic(&path, bytes).map_err(|e| CliError::Failed(format!("{}: cannot write: {e}", path.display())))
+    };
+    let encode = |img: &RgbImage| {
+        encode_png(img.width(), img.height(), img.as_raw())
+            .map_err(|e| CliError::Failed(format!("cannot encode the plot: {e}")))
+    };
+    let report = report(&study);
+    write("study.csv", csv(&study).as_bytes())?;
+    write("study.png", &encode(&plot(&study))?)?;
+    write("study.md", report.as_bytes())?;
+    let ref_png = reference_film
+        .encode_png()
+        .map_err(|e| CliError::Failed(format!("cannot encode the reference: {e}")))?;
+    write("reference.png", &ref_png)?;
+    print!("{report}");
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn points_lists() {
+        assert_eq!(parse_points("64, 1,4,4").unwrap(), vec![1, 4, 64]);
+        assert!(parse_points("0,4").unwrap_err().contains("[1, 100000]"));
+        assert!(parse_points("1,,4").unwrap_err().contains("not a whole number"));
+        assert!(parse_points("four").unwrap_err().contains("\"four\""));
+    }
+
+    #[test]
+    fn interpolation_in_log_log() {
+        // Error halves from 1 s to 4 s: e = 2 at 1 s, 1 at 4 s. In log-log, e = 2 t^(-1/2),
+        // so e = sqrt(2) is reached at t = 2 s.
+        let c = [(1.0, 2.0), (4.0, 1.0), (16.0, 0.5)];
+        let Reach::At(t) = time_to_reach(&c, 2f64.sqrt()) else {
+            panic!()
+        };
+        assert!((t - 2.0).abs() < 1e-12, "{t}");
+        assert_eq!(time_to_reach(&c, 3.0), Reach::AtMost(1.0));
+        assert_eq!(time_to_reach(&c, 0.1), Reach::Never);
+        // 0.5 is reached exactly at the last point.
+        let Reach::At(t) = time_to_reach(&c, 0.5) else { panic!() };
+        assert!((t - 16.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn decade_labels() {
+        assert_eq!(decade_label(-2), "0.01");
+        assert_eq!(decade_label(0), "1");
+        assert_eq!(decade_label(2), "100");
+        assert_eq!(decade_label(5), "1e5");
+    }
+}
