@@ -485,31 +485,14 @@ pub fn report(study: &Study) -> String {
         );
     }
     let keys = curves(study);
-    let base = curve(study, Placement::Chapter, PointMode::Fixed);
-    if !base.is_empty() && keys.len() > 1 {
-        out += "\nSpeed-up over chapter/fixed at equal RMSE: for each chapter/fixed point, the time \
-                each curve needs to come down to its RMSE (interpolated in log time - log RMSE \
-                between measured points), as chapter's time / that time.\n\n";
-        out += "| chapter/fixed N | RMSE | time (s) |";
-        for (p, m) in &keys {
-            out += &format!(" {}/{} |", placement_name(*p), mode_name(*m));
-        }
-        out += "\n|---|---|---|";
-        out += &"---|".repeat(keys.len());
-        out += "\n";
-        for b in &base {
-            out += &format!("| {} | {:.4} | {:.3} |", b.config.points, b.error.rmse, b.seconds);
-            for (p, m) in &keys {
-                let c: Vec<(f64, f64)> = curve(study, *p, *m).iter().map(|r| (r.seconds, r.error.rmse)).collect();
-                out += &match time_to_reach(&c, b.error.rmse) {
-                    Reach::At(t) => format!(" x{:.2} |", b.seconds / t),
-                    Reach::AtMost(t) => format!(" >= x{:.2} |", b.seconds / t),
-                    Reach::Never => " not reached |".to_string(),
-                };
-            }
-            out += "\n";
-        }
-    }
+    out += &speedups(study, "wall time", &|r| r.seconds, &|c| format!("{c:.3} s"));
+    out += &speedups(
+        study,
+        "shadow rays (a cost that does not depend on the machine's load; it leaves out the \
+         cost of drawing per_sample points)",
+        &|r| r.shadow_rays as f64,
+        &|c| format!("{c:.0}"),
+    );
     out += "\nN needed (smallest measured) for max 8-bit difference <= 1, and for 99.9 % of the \
             pixels within 1 level, with the time of that render:\n\n";
     out += "| placement | mode | N for max <= 1 | N for 99.9 % within 1 |\n|---|---|---|---|\n";
@@ -527,6 +510,43 @@ pub fn report(study: &Study) -> String {
             first(&|e| e.max_diff <= 1),
             first(&|e| e.within_one >= 0.999)
         );
+    }
+    out
+}
+
+/// The speed-up table over chapter/fixed at equal RMSE, with `cost` (time or rays) as the
+/// price of a render: for each chapter/fixed point, the cost each curve needs to come down
+/// to its RMSE, interpolated in (log cost, log RMSE) between measured points.
+fn speedups(study: &Study, what: &str, cost: &dyn Fn(&Row) -> f64, show: &dyn Fn(f64) -> String) -> String {
+    let keys = curves(study);
+    let base = curve(study, Placement::Chapter, PointMode::Fixed);
+    if base.is_empty() || keys.len() < 2 {
+        return String::new();
+    }
+    let mut out = format!(
+        "\nSpeed-up over chapter/fixed at equal RMSE, by {what}: for each chapter/fixed point, \
+         chapter's cost / the cost each curve needs to come down to its RMSE (interpolated in \
+         log cost - log RMSE between measured points; \">=\" when a curve's first point is \
+         already below it).\n\n"
+    );
+    out += "| chapter/fixed N | RMSE | cost |";
+    for (p, m) in &keys {
+        out += &format!(" {}/{} |", placement_name(*p), mode_name(*m));
+    }
+    out += "\n|---|---|---|";
+    out += &"---|".repeat(keys.len());
+    out += "\n";
+    for b in &base {
+        out += &format!("| {} | {:.4} | {} |", b.config.points, b.error.rmse, show(cost(b)));
+        for (p, m) in &keys {
+            let c: Vec<(f64, f64)> = curve(study, *p, *m).iter().map(|r| (cost(r), r.error.rmse)).collect();
+            out += &match time_to_reach(&c, b.error.rmse) {
+                Reach::At(t) => format!(" x{:.2} |", cost(b) / t),
+                Reach::AtMost(t) => format!(" >= x{:.2} |", cost(b) / t),
+                Reach::Never => " not reached |".to_string(),
+            };
+        }
+        out += "\n";
     }
     out
 }

@@ -446,7 +446,7 @@ fn study_writes_csv_and_plot_and_error_falls_with_n() {
         assert!(out.join(f).is_file(), "{f}");
     }
     let md = std::fs::read_to_string(out.join("study.md")).unwrap();
-    assert!(md.contains("Speed-up over chapter/fixed") && md.contains("N for max <= 1"));
+    assert!(md.contains("Speed-up over chapter/fixed at equal RMSE, by wall time") && md.contains("N for max <= 1"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
