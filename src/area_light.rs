@@ -31,6 +31,33 @@ pub enum AreaShape {
     },
 }
 
+/// Light points as three coordinate arrays (structure of arrays: the per-point loops of the
+/// tracer run over them with vector instructions).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PointSet {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub z: Vec<f64>,
+}
+
+impl PointSet {
+    pub fn from_points(points: &[DVec3]) -> Self {
+        PointSet {
+            x: points.iter().map(|p| p.x).collect(),
+            y: points.iter().map(|p| p.y).collect(),
+            z: points.iter().map(|p| p.z).collect(),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+}
+
 /// When the points are drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]

@@ -82,6 +82,32 @@ pub fn pow(x: f64, y: f64) -> f64 {
     }
 }
 
+/// [`pow`] of every element of `xs` with the same exponent `y`, in place: the same
+/// operations on each element as [`pow`], arranged so that the integer case (one squaring
+/// chain shared by all elements) runs as vector instructions.
+pub fn pow_each(xs: &mut [f64], y: f64) {
+    if y >= 0.0 && y <= u32::MAX as f64 && y.fract() == 0.0 {
+        for chunk in xs.chunks_mut(64) {
+            // `powi_exact_order` with the loop over the bits of `n` outside the elements'.
+            let mut acc = [1.0; 64];
+            let acc = &mut acc[..chunk.len()];
+            let mut n = y as u32;
+            while n > 0 {
+                if n & 1 == 1 {
+                    acc.iter_mut().zip(chunk.iter()).for_each(|(a, x)| *a *= x);
+                }
+                n >>= 1;
+                if n > 0 {
+                    chunk.iter_mut().for_each(|x| *x *= *x);
+                }
+            }
+            chunk.copy_from_slice(acc);
+        }
+    } else {
+        xs.iter_mut().for_each(|x| *x = libm::pow(*x, y));
+    }
+}
+
 /// `x^n` by squaring, from the lowest bit of `n` up.
 fn powi_exact_order(mut x: f64, mut n: u32) -> f64 {
     let mut acc = 1.0;
@@ -179,6 +205,16 @@ mod tests {
             + direct(DVec3::splat(0.5), 0.8, s, 0.5, 0.5, tint, 0.25);
         close(total.x, 1.1625);
         assert_eq!(total.x, total.z);
+    }
+
+    #[test]
+    fn pow_each_is_pow_bit_for_bit() {
+        for y in [0.0, 1.0, 2.0, 20.0, 512.0, 7.5] {
+            let mut xs: Vec<f64> = (0..37).map(|i| i as f64 / 36.0).collect();
+            let want: Vec<f64> = xs.iter().map(|&x| pow(x, y)).collect();
+            pow_each(&mut xs, y);
+            assert_eq!(xs, want, "y = {y}");
+        }
     }
 
     #[test]

@@ -5,13 +5,14 @@
 //! [`Recorder`]; the renderer passes [`NoRecord`], which compiles to nothing, and `probe`
 //! passes a recorder that keeps the whole ray tree, so both see the same numbers.
 
-use crate::area_light::PointMode;
-use crate::light::{Incidence, Light, point_incidence};
+use crate::light::{Incidence, Light};
 use crate::math::{Ray, hit_point_error, offset_origin, reflect, refract};
 use crate::scene::{Candidate, Specular, World};
 use crate::shading::{ambient, blinn, direct, phong, specular_tint};
 use crate::skips::{Saved, Skip};
 use glam::DVec3;
+
+mod area;
 
 /// What a ray is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -74,6 +75,9 @@ pub struct LightShare {
 
 /// Observer of the tracer's steps; every method does nothing by default.
 pub trait Recorder {
+    /// False for a recorder that ignores every event, so the tracer can skip gathering
+    /// what only the events need.
+    const RECORDS: bool = true;
     fn ray(&mut self, _kind: RayKind, _ray: &Ray, _level: u32, _weight: f64) {}
     fn hit(&mut self, _object: usize, _t: f64, _point: DVec3, _normal: DVec3, _entering: bool) {}
     fn miss(&mut self) {}
@@ -105,7 +109,9 @@ pub trait Recorder {
 
 /// The recorder that records nothing.
 pub struct NoRecord;
-impl Recorder for NoRecord {}
+impl Recorder for NoRecord {
+    const RECORDS: bool = false;
+}
 
 /// A shaded surface point: position, shading normal `n` (facing the incoming ray), outward
 /// normal and rounding-error bound (for shadow-ray origins), direction to the eye, object.
@@ -118,6 +124,19 @@ struct Surface {
     object: usize,
 }
 
+/// How one light (or light point) stands towards a surface point, before any shadow ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Facing {
+    /// No light arrives: the surface point is exactly at the light.
+    NoLight,
+    /// The light is black here (outside a spot's cone): no shadow ray.
+    Black,
+    /// `N.L <= 0`: the surface faces away; no diffuse nor specular term.
+    Away(f64),
+    /// `N.L > 0`: lit unless a shadow ray is blocked.
+    Towards(f64),
+}
+
 /// Traces rays in a world; one per thread (it keeps counters and scratch space).
 pub struct Tracer<'w, 's> {
     pub world: &'w World<'s>,
@@ -126,8 +145,8 @@ pub struct Tracer<'w, 's> {
     pub sample_key: (u64, u32),
     /// Scratch list of transparent objects crossed by a shadow ray.
     crossed: Vec<usize>,
-    /// Scratch list of the objects that can shadow the current area light.
-    candidates: Vec<Candidate>,
+    /// Scratch space of the current area light's points.
+    area: area::AreaScratch,
 }
 
 impl<'w, 's> Tracer<'w, 's> {
@@ -137,7 +156,7 @@ impl<'w, 's> Tracer<'w, 's> {
             counts: RayCounts::default(),
             sample_key: (0, 0),
             crossed: Vec::new(),
-            candidates: Vec::new(),
+            area: area::AreaScratch::default(),
         }
     }
 
@@ -286,40 +305,7 @@ impl<'w, 's> Tracer<'w, 's> {
         for (index, light) in scene.lights.iter().enumerate() {
             match light {
                 Light::Ambient { .. } => {}
-                Light::Area(area) => {
-                    let fresh;
-                    let points = match area.mode {
-                        PointMode::Fixed => &self.world.light_points[index],
-                        PointMode::PerSample => {
-                            let (pixel, k) = self.sample_key;
-                            fresh = area.sample_points(scene.settings.seed, index, pixel, k);
-                            &fresh
-                        }
-                    };
-                    let point_color = area.point_color();
-                    let (centre, radius) = area.bounding_sphere();
-                    let skips = self.world.skips;
-                    if skips.on(Skip::Horizon) && below_horizon(point, n, centre, radius) {
-                        self.counts.saved.count(Skip::Horizon, points.len() as u64);
-                        rec.below_horizon(index);
-                        continue;
-                    }
-                    // Only objects near the hull of this point and the light can block any
-                    // of its N shadow rays: find them once, not N times (exact: see
-                    // `shadow_candidates`).
-                    let mut candidates = std::mem::take(&mut self.candidates);
-                    let culled = skips.on(Skip::ShadowCandidates);
-                    if culled {
-                        self.world
-                            .shadow_candidates(point, centre, radius, 4.0 * err, &mut candidates);
-                    }
-                    let shadowing = culled.then_some(candidates.as_slice());
-                    for &p in points {
-                        let inc = point_incidence(p, point_color, &area.attenuation, point, 1.0);
-                        color += self.light_share(index, inc, &surface, shadowing, rec);
-                    }
-                    self.candidates = candidates;
-                }
+                Light::Area(area) => self.add_area_light(&mut color, index, area, &surface, rec),
                 _ => color += self.light_share(index, light.incidence(point), &surface, None, rec),
             }
         }
@@ -338,39 +324,90 @@ impl<'w, 's> Tracer<'w, 's> {
         candidates: Option<&[Candidate]>,
         rec: &mut R,
     ) -> DVec3 {
-        let Some(inc) = inc else {
-            rec.unlit(index, None);
-            return DVec3::ZERO;
-        };
-        let skips = self.world.skips;
-        let settings = &self.world.scene.settings;
-        if inc.color == DVec3::ZERO && skips.on(Skip::Unlit) {
-            self.counts.saved.count(Skip::Unlit, u64::from(settings.shadows));
-            rec.unlit(index, None);
-            return DVec3::ZERO;
-        }
-        let n_dot_l = at.n.dot(inc.to_light);
-        if n_dot_l <= 0.0 {
-            if skips.on(Skip::BackFacing) {
-                self.counts.saved.count(Skip::BackFacing, u64::from(settings.shadows));
-            } else if settings.shadows {
-                self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, candidates, &mut NoRecord);
+        match (inc, self.facing(inc.as_ref(), at.n)) {
+            (Some(inc), Facing::Towards(n_dot_l)) => {
+                let filter = if self.world.scene.settings.shadows {
+                    self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, candidates, rec)
+                } else {
+                    DVec3::ONE
+                };
+                self.shade(index, &inc, n_dot_l, filter, at, rec)
             }
-            rec.unlit(index, Some(n_dot_l));
-            return DVec3::ZERO;
+            (_, facing) => {
+                self.not_facing(index, facing, inc.as_ref(), at, candidates, rec);
+                DVec3::ZERO
+            }
         }
-        let mat = self.world.material_of(at.object);
-        let filter = if settings.shadows {
-            self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, candidates, rec)
+    }
+
+    /// How a light with incidence `inc` stands towards a surface of normal `n`, before any
+    /// shadow ray (the skips decide whether a black light counts as dark).
+    fn facing(&self, inc: Option<&Incidence>, n: DVec3) -> Facing {
+        match inc {
+            Some(inc) => self.facing_by(inc.color, n.dot(inc.to_light)),
+            None => Facing::NoLight,
+        }
+    }
+
+    /// [`Tracer::facing`] of a light that arrives with colour `color` (before the shadow
+    /// test) at an angle of cosine `n_dot_l`.
+    fn facing_by(&self, color: DVec3, n_dot_l: f64) -> Facing {
+        if color == DVec3::ZERO && self.world.skips.on(Skip::Unlit) {
+            Facing::Black
+        } else if n_dot_l <= 0.0 {
+            Facing::Away(n_dot_l)
         } else {
-            DVec3::ONE
-        };
-        if filter == DVec3::ZERO && skips.on(Skip::BlockedShading) {
+            Facing::Towards(n_dot_l)
+        }
+    }
+
+    /// The bookkeeping of a light that adds nothing: the skipped shadow ray counted, or
+    /// traced anyway when its skip is off, and the `unlit` event.
+    fn not_facing<R: Recorder>(
+        &mut self,
+        index: usize,
+        facing: Facing,
+        inc: Option<&Incidence>,
+        at: &Surface,
+        candidates: Option<&[Candidate]>,
+        rec: &mut R,
+    ) {
+        let shadows = self.world.scene.settings.shadows;
+        match (facing, inc) {
+            (Facing::Away(n_dot_l), Some(inc)) => {
+                if self.world.skips.on(Skip::BackFacing) {
+                    self.counts.saved.count(Skip::BackFacing, u64::from(shadows));
+                } else if shadows {
+                    self.shadow_filter_recorded(at.point, at.outward, at.err, inc, candidates, &mut NoRecord);
+                }
+                rec.unlit(index, Some(n_dot_l));
+            }
+            (Facing::Black, _) => {
+                self.counts.saved.count(Skip::Unlit, u64::from(shadows));
+                rec.unlit(index, None);
+            }
+            _ => rec.unlit(index, None),
+        }
+    }
+
+    /// The share of a light that reaches a surface point facing it (`N.L > 0`), through the
+    /// shadow filter `filter`: `A L filter [k_d S N.L + k_s [m S + (1 - m)] spec]`.
+    fn shade<R: Recorder>(
+        &mut self,
+        index: usize,
+        inc: &Incidence,
+        n_dot_l: f64,
+        filter: DVec3,
+        at: &Surface,
+        rec: &mut R,
+    ) -> DVec3 {
+        let settings = &self.world.scene.settings;
+        if filter == DVec3::ZERO && self.world.skips.on(Skip::BlockedShading) {
             // Everything below is a product with `arriving` = 0: exactly 0.
             self.counts.saved.count(Skip::BlockedShading, 1);
             rec.light(&LightShare {
                 light: index,
-                incidence: inc,
+                incidence: *inc,
                 n_dot_l,
                 shadow_ray: settings.shadows,
                 filter,
@@ -379,6 +416,7 @@ impl<'w, 's> Tracer<'w, 's> {
             });
             return DVec3::ZERO;
         }
+        let mat = self.world.material_of(at.object);
         let arriving = inc.color * filter;
         let spec = match settings.shading.specular {
             Specular::None => 0.0,
@@ -391,7 +429,7 @@ impl<'w, 's> Tracer<'w, 's> {
         let specular = direct(arriving, 0.0, mat.color, n_dot_l, mat.ks, tint, spec);
         rec.light(&LightShare {
             light: index,
-            incidence: inc,
+            incidence: *inc,
             n_dot_l,
             shadow_ray: settings.shadows,
             filter,

@@ -8,7 +8,7 @@ pub mod transform;
 pub use file::{SceneError, load, parse};
 
 use crate::accel::Accel;
-use crate::area_light::PointMode;
+use crate::area_light::{PointMode, PointSet};
 use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
@@ -144,7 +144,7 @@ pub struct World<'s> {
     /// return, counting every level it may still recurse to; used by adaptive depth control.
     pub remaining_bound: Vec<f64>,
     /// For each light, the points of a `fixed` area light (empty for other lights).
-    pub light_points: Vec<Vec<DVec3>>,
+    pub light_points: Vec<PointSet>,
     /// Bounding sphere (centre, radius) of each object; `None` for unbounded ones.
     pub object_spheres: Vec<Option<(DVec3, f64)>>,
     /// Whether an object's exact test costs more than a ray-sphere test (boxes, cylinders,
@@ -181,8 +181,8 @@ impl<'s> World<'s> {
                 .iter()
                 .enumerate()
                 .map(|(i, l)| match l {
-                    Light::Area(a) if a.mode == PointMode::Fixed => a.fixed_points(s.seed, i),
-                    _ => Vec::new(),
+                    Light::Area(a) if a.mode == PointMode::Fixed => PointSet::from_points(&a.fixed_points(s.seed, i)),
+                    _ => PointSet::default(),
                 })
                 .collect(),
             object_spheres: scene

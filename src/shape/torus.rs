@@ -10,7 +10,7 @@
 
 use super::{Aabb, SurfaceHit, gamma, l1};
 use crate::math::{Frame, Ray};
-use crate::solve::{ferrari, horner, orellana, poly_roots_with};
+use crate::solve::{ferrari, horner, orellana, poly_roots};
 use glam::DVec3;
 
 /// Which quartic solver the torus uses (see BENCHMARKS.md, "Numerical stability"); the
@@ -73,6 +73,25 @@ impl Torus {
         let Some((enter, exit)) = self.clip(o, d, t_min, t_max) else {
             return;
         };
+        if self.clear_of_tube(o + d * enter, d, exit - enter) {
+            return;
+        }
+        self.solve(method, o, d, (enter, exit), t_min, t_max, visit);
+    }
+
+    /// The quartic of the ray `o + t d` (local frame) solved on the clip interval
+    /// `(enter, exit)`, each root in `(t_min, t_max)` passed to `visit` until it returns true.
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        &self,
+        method: QuarticMethod,
+        o: DVec3,
+        d: DVec3,
+        (enter, exit): (f64, f64),
+        t_min: f64,
+        t_max: f64,
+        visit: &mut dyn FnMut(f64, DVec3, DVec3) -> bool,
+    ) {
         // Shift the origin to the clip entry: p(s) = o' + s d, s in [0, exit - enter].
         let o2 = o + d * enter;
         let (big, small) = (self.major, self.minor);
@@ -104,10 +123,14 @@ impl Torus {
                 self.implicit(o2 + d * s)
             }
         };
-        let mut found = Vec::with_capacity(4);
         let len = exit - enter;
-        match method {
-            QuarticMethod::Isolator => poly_roots_with(&coeffs, 0.0, len, &f, &mut found),
+        let isolated;
+        let mut found = Vec::new();
+        let found: &[f64] = match method {
+            QuarticMethod::Isolator => {
+                isolated = poly_roots(&coeffs, 0.0, len, &f);
+                isolated.as_slice()
+            }
             QuarticMethod::Ferrari | QuarticMethod::OrellanaDeMichele => {
                 if coeffs[0] == 0.0 {
                     // On the surface: deflate, s = 0 exactly and the cubic's roots.
@@ -138,9 +161,10 @@ impl Torus {
                 }
                 found.retain(|s| s.is_finite() && *s >= 0.0 && *s <= len);
                 found.sort_by(f64::total_cmp);
+                &found
             }
-        }
-        for s in found {
+        };
+        for &s in found {
             let t = enter + s;
             if t > t_min && t < t_max && visit(t, o, d) {
                 return;
@@ -169,6 +193,73 @@ impl Torus {
         // Widen by a hair so roots on the clip boundary are not lost to rounding.
         let pad = 1e-9 * (hi - lo).abs().max(bound);
         (lo <= hi).then_some(((lo - pad).max(t_min), (hi + pad).min(t_max)))
+    }
+
+    /// Whether the segment `p + s d`, `s` in `[0, len]` (local frame, `p` next to the torus),
+    /// provably stays clear of the solid torus `(rho - R)^2 + z^2 <= r^2`. On each of a few
+    /// pieces of the segment, `rho(s)^2` is a convex quadratic (largest at an end, smallest
+    /// at an end or the vertex) and `z(s)` is linear, so the distance from `R` to the range of
+    /// `rho` and from 0 to the range of `z` bound `(rho - R)^2 + z^2` from below. The margin
+    /// (relative 1e-9 of the torus's size) is far above the rounding here and in the
+    /// quartic's own evaluation, so on a segment cleared here the root isolator would find no
+    /// sign change either: the answer is the same, without solving the quartic.
+    fn clear_of_tube(&self, p: DVec3, d: DVec3, len: f64) -> bool {
+        const PIECES: usize = 4;
+        let (big, small) = (self.major, self.minor);
+        let margin = 1e-9 * (big + small);
+        let reach = small + margin;
+        let rho2 = |s: f64| {
+            let (x, y) = (p.x + s * d.x, p.y + s * d.y);
+            x * x + y * y
+        };
+        let across = d.x * d.x + d.y * d.y;
+        let vertex = if across > 0.0 {
+            -(p.x * d.x + p.y * d.y) / across
+        } else {
+            0.0
+        };
+        (0..PIECES).all(|k| {
+            let (a, b) = (len * k as f64 / PIECES as f64, len * (k + 1) as f64 / PIECES as f64);
+            let (ra, rb) = (rho2(a), rho2(b));
+            let nearest = ra.min(rb).min(rho2(vertex.clamp(a, b)));
+            let (rho_lo, rho_hi) = (nearest.sqrt(), ra.max(rb).sqrt());
+            let rho_gap = (rho_lo - big).max(big - rho_hi).max(0.0);
+            let (za, zb) = (p.z + a * d.z, p.z + b * d.z);
+            let z_gap = za.min(zb).max(-za.max(zb)).max(0.0);
+            rho_gap * rho_gap + z_gap * z_gap > reach * reach
+        })
+    }
+
+    /// Whether the ray surely crosses the surface inside `(t_min, t_max)`: it starts clearly
+    /// outside the solid (`f > 0` by a margin at the clip entry) and is clearly inside it
+    /// (`f < 0` by the margin) where it crosses the equatorial plane `z = 0`, before
+    /// `t_max`. The root isolator would find that sign change too (so the answer is the
+    /// same); this finds it with two evaluations of `f` instead of solving the quartic. The
+    /// margin, `1e-10 (|p|^2 + R^2 + r^2)^2`, is far above the rounding of `f`.
+    fn surely_entered(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        let o = self.frame.to_local(ray.origin - self.center);
+        let d = self.frame.to_local(ray.dir);
+        let Some((enter, exit)) = self.clip(o, d, t_min, t_max) else {
+            return false;
+        };
+        if d.z == 0.0 {
+            return false;
+        }
+        let p = o + d * enter;
+        let s = -p.z / d.z;
+        // The root is at some `s'` in (0, s): `enter + s'` is above `t_min` when `enter` is
+        // (or is 0), and below `t_max` when `enter + s` is.
+        let after_start = enter > t_min || enter == 0.0;
+        if !(after_start && s > 0.0 && s <= exit - enter && enter + s < t_max) {
+            return false;
+        }
+        let (big, small) = (self.major, self.minor);
+        let scale = |q: DVec3| {
+            let k = q.length_squared() + big * big + small * small;
+            1e-10 * k * k
+        };
+        let q = p + d * s;
+        self.implicit(p) > scale(p) && self.implicit(q) < -scale(q)
     }
 
     /// Outward normal: gradient of `f`, `4 s p - 8 R^2 (x, y, 0)` with `s = |p|^2 + R^2 - r^2`.
@@ -205,6 +296,9 @@ impl Torus {
     }
 
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        if self.surely_entered(ray, t_min, t_max) {
+            return true;
+        }
         let mut any = false;
         self.roots(ray, t_min, t_max, &mut |_, _, _| {
             any = true;
@@ -245,6 +339,75 @@ mod tests {
     fn reference() -> Torus {
         // The reference torus: centre (4, 3, 2), R = 1.5, r = 0.5, axis +z.
         Torus::new(DVec3::new(4., 3., 2.), DVec3::Z, 1.5, 0.5)
+    }
+
+    /// Whether the quartic has a root in `(t_min, t_max)`, with neither shortcut of
+    /// `occludes` (`clear_of_tube`, `surely_entered`).
+    fn occludes_by_quartic(t: &Torus, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        let o = t.frame.to_local(ray.origin - t.center);
+        let d = t.frame.to_local(ray.dir);
+        let mut any = false;
+        if let Some(clip) = t.clip(o, d, t_min, t_max) {
+            t.solve(QuarticMethod::Isolator, o, d, clip, t_min, t_max, &mut |_, _, _| {
+                any = true;
+                true
+            });
+        }
+        any
+    }
+
+    #[test]
+    fn shortcuts_give_the_quartic_answer() {
+        // Shadow-ray-like segments from around and on the torus towards points above it,
+        // through the hole, grazing the tube, and along the equatorial plane: `occludes`
+        // (with its shortcuts) answers exactly as the quartic does, and both shortcuts act.
+        use rand_chacha::ChaCha8Rng;
+        use rand_core::{Rng, SeedableRng};
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut u = move |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let torus = Torus::new(DVec3::new(4., 3., 2.), DVec3::new(0.2, -0.1, 1.0), 1.5, 0.5);
+        let (mut hits, mut cleared, mut entered) = (0, 0, 0);
+        for k in 0..20_000 {
+            let start = match k % 4 {
+                // floor points around the torus
+                0 => DVec3::new(u(0.0, 8.0), u(-1.0, 7.0), 0.0),
+                // near the tube's surface (inside and outside)
+                1 => {
+                    let a = u(0.0, std::f64::consts::TAU);
+                    let (b, r) = (u(0.0, std::f64::consts::TAU), u(0.45, 0.55));
+                    let local = DVec3::new(
+                        (1.5 + r * b.cos()) * a.cos(),
+                        (1.5 + r * b.cos()) * a.sin(),
+                        r * b.sin(),
+                    );
+                    torus.center + torus.frame.to_world(local)
+                }
+                // in the hole
+                2 => torus.center + DVec3::new(u(-0.9, 0.9), u(-0.9, 0.9), u(-2.0, 0.0)),
+                // far away, nearly in the equatorial plane
+                _ => torus.center + torus.frame.to_world(DVec3::new(u(-50.0, 50.0), 40.0, u(-1e-3, 1e-3))),
+            };
+            let end = if k % 4 == 3 {
+                torus.center + DVec3::new(u(-3.0, 3.0), u(-3.0, 3.0), u(-0.3, 0.3))
+            } else {
+                DVec3::new(u(-2.0, 10.0), u(-3.0, 9.0), u(4.0, 12.0))
+            };
+            let ray = Ray::new(start, (end - start).normalize());
+            let t_max = (end - start).length();
+            let want = occludes_by_quartic(&torus, &ray, 0.0, t_max);
+            assert_eq!(torus.occludes(&ray, 0.0, t_max), want, "ray {k}: {ray:?} up to {t_max}");
+            hits += want as u32;
+            entered += torus.surely_entered(&ray, 0.0, t_max) as u32;
+            let o = torus.frame.to_local(ray.origin - torus.center);
+            let d = torus.frame.to_local(ray.dir);
+            if let Some((enter, exit)) = torus.clip(o, d, 0.0, t_max) {
+                cleared += torus.clear_of_tube(o + d * enter, d, exit - enter) as u32;
+            }
+        }
+        assert!(
+            hits > 1000 && entered > 500 && cleared > 1000,
+            "{hits} {entered} {cleared}"
+        );
     }
 
     #[test]

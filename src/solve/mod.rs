@@ -57,18 +57,23 @@ pub fn poly_roots_in(c: &[f64], lo: f64, hi: f64, out: &mut Vec<f64>) {
 /// of the same polynomial (for example an unexpanded implicit equation). The expanded
 /// coefficients `c` are only used to find the critical points that split the interval.
 pub fn poly_roots_with(c: &[f64], lo: f64, hi: f64, f: &dyn Fn(f64) -> f64, out: &mut Vec<f64>) {
-    debug_assert!(c.len() <= 5, "degree at most 4");
-    let mut few = Few::default();
-    roots_into(c, lo, hi, f, &mut few);
-    for &t in few.as_slice() {
+    for &t in poly_roots(c, lo, hi, f).as_slice() {
         push_unique(out, t);
     }
 }
 
-/// A handful of roots on the stack (the isolator allocates nothing; the torus calls it
-/// once per ray).
+/// As [`poly_roots_with`], returning the roots on the stack (the torus calls it once per
+/// ray: no heap allocation).
+pub fn poly_roots(c: &[f64], lo: f64, hi: f64, f: &dyn Fn(f64) -> f64) -> Few {
+    debug_assert!(c.len() <= 5, "degree at most 4");
+    let mut few = Few::default();
+    roots_into(c, lo, hi, f, &mut few);
+    few
+}
+
+/// A handful of distinct roots, increasing, on the stack.
 #[derive(Default)]
-struct Few {
+pub struct Few {
     v: [f64; 6],
     n: usize,
 }
@@ -81,7 +86,7 @@ impl Few {
         }
     }
 
-    fn as_slice(&self) -> &[f64] {
+    pub fn as_slice(&self) -> &[f64] {
         &self.v[..self.n]
     }
 }

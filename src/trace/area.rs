@@ -1,0 +1,555 @@
+//! One area light at one shading point, its N points taken together (chapter 7.4b,
+//! `L_multi = (1/N) sum_i L_point_i`). Four passes over the points:
+//!
+//! 1. the incidence of every point: `L_i`, `d_i`, `A(d_i)`, `N.L_i` ([`incidences`]);
+//! 2. how each point faces the surface, and the shadow rays of those facing it, tested
+//!    object by object: each candidate object against every point it has not blocked yet,
+//!    opaque objects first, then the transparent ones in ascending order multiplying their
+//!    colours in ([`Tracer::shadow_points`]);
+//! 3. the diffuse and specular terms of every point ([`shares`]);
+//! 4. in point order, the recorder's events and the running sum.
+//!
+//! Passes 1 and 3 are straight loops over coordinate arrays that compile to vector
+//! instructions. Each point's arithmetic is that of a lone point light — the same
+//! operations in the same order as [`point_incidence`], [`blinn`] or [`phong`], and
+//! [`direct`] (tests/soft_shadows.rs and the tests below check the bits) — each shadow ray
+//! meets the same objects in the same order as [`Tracer::shadow_filter`] would test them,
+//! and the sum runs in point order: the result and the counts are exactly those of N
+//! separate point lights.
+//!
+//! [`point_incidence`]: crate::light::point_incidence
+//! [`blinn`]: crate::shading::blinn
+//! [`phong`]: crate::shading::phong
+//! [`direct`]: crate::shading::direct
+
+use super::{Facing, LightShare, Recorder, Surface, Tracer, below_horizon, segment_meets_sphere};
+use crate::area_light::{AreaLight, PointMode, PointSet};
+use crate::light::{Attenuation, Incidence};
+use crate::material::Material;
+use crate::math::{Ray, offset_origin};
+use crate::scene::{Candidate, ShadingModel, Specular};
+use crate::shading::{pow_each, specular_tint};
+use crate::shape::Shape;
+use crate::skips::Skip;
+use glam::DVec3;
+
+/// Per-point values of the current area light at the current shading point, one array
+/// entry per light point, reused from one shading point to the next.
+#[derive(Default)]
+pub(super) struct AreaScratch {
+    lanes: Lanes,
+    facing: Vec<Facing>,
+    /// Shadow filter of each point: 1 unshadowed, 0 blocked, else the product of colours.
+    filter: Vec<DVec3>,
+    /// Whether an opaque object blocks the point's shadow ray.
+    blocked: Vec<bool>,
+    /// The points whose shadow ray is still open (facing, not blocked yet).
+    open: Vec<u32>,
+    /// For a recorder only (else empty): the transparent objects each point's shadow ray
+    /// crosses.
+    crossed: Vec<Vec<usize>>,
+    candidates: Vec<Candidate>,
+}
+
+/// Coordinate arrays of the per-point quantities (pass 1 and 3 outputs).
+#[derive(Default)]
+struct Lanes {
+    /// Unit direction to the light point, `L_i`.
+    lx: Vec<f64>,
+    ly: Vec<f64>,
+    lz: Vec<f64>,
+    /// Distance to the light point, `d_i` (the shadow ray's `t_max`).
+    dist: Vec<f64>,
+    /// Attenuation `A(d_i)`.
+    atten: Vec<f64>,
+    /// `N.L_i`.
+    n_dot_l: Vec<f64>,
+    /// Specular term `spec_i` (Blinn or Phong).
+    spec: Vec<f64>,
+    /// Diffuse and specular terms, by channel.
+    diffuse: [Vec<f64>; 3],
+    specular: [Vec<f64>; 3],
+}
+
+impl Lanes {
+    fn resize(&mut self, n: usize) {
+        for v in [
+            &mut self.lx,
+            &mut self.ly,
+            &mut self.lz,
+            &mut self.dist,
+            &mut self.atten,
+            &mut self.n_dot_l,
+            &mut self.spec,
+        ] {
+            v.resize(n, 0.0);
+        }
+        for v in self.diffuse.iter_mut().chain(self.specular.iter_mut()) {
+            v.resize(n, 0.0);
+        }
+    }
+
+    fn to_light(&self, i: usize) -> DVec3 {
+        DVec3::new(self.lx[i], self.ly[i], self.lz[i])
+    }
+
+    /// Point `i`'s incidence, as [`crate::light::point_incidence`] gives it.
+    fn incidence(&self, i: usize, point_color: DVec3) -> Incidence {
+        let a = self.atten[i];
+        Incidence {
+            to_light: self.to_light(i),
+            distance: self.dist[i],
+            attenuation: a,
+            spot: 1.0,
+            color: point_color * (a * 1.0),
+        }
+    }
+}
+
+/// Pass 1: for every light point `q_i`, the unit direction `L_i = (q_i - p) / d_i` with
+/// `d_i = |q_i - p|`, the attenuation `A = 1 / (C_const + C_lin d + C_quad d^2)` and `N.L_i`,
+/// each rounded exactly as [`crate::light::point_incidence`] and `DVec3::dot` round them.
+/// A point at distance 0 gets NaN directions (no light arrives from it; see [`Facing`]).
+fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mut Lanes) {
+    let len = points.len();
+    let (xs, ys, zs) = (&points.x[..len], &points.y[..len], &points.z[..len]);
+    let (lx, ly, lz) = (&mut out.lx[..len], &mut out.ly[..len], &mut out.lz[..len]);
+    let (dist, atten, ndl) = (&mut out.dist[..len], &mut out.atten[..len], &mut out.n_dot_l[..len]);
+    for i in 0..len {
+        let (tx, ty, tz) = (xs[i] - p.x, ys[i] - p.y, zs[i] - p.z);
+        let d = (tx * tx + ty * ty + tz * tz).sqrt();
+        let (x, y, z) = (tx / d, ty / d, tz / d);
+        lx[i] = x;
+        ly[i] = y;
+        lz[i] = z;
+        dist[i] = d;
+        atten[i] = 1.0 / (att.constant + att.linear * d + att.quadratic * d * d);
+        ndl[i] = n.x * x + n.y * y + n.z * z;
+    }
+}
+
+/// Pass 3: for every point, `A L filter [k_d S N.L]` and `A L filter [k_s [m S + (1 - m)]
+/// spec]` by channel, with Blinn's `spec = max(N.H, 0)^n`, `H = (L + E) / |L + E|` (0 when
+/// `|L + E| = 0`) or Phong's `max(R.E, 0)^n`, `R = 2 (N.L) N - L`: the operations of
+/// [`crate::shading::direct`], [`crate::shading::blinn`] and [`crate::shading::phong`] in
+/// their order. Values for points that do not face the surface are computed and ignored.
+#[allow(clippy::too_many_arguments)]
+fn shares(
+    lanes: &mut Lanes,
+    len: usize,
+    point_color: DVec3,
+    filter: &[DVec3],
+    n: DVec3,
+    eye: DVec3,
+    mat: &Material,
+    model: ShadingModel,
+) {
+    let Lanes {
+        lx,
+        ly,
+        lz,
+        atten,
+        n_dot_l,
+        spec,
+        diffuse,
+        specular,
+        ..
+    } = lanes;
+    let (lx, ly, lz, atten, n_dot_l) = (&lx[..len], &ly[..len], &lz[..len], &atten[..len], &n_dot_l[..len]);
+    let spec = &mut spec[..len];
+    match model.specular {
+        Specular::None => spec.fill(0.0),
+        Specular::Blinn => {
+            for i in 0..len {
+                let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
+                let h = (hx * hx + hy * hy + hz * hz).sqrt();
+                let n_dot_h = n.x * (hx / h) + n.y * (hy / h) + n.z * (hz / h);
+                // `max` first, then the zero-length case: `max` of a NaN is 0 anyway.
+                spec[i] = if h == 0.0 { 0.0 } else { n_dot_h.max(0.0) };
+            }
+            pow_each(spec, mat.shininess);
+            // A zero half vector gives 0 (blinn returns before the power: 0^0 would be 1).
+            for i in 0..len {
+                let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
+                if hx * hx + hy * hy + hz * hz == 0.0 {
+                    spec[i] = 0.0;
+                }
+            }
+        }
+        Specular::Phong => {
+            for i in 0..len {
+                let twice = 2.0 * n_dot_l[i];
+                let (rx, ry, rz) = (twice * n.x - lx[i], twice * n.y - ly[i], twice * n.z - lz[i]);
+                spec[i] = (rx * eye.x + ry * eye.y + rz * eye.z).max(0.0);
+            }
+            pow_each(spec, mat.shininess);
+        }
+    }
+    let filter = &filter[..len];
+    let kd = if model.diffuse { mat.kd } else { 0.0 };
+    let tint = specular_tint(mat.metal, mat.color);
+    // `direct`'s factors `k_d S` and `k_s tint`, and the zero factors of its other term.
+    let diffuse_factor = (kd * mat.color).to_array();
+    let specular_factor = (mat.ks * tint).to_array();
+    let zero_factor = (0.0 * mat.color).to_array();
+    let zero_tint = (0.0 * tint).to_array();
+    let pc = point_color.to_array();
+    let filters = [0, 1, 2].map(|c| filter.iter().map(move |f| f[c]));
+    for (c, filter_c) in filters.into_iter().enumerate() {
+        let (dc, sc) = (&mut diffuse[c][..len], &mut specular[c][..len]);
+        for (i, f) in filter_c.enumerate() {
+            let cos = n_dot_l[i].max(0.0);
+            // `inc.color * filter`, with `inc.color = L / N * (A * 1)`.
+            let arriving = pc[c] * (atten[i] * 1.0) * f;
+            // `direct(arriving, kd, S, N.L, 0, tint, 0)`, `direct(arriving, 0, S, N.L, ks, tint, spec)`.
+            dc[i] = arriving * (diffuse_factor[c] * cos + zero_tint[c] * 0.0);
+            sc[i] = arriving * (zero_factor[c] * cos + specular_factor[c] * spec[i]);
+        }
+    }
+}
+
+impl Tracer<'_, '_> {
+    /// Adds to `color`, point after point, the share of area light `index` at the surface
+    /// `at`, after the horizon test and the search for the objects that can block any of its
+    /// shadow rays.
+    pub(super) fn add_area_light<R: Recorder>(
+        &mut self,
+        color: &mut DVec3,
+        index: usize,
+        area: &AreaLight,
+        at: &Surface,
+        rec: &mut R,
+    ) {
+        let world = self.world;
+        let skips = world.skips;
+        let mut s = std::mem::take(&mut self.area);
+        let fresh;
+        let points = match area.mode {
+            PointMode::Fixed => &world.light_points[index],
+            PointMode::PerSample => {
+                let (pixel, k) = self.sample_key;
+                fresh = PointSet::from_points(&area.sample_points(world.scene.settings.seed, index, pixel, k));
+                &fresh
+            }
+        };
+        let (centre, radius) = area.bounding_sphere();
+        if skips.on(Skip::Horizon) && below_horizon(at.point, at.n, centre, radius) {
+            self.counts.saved.count(Skip::Horizon, points.len() as u64);
+            rec.below_horizon(index);
+        } else {
+            // Only objects near the hull of this point and the light can block any of its N
+            // shadow rays: find them once, not N times (exact: see `shadow_candidates`).
+            let mut candidates = std::mem::take(&mut s.candidates);
+            let culled = skips.on(Skip::ShadowCandidates);
+            if culled {
+                world.shadow_candidates(at.point, centre, radius, 4.0 * at.err, &mut candidates);
+            }
+            let shadowing = culled.then_some(candidates.as_slice());
+            self.add_area_points(color, index, points, area, at, shadowing, &mut s, rec);
+            s.candidates = candidates;
+        }
+        self.area = s;
+    }
+
+    /// Passes 1 to 4 of the module doc for the light points `points` of `area`.
+    /// `candidates`, when given, are the only objects that can block their shadow rays;
+    /// without them each shadow ray goes through the acceleration structure on its own.
+    #[allow(clippy::too_many_arguments)]
+    fn add_area_points<R: Recorder>(
+        &mut self,
+        color: &mut DVec3,
+        index: usize,
+        points: &PointSet,
+        area: &AreaLight,
+        at: &Surface,
+        candidates: Option<&[Candidate]>,
+        s: &mut AreaScratch,
+        rec: &mut R,
+    ) {
+        let len = points.len();
+        let point_color = area.point_color();
+        s.lanes.resize(len);
+        incidences(points, at.point, at.n, &area.attenuation, &mut s.lanes);
+        s.facing.clear();
+        s.open.clear();
+        for i in 0..len {
+            let facing = if s.lanes.dist[i] == 0.0 {
+                Facing::NoLight
+            } else {
+                self.facing_by(point_color * (s.lanes.atten[i] * 1.0), s.lanes.n_dot_l[i])
+            };
+            if matches!(facing, Facing::Towards(_)) {
+                s.open.push(i as u32);
+            }
+            s.facing.push(facing);
+        }
+        let shadows = self.world.scene.settings.shadows;
+        s.filter.clear();
+        s.filter.resize(len, DVec3::ONE);
+        s.blocked.clear();
+        s.blocked.resize(len, false);
+        s.crossed.truncate(if R::RECORDS { len } else { 0 });
+        s.crossed.iter_mut().for_each(Vec::clear);
+        if R::RECORDS {
+            s.crossed.resize_with(len, Vec::new);
+        }
+        let grouped = match candidates {
+            Some(c) if shadows => {
+                self.shadow_points(c, at, area.bounding_sphere(), s);
+                true
+            }
+            _ => false,
+        };
+        if !grouped && shadows {
+            // One shadow ray at a time through the acceleration structure, in point order;
+            // for a recorder in pass 4, where its events interleave with the others.
+            for i in 0..len {
+                if let Facing::Towards(_) = s.facing[i]
+                    && !R::RECORDS
+                {
+                    let inc = s.lanes.incidence(i, point_color);
+                    s.filter[i] = self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, None, rec);
+                }
+            }
+        }
+        let mat = self.world.material_of(at.object);
+        let model = self.world.scene.settings.shading;
+        shares(&mut s.lanes, len, point_color, &s.filter, at.n, at.eye, mat, model);
+        // Pass 4, in point order.
+        let blocked_shading = self.world.skips.on(Skip::BlockedShading);
+        if !R::RECORDS && grouped {
+            // The same sums as below, without the events.
+            let [dr, dg, db] = &s.lanes.diffuse;
+            let [sr, sg, sb] = &s.lanes.specular;
+            for i in 0..len {
+                match s.facing[i] {
+                    Facing::Towards(_) if blocked_shading && s.filter[i] == DVec3::ZERO => {
+                        self.counts.saved.count(Skip::BlockedShading, 1)
+                    }
+                    Facing::Towards(_) => *color += DVec3::new(dr[i], dg[i], db[i]) + DVec3::new(sr[i], sg[i], sb[i]),
+                    facing => {
+                        let inc = (facing != Facing::NoLight).then(|| s.lanes.incidence(i, point_color));
+                        self.not_facing(index, facing, inc.as_ref(), at, candidates, rec)
+                    }
+                }
+            }
+            return;
+        }
+        for i in 0..len {
+            let Facing::Towards(n_dot_l) = s.facing[i] else {
+                let inc = (s.lanes.dist[i] != 0.0).then(|| s.lanes.incidence(i, point_color));
+                self.not_facing(index, s.facing[i], inc.as_ref(), at, candidates, rec);
+                continue;
+            };
+            let inc = s.lanes.incidence(i, point_color);
+            if grouped {
+                rec.shadow_ray(&shadow_ray(at, &inc), inc.distance);
+                if R::RECORDS && !s.blocked[i] && self.walks_transparent() {
+                    rec.shadow_crossed(&s.crossed[i]);
+                }
+            } else if shadows && R::RECORDS {
+                // Traced only now, for the events' order; pass 3 had no filter for it.
+                let filter = self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, None, rec);
+                *color += self.shade(index, &inc, n_dot_l, filter, at, rec);
+                continue;
+            }
+            let filter = s.filter[i];
+            let (diffuse, specular) = if filter == DVec3::ZERO && blocked_shading {
+                self.counts.saved.count(Skip::BlockedShading, 1);
+                (DVec3::ZERO, DVec3::ZERO)
+            } else {
+                let [dr, dg, db] = &s.lanes.diffuse;
+                let [sr, sg, sb] = &s.lanes.specular;
+                let diffuse = DVec3::new(dr[i], dg[i], db[i]);
+                let specular = DVec3::new(sr[i], sg[i], sb[i]);
+                *color += diffuse + specular;
+                (diffuse, specular)
+            };
+            if R::RECORDS {
+                rec.light(&LightShare {
+                    light: index,
+                    incidence: inc,
+                    n_dot_l,
+                    shadow_ray: shadows,
+                    filter,
+                    diffuse,
+                    specular,
+                });
+            }
+        }
+    }
+
+    /// Whether an unblocked shadow ray goes on to find the transparent objects it crosses
+    /// (not when the scene has none and the opaque-only shortcut is on).
+    fn walks_transparent(&self) -> bool {
+        self.world.has_transparent || !self.world.skips.on(Skip::OpaqueOnly)
+    }
+
+    /// Pass 2 of the module doc: the shadow rays of the open points against the candidate
+    /// objects, each ray meeting the objects in the order [`Tracer::shadow_filter`] uses
+    /// (opaque ones until one blocks, then every transparent one in ascending order), with
+    /// the same counts.
+    fn shadow_points(&mut self, candidates: &[Candidate], at: &Surface, light: (DVec3, f64), s: &mut AreaScratch) {
+        let world = self.world;
+        let objects = &world.scene.objects;
+        let cones = world.skips.on(Skip::BoundingSpheres);
+        let rays = s.open.len() as u64;
+        self.counts.shadow += rays;
+        self.counts
+            .saved
+            .count(Skip::ShadowCandidates, rays * (objects.len() - candidates.len()) as u64);
+        let lanes = &s.lanes;
+        let rejects = std::cell::Cell::new(0u64);
+        // Whether candidate `c` blocks or crosses the shadow ray towards point `i`: its cone
+        // of directions (or bounding sphere) first, then the exact test.
+        let meets = |c: &Candidate, i: usize| -> bool {
+            let dir = lanes.to_light(i);
+            let t_max = lanes.dist[i];
+            if cones && let Some((axis, cos)) = c.cone {
+                if dir.dot(axis) < cos {
+                    rejects.set(rejects.get() + 1);
+                    return false;
+                }
+                return objects[c.object].shape.occludes(&shadow_ray_along(at, dir), 0.0, t_max);
+            }
+            let ray = shadow_ray_along(at, dir);
+            if cones
+                && let Some((centre, radius)) = world.object_spheres[c.object]
+                && world.costly[c.object]
+                && !segment_meets_sphere(&ray, t_max, centre, radius)
+            {
+                rejects.set(rejects.get() + 1);
+                return false;
+            }
+            objects[c.object].shape.occludes(&ray, 0.0, t_max)
+        };
+        let transparent = |c: &Candidate| world.material_of(c.object).is_transparent();
+        // A plane that none of the segments to the light's ball can cross is tested by no
+        // ray (every open ray leaves from the same origin: see `Plane::misses_segments_to`).
+        let origin = s
+            .open
+            .first()
+            .map(|&i| shadow_ray_along(at, lanes.to_light(i as usize)).origin);
+        let (centre, radius) = light;
+        let untouched = |c: &Candidate| match (&objects[c.object].shape, origin) {
+            (Shape::Plane(plane), Some(o)) => cones && plane.misses_segments_to(o, centre, radius),
+            _ => false,
+        };
+        for c in candidates.iter().filter(|c| !transparent(c)) {
+            if untouched(c) {
+                rejects.set(rejects.get() + s.open.len() as u64);
+                continue;
+            }
+            s.open.retain(|&i| {
+                let i = i as usize;
+                if meets(c, i) {
+                    s.filter[i] = DVec3::ZERO;
+                    s.blocked[i] = true;
+                    false
+                } else {
+                    true
+                }
+            });
+        }
+        if self.walks_transparent() {
+            for c in candidates.iter().filter(|c| transparent(c)) {
+                if untouched(c) {
+                    rejects.set(rejects.get() + s.open.len() as u64);
+                    continue;
+                }
+                let color = world.material_of(c.object).color;
+                for &i in &s.open {
+                    let i = i as usize;
+                    if meets(c, i) {
+                        s.filter[i] *= color;
+                        if let Some(list) = s.crossed.get_mut(i) {
+                            list.push(c.object);
+                        }
+                    }
+                }
+            }
+        } else {
+            self.counts.saved.count(Skip::OpaqueOnly, s.open.len() as u64);
+        }
+        self.counts.saved.count(Skip::BoundingSpheres, rejects.get());
+    }
+}
+
+/// The shadow ray along `dir` (towards a light point): from the surface point, offset to
+/// the side the light is on.
+fn shadow_ray_along(at: &Surface, dir: DVec3) -> Ray {
+    Ray::new(offset_origin(at.point, at.outward, at.err, dir), dir)
+}
+
+/// The shadow ray towards the light point of incidence `inc`.
+fn shadow_ray(at: &Surface, inc: &Incidence) -> Ray {
+    shadow_ray_along(at, inc.to_light)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::light::point_incidence;
+    use crate::shading::{blinn, direct, phong};
+    use rand_chacha::ChaCha8Rng;
+    use rand_core::{Rng, SeedableRng};
+
+    /// Passes 1 and 3 give, bit for bit, what the one-light formulas give point by point.
+    #[test]
+    fn lanes_are_the_point_light_formulas_bit_for_bit() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let mut points = Vec::new();
+        for _ in 0..257 {
+            points.push(DVec3::new(uniform(-5.0, 5.0), uniform(-5.0, 5.0), uniform(0.0, 12.0)));
+        }
+        let set = PointSet::from_points(&points);
+        let att = Attenuation {
+            constant: 1.0,
+            linear: 0.3,
+            quadratic: 0.005,
+        };
+        let p = DVec3::new(0.3, -1.7, 0.2);
+        let n = DVec3::new(0.1, -0.2, 1.0).normalize();
+        let eye = DVec3::new(-0.3, -0.8, 0.6).normalize();
+        let point_color = DVec3::new(0.01, 0.02, 0.005);
+        let filter: Vec<DVec3> = (0..points.len())
+            .map(|i| [DVec3::ONE, DVec3::ZERO, DVec3::new(0.6, 0.27, 0.08)][i % 3])
+            .collect();
+        for (specular, metal, shininess) in [(Specular::Blinn, 0.0, 20.0), (Specular::Phong, 0.5, 7.5)] {
+            let mat = Material {
+                color: DVec3::new(0.85, 0.5, 0.2),
+                metal,
+                shininess,
+                ..Material::default()
+            };
+            let model = ShadingModel {
+                ambient: true,
+                diffuse: true,
+                specular,
+            };
+            let mut lanes = Lanes::default();
+            lanes.resize(points.len());
+            incidences(&set, p, n, &att, &mut lanes);
+            shares(&mut lanes, points.len(), point_color, &filter, n, eye, &mat, model);
+            for (i, &q) in points.iter().enumerate() {
+                let inc = point_incidence(q, point_color, &att, p, 1.0).unwrap();
+                assert_eq!(lanes.incidence(i, point_color), inc, "point {i}");
+                let n_dot_l = n.dot(inc.to_light);
+                assert_eq!(lanes.n_dot_l[i], n_dot_l);
+                let spec = match specular {
+                    Specular::Blinn => blinn(n, inc.to_light, eye, shininess),
+                    _ => phong(n, inc.to_light, eye, shininess),
+                };
+                let arriving = inc.color * filter[i];
+                let tint = specular_tint(mat.metal, mat.color);
+                let diffuse = direct(arriving, mat.kd, mat.color, n_dot_l, 0.0, tint, 0.0);
+                let spec_term = direct(arriving, 0.0, mat.color, n_dot_l, mat.ks, tint, spec);
+                let [dr, dg, db] = &lanes.diffuse;
+                let [sr, sg, sb] = &lanes.specular;
+                assert_eq!(DVec3::new(dr[i], dg[i], db[i]), diffuse, "point {i}");
+                assert_eq!(DVec3::new(sr[i], sg[i], sb[i]), spec_term, "point {i}");
+            }
+        }
+    }
+}
