@@ -27,7 +27,11 @@ pub enum Skip {
     /// Area lights: a light wholly below the surface's horizon (its bounding sphere behind
     /// the tangent plane) is passed over without looking at its N points.
     Horizon,
-    /// Shadow rays meet an object's bounding sphere before its exact (costly) test.
+    /// Shadow rays meet an object's bounding sphere before its exact (costly) test; for
+    /// area lights, the cones of directions from the shading point decide most rays at once:
+    /// outside the cone of the bounding sphere a ray misses, inside the cone through a ball
+    /// within the solid it hits, and a plane none of the segments to the light can cross is
+    /// not tested.
     BoundingSpheres,
     /// Shading terms (specular power, tints) are not evaluated for a fully blocked light.
     BlockedShading,

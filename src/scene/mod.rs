@@ -114,6 +114,13 @@ pub struct Candidate {
     /// `d.axis < cos` misses the object). `None` for unbounded objects and when the point
     /// is inside the sphere.
     pub cone: Option<(DVec3, f64)>,
+    /// The cone of directions from the shading point that surely pass through a ball
+    /// inside the object, and the distance past which that ball is wholly behind the point:
+    /// unit axis, cosine of the half-angle (narrowed by a relative 1e-9), and reach. A ray
+    /// whose direction `d` has `d.axis > cos` and whose segment is longer than the reach
+    /// enters the object: it surely meets its surface. `None` when the object has no inner
+    /// ball or the point may be inside the object.
+    pub sure: Option<(DVec3, f64, f64)>,
 }
 
 /// The cone of directions from `p` meeting the ball (`centre`, `radius`), widened by a
@@ -128,6 +135,21 @@ fn direction_cone(p: DVec3, centre: DVec3, radius: f64) -> Option<(DVec3, f64)> 
     }
     let sin = padded / dist;
     Some((to_centre / dist, (1.0 - sin * sin).sqrt() - 1e-12))
+}
+
+/// The cone of directions from `p` that pass through the ball (`centre`, `radius`), shrunk
+/// by a relative 1e-9 (and `slack`) so rounding never includes a direction that misses it,
+/// with the reach `|centre - p| + radius`; `None` when nothing is left after shrinking.
+fn sure_cone(p: DVec3, centre: DVec3, radius: f64, slack: f64) -> Option<(DVec3, f64, f64)> {
+    let to_centre = centre - p;
+    let dist = to_centre.length();
+    let shrunk = radius * (1.0 - 1e-9) - 1e-9 * dist - slack;
+    if shrunk <= 0.0 || shrunk >= dist {
+        return None;
+    }
+    let sin = shrunk / dist;
+    let reach = (dist + radius) * (1.0 + 1e-9) + slack;
+    Some((to_centre / dist, (1.0 - sin * sin).sqrt() + 1e-12, reach))
 }
 
 /// A scene ready to render: the camera for the image's aspect, the acceleration structure,
@@ -147,6 +169,8 @@ pub struct World<'s> {
     pub light_points: Vec<PointSet>,
     /// Bounding sphere (centre, radius) of each object; `None` for unbounded ones.
     pub object_spheres: Vec<Option<(DVec3, f64)>>,
+    /// A ball inside each object's solid ([`Shape::inner_ball`]).
+    pub inner_balls: Vec<Option<(DVec3, f64)>>,
     /// Whether an object's exact test costs more than a ray-sphere test (boxes, cylinders,
     /// cones, tori), so a bounding-sphere test first pays off.
     pub costly: Vec<bool>,
@@ -185,11 +209,8 @@ impl<'s> World<'s> {
                     _ => PointSet::default(),
                 })
                 .collect(),
-            object_spheres: scene
-                .objects
-                .iter()
-                .map(|o| o.shape.bounds().map(|b| (b.centroid(), 0.5 * (b.max - b.min).length())))
-                .collect(),
+            object_spheres: scene.objects.iter().map(|o| o.shape.bounding_ball()).collect(),
+            inner_balls: scene.objects.iter().map(|o| o.shape.inner_ball()).collect(),
             costly: scene
                 .objects
                 .iter()
@@ -215,7 +236,11 @@ impl<'s> World<'s> {
         let len2 = axis.length_squared();
         for (object, sphere) in self.object_spheres.iter().enumerate() {
             let Some((centre, radius)) = *sphere else {
-                out.push(Candidate { object, cone: None });
+                out.push(Candidate {
+                    object,
+                    cone: None,
+                    sure: None,
+                });
                 continue;
             };
             let s = if len2 > 0.0 {
@@ -225,9 +250,14 @@ impl<'s> World<'s> {
             };
             let reach = radius + r + slack;
             if (p + s * axis - centre).length_squared() <= reach * reach {
+                // Outside the bounding sphere, the point is outside the object.
+                let outside = (centre - p).length() > radius * (1.0 + 1e-9) + slack;
                 out.push(Candidate {
                     object,
                     cone: direction_cone(p, centre, radius + slack),
+                    sure: self.inner_balls[object]
+                        .filter(|_| outside)
+                        .and_then(|(c, r)| sure_cone(p, c, r, slack)),
                 });
             }
         }
@@ -259,4 +289,35 @@ fn remaining_bounds(scene: &Scene, ambient: DVec3) -> Vec<f64> {
         bound[level] = local + k * bound[level + 1];
     }
     bound
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn direction_cones_bracket_the_ball() {
+        // A ball of radius 1 seen from 2 away: half-angle 30 degrees.
+        let (p, c) = (DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0));
+        let (axis, cos) = direction_cone(p, c, 1.0).unwrap();
+        let (sure_axis, sure_cos, reach) = sure_cone(p, c, 1.0, 0.0).unwrap();
+        assert_eq!((axis, sure_axis), (DVec3::Z, DVec3::Z));
+        let half = 30f64.to_radians().cos();
+        assert!(cos < half && half - cos < 1e-8, "{cos}");
+        assert!(sure_cos > half && sure_cos - half < 1e-8, "{sure_cos}");
+        assert!((reach - 3.0).abs() < 1e-8);
+        // Directions just inside the sure cone meet the ball; just outside the outer cone
+        // they miss it (distance from the centre to the line > radius).
+        for (angle, meets) in [(29.999_99, true), (30.000_01, false)] {
+            let a = f64::to_radians(angle);
+            let d = DVec3::new(a.sin(), 0.0, a.cos());
+            let miss_distance = (c - d * c.dot(d)).length();
+            assert_eq!(miss_distance < 1.0, meets);
+            assert_eq!(d.dot(sure_axis) > sure_cos, meets);
+            assert_eq!(d.dot(axis) >= cos, meets);
+        }
+        // From inside the ball there is no cone.
+        assert_eq!(direction_cone(c, c, 1.0), None);
+        assert_eq!(sure_cone(c + DVec3::X * 0.5, c, 1.0, 0.0), None);
+    }
 }

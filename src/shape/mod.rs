@@ -139,6 +139,50 @@ impl Shape {
         dispatch!(self, s => s.bounds())
     }
 
+    /// A ball containing the whole shape (centre, radius), as small as is simple to say;
+    /// `None` for unbounded shapes. Shadow rays that miss it miss the shape.
+    pub fn bounding_ball(&self) -> Option<(DVec3, f64)> {
+        let half_diagonal = |a: DVec3, b: DVec3| 0.5 * (a + b).length().max((a - b).length());
+        Some(match self {
+            Shape::Plane(_) => return None,
+            Shape::Rectangle(r) => (r.corner + 0.5 * (r.edge1 + r.edge2), half_diagonal(r.edge1, r.edge2)),
+            Shape::Disk(d) => (d.center, d.radius),
+            Shape::Sphere(s) => (s.center, s.radius),
+            Shape::Cuboid(b) => (b.center, b.half_size.length()),
+            Shape::Cylinder(c) => (c.base + 0.5 * c.height * c.axis, c.radius.hypot(0.5 * c.height)),
+            // The smallest ball through the base rim and the apex (or around the base when
+            // the cone is flatter than that ball), centred on the axis at `z0` above the base.
+            Shape::Cone(c) => {
+                let (h, r) = (c.height, c.radius);
+                if h > r {
+                    let z0 = (h * h - r * r) / (2.0 * h);
+                    (c.base + z0 * c.axis, h - z0)
+                } else {
+                    (c.base, r)
+                }
+            }
+            Shape::Torus(t) => (t.center, t.major + t.minor),
+        })
+    }
+
+    /// A ball inside the solid (centre, radius): a segment that starts outside the shape and
+    /// passes through it crosses the surface. `None` for surfaces that bound no solid
+    /// (plane, rectangle, disk) and for the torus (its centre is in the hole).
+    pub fn inner_ball(&self) -> Option<(DVec3, f64)> {
+        match self {
+            Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Torus(_) => None,
+            Shape::Sphere(s) => Some((s.center, s.radius)),
+            Shape::Cuboid(b) => Some((b.center, b.half_size.min_element())),
+            Shape::Cylinder(c) => Some((c.base + 0.5 * c.height * c.axis, c.radius.min(0.5 * c.height))),
+            // The inscribed ball touches the base and the side: radius `r h / (r + sqrt(r^2 + h^2))`.
+            Shape::Cone(c) => {
+                let (h, r) = (c.height, c.radius);
+                let rho = r * h / (r + r.hypot(h));
+                Some((c.base + rho * c.axis, rho))
+            }
+        }
+    }
+
     /// The shape's kind as written in scene files.
     pub fn kind(&self) -> &'static str {
         match self {
@@ -235,5 +279,103 @@ pub(crate) mod test_util {
 
     pub fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {
         Ray::new(DVec3::from(o), DVec3::from(d).normalize())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand_chacha::ChaCha8Rng;
+    use rand_core::{Rng, SeedableRng};
+
+    /// One shape of each bounded kind, tilted or rotated, and the hand-computed balls of the
+    /// simple ones.
+    fn shapes() -> Vec<Shape> {
+        let tilt = DVec3::new(0.3, -0.5, 1.0);
+        vec![
+            Shape::Sphere(Sphere::new(DVec3::new(1.0, -5.0, 3.0), 0.75)),
+            Shape::Cuboid(Cuboid::new(
+                DVec3::new(0.0, 0.0, 3.0),
+                DVec3::new(2.0, 1.0, 3.0),
+                DVec3::new(10.0, 20.0, 30.0),
+            )),
+            Shape::Cylinder(Cylinder::new(DVec3::new(-5.0, 9.0, 0.0), tilt, 3.0, 1.0)),
+            Shape::Cone(Cone::new(DVec3::new(-3.0, -3.0, 0.0), tilt, 2.5, 1.0)),
+            Shape::Cone(Cone::new(DVec3::ZERO, -tilt, 0.5, 2.0)),
+            Shape::Torus(Torus::new(DVec3::new(4.0, 3.0, 2.0), tilt, 1.5, 0.5)),
+            Shape::Disk(Disk::new(DVec3::new(1.0, 2.0, 3.0), tilt, 2.0)),
+            Shape::Rectangle(Rectangle::new(
+                DVec3::ZERO,
+                DVec3::new(4.0, 0.0, 0.0),
+                DVec3::new(0.0, 3.0, 1.0),
+            )),
+        ]
+    }
+
+    #[test]
+    fn balls_by_hand() {
+        // Cone of height 2.5 and radius 1: the ball through the rim and the apex has its
+        // centre at z0 = (6.25 - 1) / 5 = 1.05 and radius 2.5 - 1.05 = 1.45; the inscribed
+        // ball has radius 2.5 / (1 + sqrt(7.25)) = 0.6771...
+        let cone = Shape::Cone(Cone::new(DVec3::ZERO, DVec3::Z, 2.5, 1.0));
+        let (c, r) = cone.bounding_ball().unwrap();
+        assert!((c - DVec3::new(0.0, 0.0, 1.05)).length() < 1e-15 && (r - 1.45).abs() < 1e-15);
+        let (c, r) = cone.inner_ball().unwrap();
+        let rho = 2.5 / (1.0 + 7.25f64.sqrt());
+        assert!((c - DVec3::new(0.0, 0.0, rho)).length() < 1e-15 && (r - rho).abs() < 1e-15);
+        // The reference cube (side 2): sqrt(3) around, 1 inside; the torus: R + r = 2.
+        let cube = Shape::Cuboid(Cuboid::new(DVec3::new(0.0, 0.0, 3.0), DVec3::splat(2.0), DVec3::ZERO));
+        assert!((cube.bounding_ball().unwrap().1 - 3f64.sqrt()).abs() < 1e-15);
+        assert_eq!(cube.inner_ball().unwrap(), (DVec3::new(0.0, 0.0, 3.0), 1.0));
+        let torus = Shape::Torus(Torus::new(DVec3::ZERO, DVec3::Z, 1.5, 0.5));
+        assert_eq!(torus.bounding_ball().unwrap().1, 2.0);
+        assert_eq!(torus.inner_ball(), None);
+        assert_eq!(Shape::Plane(Plane::new(DVec3::ZERO, DVec3::Z)).bounding_ball(), None);
+    }
+
+    #[test]
+    fn bounding_balls_hold_every_hit_and_inner_balls_are_inside() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let mut unit = move || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        for shape in shapes() {
+            let (centre, radius) = shape.bounding_ball().unwrap();
+            let mut direction = || {
+                let (z, phi) = (2.0 * unit() - 1.0, std::f64::consts::TAU * unit());
+                let s = (1.0 - z * z).sqrt();
+                (DVec3::new(s * phi.cos(), s * phi.sin(), z), unit())
+            };
+            let mut hits = 0;
+            for _ in 0..4000 {
+                // Rays from a sphere around the shape towards points near it.
+                let (d0, _) = direction();
+                let (d1, u) = direction();
+                let from = centre + 3.0 * radius * d0;
+                let to = centre + 1.2 * radius * u * d1;
+                let ray = Ray::new(from, (to - from).normalize());
+                if let Some(h) = shape.intersect(&ray, 0.0, f64::INFINITY) {
+                    hits += 1;
+                    let p = ray.at(h.t);
+                    assert!(
+                        (p - centre).length() <= radius * (1.0 + 1e-12),
+                        "{} hit outside its ball",
+                        shape.kind()
+                    );
+                }
+            }
+            assert!(hits > 500, "{}: {hits}", shape.kind());
+            if let Some((c, r)) = shape.inner_ball() {
+                // From any point of the inner ball, every ray leaves the solid through its
+                // surface (an inside point), and not before the ball's own edge.
+                for _ in 0..2000 {
+                    let (d0, u) = direction();
+                    let (d1, _) = direction();
+                    let start = c + 0.999 * r * u.cbrt() * d0;
+                    let ray = Ray::new(start, d1);
+                    let exit = shape.intersect(&ray, 0.0, f64::INFINITY);
+                    let exit = exit.unwrap_or_else(|| panic!("{}: no exit from {start}", shape.kind()));
+                    assert!((ray.at(exit.t) - c).length() >= r * (1.0 - 1e-9), "{}", shape.kind());
+                }
+            }
+        }
     }
 }

@@ -10,7 +10,9 @@
 //! 4. in point order, the recorder's events and the running sum.
 //!
 //! Passes 1 and 3 are straight loops over coordinate arrays that compile to vector
-//! instructions. Each point's arithmetic is that of a lone point light — the same
+//! instructions, in versions for AVX-512 and AVX2 chosen at run time (`multiversion`):
+//! the same IEEE operations on each lane whatever the vector width (Rust never fuses a
+//! multiply and an add), so the same bits on every machine. Each point's arithmetic is that of a lone point light — the same
 //! operations in the same order as [`point_incidence`], [`blinn`] or [`phong`], and
 //! [`direct`] (tests/soft_shadows.rs and the tests below check the bits) — each shadow ray
 //! meets the same objects in the same order as [`Tracer::shadow_filter`] would test them,
@@ -32,6 +34,7 @@ use crate::shading::{pow_each, specular_tint};
 use crate::shape::Shape;
 use crate::skips::Skip;
 use glam::DVec3;
+use multiversion::multiversion;
 
 /// Per-point values of the current area light at the current shading point, one array
 /// entry per light point, reused from one shading point to the next.
@@ -45,6 +48,8 @@ pub(super) struct AreaScratch {
     blocked: Vec<bool>,
     /// The points whose shadow ray is still open (facing, not blocked yet).
     open: Vec<u32>,
+    /// The current candidate's verdict on each point's shadow ray.
+    verdict: Vec<Verdict>,
     /// For a recorder only (else empty): the transparent objects each point's shadow ray
     /// crosses.
     crossed: Vec<Vec<usize>>,
@@ -110,6 +115,7 @@ impl Lanes {
 /// `d_i = |q_i - p|`, the attenuation `A = 1 / (C_const + C_lin d + C_quad d^2)` and `N.L_i`,
 /// each rounded exactly as [`crate::light::point_incidence`] and `DVec3::dot` round them.
 /// A point at distance 0 gets NaN directions (no light arrives from it; see [`Facing`]).
+#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mut Lanes) {
     let len = points.len();
     let (xs, ys, zs) = (&points.x[..len], &points.y[..len], &points.z[..len]);
@@ -134,6 +140,7 @@ fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mu
 /// [`crate::shading::direct`], [`crate::shading::blinn`] and [`crate::shading::phong`] in
 /// their order. Values for points that do not face the surface are computed and ignored.
 #[allow(clippy::too_many_arguments)]
+#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn shares(
     lanes: &mut Lanes,
     len: usize,
@@ -271,18 +278,15 @@ impl Tracer<'_, '_> {
         s.lanes.resize(len);
         incidences(points, at.point, at.n, &area.attenuation, &mut s.lanes);
         s.facing.clear();
-        s.open.clear();
-        for i in 0..len {
-            let facing = if s.lanes.dist[i] == 0.0 {
-                Facing::NoLight
-            } else {
-                self.facing_by(point_color * (s.lanes.atten[i] * 1.0), s.lanes.n_dot_l[i])
-            };
-            if matches!(facing, Facing::Towards(_)) {
-                s.open.push(i as u32);
+        s.facing.resize(len, Facing::NoLight);
+        for (i, facing) in s.facing.iter_mut().enumerate() {
+            if s.lanes.dist[i] != 0.0 {
+                *facing = self.facing_by(point_color * (s.lanes.atten[i] * 1.0), s.lanes.n_dot_l[i]);
             }
-            s.facing.push(facing);
         }
+        s.open.clear();
+        s.open
+            .extend((0..len as u32).filter(|&i| matches!(s.facing[i as usize], Facing::Towards(_))));
         let shadows = self.world.scene.settings.shadows;
         s.filter.clear();
         s.filter.resize(len, DVec3::ONE);
@@ -317,22 +321,25 @@ impl Tracer<'_, '_> {
         shares(&mut s.lanes, len, point_color, &s.filter, at.n, at.eye, mat, model);
         // Pass 4, in point order.
         let blocked_shading = self.world.skips.on(Skip::BlockedShading);
-        if !R::RECORDS && grouped {
-            // The same sums as below, without the events.
+        if !R::RECORDS && grouped && self.world.skips.on(Skip::BackFacing) {
+            // The same sums and counts as below, without the events (what `not_facing`
+            // counts, counted in bulk).
             let [dr, dg, db] = &s.lanes.diffuse;
             let [sr, sg, sb] = &s.lanes.specular;
+            let (mut away, mut black, mut blocked) = (0, 0, 0);
             for i in 0..len {
                 match s.facing[i] {
-                    Facing::Towards(_) if blocked_shading && s.filter[i] == DVec3::ZERO => {
-                        self.counts.saved.count(Skip::BlockedShading, 1)
-                    }
+                    Facing::Towards(_) if blocked_shading && s.filter[i] == DVec3::ZERO => blocked += 1,
                     Facing::Towards(_) => *color += DVec3::new(dr[i], dg[i], db[i]) + DVec3::new(sr[i], sg[i], sb[i]),
-                    facing => {
-                        let inc = (facing != Facing::NoLight).then(|| s.lanes.incidence(i, point_color));
-                        self.not_facing(index, facing, inc.as_ref(), at, candidates, rec)
-                    }
+                    Facing::Away(_) => away += 1,
+                    Facing::Black => black += 1,
+                    Facing::NoLight => {}
                 }
             }
+            let saved = &mut self.counts.saved;
+            saved.count(Skip::BlockedShading, blocked);
+            saved.count(Skip::BackFacing, away * u64::from(shadows));
+            saved.count(Skip::Unlit, black * u64::from(shadows));
             return;
         }
         for i in 0..len {
@@ -388,7 +395,8 @@ impl Tracer<'_, '_> {
     /// Pass 2 of the module doc: the shadow rays of the open points against the candidate
     /// objects, each ray meeting the objects in the order [`Tracer::shadow_filter`] uses
     /// (opaque ones until one blocks, then every transparent one in ascending order), with
-    /// the same counts.
+    /// the same counts. For each candidate, a lane loop first sorts every point's direction
+    /// by the candidate's cones ([`verdicts`]); only the undecided ones get the exact test.
     fn shadow_points(&mut self, candidates: &[Candidate], at: &Surface, light: (DVec3, f64), s: &mut AreaScratch) {
         let world = self.world;
         let objects = &world.scene.objects;
@@ -398,69 +406,71 @@ impl Tracer<'_, '_> {
         self.counts
             .saved
             .count(Skip::ShadowCandidates, rays * (objects.len() - candidates.len()) as u64);
-        let lanes = &s.lanes;
-        let rejects = std::cell::Cell::new(0u64);
-        // Whether candidate `c` blocks or crosses the shadow ray towards point `i`: its cone
-        // of directions (or bounding sphere) first, then the exact test.
-        let meets = |c: &Candidate, i: usize| -> bool {
-            let dir = lanes.to_light(i);
-            let t_max = lanes.dist[i];
-            if cones && let Some((axis, cos)) = c.cone {
-                if dir.dot(axis) < cos {
-                    rejects.set(rejects.get() + 1);
-                    return false;
-                }
-                return objects[c.object].shape.occludes(&shadow_ray_along(at, dir), 0.0, t_max);
-            }
-            let ray = shadow_ray_along(at, dir);
-            if cones
-                && let Some((centre, radius)) = world.object_spheres[c.object]
-                && world.costly[c.object]
-                && !segment_meets_sphere(&ray, t_max, centre, radius)
-            {
-                rejects.set(rejects.get() + 1);
-                return false;
-            }
-            objects[c.object].shape.occludes(&ray, 0.0, t_max)
+        let Some(&first) = s.open.first() else {
+            return;
         };
-        let transparent = |c: &Candidate| world.material_of(c.object).is_transparent();
-        // A plane that none of the segments to the light's ball can cross is tested by no
-        // ray (every open ray leaves from the same origin: see `Plane::misses_segments_to`).
-        let origin = s
-            .open
-            .first()
-            .map(|&i| shadow_ray_along(at, lanes.to_light(i as usize)).origin);
+        // Every open point faces the surface, so every shadow ray leaves from the same
+        // offset origin (the offset's side is the side of the light: see `offset_origin`).
+        let origin = shadow_ray_along(at, s.lanes.to_light(first as usize)).origin;
         let (centre, radius) = light;
-        let untouched = |c: &Candidate| match (&objects[c.object].shape, origin) {
-            (Shape::Plane(plane), Some(o)) => cones && plane.misses_segments_to(o, centre, radius),
-            _ => false,
-        };
-        for c in candidates.iter().filter(|c| !transparent(c)) {
-            if untouched(c) {
-                rejects.set(rejects.get() + s.open.len() as u64);
+        let mut rejects = 0;
+        let len = s.lanes.dist.len();
+        // Opaque candidates, then transparent ones, each in ascending order.
+        let transparent = |c: &&Candidate| world.material_of(c.object).is_transparent();
+        let opaque = candidates.iter().filter(|c| !transparent(c));
+        let walk = self.walks_transparent();
+        let see_through = candidates.iter().filter(|c| walk && transparent(c));
+        for c in opaque.chain(see_through) {
+            let shape = &objects[c.object].shape;
+            if let (true, Shape::Plane(plane)) = (cones, shape)
+                && plane.misses_segments_to(origin, centre, radius)
+            {
+                // A plane that none of the segments to the light's ball can cross.
+                rejects += s.open.len() as u64;
                 continue;
             }
-            s.open.retain(|&i| {
-                let i = i as usize;
-                if meets(c, i) {
-                    s.filter[i] = DVec3::ZERO;
-                    s.blocked[i] = true;
-                    false
-                } else {
-                    true
+            s.verdict.resize(len, Verdict::Test);
+            match c.cone {
+                Some(cone) if cones => verdicts(&s.lanes, cone, c.sure, &mut s.verdict),
+                _ => s.verdict.fill(Verdict::Test),
+            }
+            let sphere = world.object_spheres[c.object].filter(|_| cones && c.cone.is_none() && world.costly[c.object]);
+            let lanes = &s.lanes;
+            let verdict = &s.verdict;
+            // Whether the shadow ray towards point `i` meets the candidate.
+            let mut meets = |i: usize| match verdict[i] {
+                Verdict::Miss | Verdict::Hit => {
+                    rejects += 1;
+                    verdict[i] == Verdict::Hit
                 }
-            });
-        }
-        if self.walks_transparent() {
-            for c in candidates.iter().filter(|c| transparent(c)) {
-                if untouched(c) {
-                    rejects.set(rejects.get() + s.open.len() as u64);
-                    continue;
+                Verdict::Test => {
+                    let ray = Ray::new(origin, lanes.to_light(i));
+                    let t_max = lanes.dist[i];
+                    if let Some((centre, radius)) = sphere
+                        && !segment_meets_sphere(&ray, t_max, centre, radius)
+                    {
+                        rejects += 1;
+                        return false;
+                    }
+                    shape.occludes(&ray, 0.0, t_max)
                 }
+            };
+            if !world.material_of(c.object).is_transparent() {
+                let (filter, blocked) = (&mut s.filter, &mut s.blocked);
+                s.open.retain(|&i| {
+                    let i = i as usize;
+                    let hit = meets(i);
+                    if hit {
+                        filter[i] = DVec3::ZERO;
+                        blocked[i] = true;
+                    }
+                    !hit
+                });
+            } else {
                 let color = world.material_of(c.object).color;
                 for &i in &s.open {
                     let i = i as usize;
-                    if meets(c, i) {
+                    if meets(i) {
                         s.filter[i] *= color;
                         if let Some(list) = s.crossed.get_mut(i) {
                             list.push(c.object);
@@ -468,10 +478,45 @@ impl Tracer<'_, '_> {
                     }
                 }
             }
-        } else {
+        }
+        if !walk {
             self.counts.saved.count(Skip::OpaqueOnly, s.open.len() as u64);
         }
-        self.counts.saved.count(Skip::BoundingSpheres, rejects.get());
+        self.counts.saved.count(Skip::BoundingSpheres, rejects);
+    }
+}
+
+/// What a candidate's cones say of one shadow ray.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Verdict {
+    /// Outside the cone of directions meeting its bounding sphere: misses.
+    Miss,
+    /// Inside the cone through its inner ball, and long enough to get there: meets it.
+    Hit,
+    /// Undecided: the exact test.
+    Test,
+}
+
+/// The verdict of a candidate's cones (`cone`: axis and cosine of the bounding cone;
+/// `sure`: axis, cosine and reach of the cone through the inner ball, see
+/// [`Candidate::sure`]) on the shadow ray towards every point, as a lane loop.
+#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn verdicts(lanes: &Lanes, (axis, cos): (DVec3, f64), sure: Option<(DVec3, f64, f64)>, out: &mut [Verdict]) {
+    let len = out.len();
+    let (lx, ly, lz, dist) = (&lanes.lx[..len], &lanes.ly[..len], &lanes.lz[..len], &lanes.dist[..len]);
+    // Without an inner ball, a cone nothing passes (cos > 1) and an unreachable reach.
+    let (sure_axis, sure_cos, reach) = sure.unwrap_or((DVec3::Z, 2.0, f64::INFINITY));
+    for i in 0..len {
+        // `DVec3::dot` order, as the scalar test would compute it.
+        let outer = lx[i] * axis.x + ly[i] * axis.y + lz[i] * axis.z;
+        let inner = lx[i] * sure_axis.x + ly[i] * sure_axis.y + lz[i] * sure_axis.z;
+        out[i] = if outer < cos {
+            Verdict::Miss
+        } else if dist[i] > reach && inner > sure_cos {
+            Verdict::Hit
+        } else {
+            Verdict::Test
+        };
     }
 }
 
