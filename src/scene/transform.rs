@@ -72,13 +72,7 @@ impl Similarity {
                 c.radius = self.length(c.radius);
                 Shape::Cylinder(c)
             }
-            Shape::Cone(c) => {
-                let mut c = c.clone();
-                c.base = self.point(c.base);
-                c.height = self.length(c.height);
-                c.radius = self.length(c.radius);
-                Shape::Cone(c)
-            }
+            Shape::Cone(c) => Shape::Cone(c.resized(self.point(c.base), self.length(c.height), self.length(c.radius))),
             Shape::Torus(t) => {
                 let mut t = t.clone();
                 t.center = self.point(t.center);

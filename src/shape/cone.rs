@@ -14,6 +14,9 @@ pub struct Cone {
     pub radius: f64,
     #[serde(skip)]
     frame: Frame,
+    /// The bounding ball ([`Cone::ball`]), tested before the quadric.
+    #[serde(skip)]
+    ball: (DVec3, f64),
 }
 
 impl Cone {
@@ -25,13 +28,45 @@ impl Cone {
             height,
             radius,
             frame: Frame::from_z(axis),
+            ball: Self::smallest_ball(base, axis, height, radius),
         }
+    }
+
+    /// The smallest ball through the base rim and the apex (or around the base when the
+    /// cone is flatter than that ball), centred on the axis at `z0` above the base.
+    fn smallest_ball(base: DVec3, axis: DVec3, h: f64, r: f64) -> (DVec3, f64) {
+        if h > r {
+            let z0 = (h * h - r * r) / (2.0 * h);
+            (base + z0 * axis, h - z0)
+        } else {
+            (base, r)
+        }
+    }
+
+    /// The same cone (axis and frame to the bit) with another base, height and radius: what a
+    /// similarity transform makes of it.
+    pub fn resized(&self, base: DVec3, height: f64, radius: f64) -> Cone {
+        Cone {
+            base,
+            height,
+            radius,
+            ball: Self::smallest_ball(base, self.axis, height, radius),
+            ..self.clone()
+        }
+    }
+
+    /// A ball around the whole cone (centre, radius).
+    pub fn ball(&self) -> (DVec3, f64) {
+        self.ball
     }
 
     /// In the local frame (axis +z, base at the origin, apex at `z = h`), with `k = r / h`:
     /// side `x^2 + y^2 = k^2 (h - z)^2` for `0 <= z <= h`; gradient `(x, y, k^2 (h - z))`.
     /// The base cap is the disk `z = 0`, radius `r`.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        if super::misses_ball(ray, t_min, t_max, self.ball) {
+            return None;
+        }
         let o = self.frame.to_local(ray.origin - self.base);
         let d = self.frame.to_local(ray.dir);
         // Far origins: solve from the point of the ray nearest the shape (see `recentre`).

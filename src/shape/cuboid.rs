@@ -30,9 +30,17 @@ impl Cuboid {
         }
     }
 
+    /// A ball around the whole box: its centre and half-diagonal.
+    pub fn ball(&self) -> (DVec3, f64) {
+        (self.center, self.half_size.length())
+    }
+
     /// Slab test in the box's frame; the face normal is the axis whose slab was entered
     /// (or, from inside, left) last.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        if super::misses_ball(ray, t_min, t_max, self.ball()) {
+            return None;
+        }
         let o = self.frame.to_local(ray.origin - self.center);
         let d = self.frame.to_local(ray.dir);
         let (mut near, mut far) = (f64::NEG_INFINITY, f64::INFINITY);

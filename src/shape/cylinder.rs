@@ -28,9 +28,20 @@ impl Cylinder {
         }
     }
 
+    /// A ball around the whole cylinder: centred half-way up the axis, through the rims.
+    pub fn ball(&self) -> (DVec3, f64) {
+        (
+            self.base + 0.5 * self.height * self.axis,
+            self.radius.hypot(0.5 * self.height),
+        )
+    }
+
     /// In the local frame (axis = +z, base at the origin): side `x^2 + y^2 = r^2` for
     /// `0 <= z <= h`, and the caps `z = 0`, `z = h` within radius `r`.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        if super::misses_ball(ray, t_min, t_max, self.ball()) {
+            return None;
+        }
         let o = self.frame.to_local(ray.origin - self.base);
         let d = self.frame.to_local(ray.dir);
         // Far origins: solve from the point of the ray nearest the shape (see `recentre`).

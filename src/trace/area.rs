@@ -429,6 +429,12 @@ impl Tracer<'_, '_> {
                 rejects += s.open.len() as u64;
                 continue;
             }
+            if cones && c.object == at.object && at.n == at.outward && shape.is_convex() {
+                // Rays leaving a convex surface outward, from origins offset past its
+                // rounding error, never meet it again (tests/self_intersection.rs).
+                rejects += s.open.len() as u64;
+                continue;
+            }
             s.verdict.resize(len, Verdict::Test);
             match c.cone {
                 Some(cone) if cones => verdicts(&s.lanes, cone, c.sure, &mut s.verdict),
