@@ -125,16 +125,34 @@ struct Surface {
 }
 
 /// How one light (or light point) stands towards a surface point, before any shadow ray.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
 enum Facing {
     /// No light arrives: the surface point is exactly at the light.
     NoLight,
     /// The light is black here (outside a spot's cone): no shadow ray.
     Black,
     /// `N.L <= 0`: the surface faces away; no diffuse nor specular term.
-    Away(f64),
+    Away,
     /// `N.L > 0`: lit unless a shadow ray is blocked.
-    Towards(f64),
+    Towards,
+}
+
+impl Facing {
+    /// The decision for a light that arrives (`arrives`: not at distance 0), black or not
+    /// (`black`: its colour before the shadow test is zero and the unlit skip is on), at an
+    /// angle of cosine `n_dot_l`.
+    fn of(arrives: bool, black: bool, n_dot_l: f64) -> Facing {
+        if !arrives {
+            Facing::NoLight
+        } else if black {
+            Facing::Black
+        } else if n_dot_l <= 0.0 {
+            Facing::Away
+        } else {
+            Facing::Towards
+        }
+    }
 }
 
 /// Traces rays in a world; one per thread (it keeps counters and scratch space).
@@ -324,8 +342,9 @@ impl<'w, 's> Tracer<'w, 's> {
         candidates: Option<&[Candidate]>,
         rec: &mut R,
     ) -> DVec3 {
-        match (inc, self.facing(inc.as_ref(), at.n)) {
-            (Some(inc), Facing::Towards(n_dot_l)) => {
+        let n_dot_l = inc.map_or(0.0, |inc| at.n.dot(inc.to_light));
+        match (inc, self.facing(inc.as_ref(), n_dot_l)) {
+            (Some(inc), Facing::Towards) => {
                 let filter = if self.world.scene.settings.shadows {
                     self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, candidates, rec)
                 } else {
@@ -334,47 +353,36 @@ impl<'w, 's> Tracer<'w, 's> {
                 self.shade(index, &inc, n_dot_l, filter, at, rec)
             }
             (_, facing) => {
-                self.not_facing(index, facing, inc.as_ref(), at, candidates, rec);
+                self.not_facing(index, facing, inc.as_ref(), n_dot_l, at, candidates, rec);
                 DVec3::ZERO
             }
         }
     }
 
-    /// How a light with incidence `inc` stands towards a surface of normal `n`, before any
-    /// shadow ray (the skips decide whether a black light counts as dark).
-    fn facing(&self, inc: Option<&Incidence>, n: DVec3) -> Facing {
-        match inc {
-            Some(inc) => self.facing_by(inc.color, n.dot(inc.to_light)),
-            None => Facing::NoLight,
-        }
-    }
-
-    /// [`Tracer::facing`] of a light that arrives with colour `color` (before the shadow
-    /// test) at an angle of cosine `n_dot_l`.
-    fn facing_by(&self, color: DVec3, n_dot_l: f64) -> Facing {
-        if color == DVec3::ZERO && self.world.skips.on(Skip::Unlit) {
-            Facing::Black
-        } else if n_dot_l <= 0.0 {
-            Facing::Away(n_dot_l)
-        } else {
-            Facing::Towards(n_dot_l)
-        }
+    /// How a light with incidence `inc` (`None`: no light) and `N.L = n_dot_l` stands
+    /// towards the surface, before any shadow ray (the skips decide whether a black light
+    /// counts as dark).
+    fn facing(&self, inc: Option<&Incidence>, n_dot_l: f64) -> Facing {
+        let black = inc.is_some_and(|inc| inc.color == DVec3::ZERO) && self.world.skips.on(Skip::Unlit);
+        Facing::of(inc.is_some(), black, n_dot_l)
     }
 
     /// The bookkeeping of a light that adds nothing: the skipped shadow ray counted, or
     /// traced anyway when its skip is off, and the `unlit` event.
+    #[allow(clippy::too_many_arguments)]
     fn not_facing<R: Recorder>(
         &mut self,
         index: usize,
         facing: Facing,
         inc: Option<&Incidence>,
+        n_dot_l: f64,
         at: &Surface,
         candidates: Option<&[Candidate]>,
         rec: &mut R,
     ) {
         let shadows = self.world.scene.settings.shadows;
         match (facing, inc) {
-            (Facing::Away(n_dot_l), Some(inc)) => {
+            (Facing::Away, Some(inc)) => {
                 if self.world.skips.on(Skip::BackFacing) {
                     self.counts.saved.count(Skip::BackFacing, u64::from(shadows));
                 } else if shadows {

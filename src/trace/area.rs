@@ -134,6 +134,18 @@ fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mu
     }
 }
 
+/// Pass 2's first step: how each point faces the surface, [`Facing::of`] as a lane loop.
+/// A point is black when its colour `L / N * A` is zero (and the unlit skip is on).
+#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facing]) {
+    let len = out.len();
+    let (dist, atten, n_dot_l) = (&lanes.dist[..len], &lanes.atten[..len], &lanes.n_dot_l[..len]);
+    for i in 0..len {
+        let black = unlit_skip && point_color * (atten[i] * 1.0) == DVec3::ZERO;
+        out[i] = Facing::of(dist[i] != 0.0, black, n_dot_l[i]);
+    }
+}
+
 /// Pass 3: for every point, `A L filter [k_d S N.L]` and `A L filter [k_s [m S + (1 - m)]
 /// spec]` by channel, with Blinn's `spec = max(N.H, 0)^n`, `H = (L + E) / |L + E|` (0 when
 /// `|L + E| = 0`) or Phong's `max(R.E, 0)^n`, `R = 2 (N.L) N - L`: the operations of
@@ -279,14 +291,10 @@ impl Tracer<'_, '_> {
         incidences(points, at.point, at.n, &area.attenuation, &mut s.lanes);
         s.facing.clear();
         s.facing.resize(len, Facing::NoLight);
-        for (i, facing) in s.facing.iter_mut().enumerate() {
-            if s.lanes.dist[i] != 0.0 {
-                *facing = self.facing_by(point_color * (s.lanes.atten[i] * 1.0), s.lanes.n_dot_l[i]);
-            }
-        }
+        facings(&s.lanes, point_color, self.world.skips.on(Skip::Unlit), &mut s.facing);
         s.open.clear();
         s.open
-            .extend((0..len as u32).filter(|&i| matches!(s.facing[i as usize], Facing::Towards(_))));
+            .extend((0..len as u32).filter(|&i| s.facing[i as usize] == Facing::Towards));
         let shadows = self.world.scene.settings.shadows;
         s.filter.clear();
         s.filter.resize(len, DVec3::ONE);
@@ -308,9 +316,7 @@ impl Tracer<'_, '_> {
             // One shadow ray at a time through the acceleration structure, in point order;
             // for a recorder in pass 4, where its events interleave with the others.
             for i in 0..len {
-                if let Facing::Towards(_) = s.facing[i]
-                    && !R::RECORDS
-                {
+                if s.facing[i] == Facing::Towards && !R::RECORDS {
                     let inc = s.lanes.incidence(i, point_color);
                     s.filter[i] = self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, None, rec);
                 }
@@ -329,9 +335,9 @@ impl Tracer<'_, '_> {
             let (mut away, mut black, mut blocked) = (0, 0, 0);
             for i in 0..len {
                 match s.facing[i] {
-                    Facing::Towards(_) if blocked_shading && s.filter[i] == DVec3::ZERO => blocked += 1,
-                    Facing::Towards(_) => *color += DVec3::new(dr[i], dg[i], db[i]) + DVec3::new(sr[i], sg[i], sb[i]),
-                    Facing::Away(_) => away += 1,
+                    Facing::Towards if blocked_shading && s.filter[i] == DVec3::ZERO => blocked += 1,
+                    Facing::Towards => *color += DVec3::new(dr[i], dg[i], db[i]) + DVec3::new(sr[i], sg[i], sb[i]),
+                    Facing::Away => away += 1,
                     Facing::Black => black += 1,
                     Facing::NoLight => {}
                 }
@@ -343,11 +349,12 @@ impl Tracer<'_, '_> {
             return;
         }
         for i in 0..len {
-            let Facing::Towards(n_dot_l) = s.facing[i] else {
+            let n_dot_l = s.lanes.n_dot_l[i];
+            if s.facing[i] != Facing::Towards {
                 let inc = (s.lanes.dist[i] != 0.0).then(|| s.lanes.incidence(i, point_color));
-                self.not_facing(index, s.facing[i], inc.as_ref(), at, candidates, rec);
+                self.not_facing(index, s.facing[i], inc.as_ref(), n_dot_l, at, candidates, rec);
                 continue;
-            };
+            }
             let inc = s.lanes.incidence(i, point_color);
             if grouped {
                 rec.shadow_ray(&shadow_ray(at, &inc), inc.distance);
