@@ -70,9 +70,17 @@ impl Torus {
     ) {
         let o = self.frame.to_local(ray.origin - self.center);
         let d = self.frame.to_local(ray.dir);
-        let Some((enter, exit)) = self.clip(o, d, t_min, t_max) else {
+        // Clipped without `t_max`: the shifted origin, and so every root's bits, must not
+        // depend on how far the caller looks, or a closest-hit search that shrinks `t_max`
+        // as it goes would get other bits for this torus in another visiting order (the
+        // linear scan and the BVH must agree to the bit). `t_max` only filters the roots.
+        let Some((enter, exit)) = self.clip(o, d, t_min, f64::INFINITY) else {
             return;
         };
+        // Every root is at `enter + s >= enter`: none can be below `t_max`.
+        if enter >= t_max {
+            return;
+        }
         // Shift the origin to the clip entry: p(s) = o' + s d, s in [0, exit - enter].
         let o2 = o + d * enter;
         let (big, small) = (self.major, self.minor);
