@@ -106,30 +106,13 @@ impl Bvh {
                 for &j in &self.prims[first..first + n.count as usize] {
                     consider(j as usize, &mut best);
                 }
-            } else {
-                let limit = bound(&best);
-                let (a, b) = (n.first as usize, n.first as usize + 1);
-                match (
-                    slabs.enter(&self.nodes[a], t_min, limit),
-                    slabs.enter(&self.nodes[b], t_min, limit),
-                ) {
-                    (Some(ta), Some(tb)) => {
-                        let (near, far, t_far) = if tb < ta { (b, a, ta) } else { (a, b, tb) };
-                        stack[depth] = (far as u32, t_far);
-                        depth += 1;
-                        at = near;
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        at = a;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        at = b;
-                        continue;
-                    }
-                    (None, None) => {}
+            } else if let (Some(near), far) = self.children(&slabs, n, t_min, bound(&best)) {
+                if let Some((far, t_far)) = far {
+                    stack[depth] = (far as u32, t_far);
+                    depth += 1;
                 }
+                at = near;
+                continue;
             }
             // Next waiting node that the best hit so far does not rule out (an entry equal
             // to the best `t` may still hold a tie of lower index).
@@ -144,6 +127,23 @@ impl Bvh {
                     break;
                 }
             }
+        }
+    }
+
+    /// The children of interior node `n` whose boxes the ray enters in `[t_min, t_max]`: the
+    /// nearer (or only) one, and the farther one with its entry distance.
+    #[inline(always)]
+    fn children(&self, slabs: &RaySlabs, n: &Node, t_min: f64, t_max: f64) -> (Option<usize>, Option<(usize, f64)>) {
+        let (a, b) = (n.first as usize, n.first as usize + 1);
+        match (
+            slabs.enter(&self.nodes[a], t_min, t_max),
+            slabs.enter(&self.nodes[b], t_min, t_max),
+        ) {
+            (Some(ta), Some(tb)) if tb < ta => (Some(b), Some((a, ta))),
+            (Some(_), Some(tb)) => (Some(a), Some((b, tb))),
+            (Some(_), None) => (Some(a), None),
+            (None, Some(_)) => (Some(b), None),
+            (None, None) => (None, None),
         }
     }
 
@@ -173,30 +173,14 @@ impl Bvh {
                 {
                     return true;
                 }
-            } else {
-                let (a, b) = (n.first as usize, n.first as usize + 1);
-                match (
-                    slabs.enter(&self.nodes[a], t_min, t_max),
-                    slabs.enter(&self.nodes[b], t_min, t_max),
-                ) {
-                    (Some(ta), Some(tb)) => {
-                        // Nearer first: an occluder near the origin is found sooner.
-                        let (near, far) = if tb < ta { (b, a) } else { (a, b) };
-                        stack[depth] = far as u32;
-                        depth += 1;
-                        at = near;
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        at = a;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        at = b;
-                        continue;
-                    }
-                    (None, None) => {}
+            } else if let (Some(near), far) = self.children(&slabs, n, t_min, t_max) {
+                // Nearer first: an occluder near the origin is found sooner.
+                if let Some((far, _)) = far {
+                    stack[depth] = far as u32;
+                    depth += 1;
                 }
+                at = near;
+                continue;
             }
             if depth == 0 {
                 return false;

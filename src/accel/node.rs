@@ -147,7 +147,7 @@ mod tests {
         }
         // Exact values stay put; inexact ones move one f32 step at most.
         assert_eq!(down(1.0), 1.0);
-        assert!(up(0.1) as f64 - 0.1 < 1e-8 && 0.1 - down(0.1) as f64 < 1e-8);
+        assert!((up(0.1) as f64) - 0.1 < 1e-8 && 0.1 - (down(0.1) as f64) < 1e-8);
         assert_eq!(f32_step(f32_step(0.5, true), false), 0.5);
         assert_eq!(next_up(1.0), 1.0 + f64::EPSILON);
     }
