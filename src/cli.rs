@@ -1,5 +1,6 @@
 //! The command line: clap types and dispatch. No rendering logic lives here.
 
+use crate::accel::AccelChoice;
 use crate::film::write_atomic;
 use crate::limits;
 use crate::render::{RenderStats, render_rows};
@@ -188,6 +189,10 @@ pub struct Overrides {
     /// Adaptive depth control threshold in 8-bit levels (0 = off).
     #[arg(long)]
     pub adaptive_threshold: Option<f64>,
+    /// Intersection core: the linear scan, the BVH, or auto (the BVH from a measured number
+    /// of objects on). The image does not depend on it, only the time.
+    #[arg(long, value_enum, default_value_t = AccelChoice::Auto)]
+    pub accel: AccelChoice,
 }
 
 impl Overrides {
@@ -373,7 +378,7 @@ fn render_command(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
             None
         }
     };
-    let mut world = World::new(&scene);
+    let mut world = World::with_accel(&scene, args.overrides.accel);
     world.skips = args.no_skip.iter().fold(world.skips, |s, &k| s.without(k));
     let built = start.elapsed();
     let rows = args
@@ -423,6 +428,7 @@ fn render_command(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     let phases = Phases {
         load: loaded.as_secs_f64(),
         build: (built - loaded).as_secs_f64(),
+        accel: AccelReport::of(&world),
         render: stats.elapsed.as_secs_f64(),
         write: (start.elapsed() - built - stats.elapsed).as_secs_f64(),
     };
@@ -454,10 +460,31 @@ pub struct Phases {
     pub load: f64,
     /// Building the world (acceleration structure, light points, bounds).
     pub build: f64,
+    /// The acceleration structure, part of `build`.
+    pub accel: AccelReport,
     /// Tracing every pixel.
     pub render: f64,
     /// Encoding and writing the output.
     pub write: f64,
+}
+
+/// The intersection core a render used: its name, size and build time.
+pub struct AccelReport {
+    pub name: &'static str,
+    pub objects: usize,
+    pub bytes: usize,
+    pub seconds: f64,
+}
+
+impl AccelReport {
+    pub fn of(world: &World) -> Self {
+        AccelReport {
+            name: world.accel.name(),
+            objects: world.scene.objects.len(),
+            bytes: world.accel.bytes(),
+            seconds: world.accel_seconds,
+        }
+    }
 }
 
 /// Work each shortcut saved, by name, as JSON.
@@ -475,6 +502,12 @@ pub fn stats_json(stats: &RenderStats, phases: &Phases) -> String {
     serde_json::json!({
         "seconds": stats.elapsed.as_secs_f64(),
         "phases": { "load": phases.load, "build": phases.build, "render": phases.render, "write": phases.write },
+        "accel": {
+            "core": phases.accel.name,
+            "objects": phases.accel.objects,
+            "bytes": phases.accel.bytes,
+            "build_seconds": phases.accel.seconds,
+        },
         "skipped": skipped_json(c),
         "rays": {
             "camera": c.camera,
@@ -521,9 +554,19 @@ pub fn stats_report(stats: &RenderStats, phases: &Phases) -> String {
     for s in crate::skips::Skip::ALL {
         skipped += &format!("  {:<18} {:>14}  {}\n", s.name(), c.saved.get(s), s.unit());
     }
+    let a = &phases.accel;
     let phases = format!(
-        "time by phase: load {:.3} s, build {:.3} s, render {:.3} s, write {:.3} s\n",
-        phases.load, phases.build, phases.render, phases.write
+        "time by phase: load {:.3} s, build {:.3} s, render {:.3} s, write {:.3} s\n\
+         intersection core: {} over {} objects, {} bytes ({:.1} bytes/object), built in {:.3} s\n",
+        phases.load,
+        phases.build,
+        phases.render,
+        phases.write,
+        a.name,
+        a.objects,
+        a.bytes,
+        a.bytes as f64 / a.objects.max(1) as f64,
+        a.seconds
     );
     phases
         + &skipped

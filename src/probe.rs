@@ -7,6 +7,7 @@
 //! [`crate::render::render_sample`] / [`crate::render::render_pixel_recorded`], the functions `render`
 //! uses, so the probe never recomputes anything the tracer computed.
 
+use crate::accel::AccelChoice;
 use crate::cli::{CliError, Overrides, load_scene};
 use crate::film::{clamp_unit, quantize};
 use crate::light::Light;
@@ -405,6 +406,17 @@ impl Recorder for TreeRecorder<'_> {
 /// Probes pixel `(x, y)` of `scene`: every sample (the pixel's mean, exactly as
 /// [`crate::render::render_pixel`] computes it) or only sample `sample`.
 pub fn probe(scene: &Scene, x: u32, y: u32, sample: Option<u32>) -> Result<PixelProbe, String> {
+    probe_with(scene, x, y, sample, AccelChoice::Auto)
+}
+
+/// [`probe`] with a chosen intersection core (the tree does not depend on it).
+pub fn probe_with(
+    scene: &Scene,
+    x: u32,
+    y: u32,
+    sample: Option<u32>,
+    accel: AccelChoice,
+) -> Result<PixelProbe, String> {
     let s = &scene.settings;
     if x >= s.width || y >= s.height {
         return Err(format!(
@@ -424,7 +436,7 @@ pub fn probe(scene: &Scene, x: u32, y: u32, sample: Option<u32>) -> Result<Pixel
             s.samples_per_pixel - 1
         ));
     }
-    let world = World::new(scene);
+    let world = World::with_accel(scene, accel);
     let mut tracer = Tracer::new(&world);
     let mut rec = TreeRecorder::new(scene);
     let (of, radiance) = match sample {
@@ -610,7 +622,7 @@ fn write_light(o: &mut String, l: &LightRecord, pad: &str) {
 pub fn probe_command(args: &ProbeArgs) -> Result<(), CliError> {
     let scene = load_scene(&args.scene, &args.overrides)?;
     let (x, y) = args.pixel;
-    let p = probe(&scene, x, y, args.sample).map_err(CliError::BadInput)?;
+    let p = probe_with(&scene, x, y, args.sample, args.overrides.accel).map_err(CliError::BadInput)?;
     if args.json {
         let json =
             serde_json::to_string_pretty(&p).map_err(|e| CliError::Failed(format!("cannot write the JSON: {e}")))?;

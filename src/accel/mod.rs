@@ -1,30 +1,86 @@
 //! Ray queries over a scene's objects: the closest hit (camera, reflection and refraction
 //! rays), any hit among objects a filter accepts (opaque shadow tests), and every object hit
-//! in a range (transparent shadow filtering). The linear scan is the only core so far.
+//! in a range (transparent shadow filtering). Two cores answer them, with the same hits to
+//! the bit: the linear scan (every object, every ray) and a BVH. The scene picks the BVH
+//! from [`CROSSOVER`] bounded objects on (measured, BENCHMARKS.md), unless told otherwise.
 
+mod build;
+mod bvh;
 mod linear;
+mod node;
 
+pub use bvh::Bvh;
 pub use linear::Linear;
 
 use crate::math::Ray;
 use crate::scene::Object;
 use crate::shape::SurfaceHit;
 
+/// Fewest bounded objects for which `auto` picks the BVH: below it the linear scan is as
+/// fast or faster (BENCHMARKS.md, "Intersection cores").
+pub const CROSSOVER: usize = 16;
+
+/// Which core to use (`--accel`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AccelChoice {
+    /// Test every object for every ray.
+    Linear,
+    /// Bounding volume hierarchy (binned SAH, f32 boxes).
+    Bvh,
+    /// The BVH from `CROSSOVER` bounded objects on, else the linear scan.
+    #[default]
+    Auto,
+}
+
 /// The acceleration structure chosen for a scene.
 #[derive(Clone, Debug)]
 pub enum Accel {
     Linear(Linear),
+    Bvh(Bvh),
 }
 
 impl Accel {
+    /// The core `auto` picks for these objects.
     pub fn build(objects: &[Object]) -> Self {
-        Accel::Linear(Linear::new(objects.len()))
+        Accel::build_with(objects, AccelChoice::Auto)
     }
 
-    /// Closest hit with `t_min < t < t_max`: object index and surface hit.
+    pub fn build_with(objects: &[Object], choice: AccelChoice) -> Self {
+        let bvh = match choice {
+            AccelChoice::Linear => false,
+            AccelChoice::Bvh => true,
+            AccelChoice::Auto => objects.iter().filter(|o| o.shape.bounds().is_some()).count() >= CROSSOVER,
+        };
+        if bvh {
+            Accel::Bvh(Bvh::new(objects))
+        } else {
+            Accel::Linear(Linear::new(objects.len()))
+        }
+    }
+
+    /// `linear` or `bvh`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Accel::Linear(_) => "linear",
+            Accel::Bvh(_) => "bvh",
+        }
+    }
+
+    /// Bytes held by the structure (nothing for the linear scan).
+    pub fn bytes(&self) -> usize {
+        match self {
+            Accel::Linear(_) => 0,
+            Accel::Bvh(b) => b.bytes(),
+        }
+    }
+
+    /// Closest hit with `t_min < t < t_max`: object index and surface hit. On equal `t`, the
+    /// lowest object index.
     pub fn closest(&self, objects: &[Object], ray: &Ray, t_min: f64, t_max: f64) -> Option<(usize, SurfaceHit)> {
         match self {
             Accel::Linear(l) => l.closest(objects, ray, t_min, t_max),
+            Accel::Bvh(b) => b.closest(objects, ray, t_min, t_max),
         }
     }
 
@@ -39,6 +95,7 @@ impl Accel {
     ) -> bool {
         match self {
             Accel::Linear(l) => l.any_hit(objects, ray, t_min, t_max, filter),
+            Accel::Bvh(b) => b.any_hit(objects, ray, t_min, t_max, filter),
         }
     }
 
@@ -55,6 +112,7 @@ impl Accel {
     ) {
         match self {
             Accel::Linear(l) => l.each_hit(objects, ray, t_min, t_max, filter, visit),
+            Accel::Bvh(b) => b.each_hit(objects, ray, t_min, t_max, filter, visit),
         }
     }
 }

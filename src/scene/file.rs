@@ -3,6 +3,7 @@
 //! Every error names the file, line and column, the field, and what is allowed.
 //! The format is documented in `scenes/README.md`.
 
+use super::generate::{Generate, GenerateKind};
 use super::locate::{FieldPath, line_col, locate};
 use super::{CameraSpec, Object, Scene, Settings, ShadingModel, Specular};
 use crate::area_light::{AreaLight, AreaShape, PointMode};
@@ -152,6 +153,23 @@ struct FileScene {
     shapes: Vec<FileShape>,
     #[serde(default)]
     lights: Vec<FileLight>,
+    #[serde(default)]
+    generate: Vec<FileGenerate>,
+}
+
+/// A `[[generate]]` table: `count` random objects in a box (see `generate.rs`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileGenerate {
+    kind: String,
+    count: u64,
+    #[serde(default)]
+    seed: u64,
+    min: [f64; 3],
+    max: [f64; 3],
+    radius: [f64; 2],
+    #[serde(default)]
+    materials: Vec<String>,
 }
 
 #[derive(Deserialize)]
@@ -400,7 +418,7 @@ impl FileScene {
                 format!("at most {} shapes, got {}", limits::MAX_OBJECTS, self.shapes.len()),
             );
         }
-        let objects = self
+        let mut objects: Vec<Object> = self
             .shapes
             .into_iter()
             .enumerate()
@@ -409,6 +427,29 @@ impl FileScene {
             .into_iter()
             .flatten()
             .collect();
+        let path = root.key("generate");
+        let tables = self
+            .generate
+            .iter()
+            .enumerate()
+            .map(|(i, g)| g.validate(&path.index(i), &material_names))
+            .collect::<Check<Vec<_>>>()?;
+        let mut total = objects.len();
+        for (i, g) in tables.iter().enumerate() {
+            total += g.count;
+            if total > limits::MAX_OBJECTS {
+                return fail(
+                    &path.index(i).key("count"),
+                    format!(
+                        "the scene would hold {total} objects with this table, at most {} are allowed",
+                        limits::MAX_OBJECTS
+                    ),
+                );
+            }
+        }
+        for (i, g) in tables.iter().enumerate() {
+            objects.extend(g.objects(i));
+        }
         let path = root.key("lights");
         if self.lights.len() > limits::MAX_LIGHTS {
             return fail(
@@ -725,17 +766,77 @@ impl FileShape {
     }
 }
 
+impl FileGenerate {
+    fn validate(&self, path: &FieldPath, material_names: &[String]) -> Check<Generate> {
+        let Some(kind) = GenerateKind::parse(&self.kind) else {
+            return fail(
+                &path.key("kind"),
+                format!("must be \"spheres\" or \"mixed\", got {:?}", self.kind),
+            );
+        };
+        let max_objects = limits::MAX_OBJECTS;
+        if self.count == 0 || self.count > max_objects as u64 {
+            return fail(
+                &path.key("count"),
+                format!("must be in [1, {max_objects}], got {}", self.count),
+            );
+        }
+        let min = vec3(&path.key("min"), self.min)?;
+        let max = vec3(&path.key("max"), self.max)?;
+        if !min.cmplt(max).all() {
+            return fail(
+                &path.key("max"),
+                format!(
+                    "must exceed min in every component, got min {:?}, max {:?}",
+                    self.min, self.max
+                ),
+            );
+        }
+        let r = path.key("radius");
+        let lo = positive(&r, self.radius[0], limits::MAX_COORDINATE)?;
+        let hi = positive(&r, self.radius[1], limits::MAX_COORDINATE)?;
+        if lo > hi {
+            return fail(
+                &r,
+                format!(
+                    "must be [smallest, largest] with smallest <= largest, got {:?}",
+                    self.radius
+                ),
+            );
+        }
+        let materials = if self.materials.is_empty() {
+            vec![0]
+        } else {
+            self.materials
+                .iter()
+                .map(|m| material_index(&path.key("materials"), m, material_names))
+                .collect::<Check<Vec<_>>>()?
+        };
+        Ok(Generate {
+            kind,
+            count: self.count as usize,
+            seed: self.seed,
+            min,
+            max,
+            radius: (lo, hi),
+            materials,
+        })
+    }
+}
+
 /// Index of the named material (`None`: the default material, index 0).
 fn resolve_material(path: &FieldPath, material: Option<String>, names: &[String]) -> Check<usize> {
     match material {
         None => Ok(0),
-        Some(m) => match names.iter().position(|n| *n == m) {
-            Some(i) => Ok(i),
-            None => fail(
-                &path.key("material"),
-                format!("unknown material {m:?}; defined: {}", names.join(", ")),
-            ),
-        },
+        Some(m) => material_index(&path.key("material"), &m, names),
+    }
+}
+
+/// Index of material `m`; an unknown name is an error at `field`.
+fn material_index(field: &FieldPath, m: &str, names: &[String]) -> Check<usize> {
+    match names.iter().position(|n| n == m) {
+        Some(i) => Ok(i),
+        None => fail(field, format!("unknown material {m:?}; defined: {}", names.join(", "))),
     }
 }
 

@@ -2,12 +2,13 @@
 //! it for rendering (camera, acceleration structure, light sums and bounds).
 
 mod file;
+pub mod generate;
 mod locate;
 pub mod transform;
 
 pub use file::{SceneError, load, parse};
 
-use crate::accel::Accel;
+use crate::accel::{Accel, AccelChoice};
 use crate::area_light::{PointMode, PointSet};
 use crate::camera::Camera;
 use crate::light::Light;
@@ -158,6 +159,8 @@ pub struct World<'s> {
     pub scene: &'s Scene,
     pub camera: Camera,
     pub accel: Accel,
+    /// Wall time of building `accel`, in seconds.
+    pub accel_seconds: f64,
     /// Sum of the ambient lights' colours `L_a`.
     pub ambient: DVec3,
     /// Whether any object is transparent (else shadow rays need no filtered walk).
@@ -179,7 +182,13 @@ pub struct World<'s> {
 }
 
 impl<'s> World<'s> {
+    /// The world with the acceleration structure `auto` picks.
     pub fn new(scene: &'s Scene) -> Self {
+        World::with_accel(scene, AccelChoice::Auto)
+    }
+
+    /// The world with the chosen acceleration structure (the image does not depend on it).
+    pub fn with_accel(scene: &'s Scene, choice: AccelChoice) -> Self {
         let s = &scene.settings;
         let camera = Camera::new(
             scene.camera.position,
@@ -193,10 +202,14 @@ impl<'s> World<'s> {
             .objects
             .iter()
             .any(|o| scene.materials[o.material].is_transparent());
+        let start = std::time::Instant::now();
+        let accel = Accel::build_with(&scene.objects, choice);
+        let accel_seconds = start.elapsed().as_secs_f64();
         World {
             scene,
             camera,
-            accel: Accel::build(&scene.objects),
+            accel,
+            accel_seconds,
             ambient,
             has_transparent,
             remaining_bound: remaining_bounds(scene, ambient),

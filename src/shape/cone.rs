@@ -71,8 +71,11 @@ impl Cone {
         let d = self.frame.to_local(ray.dir);
         // Far origins: solve from the point of the ray nearest the shape (see `recentre`).
         let shift = super::recentre(o, d, DVec3::new(0.0, 0.0, 0.5 * self.height), self.height + self.radius);
-        self.intersect_local(o + d * shift, d, t_min - shift, t_max - shift)
+        // Solved without `t_max`, which only filters the world-space `t`: the answer must
+        // not depend on how far the caller looks (see `Shape::intersect`).
+        self.intersect_local(o + d * shift, d, t_min - shift, f64::INFINITY)
             .map(|h| SurfaceHit { t: h.t + shift, ..h })
+            .filter(|h| h.t < t_max)
     }
 
     /// The intersection in the local frame, for the ray `o + t d`.

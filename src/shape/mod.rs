@@ -111,6 +111,11 @@ macro_rules! dispatch {
 
 impl Shape {
     /// Closest hit with `t_min < t < t_max`.
+    ///
+    /// `t_max` only filters: for `b < c`, `intersect(ray, a, b)` is `intersect(ray, a, c)`
+    /// when that hit has `t < b`, else `None`, to the bit. The intersection cores rely on it
+    /// (they shrink `t_max` to the best hit so far, in orders of their own) and
+    /// tests/accel.rs checks it for every kind of shape.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         dispatch!(self, s => s.intersect(ray, t_min, t_max))
     }

@@ -70,9 +70,17 @@ impl Torus {
     ) {
         let o = self.frame.to_local(ray.origin - self.center);
         let d = self.frame.to_local(ray.dir);
-        let Some((enter, exit)) = self.clip(o, d, t_min, t_max) else {
+        // Clipped without `t_max`: the shifted origin, and so every root's bits, must not
+        // depend on how far the caller looks, or a closest-hit search that shrinks `t_max`
+        // as it goes would get other bits for this torus in another visiting order (the
+        // linear scan and the BVH must agree to the bit). `t_max` only filters the roots.
+        let Some((enter, exit)) = self.clip(o, d, t_min, f64::INFINITY) else {
             return;
         };
+        // Every root is at `enter + s >= enter`: none can be below `t_max`.
+        if enter >= t_max {
+            return;
+        }
         if self.clear_of_tube(o + d * enter, d, exit - enter) {
             return;
         }
@@ -239,7 +247,8 @@ impl Torus {
     fn surely_entered(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let o = self.frame.to_local(ray.origin - self.center);
         let d = self.frame.to_local(ray.dir);
-        let Some((enter, exit)) = self.clip(o, d, t_min, t_max) else {
+        // The clip of `roots_with`, so that `p` below is the solver's shifted origin.
+        let Some((enter, exit)) = self.clip(o, d, t_min, f64::INFINITY) else {
             return false;
         };
         if d.z == 0.0 {
@@ -347,7 +356,9 @@ mod tests {
         let o = t.frame.to_local(ray.origin - t.center);
         let d = t.frame.to_local(ray.dir);
         let mut any = false;
-        if let Some(clip) = t.clip(o, d, t_min, t_max) {
+        if let Some(clip) = t.clip(o, d, t_min, f64::INFINITY)
+            && clip.0 < t_max
+        {
             t.solve(QuarticMethod::Isolator, o, d, clip, t_min, t_max, &mut |_, _, _| {
                 any = true;
                 true
@@ -400,7 +411,7 @@ mod tests {
             entered += torus.surely_entered(&ray, 0.0, t_max) as u32;
             let o = torus.frame.to_local(ray.origin - torus.center);
             let d = torus.frame.to_local(ray.dir);
-            if let Some((enter, exit)) = torus.clip(o, d, 0.0, t_max) {
+            if let Some((enter, exit)) = torus.clip(o, d, 0.0, f64::INFINITY) {
                 cleared += torus.clear_of_tube(o + d * enter, d, exit - enter) as u32;
             }
         }

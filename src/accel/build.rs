@@ -1,0 +1,446 @@
+//! BVH construction: binned surface area heuristic (SAH) on object centroids, into the
+//! flattened node array of [`super::Bvh`].
+//!
+//! Each node bins its objects' centroids into [`BINS`] slots per axis (one pass, all three
+//! axes), sweeps the bins for the split with the least SAH cost, and partitions in place.
+//! Large ranges at the top are binned by all threads; below a size fixed by the object count
+//! alone, subtrees are built as independent tasks, one per thread at a time, and spliced
+//! into the array afterwards. Every reduction is exact (min, max and integer counts) and the
+//! task size does not depend on the thread count, so the tree is the same for any number of
+//! threads.
+
+use super::node::Node;
+use glam::Vec3A;
+use rayon::prelude::*;
+
+/// Bins per axis.
+pub const BINS: usize = 32;
+/// Most objects in a leaf.
+pub const MAX_LEAF: usize = 4;
+/// Below this depth nodes split by the SAH; deeper ones (degenerate inputs only) split at
+/// the middle of their range, so no tree is deeper than this plus `log2(MAX_OBJECTS)`.
+pub const MAX_SAH_DEPTH: usize = 64;
+/// Cost of visiting an interior node (two box tests) relative to one object test.
+const TRAVERSE_COST: f32 = 2.0;
+
+/// An object's stored box and index, as the builder sorts them.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
+pub struct PrimRef {
+    pub min: [f32; 3],
+    pub index: u32,
+    pub max: [f32; 3],
+    pad: u32,
+}
+
+impl PrimRef {
+    pub fn new(index: u32, min: [f32; 3], max: [f32; 3]) -> Self {
+        PrimRef {
+            min,
+            index,
+            max,
+            pad: 0,
+        }
+    }
+
+    /// Twice the centroid (the factor 2 is the same for every object, so it is left out).
+    #[inline(always)]
+    fn centroid2(&self) -> Vec3A {
+        Vec3A::from_array(self.min) + Vec3A::from_array(self.max)
+    }
+}
+
+/// An axis-aligned box in `f32` (object boxes, their unions, or centroid bounds).
+#[derive(Clone, Copy, Debug)]
+struct Bounds {
+    min: Vec3A,
+    max: Vec3A,
+}
+
+impl Bounds {
+    const EMPTY: Bounds = Bounds {
+        min: Vec3A::splat(f32::INFINITY),
+        max: Vec3A::splat(f32::NEG_INFINITY),
+    };
+
+    #[inline(always)]
+    fn grow(&mut self, min: Vec3A, max: Vec3A) {
+        self.min = self.min.min(min);
+        self.max = self.max.max(max);
+    }
+
+    fn union(self, o: Bounds) -> Bounds {
+        Bounds {
+            min: self.min.min(o.min),
+            max: self.max.max(o.max),
+        }
+    }
+
+    /// Half the surface area (the SAH needs only ratios); 0 for the empty box.
+    fn half_area(&self) -> f32 {
+        let d = (self.max - self.min).max(Vec3A::ZERO);
+        d.x * d.y + d.y * d.z + d.z * d.x
+    }
+
+    fn of(refs: &[PrimRef]) -> (Bounds, Bounds) {
+        let mut boxes = Bounds::EMPTY;
+        let mut centroids = Bounds::EMPTY;
+        for r in refs {
+            boxes.grow(Vec3A::from_array(r.min), Vec3A::from_array(r.max));
+            let c = r.centroid2();
+            centroids.grow(c, c);
+        }
+        (boxes, centroids)
+    }
+}
+
+#[derive(Clone, Copy)]
+struct Bin {
+    bounds: Bounds,
+    count: u32,
+}
+
+const EMPTY_BIN: Bin = Bin {
+    bounds: Bounds::EMPTY,
+    count: 0,
+};
+
+/// The bins of one node along its split axis; only the first `used` count.
+#[derive(Clone)]
+struct Bins {
+    row: [Bin; BINS],
+    used: usize,
+}
+
+impl Bins {
+    fn new(used: usize) -> Self {
+        Bins {
+            row: [EMPTY_BIN; BINS],
+            used,
+        }
+    }
+
+    /// Empties the first `used` bins, for reuse by another node.
+    fn reset(&mut self, used: usize) {
+        self.used = used;
+        self.row[..used].fill(EMPTY_BIN);
+    }
+
+    fn merge(mut self, o: Bins) -> Bins {
+        for (x, y) in self.row[..self.used].iter_mut().zip(o.row.iter()) {
+            x.bounds = x.bounds.union(y.bounds);
+            x.count += y.count;
+        }
+        self
+    }
+}
+
+/// Bins for a node of `n` objects: 32 for large nodes, fewer near the leaves, where
+/// the per-node cost of resetting and sweeping them would dominate the build.
+fn bin_count(n: usize) -> usize {
+    (n / 2).clamp(4, BINS)
+}
+
+/// Maps a (doubled) centroid to its bin along the axis where the centroids spread most
+/// (binning one axis instead of three costs a third and loses little: the split is almost
+/// always across the widest spread).
+#[derive(Clone, Copy)]
+struct Binner {
+    axis: usize,
+    origin: f32,
+    scale: f32,
+    used: usize,
+}
+
+impl Binner {
+    /// `None` when every centroid is the same point.
+    fn new(centroids: &Bounds, used: usize) -> Option<Self> {
+        let extent = (centroids.max - centroids.min).to_array();
+        let axis = (1..3).fold(0, |a, b| if extent[b] > extent[a] { b } else { a });
+        // Slightly under used / extent so that the largest centroid lands in the last bin.
+        let scale = used as f32 * (1.0 - 1e-6) / extent[axis];
+        (extent[axis] > 0.0 && scale.is_finite()).then_some(Binner {
+            axis,
+            origin: centroids.min[axis],
+            scale,
+            used,
+        })
+    }
+
+    #[inline(always)]
+    fn bin(&self, r: &PrimRef) -> usize {
+        let c = r.min[self.axis] + r.max[self.axis];
+        // `as` saturates: a negative (rounding) goes to 0; the top is clamped.
+        (((c - self.origin) * self.scale) as usize).min(self.used - 1)
+    }
+
+    fn fill(&self, refs: &[PrimRef], bins: &mut Bins) {
+        for r in refs {
+            let bin = &mut bins.row[self.bin(r)];
+            bin.bounds.grow(Vec3A::from_array(r.min), Vec3A::from_array(r.max));
+            bin.count += 1;
+        }
+    }
+}
+
+/// The chosen split: objects whose centroid falls in bins `0..=last_left` go left.
+struct Split {
+    last_left: usize,
+    cost: f32,
+    left: Bounds,
+    right: Bounds,
+}
+
+/// The cheapest split by the SAH (`A_L N_L + A_R N_R`), the first bin on ties.
+fn best_split(bins: &Bins) -> Option<Split> {
+    let (row, used) = (&bins.row, bins.used);
+    // Suffix unions: the right side of a split after bin i is right[i + 1].
+    let mut right = [Bounds::EMPTY; BINS];
+    let mut right_n = [0u32; BINS];
+    let (mut acc, mut n) = (Bounds::EMPTY, 0);
+    for i in (1..used).rev() {
+        acc = acc.union(row[i].bounds);
+        n += row[i].count;
+        right[i] = acc;
+        right_n[i] = n;
+    }
+    let mut best: Option<Split> = None;
+    let (mut left, mut left_n) = (Bounds::EMPTY, 0);
+    for i in 0..used - 1 {
+        left = left.union(row[i].bounds);
+        left_n += row[i].count;
+        if left_n == 0 || right_n[i + 1] == 0 {
+            continue;
+        }
+        let cost = left.half_area() * left_n as f32 + right[i + 1].half_area() * right_n[i + 1] as f32;
+        if best.as_ref().is_none_or(|b| cost < b.cost) {
+            best = Some(Split {
+                last_left: i,
+                cost,
+                left,
+                right: right[i + 1],
+            });
+        }
+    }
+    best
+}
+
+/// Moves the objects going left to the front; returns their count and the centroid bounds
+/// of both sides.
+fn partition(refs: &mut [PrimRef], binner: &Binner, split: &Split) -> (usize, Bounds, Bounds) {
+    let (mut i, mut j) = (0, refs.len());
+    let (mut lc, mut rc) = (Bounds::EMPTY, Bounds::EMPTY);
+    while i < j {
+        let c = refs[i].centroid2();
+        if binner.bin(&refs[i]) <= split.last_left {
+            lc.grow(c, c);
+            i += 1;
+        } else {
+            rc.grow(c, c);
+            j -= 1;
+            refs.swap(i, j);
+        }
+    }
+    (i, lc, rc)
+}
+
+/// What to do with a node's range.
+enum Decision {
+    Leaf,
+    /// Split at `count` objects, with the children's boxes and centroid bounds.
+    Split {
+        count: usize,
+        left: (Bounds, Bounds),
+        right: (Bounds, Bounds),
+    },
+}
+
+/// Decides a node: leaf, SAH split, or (no usable split, or too deep) a split in the
+/// middle of the range. `parallel` bins with every thread (large ranges at the top);
+/// `scratch` holds the bins.
+fn decide(
+    refs: &mut [PrimRef],
+    boxes: &Bounds,
+    centroids: &Bounds,
+    depth: usize,
+    parallel: bool,
+    scratch: &mut Bins,
+) -> Decision {
+    let n = refs.len();
+    if n == 1 {
+        return Decision::Leaf;
+    }
+    let split = if depth < MAX_SAH_DEPTH {
+        Binner::new(centroids, bin_count(n)).and_then(|binner| {
+            if parallel {
+                *scratch = refs
+                    .par_chunks(16 * 1024)
+                    .map(|c| {
+                        let mut bins = Bins::new(binner.used);
+                        binner.fill(c, &mut bins);
+                        bins
+                    })
+                    .reduce(|| Bins::new(binner.used), Bins::merge);
+            } else {
+                scratch.reset(binner.used);
+                binner.fill(refs, scratch);
+            }
+            best_split(scratch).map(|s| (s, binner))
+        })
+    } else {
+        None
+    };
+    let leaf_cost = n as f32;
+    match split {
+        Some((s, binner)) => {
+            let split_cost = TRAVERSE_COST + s.cost / boxes.half_area().max(f32::MIN_POSITIVE);
+            if n <= MAX_LEAF && leaf_cost <= split_cost {
+                return Decision::Leaf;
+            }
+            let (count, lc, rc) = partition(refs, &binner, &s);
+            Decision::Split {
+                count,
+                left: (s.left, lc),
+                right: (s.right, rc),
+            }
+        }
+        None if n <= MAX_LEAF => Decision::Leaf,
+        None => {
+            // Identical centroids (or the depth guard): halve by position.
+            let count = n / 2;
+            Decision::Split {
+                count,
+                left: Bounds::of(&refs[..count]),
+                right: Bounds::of(&refs[count..]),
+            }
+        }
+    }
+}
+
+fn node(boxes: &Bounds, first: usize, count: usize) -> Node {
+    Node {
+        min: boxes.min.to_array(),
+        max: boxes.max.to_array(),
+        first: first as u32,
+        count: count as u32,
+    }
+}
+
+/// A subtree left for a task: the top-level node slot it fills and its range.
+struct Task {
+    slot: usize,
+    start: usize,
+    len: usize,
+    boxes: Bounds,
+    centroids: Bounds,
+    depth: usize,
+}
+
+/// Builds the tree over `refs` (reordered in place into leaf order). Returns the nodes (root
+/// at 0, index 1 unused so that sibling pairs start at even indices).
+pub fn build(refs: &mut [PrimRef]) -> Vec<Node> {
+    if refs.is_empty() {
+        return Vec::new();
+    }
+    let (boxes, centroids) = refs.par_chunks(16 * 1024).map(Bounds::of).reduce(
+        || (Bounds::EMPTY, Bounds::EMPTY),
+        |a, b| (a.0.union(b.0), a.1.union(b.1)),
+    );
+    // Ranges up to this size are one task; it depends on the object count only.
+    let mut top = Builder::new(vec![Node::default(); 2], (refs.len() / 64).max(4096));
+    top.grow(refs, 0, boxes, centroids, 0, 0);
+    let (mut nodes, tasks) = (top.nodes, top.tasks);
+    // Build the tasks' subtrees in parallel, each in its own array with its root at 0.
+    let mut slices = Vec::with_capacity(tasks.len());
+    let mut rest = refs;
+    for t in &tasks {
+        let (head, tail) = rest.split_at_mut(t.len);
+        slices.push(head);
+        rest = tail;
+    }
+    let subtrees: Vec<Vec<Node>> = slices
+        .into_par_iter()
+        .zip(tasks.par_iter())
+        .map(|(s, t)| {
+            // About one node per object (leaves average two objects): no regrowth.
+            let mut nodes = Vec::with_capacity(t.len + 1);
+            nodes.push(Node::default());
+            let mut b = Builder::new(nodes, 0);
+            b.grow(s, t.start, t.boxes, t.centroids, t.depth, 0);
+            b.nodes
+        })
+        .collect();
+    // Splice: local node i >= 1 goes to `offset + i - 1` (offset even, so local pairs
+    // (1, 2), (3, 4), ... stay on even starts); the local root fills the task's slot.
+    nodes.reserve(subtrees.iter().map(|s| s.len()).sum());
+    for (t, local) in tasks.iter().zip(subtrees) {
+        if nodes.len() % 2 == 1 {
+            nodes.push(Node::default());
+        }
+        let offset = nodes.len();
+        let remap = |mut n: Node| {
+            if !n.is_leaf() {
+                n.first = (offset + n.first as usize - 1) as u32;
+            }
+            n
+        };
+        nodes[t.slot] = remap(local[0]);
+        nodes.extend(local[1..].iter().map(|&n| remap(n)));
+    }
+    nodes
+}
+
+/// Builds subtrees into `nodes`. Ranges larger than `task_size` are binned by all threads;
+/// a range of at most `task_size` objects is left in `tasks` (0: no tasks, one thread).
+struct Builder {
+    nodes: Vec<Node>,
+    tasks: Vec<Task>,
+    task_size: usize,
+    scratch: Bins,
+}
+
+impl Builder {
+    fn new(nodes: Vec<Node>, task_size: usize) -> Self {
+        Builder {
+            nodes,
+            tasks: Vec::new(),
+            task_size,
+            scratch: Bins::new(BINS),
+        }
+    }
+
+    /// The subtree of `refs` (objects `start..` in leaf order), its root at `slot`.
+    fn grow(
+        &mut self,
+        refs: &mut [PrimRef],
+        start: usize,
+        boxes: Bounds,
+        centroids: Bounds,
+        depth: usize,
+        slot: usize,
+    ) {
+        if refs.len() <= self.task_size {
+            self.tasks.push(Task {
+                slot,
+                start,
+                len: refs.len(),
+                boxes,
+                centroids,
+                depth,
+            });
+            return;
+        }
+        let parallel = self.task_size > 0;
+        match decide(refs, &boxes, &centroids, depth, parallel, &mut self.scratch) {
+            Decision::Leaf => self.nodes[slot] = node(&boxes, start, refs.len()),
+            Decision::Split { count, left, right } => {
+                let first = self.nodes.len();
+                self.nodes.extend([Node::default(); 2]);
+                self.nodes[slot] = node(&boxes, first, 0);
+                let (l, r) = refs.split_at_mut(count);
+                self.grow(l, start, left.0, left.1, depth + 1, first);
+                self.grow(r, start + count, right.0, right.1, depth + 1, first + 1);
+            }
+        }
+    }
+}

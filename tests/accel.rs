@@ -1,0 +1,452 @@
+//! The two intersection cores (linear scan and BVH) agree hit for hit: same object, same
+//! `t` and normal to the bit, on randomised scenes of every shape kind (planes included),
+//! random rays, rays grazing box edges and faces, and rays starting on surfaces; any-hit and
+//! every-hit agree too. The BVH's structure holds its invariants, every shape honours the
+//! `t_max` contract the cores rely on, and whole images are byte-identical with either core.
+
+mod common;
+use common::*;
+use glam::DVec3;
+use lumiere::accel::{Accel, AccelChoice, Bvh};
+use lumiere::math::Ray;
+use lumiere::render::render;
+use lumiere::sampling::{Purpose, Stream};
+use lumiere::scene::{Object, World};
+use lumiere::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus};
+
+fn object(shape: Shape) -> Object {
+    Object {
+        name: String::new(),
+        shape,
+        material: 0,
+    }
+}
+
+fn unit(s: &mut Stream) -> DVec3 {
+    let z = 2.0 * s.next_f64() - 1.0;
+    let phi = std::f64::consts::TAU * s.next_f64();
+    let r = (1.0 - z * z).sqrt();
+    DVec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+fn point(s: &mut Stream, half: f64) -> DVec3 {
+    DVec3::new(s.next_f64(), s.next_f64(), s.next_f64()) * (2.0 * half) - half
+}
+
+/// `n` random objects of every kind in a cube of half-side `half`, with some copies of
+/// earlier objects (exact ties, which must go to the lower index) and some axis-aligned
+/// boxes on integer coordinates (their faces coincide with their stored boxes' faces).
+fn random_scene(seed: u64, n: usize, half: f64) -> Vec<Object> {
+    let mut s = Stream::new(seed, Purpose::Generator, 1);
+    let mut objects: Vec<Object> = Vec::new();
+    for i in 0..n {
+        let c = point(&mut s, half);
+        let r = 0.05 + 0.6 * s.next_f64();
+        let axis = unit(&mut s);
+        let kind = (s.next_f64() * 10.0) as usize;
+        let shape = match kind {
+            0 if i % 7 == 0 => Shape::Plane(Plane::new(c, axis)),
+            0 | 1 => Shape::Sphere(Sphere::new(c, r)),
+            2 => Shape::Rectangle(Rectangle::new(c, unit(&mut s) * r, unit(&mut s) * r)),
+            3 => Shape::Disk(Disk::new(c, axis, r)),
+            4 => Shape::Cuboid(Cuboid::new(c, DVec3::new(r, 0.5 * r, 1.5 * r), point(&mut s, 180.0))),
+            5 => Shape::Cuboid(Cuboid::new(c.round(), DVec3::ONE, DVec3::ZERO)),
+            6 => Shape::Cylinder(Cylinder::new(c, axis, 2.0 * r, 0.5 * r)),
+            7 => Shape::Cone(Cone::new(c, axis, 2.0 * r, r)),
+            8 => Shape::Torus(Torus::new(c, axis, r, 0.3 * r)),
+            _ if i > 0 => objects[(s.next_f64() * i as f64) as usize % i].shape.clone(),
+            _ => Shape::Sphere(Sphere::new(c, r)),
+        };
+        objects.push(object(shape));
+    }
+    objects
+}
+
+/// Random rays from inside and around the scene, half of them aimed at an object.
+fn random_rays(seed: u64, objects: &[Object], count: usize, half: f64) -> Vec<Ray> {
+    let mut s = Stream::new(seed, Purpose::Generator, 2);
+    (0..count)
+        .map(|i| {
+            let o = point(&mut s, 1.5 * half);
+            let aim = objects[i % objects.len()].shape.bounds();
+            let d = match aim {
+                Some(b) if i % 2 == 0 && (b.centroid() - o).length() > 1e-9 => (b.centroid() - o).normalize(),
+                _ => unit(&mut s),
+            };
+            Ray::new(o, d)
+        })
+        .collect()
+}
+
+/// Rays along the edges and in the faces of the objects' bounding boxes, from outside,
+/// along the axes (zero direction components) and slightly tilted.
+fn grazing_rays(objects: &[Object]) -> Vec<Ray> {
+    let mut rays = Vec::new();
+    for o in objects {
+        let Some(b) = o.shape.bounds() else { continue };
+        let (lo, hi) = (b.min, b.max);
+        for axis in 0..3 {
+            let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+            for (cu, cv) in [
+                (lo[u], lo[v]),
+                (hi[u], hi[v]),
+                (lo[u], hi[v]),
+                (0.5 * (lo[u] + hi[u]), hi[v]),
+            ] {
+                let mut start = DVec3::ZERO;
+                start[axis] = lo[axis] - 1.0;
+                start[u] = cu;
+                start[v] = cv;
+                let mut d = DVec3::ZERO;
+                d[axis] = 1.0;
+                rays.push(Ray::new(start, d));
+                // The same line walked backwards, with -0.0 components.
+                let mut back = start;
+                back[axis] = hi[axis] + 1.0;
+                rays.push(Ray::new(back, -d));
+                // Tilted by a hair towards the box.
+                let mut tilt = d;
+                tilt[u] = 1e-12;
+                rays.push(Ray::new(start, tilt.normalize()));
+            }
+        }
+    }
+    rays
+}
+
+/// Rays starting exactly at hit points (no offset), leaving in random directions, and from
+/// the offset origin the tracer would use.
+fn surface_rays(objects: &[Object], seeds: &[Ray]) -> Vec<Ray> {
+    let linear = Accel::build_with(objects, AccelChoice::Linear);
+    let mut s = Stream::new(9, Purpose::Generator, 3);
+    let mut rays = Vec::new();
+    for r in seeds {
+        if let Some((j, h)) = linear.closest(objects, r, 0.0, f64::INFINITY) {
+            let p = r.at(h.t);
+            let d = unit(&mut s);
+            rays.push(Ray::new(p, d));
+            rays.push(Ray::new(p, -r.dir));
+            let err = lumiere::math::hit_point_error(r, h.t) + objects[j].shape.surface_error(p);
+            rays.push(Ray::new(lumiere::math::offset_origin(p, h.normal, err, d), d));
+        }
+    }
+    rays
+}
+
+/// Asserts the cores agree on `ray` for closest, any and every hit, over several ranges and
+/// filters. Returns whether the ray hit anything.
+fn assert_agree(objects: &[Object], linear: &Accel, bvh: &Accel, ray: &Ray, what: &str) -> bool {
+    let a = linear.closest(objects, ray, 0.0, f64::INFINITY);
+    let b = bvh.closest(objects, ray, 0.0, f64::INFINITY);
+    let bits = |h: Option<(usize, lumiere::shape::SurfaceHit)>| {
+        h.map(|(j, h)| (j, h.t.to_bits(), h.normal.to_array().map(f64::to_bits)))
+    };
+    assert_eq!(bits(a), bits(b), "{what}: closest differs for {ray:?}");
+    let t_hit = a.map_or(f64::INFINITY, |(_, h)| h.t);
+    let filters: [&dyn Fn(usize) -> bool; 3] = [&|_| true, &|j| j % 2 == 0, &|j| j % 3 == 1];
+    for t_max in [f64::INFINITY, t_hit, 0.5 * t_hit, 1e-9] {
+        let (t_min, t_max) = if t_max.is_finite() || t_hit.is_infinite() {
+            (0.0, t_max)
+        } else {
+            (0.0, 40.0)
+        };
+        let (a, b) = (
+            linear.closest(objects, ray, t_min, t_max),
+            bvh.closest(objects, ray, t_min, t_max),
+        );
+        assert_eq!(bits(a), bits(b), "{what}: closest below {t_max} for {ray:?}");
+        for f in filters {
+            assert_eq!(
+                linear.any_hit(objects, ray, t_min, t_max, f),
+                bvh.any_hit(objects, ray, t_min, t_max, f),
+                "{what}: any_hit below {t_max} for {ray:?}"
+            );
+            let every = |accel: &Accel| {
+                let mut v = Vec::new();
+                accel.each_hit(objects, ray, t_min, t_max, f, &mut |j| v.push(j));
+                v.sort_unstable();
+                v
+            };
+            let all = every(linear);
+            assert_eq!(all, every(bvh), "{what}: each_hit below {t_max} for {ray:?}");
+            let mut dedup = all.clone();
+            dedup.dedup();
+            assert_eq!(all, dedup, "{what}: an object visited twice");
+        }
+    }
+    a.is_some()
+}
+
+fn check_scene(seed: u64, n: usize) {
+    let half = 2.0 + (n as f64).cbrt();
+    let objects = random_scene(seed, n, half);
+    let linear = Accel::build_with(&objects, AccelChoice::Linear);
+    let bvh = Accel::build_with(&objects, AccelChoice::Bvh);
+    Bvh::new(&objects).check(&objects).unwrap();
+    let random = random_rays(seed, &objects, 300, half);
+    let mut hits = 0;
+    for r in &random {
+        hits += assert_agree(&objects, &linear, &bvh, r, "random") as usize;
+    }
+    assert!(hits > 100, "only {hits} of 300 random rays hit something");
+    for r in grazing_rays(&objects).iter().take(600) {
+        assert_agree(&objects, &linear, &bvh, r, "grazing");
+    }
+    for r in &surface_rays(&objects, &random) {
+        assert_agree(&objects, &linear, &bvh, r, "from a surface");
+    }
+}
+
+#[test]
+fn cores_agree_on_small_random_scenes() {
+    for (seed, n) in [(1, 1), (2, 2), (3, 5), (4, 9), (5, 17), (6, 40)] {
+        check_scene(seed, n);
+    }
+}
+
+#[test]
+fn cores_agree_on_larger_random_scenes() {
+    for (seed, n) in [(7, 150), (8, 600)] {
+        check_scene(seed, n);
+    }
+}
+
+#[test]
+fn ties_go_to_the_lowest_index() {
+    // Three identical spheres on the ray, the middle one first in the BVH's eyes as much as
+    // in any order: the hit is object 1, the first of the identical three.
+    let s = Shape::Sphere(Sphere::new(DVec3::new(0.0, 0.0, 5.0), 1.0));
+    let objects: Vec<Object> = [
+        Shape::Sphere(Sphere::new(DVec3::new(0.0, 0.0, 9.0), 1.0)),
+        s.clone(),
+        s.clone(),
+        s,
+    ]
+    .into_iter()
+    .chain((0..40).map(|i| Shape::Sphere(Sphere::new(DVec3::new(10.0 + i as f64, 0.0, 0.0), 0.5))))
+    .map(object)
+    .collect();
+    let ray = Ray::new(DVec3::ZERO, DVec3::Z);
+    for choice in [AccelChoice::Linear, AccelChoice::Bvh] {
+        let (j, h) = Accel::build_with(&objects, choice)
+            .closest(&objects, &ray, 0.0, f64::INFINITY)
+            .unwrap();
+        assert_eq!((j, h.t), (1, 4.0), "{choice:?}");
+    }
+}
+
+#[test]
+fn hand_checked_hits() {
+    // A floor plane, a unit cube [0, 1]^3 on it, a sphere above, and 30 far spheres so the
+    // BVH has a tree.
+    let objects: Vec<Object> = [
+        Shape::Plane(Plane::new(DVec3::ZERO, DVec3::Z)),
+        Shape::Cuboid(Cuboid::new(DVec3::splat(0.5), DVec3::ONE, DVec3::ZERO)),
+        Shape::Sphere(Sphere::new(DVec3::new(0.5, 0.5, 3.0), 0.5)),
+    ]
+    .into_iter()
+    .chain((0..30).map(|i| Shape::Sphere(Sphere::new(DVec3::new(50.0, i as f64, 1.0), 0.4))))
+    .map(object)
+    .collect();
+    let bvh = Accel::build_with(&objects, AccelChoice::Bvh);
+    let linear = Accel::build_with(&objects, AccelChoice::Linear);
+    let cases = [
+        // Along the cube's bottom edge y = 0, z = 0 from x = -1: the cube's face x = 0 at t = 1
+        // (the plane z = 0 contains the ray and is not hit).
+        (Ray::new(DVec3::new(-1.0, 0.0, 0.0), DVec3::X), Some((1, 1.0))),
+        // Along the top edge y = 1, z = 1: the cube again, at t = 1.
+        (Ray::new(DVec3::new(-1.0, 1.0, 1.0), DVec3::X), Some((1, 1.0))),
+        // Down onto the sphere's top from z = 5: t = 1.5.
+        (Ray::new(DVec3::new(0.5, 0.5, 5.0), -DVec3::Z), Some((2, 1.5))),
+        // Down past the sphere (x = 1.5): the floor at t = 5.
+        (Ray::new(DVec3::new(1.5, 0.5, 5.0), -DVec3::Z), Some((0, 5.0))),
+        // Starting on the cube's top face, going up: the sphere's bottom at z = 2.5.
+        (Ray::new(DVec3::new(0.5, 0.5, 1.0), DVec3::Z), Some((2, 1.5))),
+        // Upwards from above everything: nothing.
+        (Ray::new(DVec3::new(0.5, 0.5, 4.0), DVec3::Z), None),
+    ];
+    for (ray, want) in cases {
+        for accel in [&linear, &bvh] {
+            let got = accel.closest(&objects, &ray, 0.0, f64::INFINITY).map(|(j, h)| (j, h.t));
+            assert_eq!(got, want, "{} for {ray:?}", accel.name());
+        }
+    }
+    // Any-hit stops short of the light: a shadow ray from the floor under the sphere to a
+    // light at z = 10 is blocked (by the sphere), one to z = 2 is not.
+    let up = Ray::new(DVec3::new(0.5, 0.5, 1.0 + 1e-9), DVec3::Z);
+    assert!(bvh.any_hit(&objects, &up, 0.0, 9.0, &|_| true));
+    assert!(!bvh.any_hit(&objects, &up, 0.0, 1.0, &|_| true));
+    assert!(!bvh.any_hit(&objects, &up, 0.0, 9.0, &|j| j != 2));
+}
+
+#[test]
+fn bvh_invariants_on_degenerate_inputs() {
+    let same = |n: usize| -> Vec<Object> {
+        (0..n)
+            .map(|_| object(Shape::Sphere(Sphere::new(DVec3::ONE, 1.0))))
+            .collect()
+    };
+    let planes: Vec<Object> = (0..20)
+        .map(|i| object(Shape::Plane(Plane::new(DVec3::Z * i as f64, DVec3::Z))))
+        .collect();
+    let line: Vec<Object> = (0..1000)
+        .map(|i| object(Shape::Sphere(Sphere::new(DVec3::X * (1.5f64).powi(i % 60), 0.1))))
+        .collect();
+    for objects in [
+        Vec::new(),
+        same(1),
+        same(2),
+        same(100),
+        planes,
+        line,
+        random_scene(11, 3000, 6.0),
+    ] {
+        let bvh = Bvh::new(&objects);
+        bvh.check(&objects).unwrap();
+        // 64 bytes an object at most, past the fixed root and padding slot.
+        assert!(bvh.bytes() <= 64 * (objects.len() + 1), "{} bytes", bvh.bytes());
+    }
+    // Rays through a pile of identical spheres hit the first.
+    let objects = same(100);
+    let ray = Ray::new(DVec3::new(1.0, 1.0, -5.0), DVec3::Z);
+    let (j, h) = Bvh::new(&objects).closest(&objects, &ray, 0.0, f64::INFINITY).unwrap();
+    assert_eq!((j, h.t), (0, 5.0));
+}
+
+#[test]
+fn the_tree_does_not_depend_on_the_thread_count() {
+    let objects = random_scene(12, 20_000, 25.0);
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let three = rayon::ThreadPoolBuilder::new().num_threads(3).build().unwrap();
+    let a = one.install(|| Bvh::new(&objects));
+    let b = three.install(|| Bvh::new(&objects));
+    assert!(a == b, "the trees differ");
+}
+
+#[test]
+fn every_shape_honours_the_t_max_contract() {
+    // intersect(ray, a, b) for b below the full hit's t is None; for b above it, the same
+    // hit to the bit.
+    let objects = random_scene(13, 400, 4.0);
+    let rays = random_rays(13, &objects, 400, 4.0);
+    let mut checked = [0usize; 8];
+    for o in &objects {
+        for r in &rays {
+            let Some(full) = o.shape.intersect(r, 0.0, f64::INFINITY) else {
+                continue;
+            };
+            let kind = [
+                "plane",
+                "rectangle",
+                "disk",
+                "sphere",
+                "box",
+                "cylinder",
+                "cone",
+                "torus",
+            ]
+            .iter()
+            .position(|k| *k == o.shape.kind())
+            .unwrap();
+            checked[kind] += 1;
+            for b in [full.t * 1.5, full.t + 1e-9, f64::from_bits(full.t.to_bits() + 1)] {
+                assert_eq!(
+                    o.shape.intersect(r, 0.0, b),
+                    Some(full),
+                    "{:?} {r:?} below {b}",
+                    o.shape
+                );
+            }
+            for b in [full.t, 0.5 * full.t] {
+                assert_eq!(o.shape.intersect(r, 0.0, b), None, "{:?} {r:?} below {b}", o.shape);
+            }
+        }
+    }
+    assert!(checked.iter().all(|&c| c > 5), "hits by kind: {checked:?}");
+}
+
+/// Renders `scene` with both cores; the float pixels must be identical.
+fn assert_same_image(scene: &lumiere::scene::Scene) {
+    let film = |choice| render(&World::with_accel(scene, choice), &|| {}).0;
+    let (a, b) = (film(AccelChoice::Linear), film(AccelChoice::Bvh));
+    let bits = |f: &lumiere::film::Film| -> Vec<u64> {
+        f.pixels.iter().flat_map(|p| p.to_array().map(f64::to_bits)).collect()
+    };
+    assert!(bits(&a) == bits(&b), "the images differ");
+}
+
+#[test]
+fn images_are_identical_with_either_core() {
+    // The reference scene at full size, and a generated scene of mixed shapes.
+    assert_same_image(&scene("reference.toml"));
+    let mut mixed = scene("spheres-1k.toml");
+    mixed.settings.width = 200;
+    mixed.settings.height = 150;
+    assert_same_image(&mixed);
+    let text = std::fs::read_to_string(repo("scenes/spheres-1k.toml"))
+        .unwrap()
+        .replace("kind = \"spheres\"", "kind = \"mixed\"")
+        .replace("count = 1000", "count = 300")
+        .replace("width = 800", "width = 160")
+        .replace("height = 600", "height = 120")
+        .replace("depth = 1", "depth = 3");
+    let mut mixed = lumiere::scene::parse(&text, "mixed.toml").unwrap();
+    mixed.materials[1].kr = 0.5;
+    assert_same_image(&mixed);
+}
+
+#[test]
+fn cli_accel_choice_gives_the_same_bytes() {
+    let dir = temp_dir("accel-cli");
+    let out = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let scene = repo("scenes/spheres-1k.toml");
+    for core in ["linear", "bvh", "auto"] {
+        let o = lumiere(&[
+            "render",
+            scene.to_str().unwrap(),
+            "-o",
+            &out(&format!("{core}.png")),
+            "--width",
+            "120",
+            "--height",
+            "90",
+            "--accel",
+            core,
+            "--stats",
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        let want = if core == "linear" { "linear" } else { "bvh" };
+        assert!(
+            stdout.contains(&format!("intersection core: {want} over 1001 objects")),
+            "{stdout}"
+        );
+    }
+    let bytes = |name: &str| std::fs::read(dir.join(name)).unwrap();
+    assert_eq!(bytes("linear.png"), bytes("bvh.png"));
+    assert_eq!(bytes("linear.png"), bytes("auto.png"));
+    let o = lumiere(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        &out("x.png"),
+        "--accel",
+        "kd-tree",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn auto_keeps_the_course_scenes_on_the_linear_scan() {
+    for name in [
+        "reference.toml",
+        "mirrors.toml",
+        "prism.toml",
+        "shading.toml",
+        "soft-shadows.toml",
+    ] {
+        let s = scene(name);
+        assert_eq!(World::new(&s).accel.name(), "linear", "{name}");
+    }
+    assert_eq!(World::new(&scene("spheres-1k.toml")).accel.name(), "bvh");
+}
