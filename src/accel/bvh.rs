@@ -15,7 +15,7 @@
 //! ever skipped.
 
 use super::build::{MAX_SAH_DEPTH, PrimRef, build};
-use super::node::{Node, RaySlabs, next_up, stored_box};
+use super::node::{Node, RaySlabs, stored_box};
 use crate::math::Ray;
 use crate::scene::Object;
 use crate::shape::SurfaceHit;
@@ -75,7 +75,7 @@ impl Bvh {
         let consider = |j: usize, best: &mut Option<(usize, SurfaceHit)>| {
             let limit = match *best {
                 None => t_max,
-                Some((i, h)) if j < i => next_up(h.t),
+                Some((i, h)) if j < i => h.t.next_up(),
                 Some((_, h)) => h.t,
             };
             if let Some(h) = objects[j].shape.intersect(ray, t_min, limit) {

@@ -50,38 +50,13 @@ pub fn stored_box(b: &Aabb) -> ([f32; 3], [f32; 3]) {
 /// The largest `f32` not above `x`.
 pub fn down(x: f64) -> f32 {
     let f = x as f32;
-    if f as f64 > x { f32_step(f, false) } else { f }
+    if f as f64 > x { f.next_down() } else { f }
 }
 
 /// The smallest `f32` not below `x`.
 pub fn up(x: f64) -> f32 {
     let f = x as f32;
-    if (f as f64) < x { f32_step(f, true) } else { f }
-}
-
-/// The neighbouring `f32` of a finite `f` towards +inf (`up`) or -inf (std's `next_up` is
-/// newer than this crate's minimum Rust version).
-fn f32_step(f: f32, towards_up: bool) -> f32 {
-    if f == 0.0 {
-        let tiny = f32::from_bits(1);
-        return if towards_up { tiny } else { -tiny };
-    }
-    let bits = f.to_bits();
-    // Away from zero adds one to the magnitude's bits, towards zero subtracts one.
-    let away = (f > 0.0) == towards_up;
-    f32::from_bits(if away { bits + 1 } else { bits - 1 })
-}
-
-/// The next `f64` above a finite non-negative `x` (ties of closest-hit searches, see `Bvh`).
-pub fn next_up(x: f64) -> f64 {
-    debug_assert!(x.is_finite());
-    if x == 0.0 {
-        f64::from_bits(1)
-    } else if x > 0.0 {
-        f64::from_bits(x.to_bits() + 1)
-    } else {
-        f64::from_bits(x.to_bits() - 1)
-    }
+    if (f as f64) < x { f.next_up() } else { f }
 }
 
 /// `2 gamma(3)`: the relative widening that makes the slab test's computed interval contain
@@ -148,8 +123,6 @@ mod tests {
         // Exact values stay put; inexact ones move one f32 step at most.
         assert_eq!(down(1.0), 1.0);
         assert!((up(0.1) as f64) - 0.1 < 1e-8 && 0.1 - (down(0.1) as f64) < 1e-8);
-        assert_eq!(f32_step(f32_step(0.5, true), false), 0.5);
-        assert_eq!(next_up(1.0), 1.0 + f64::EPSILON);
     }
 
     #[test]
