@@ -111,7 +111,16 @@ fn roots_into(c: &[f64], lo: f64, hi: f64, f: &dyn Fn(f64) -> f64, out: &mut Few
     let mut splits = [0.0; 8];
     splits[0] = lo;
     let mut ns = 1;
-    if degree >= 2 {
+    // A derivative whose coefficients all have the sign of its (non-zero) constant term
+    // keeps that sign on `[0, inf)`, exactly also in Horner's floating-point evaluation (a
+    // sum of products of one sign): no critical point there, nothing to search for. For the
+    // torus this is most rays leaving its surface away from it.
+    let monotone_from_zero = lo >= 0.0
+        && deriv[0] != 0.0
+        && deriv
+            .iter()
+            .all(|&c| c == 0.0 || c.is_sign_positive() == deriv[0].is_sign_positive());
+    if degree >= 2 && !monotone_from_zero {
         let mut crit = Few::default();
         roots_into(deriv, lo, hi, &|t| horner(deriv, t), &mut crit);
         for &t in crit.as_slice() {
@@ -225,6 +234,27 @@ mod tests {
         poly_roots_in(&c, 2.5, 3.5, &mut r);
         assert_eq!(r.len(), 1);
         assert!((r[0] - 3.0).abs() < 1e-13);
+    }
+
+    #[test]
+    fn increasing_quartic_has_its_one_root() {
+        // s^4 + 2 s^3 + 3 s^2 + 4 s - 5: the derivative 4 s^3 + 6 s^2 + 6 s + 4 has only
+        // positive coefficients, so there is no critical point on [0, inf) and exactly one
+        // root, between f(0) = -5 and f(1) = 5. Bisection to the last bit agrees with it.
+        let c = [-5.0, 4.0, 3.0, 2.0, 1.0];
+        let mut r = Vec::new();
+        poly_roots_in(&c, 0.0, 10.0, &mut r);
+        assert_eq!(r.len(), 1, "{r:?}");
+        let (mut a, mut b) = (0.0f64, 1.0f64);
+        while b - a > 4.0 * f64::EPSILON {
+            let m = 0.5 * (a + b);
+            if horner(&c, m) < 0.0 { a = m } else { b = m }
+        }
+        assert!((r[0] - a).abs() < 1e-14, "{} vs {a}", r[0]);
+        // Shifted so the root is outside the interval: nothing.
+        r.clear();
+        poly_roots_in(&c, 1.0, 10.0, &mut r);
+        assert_eq!(r, Vec::<f64>::new());
     }
 
     #[test]
