@@ -68,23 +68,25 @@ impl Torus {
         t_max: f64,
         visit: &mut dyn FnMut(f64, DVec3, DVec3) -> bool,
     ) {
+        if let Some((o, d, clip)) = self.local_clip(ray, t_min, t_max)
+            && !self.clear_of_tube(o + d * clip.0, d, clip.1 - clip.0)
+        {
+            self.solve(method, o, d, clip, t_min, t_max, visit);
+        }
+    }
+
+    /// The ray in the local frame (`o`, `d`) and its clip interval `(enter, exit)`, or `None`
+    /// when no root can lie in `(t_min, t_max)`. Clipped without `t_max`: the shifted origin,
+    /// and so every root's bits, must not depend on how far the caller looks, or a
+    /// closest-hit search that shrinks `t_max` as it goes would get other bits for this torus
+    /// in another visiting order (the linear scan and the BVH must agree to the bit).
+    /// `t_max` only filters the roots.
+    fn local_clip(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(DVec3, DVec3, (f64, f64))> {
         let o = self.frame.to_local(ray.origin - self.center);
         let d = self.frame.to_local(ray.dir);
-        // Clipped without `t_max`: the shifted origin, and so every root's bits, must not
-        // depend on how far the caller looks, or a closest-hit search that shrinks `t_max`
-        // as it goes would get other bits for this torus in another visiting order (the
-        // linear scan and the BVH must agree to the bit). `t_max` only filters the roots.
-        let Some((enter, exit)) = self.clip(o, d, t_min, f64::INFINITY) else {
-            return;
-        };
+        let (enter, exit) = self.clip(o, d, t_min, f64::INFINITY)?;
         // Every root is at `enter + s >= enter`: none can be below `t_max`.
-        if enter >= t_max {
-            return;
-        }
-        if self.clear_of_tube(o + d * enter, d, exit - enter) {
-            return;
-        }
-        self.solve(method, o, d, (enter, exit), t_min, t_max, visit);
+        (enter < t_max).then_some((o, d, (enter, exit)))
     }
 
     /// The quartic of the ray `o + t d` (local frame) solved on the clip interval
@@ -238,19 +240,15 @@ impl Torus {
         })
     }
 
-    /// Whether the ray surely crosses the surface inside `(t_min, t_max)`: it starts clearly
+    /// Whether the ray `o + t d` (local frame, clip interval `(enter, exit)` of
+    /// [`Torus::local_clip`], so that `p` below is the solver's shifted origin) surely
+    /// crosses the surface inside `(t_min, t_max)`: it starts clearly
     /// outside the solid (`f > 0` by a margin at the clip entry) and is clearly inside it
     /// (`f < 0` by the margin) where it crosses the equatorial plane `z = 0`, before
     /// `t_max`. The root isolator would find that sign change too (so the answer is the
     /// same); this finds it with two evaluations of `f` instead of solving the quartic. The
     /// margin, `1e-10 (|p|^2 + R^2 + r^2)^2`, is far above the rounding of `f`.
-    fn surely_entered(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
-        let o = self.frame.to_local(ray.origin - self.center);
-        let d = self.frame.to_local(ray.dir);
-        // The clip of `roots_with`, so that `p` below is the solver's shifted origin.
-        let Some((enter, exit)) = self.clip(o, d, t_min, f64::INFINITY) else {
-            return false;
-        };
+    fn surely_entered(&self, o: DVec3, d: DVec3, (enter, exit): (f64, f64), t_min: f64, t_max: f64) -> bool {
         if d.z == 0.0 {
             return false;
         }
@@ -305,11 +303,17 @@ impl Torus {
     }
 
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
-        if self.surely_entered(ray, t_min, t_max) {
+        let Some((o, d, clip)) = self.local_clip(ray, t_min, t_max) else {
+            return false;
+        };
+        if self.surely_entered(o, d, clip, t_min, t_max) {
             return true;
         }
+        if self.clear_of_tube(o + d * clip.0, d, clip.1 - clip.0) {
+            return false;
+        }
         let mut any = false;
-        self.roots(ray, t_min, t_max, &mut |_, _, _| {
+        self.solve(QuarticMethod::Isolator, o, d, clip, t_min, t_max, &mut |_, _, _| {
             any = true;
             true
         });
@@ -408,7 +412,9 @@ mod tests {
             let want = occludes_by_quartic(&torus, &ray, 0.0, t_max);
             assert_eq!(torus.occludes(&ray, 0.0, t_max), want, "ray {k}: {ray:?} up to {t_max}");
             hits += want as u32;
-            entered += torus.surely_entered(&ray, 0.0, t_max) as u32;
+            if let Some((o, d, clip)) = torus.local_clip(&ray, 0.0, t_max) {
+                entered += torus.surely_entered(o, d, clip, 0.0, t_max) as u32;
+            }
             let o = torus.frame.to_local(ray.origin - torus.center);
             let d = torus.frame.to_local(ray.dir);
             if let Some((enter, exit)) = torus.clip(o, d, 0.0, f64::INFINITY) {
