@@ -731,19 +731,29 @@ pub fn plot(study: &Study) -> RgbImage {
     };
     ly += 10;
     draw_text(&mut img, right as u32 + 20, ly, "points along each line:", 1, BLACK);
+    // The list of N, wrapped to the legend's width (8-pixel glyphs).
+    let columns = ((w - right as u32 - 24) / 8) as usize;
+    let mut lines = vec![String::from("N =")];
+    for n in ns {
+        let last = lines.last_mut().expect("one line at least");
+        if last.len() + n.len() + 2 > columns {
+            lines.push(format!("    {n},"));
+        } else {
+            last.push_str(&format!(" {n},"));
+        }
+    }
+    if let Some(last) = lines.last_mut() {
+        last.pop();
+    }
+    for line in &lines {
+        ly += 14;
+        draw_text(&mut img, right as u32 + 20, ly, line, 1, BLACK);
+    }
+    draw_text(&mut img, right as u32 + 20, ly + 20, "solid, filled: fixed", 1, BLACK);
     draw_text(
         &mut img,
         right as u32 + 20,
-        ly + 14,
-        &format!("N = {}", ns.join(", ")),
-        1,
-        BLACK,
-    );
-    draw_text(&mut img, right as u32 + 20, ly + 34, "solid, filled: fixed", 1, BLACK);
-    draw_text(
-        &mut img,
-        right as u32 + 20,
-        ly + 48,
+        ly + 34,
         "dashed, hollow: per_sample",
         1,
         BLACK,
