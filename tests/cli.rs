@@ -102,7 +102,21 @@ fn unknown_field_is_an_error() {
         "unknown",
         "radius = 1\n",
         "radius = 1\nradus = 2\n",
-        &["scene.toml:", "unknown field `radus`"],
+        &[
+            "scene.toml:19:1: shapes[0].radus: unknown field `radus`, expected one of `center`, `radius`, `material`, `name`\n",
+        ],
+    );
+}
+
+#[test]
+fn misspelt_light_type_lists_the_types() {
+    expect_bad(
+        "light-type",
+        "type = \"spot\"",
+        "type = \"spott\"",
+        &[
+            "scene.toml:29:8: lights[0].type: must be \"ambient\", \"directional\", \"point\", \"spot\" or \"area\", got \"spott\"\n",
+        ],
     );
 }
 

@@ -4,7 +4,8 @@
 //! The format is documented in `scenes/README.md`.
 
 use super::generate::{Generate, GenerateKind};
-use super::locate::{FieldPath, line_col, locate};
+use super::locate::{FieldError, FieldPath, line_col, locate, path_at};
+use super::tag;
 use super::{CameraSpec, Object, Scene, Settings, ShadingModel, Specular};
 use crate::area_light::{AreaLight, AreaShape, PointMode};
 use crate::light::{Attenuation, Light, PointLight, SpotLight};
@@ -16,6 +17,7 @@ use glam::DVec3;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use toml::de::DeTable;
 
 /// Why a scene could not be loaded.
 #[derive(Debug, thiserror::Error)]
@@ -49,33 +51,39 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 
 /// Parses and validates scene text; `file` is the name used in error messages.
 pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
-    let raw: FileScene = toml::from_str(text).map_err(|e| {
-        let (line, column) = line_col(text, e.span().map_or(0, |s| s.start));
+    let at = |offset: usize, field: String, message: String| {
+        let (line, column) = line_col(text, offset);
         SceneError::Invalid {
             file: file.to_string(),
             line,
             column,
-            field: "TOML".to_string(),
-            message: e.message().trim().to_string(),
+            field,
+            message,
         }
+    };
+    let located = |e: FieldError| at(locate(text, &e.path), e.path.to_string(), e.message);
+    let mut root = DeTable::parse(text).map_err(|e| {
+        at(
+            e.span().map_or(0, |s| s.start),
+            "TOML".to_string(),
+            e.message().trim().to_string(),
+        )
     })?;
-    raw.validate().map_err(|e| {
-        let (line, column) = line_col(text, locate(text, &e.path));
-        SceneError::Invalid {
-            file: file.to_string(),
-            line,
-            column,
-            field: e.path.to_string(),
-            message: e.message,
-        }
-    })
-}
-
-/// A value that failed validation, before it is located in the file.
-#[derive(Debug)]
-struct FieldError {
-    path: FieldPath,
-    message: String,
+    tag::lift(root.get_mut(), "shapes", SHAPE_TYPES).map_err(located)?;
+    tag::lift(root.get_mut(), "lights", LIGHT_TYPES).map_err(located)?;
+    let raw = FileScene::deserialize(toml::de::Deserializer::from(root)).map_err(|e| {
+        // A type, length or unknown-field error knows its span only: name the field there.
+        let (offset, path) = e
+            .span()
+            .map_or((0, FieldPath::default()), |span| (span.start, path_at(text, span)));
+        let field = if path.0.is_empty() {
+            "TOML".to_string()
+        } else {
+            path.to_string()
+        };
+        at(offset, field, e.message().trim().to_string())
+    })?;
+    raw.validate().map_err(located)
 }
 
 type Check<T> = Result<T, FieldError>;
@@ -250,81 +258,132 @@ struct FileMaterial {
     n: Option<f64>,
 }
 
+/// The values of `type` in `[[shapes]]`, in the order of [`FileShape`]'s variants.
+const SHAPE_TYPES: &[&str] = &[
+    "plane",
+    "rectangle",
+    "disk",
+    "sphere",
+    "box",
+    "cylinder",
+    "cone",
+    "mirror_pair",
+    "torus",
+];
+
+/// One `[[shapes]]` entry, tagged by its `type` (lifted to an outer key by `tag::lift`, so that
+/// errors keep their positions).
 #[derive(Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+#[serde(rename_all = "snake_case")]
 enum FileShape {
-    Plane {
-        point: [f64; 3],
-        normal: [f64; 3],
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Rectangle {
-        corner: [f64; 3],
-        edge1: [f64; 3],
-        edge2: [f64; 3],
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Disk {
-        center: [f64; 3],
-        normal: [f64; 3],
-        radius: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Sphere {
-        center: [f64; 3],
-        radius: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Box {
-        center: [f64; 3],
-        size: [f64; 3],
-        #[serde(default)]
-        rotation: [f64; 3],
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Cylinder {
-        base: [f64; 3],
-        #[serde(default = "z_up")]
-        axis: [f64; 3],
-        height: f64,
-        radius: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Cone {
-        base: [f64; 3],
-        #[serde(default = "z_up")]
-        axis: [f64; 3],
-        height: f64,
-        radius: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
-    MirrorPair {
-        #[serde(default)]
-        hinge: [f64; 3],
-        #[serde(default = "minus_y")]
-        bisector: [f64; 3],
-        opening: f64,
-        length: f64,
-        height: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Torus {
-        center: [f64; 3],
-        #[serde(default = "z_up")]
-        axis: [f64; 3],
-        major_radius: f64,
-        minor_radius: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
+    Plane(FilePlane),
+    Rectangle(FileRectangle),
+    Disk(FileDisk),
+    Sphere(FileSphere),
+    Box(FileBox),
+    Cylinder(FileCylinder),
+    Cone(FileCone),
+    MirrorPair(FileMirrorPair),
+    Torus(FileTorus),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FilePlane {
+    point: [f64; 3],
+    normal: [f64; 3],
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileRectangle {
+    corner: [f64; 3],
+    edge1: [f64; 3],
+    edge2: [f64; 3],
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileDisk {
+    center: [f64; 3],
+    normal: [f64; 3],
+    radius: f64,
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileSphere {
+    center: [f64; 3],
+    radius: f64,
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileBox {
+    center: [f64; 3],
+    size: [f64; 3],
+    #[serde(default)]
+    rotation: [f64; 3],
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileCylinder {
+    base: [f64; 3],
+    #[serde(default = "z_up")]
+    axis: [f64; 3],
+    height: f64,
+    radius: f64,
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileCone {
+    base: [f64; 3],
+    #[serde(default = "z_up")]
+    axis: [f64; 3],
+    height: f64,
+    radius: f64,
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileMirrorPair {
+    #[serde(default)]
+    hinge: [f64; 3],
+    #[serde(default = "minus_y")]
+    bisector: [f64; 3],
+    opening: f64,
+    length: f64,
+    height: f64,
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileTorus {
+    center: [f64; 3],
+    #[serde(default = "z_up")]
+    axis: [f64; 3],
+    major_radius: f64,
+    minor_radius: f64,
+    material: Option<String>,
+    name: Option<String>,
 }
 
 #[derive(Deserialize, Default)]
@@ -335,58 +394,83 @@ struct FileAttenuation {
     quadratic: f64,
 }
 
+/// The values of `type` in `[[lights]]`, in the order of [`FileLight`]'s variants.
+const LIGHT_TYPES: &[&str] = &["ambient", "directional", "point", "spot", "area"];
+
+/// One `[[lights]]` entry, tagged by its `type` (lifted to an outer key by `tag::lift`, so that
+/// errors keep their positions).
 #[derive(Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+#[serde(rename_all = "snake_case")]
 enum FileLight {
-    Ambient {
-        #[serde(default = "one")]
-        color: [f64; 3],
-    },
-    Directional {
-        direction: [f64; 3],
-        #[serde(default = "one")]
-        color: [f64; 3],
-    },
-    Point {
-        position: [f64; 3],
-        #[serde(default = "one")]
-        color: [f64; 3],
-        #[serde(default)]
-        attenuation: FileAttenuation,
-    },
-    Spot {
-        position: [f64; 3],
-        direction: [f64; 3],
-        angle: f64,
-        #[serde(default)]
-        c_min: f64,
-        #[serde(default = "one_f")]
-        c_max: f64,
-        #[serde(default = "one")]
-        color: [f64; 3],
-        #[serde(default)]
-        attenuation: FileAttenuation,
-    },
-    /// N point lights on a sphere (`center`, `radius`), a tube (`start`, `end`) or a window
-    /// (`center`, `edge1`, `edge2`).
-    Area {
-        shape: String,
-        center: Option<[f64; 3]>,
-        radius: Option<f64>,
-        start: Option<[f64; 3]>,
-        end: Option<[f64; 3]>,
-        edge1: Option<[f64; 3]>,
-        edge2: Option<[f64; 3]>,
-        points: u32,
-        #[serde(default = "chapter")]
-        placement: String,
-        #[serde(default = "fixed")]
-        mode: String,
-        #[serde(default = "one")]
-        color: [f64; 3],
-        #[serde(default)]
-        attenuation: FileAttenuation,
-    },
+    Ambient(FileAmbientLight),
+    Directional(FileDirectionalLight),
+    Point(FilePointLight),
+    Spot(FileSpotLight),
+    Area(FileAreaLight),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileAmbientLight {
+    #[serde(default = "one")]
+    color: [f64; 3],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileDirectionalLight {
+    direction: [f64; 3],
+    #[serde(default = "one")]
+    color: [f64; 3],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FilePointLight {
+    position: [f64; 3],
+    #[serde(default = "one")]
+    color: [f64; 3],
+    #[serde(default)]
+    attenuation: FileAttenuation,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileSpotLight {
+    position: [f64; 3],
+    direction: [f64; 3],
+    angle: f64,
+    #[serde(default)]
+    c_min: f64,
+    #[serde(default = "one_f")]
+    c_max: f64,
+    #[serde(default = "one")]
+    color: [f64; 3],
+    #[serde(default)]
+    attenuation: FileAttenuation,
+}
+
+/// N point lights on a sphere (`center`, `radius`), a tube (`start`, `end`) or a window
+/// (`center`, `edge1`, `edge2`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileAreaLight {
+    shape: String,
+    center: Option<[f64; 3]>,
+    radius: Option<f64>,
+    start: Option<[f64; 3]>,
+    end: Option<[f64; 3]>,
+    edge1: Option<[f64; 3]>,
+    edge2: Option<[f64; 3]>,
+    points: u32,
+    #[serde(default = "chapter")]
+    placement: String,
+    #[serde(default = "fixed")]
+    mode: String,
+    #[serde(default = "one")]
+    color: [f64; 3],
+    #[serde(default)]
+    attenuation: FileAttenuation,
 }
 
 fn chapter() -> String {
@@ -591,12 +675,12 @@ impl FileShape {
     fn validate(self, path: &FieldPath, index: usize, material_names: &[String]) -> Check<Vec<Object>> {
         let size = |key: &str, x: f64| positive(&path.key(key), x, limits::MAX_COORDINATE);
         let (shape, material, name) = match self {
-            FileShape::Plane {
+            FileShape::Plane(FilePlane {
                 point,
                 normal,
                 material,
                 name,
-            } => (
+            }) => (
                 Shape::Plane(Plane::new(
                     vec3(&path.key("point"), point)?,
                     direction(&path.key("normal"), normal)?,
@@ -604,13 +688,13 @@ impl FileShape {
                 material,
                 name,
             ),
-            FileShape::Rectangle {
+            FileShape::Rectangle(FileRectangle {
                 corner,
                 edge1,
                 edge2,
                 material,
                 name,
-            } => {
+            }) => {
                 let e1 = vec3(&path.key("edge1"), edge1)?;
                 let e2 = vec3(&path.key("edge2"), edge2)?;
                 if e1.length() == 0.0 || e1.cross(e2).length() <= 1e-12 * e1.length() * e2.length() {
@@ -622,13 +706,13 @@ impl FileShape {
                     name,
                 )
             }
-            FileShape::Disk {
+            FileShape::Disk(FileDisk {
                 center,
                 normal,
                 radius,
                 material,
                 name,
-            } => (
+            }) => (
                 Shape::Disk(Disk::new(
                     vec3(&path.key("center"), center)?,
                     direction(&path.key("normal"), normal)?,
@@ -637,23 +721,23 @@ impl FileShape {
                 material,
                 name,
             ),
-            FileShape::Sphere {
+            FileShape::Sphere(FileSphere {
                 center,
                 radius,
                 material,
                 name,
-            } => (
+            }) => (
                 Shape::Sphere(Sphere::new(vec3(&path.key("center"), center)?, size("radius", radius)?)),
                 material,
                 name,
             ),
-            FileShape::Box {
+            FileShape::Box(FileBox {
                 center,
                 size: s,
                 rotation,
                 material,
                 name,
-            } => {
+            }) => {
                 let sz = vec3(&path.key("size"), s)?;
                 if sz.min_element() <= 0.0 {
                     return fail(&path.key("size"), format!("each side must be > 0, got {s:?}"));
@@ -671,14 +755,14 @@ impl FileShape {
                     name,
                 )
             }
-            FileShape::Cylinder {
+            FileShape::Cylinder(FileCylinder {
                 base,
                 axis,
                 height,
                 radius,
                 material,
                 name,
-            } => (
+            }) => (
                 Shape::Cylinder(Cylinder::new(
                     vec3(&path.key("base"), base)?,
                     direction(&path.key("axis"), axis)?,
@@ -688,14 +772,14 @@ impl FileShape {
                 material,
                 name,
             ),
-            FileShape::Cone {
+            FileShape::Cone(FileCone {
                 base,
                 axis,
                 height,
                 radius,
                 material,
                 name,
-            } => (
+            }) => (
                 Shape::Cone(Cone::new(
                     vec3(&path.key("base"), base)?,
                     direction(&path.key("axis"), axis)?,
@@ -705,7 +789,7 @@ impl FileShape {
                 material,
                 name,
             ),
-            FileShape::MirrorPair {
+            FileShape::MirrorPair(FileMirrorPair {
                 hinge,
                 bisector,
                 opening,
@@ -713,7 +797,7 @@ impl FileShape {
                 height,
                 material,
                 name,
-            } => {
+            }) => {
                 return mirror_pair(
                     path,
                     index,
@@ -727,14 +811,14 @@ impl FileShape {
                     material_names,
                 );
             }
-            FileShape::Torus {
+            FileShape::Torus(FileTorus {
                 center,
                 axis,
                 major_radius,
                 minor_radius,
                 material,
                 name,
-            } => {
+            }) => {
                 let major = size("major_radius", major_radius)?;
                 let minor = size("minor_radius", minor_radius)?;
                 if minor > major {
@@ -908,23 +992,23 @@ impl FileLight {
     fn validate(self, path: &FieldPath) -> Check<Light> {
         let light_color = |c: [f64; 3]| color(&path.key("color"), c, limits::MAX_LIGHT);
         Ok(match self {
-            FileLight::Ambient { color } => Light::Ambient {
+            FileLight::Ambient(FileAmbientLight { color }) => Light::Ambient {
                 color: light_color(color)?,
             },
-            FileLight::Directional { direction: d, color } => Light::Directional {
+            FileLight::Directional(FileDirectionalLight { direction: d, color }) => Light::Directional {
                 direction: direction(&path.key("direction"), d)?,
                 color: light_color(color)?,
             },
-            FileLight::Point {
+            FileLight::Point(FilePointLight {
                 position,
                 color,
                 attenuation,
-            } => Light::Point(PointLight {
+            }) => Light::Point(PointLight {
                 position: vec3(&path.key("position"), position)?,
                 color: light_color(color)?,
                 attenuation: attenuation.validate(&path.key("attenuation"))?,
             }),
-            FileLight::Spot {
+            FileLight::Spot(FileSpotLight {
                 position,
                 direction: d,
                 angle,
@@ -932,7 +1016,7 @@ impl FileLight {
                 c_max,
                 color,
                 attenuation,
-            } => Light::Spot(SpotLight::new(
+            }) => Light::Spot(SpotLight::new(
                 vec3(&path.key("position"), position)?,
                 direction(&path.key("direction"), d)?,
                 in_range(&path.key("angle"), angle, 0.0, 180.0)?,
@@ -941,7 +1025,7 @@ impl FileLight {
                 light_color(color)?,
                 attenuation.validate(&path.key("attenuation"))?,
             )),
-            FileLight::Area {
+            FileLight::Area(FileAreaLight {
                 shape,
                 center,
                 radius,
@@ -954,7 +1038,7 @@ impl FileLight {
                 mode,
                 color,
                 attenuation,
-            } => {
+            }) => {
                 // Which geometry fields each shape takes; any other one is an error.
                 let given = [
                     ("center", center.is_some()),
@@ -1038,5 +1122,26 @@ impl FileLight {
                 })
             }
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every listed `type` is a variant the deserialiser knows: a listed name that serde
+    /// did not know would pass `tag::lift` and fail as an unknown variant.
+    #[test]
+    fn the_type_lists_match_the_enums() {
+        for (array, types) in [("shapes", SHAPE_TYPES), ("lights", LIGHT_TYPES)] {
+            for t in types {
+                let text = format!(
+                    "[image]\nwidth = 1\nheight = 1\n[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\n[[{array}]]\ntype = \"{t}\"\n"
+                );
+                if let Err(e) = parse(&text, "t.toml") {
+                    assert!(!e.to_string().contains("variant"), "{t}: {e}");
+                }
+            }
+        }
     }
 }
