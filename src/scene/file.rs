@@ -518,19 +518,14 @@ impl FileScene {
             .enumerate()
             .map(|(i, g)| g.validate(&path.index(i), &material_names))
             .collect::<Check<Vec<_>>>()?;
-        let mut total = objects.len();
-        for (i, g) in tables.iter().enumerate() {
-            total += g.count;
-            if total > limits::MAX_OBJECTS {
-                return fail(
-                    &path.index(i).key("count"),
-                    format!(
-                        "the scene would hold {total} objects with this table, at most {} are allowed",
-                        limits::MAX_OBJECTS
-                    ),
-                );
-            }
-        }
+        running_total(
+            &path,
+            "count",
+            objects.len() as u64,
+            tables.iter().map(|g| g.count as u64),
+            limits::MAX_OBJECTS as u64,
+            "objects with this table",
+        )?;
         for (i, g) in tables.iter().enumerate() {
             objects.extend(g.objects(i));
         }
@@ -547,6 +542,19 @@ impl FileScene {
             .enumerate()
             .map(|(i, l)| l.validate(&path.index(i)))
             .collect::<Check<Vec<_>>>()?;
+        // Each point of a fixed light is kept in memory and every point is a shadow ray per
+        // shading point: bound the sum, not only each light.
+        running_total(
+            &path,
+            "points",
+            0,
+            lights.iter().map(|l| match l {
+                Light::Area(a) => a.count as u64,
+                _ => 0,
+            }),
+            limits::MAX_TOTAL_LIGHT_POINTS,
+            "light points with this light",
+        )?;
         Ok(Scene {
             settings,
             camera,
@@ -695,11 +703,7 @@ impl FileShape {
                 material,
                 name,
             }) => {
-                let e1 = vec3(&path.key("edge1"), edge1)?;
-                let e2 = vec3(&path.key("edge2"), edge2)?;
-                if e1.length() == 0.0 || e1.cross(e2).length() <= 1e-12 * e1.length() * e2.length() {
-                    return fail(&path.key("edge2"), "edge1 and edge2 must be non-zero and not parallel");
-                }
+                let (e1, e2) = spanning_edges(path, edge1, edge2)?;
                 (
                     Shape::Rectangle(Rectangle::new(vec3(&path.key("corner"), corner)?, e1, e2)),
                     material,
@@ -908,6 +912,50 @@ impl FileGenerate {
     }
 }
 
+/// `start` plus the running sum of `counts` (one per entry of the array at `path`) must stay
+/// at most `max`; else an error at field `key` of the entry that passes it, saying the scene
+/// would hold that many `what`.
+fn running_total(
+    path: &FieldPath,
+    key: &str,
+    start: u64,
+    counts: impl IntoIterator<Item = u64>,
+    max: u64,
+    what: &str,
+) -> Check<()> {
+    let mut total = start;
+    for (i, n) in counts.into_iter().enumerate() {
+        total += n;
+        if total > max {
+            return fail(
+                &path.index(i).key(key),
+                format!("the scene would hold {total} {what}, at most {max} are allowed"),
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The two edges of a rectangle or window (`edge1`, `edge2` of the entry at `path`): each of
+/// non-zero length and not parallel, else the surface is a segment or a point.
+fn spanning_edges(path: &FieldPath, edge1: [f64; 3], edge2: [f64; 3]) -> Check<(DVec3, DVec3)> {
+    let e1 = vec3(&path.key("edge1"), edge1)?;
+    let e2 = vec3(&path.key("edge2"), edge2)?;
+    for (key, e, raw) in [("edge1", e1, edge1), ("edge2", e2, edge2)] {
+        // The length, not the components: a length that underflows to 0 cannot be normalised.
+        if e.length() == 0.0 {
+            return fail(&path.key(key), format!("must have a non-zero length, got {raw:?}"));
+        }
+    }
+    if e1.normalize().cross(e2.normalize()).length() <= 1e-12 {
+        return fail(
+            &path.key("edge2"),
+            format!("must not be parallel to edge1 {edge1:?}, got {edge2:?}"),
+        );
+    }
+    Ok((e1, e2))
+}
+
 /// Index of the named material (`None`: the default material, index 0).
 fn resolve_material(path: &FieldPath, material: Option<String>, names: &[String]) -> Check<usize> {
     match material {
@@ -1080,15 +1128,29 @@ impl FileLight {
                             limits::MAX_COORDINATE,
                         )?,
                     },
-                    "tube" => AreaShape::Tube {
-                        start: at("start", start)?,
-                        end: at("end", end)?,
-                    },
-                    _ => AreaShape::Window {
-                        center: at("center", center)?,
-                        edge1: at("edge1", edge1)?,
-                        edge2: at("edge2", edge2)?,
-                    },
+                    "tube" => {
+                        let (start, end) = (at("start", start)?, at("end", end)?);
+                        // Exact: two different finite points always differ by a non-zero vector.
+                        if start == end {
+                            return fail(
+                                &path.key("end"),
+                                format!(
+                                    "must differ from start {:?} (a tube of zero length is a point: use a sphere of radius 0)",
+                                    start.to_array()
+                                ),
+                            );
+                        }
+                        AreaShape::Tube { start, end }
+                    }
+                    _ => {
+                        let (edge1, edge2) =
+                            spanning_edges(path, edge1.unwrap_or_default(), edge2.unwrap_or_default())?;
+                        AreaShape::Window {
+                            center: at("center", center)?,
+                            edge1,
+                            edge2,
+                        }
+                    }
                 };
                 if points == 0 || points > limits::MAX_LIGHT_POINTS {
                     return fail(
