@@ -281,8 +281,8 @@ enum FileShape {
     Disk(FileDisk),
     Sphere(FileSphere),
     Box(FileBox),
-    Cylinder(FileCylinder),
-    Cone(FileCone),
+    Cylinder(FileCapped),
+    Cone(FileCapped),
     MirrorPair(FileMirrorPair),
     Torus(FileTorus),
 }
@@ -336,21 +336,10 @@ struct FileBox {
     name: Option<String>,
 }
 
+/// A cylinder or a cone: the same fields, checked the same way ([`FileCapped::frame`]).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct FileCylinder {
-    base: [f64; 3],
-    #[serde(default = "z_up")]
-    axis: [f64; 3],
-    height: f64,
-    radius: f64,
-    material: Option<String>,
-    name: Option<String>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FileCone {
+struct FileCapped {
     base: [f64; 3],
     #[serde(default = "z_up")]
     axis: [f64; 3],
@@ -759,40 +748,18 @@ impl FileShape {
                     name,
                 )
             }
-            FileShape::Cylinder(FileCylinder {
-                base,
-                axis,
-                height,
-                radius,
-                material,
-                name,
-            }) => (
-                Shape::Cylinder(Cylinder::new(
-                    vec3(&path.key("base"), base)?,
-                    direction(&path.key("axis"), axis)?,
-                    size("height", height)?,
-                    size("radius", radius)?,
-                )),
-                material,
-                name,
-            ),
-            FileShape::Cone(FileCone {
-                base,
-                axis,
-                height,
-                radius,
-                material,
-                name,
-            }) => (
-                Shape::Cone(Cone::new(
-                    vec3(&path.key("base"), base)?,
-                    direction(&path.key("axis"), axis)?,
-                    size("height", height)?,
-                    size("radius", radius)?,
-                )),
-                material,
-                name,
-            ),
+            FileShape::Cylinder(c) => {
+                let (base, axis, height, radius) = c.frame(path)?;
+                (
+                    Shape::Cylinder(Cylinder::new(base, axis, height, radius)),
+                    c.material,
+                    c.name,
+                )
+            }
+            FileShape::Cone(c) => {
+                let (base, axis, height, radius) = c.frame(path)?;
+                (Shape::Cone(Cone::new(base, axis, height, radius)), c.material, c.name)
+            }
             FileShape::MirrorPair(FileMirrorPair {
                 hinge,
                 bisector,
@@ -851,6 +818,19 @@ impl FileShape {
             shape,
             material: material_index,
         }])
+    }
+}
+
+impl FileCapped {
+    /// The checked base, unit axis, height and radius.
+    fn frame(&self, path: &FieldPath) -> Check<(DVec3, DVec3, f64, f64)> {
+        let size = |key: &str, x: f64| positive(&path.key(key), x, limits::MAX_COORDINATE);
+        Ok((
+            vec3(&path.key("base"), self.base)?,
+            direction(&path.key("axis"), self.axis)?,
+            size("height", self.height)?,
+            size("radius", self.radius)?,
+        ))
     }
 }
 
