@@ -41,20 +41,29 @@ direction = [0, 0, -1]
 angle = 70
 "#;
 
-/// Writes `text` as a scene, renders it, and returns (exit code, stderr, output existed).
+/// Writes `text` as a scene, renders it, and returns (exit code, stderr with the scene named
+/// `scene.toml`, output existed).
 fn run_scene(name: &str, text: &str) -> (i32, String, bool) {
+    run_scene_with(name, text, &[])
+}
+
+/// [`run_scene`] with more arguments for `render`.
+fn run_scene_with(name: &str, text: &str, args: &[&str]) -> (i32, String, bool) {
     let dir = temp_dir(name);
     let scene = dir.join("scene.toml");
     fs::write(&scene, text).unwrap();
     let out = dir.join("out.png");
-    let o = lumiere(&[
+    let mut all = vec![
         "render",
         scene.to_str().unwrap(),
         "-o",
         out.to_str().unwrap(),
         "--quiet",
-    ]);
-    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    ];
+    all.extend_from_slice(args);
+    let o = lumiere(&all);
+    // Messages name the scene as `scene.toml`, without the test's temporary directory.
+    let stderr = String::from_utf8_lossy(&o.stderr).replace(&format!("{}/", dir.display()), "");
     assert!(!stderr.contains("panicked"), "{stderr}");
     let leftovers = fs::read_dir(&dir).unwrap().count();
     let existed = out.exists();
@@ -102,7 +111,21 @@ fn unknown_field_is_an_error() {
         "unknown",
         "radius = 1\n",
         "radius = 1\nradus = 2\n",
-        &["scene.toml:", "unknown field `radus`"],
+        &[
+            "scene.toml:19:1: shapes[0].radus: unknown field `radus`, expected one of `center`, `radius`, `material`, `name`\n",
+        ],
+    );
+}
+
+#[test]
+fn misspelt_light_type_lists_the_types() {
+    expect_bad(
+        "light-type",
+        "type = \"spot\"",
+        "type = \"spott\"",
+        &[
+            "scene.toml:29:8: lights[0].type: must be \"ambient\", \"directional\", \"point\", \"spot\" or \"area\", got \"spott\"\n",
+        ],
     );
 }
 
@@ -165,6 +188,153 @@ fn absurd_resolution_is_refused() {
         "samples_per_pixel = 1",
         "samples_per_pixel = 3",
         &["perfect square"],
+    );
+}
+
+/// The good scene with `text` appended after its last line.
+fn with_more(text: &str) -> String {
+    format!("{GOOD}{text}")
+}
+
+/// Expects exit 2 and exactly `line` (plus a newline) as the error on stderr.
+fn expect_error(name: &str, scene: &str, args: &[&str], line: &str) {
+    let (code, stderr, existed) = run_scene_with(name, scene, args);
+    assert_eq!((code, existed), (2, false), "{stderr}");
+    assert_eq!(stderr, format!("lumiere: error: {line}\n"));
+}
+
+#[test]
+fn depth_limit() {
+    expect_error(
+        "depth-flag",
+        GOOD,
+        &["--depth", "100000"],
+        "--depth: must be in [1, 64] (1 = no secondary rays), got 100000",
+    );
+    let scene = GOOD.replace("[materials.glass]", "[render]\ndepth = 100000\n\n[materials.glass]");
+    expect_error(
+        "depth-file",
+        &scene,
+        &[],
+        "scene.toml:11:9: render.depth: must be in [1, 64] (1 = no secondary rays), got 100000",
+    );
+}
+
+#[test]
+fn pixel_and_sample_limits() {
+    let scene = GOOD.replace("width = 16\nheight = 12", "width = 16384\nheight = 16384");
+    let too_many = "width x height must be at most 33554432 pixels, got 16384 x 16384 = 268435456";
+    expect_error(
+        "pixels-file",
+        &scene,
+        &[],
+        &format!("scene.toml:2:9: image.width: {too_many}"),
+    );
+    expect_error(
+        "pixels-flags",
+        GOOD,
+        &["--width", "16384", "--height", "16384"],
+        &format!("--width/--height: {too_many}"),
+    );
+    expect_error(
+        "spp-file",
+        &GOOD.replace("samples_per_pixel = 1", "samples_per_pixel = 2025"),
+        &[],
+        "scene.toml:4:21: image.samples_per_pixel: must be a perfect square (1, 4, 9, 16, ...) in [1, 1024], got 2025",
+    );
+}
+
+#[test]
+fn object_count_limit_fails_at_validation() {
+    // Validation adds up the counts before a single object is generated: this fails at
+    // once instead of allocating four million objects first.
+    let table = |count: &str| {
+        with_more(&format!(
+            "\n[[generate]]\nkind = \"spheres\"\ncount = {count}\nmin = [-1, -1, 0]\nmax = [1, 1, 1]\nradius = [0.05, 0.1]\n"
+        ))
+    };
+    expect_error(
+        "objects-total",
+        &table("4000000"),
+        &[],
+        "scene.toml:36:9: generate[0].count: the scene would hold 4000002 objects with this table, at most 4000000 are allowed",
+    );
+    expect_error(
+        "objects-huge",
+        &table("18446744073709551615"),
+        &[],
+        "scene.toml:36:9: generate[0].count: must be in [1, 4000000], got 18446744073709551615",
+    );
+}
+
+#[test]
+fn light_count_limit() {
+    let scene = with_more(&"[[lights]]\ntype = \"ambient\"\n".repeat(10_000));
+    expect_error(
+        "lights",
+        &scene,
+        &[],
+        "scene.toml:28:1: lights: at most 10000 lights, got 10001",
+    );
+}
+
+/// An area light entry with `fields` (one `key = value` a line).
+fn area_light(fields: &str) -> String {
+    format!("\n[[lights]]\ntype = \"area\"\n{fields}\n")
+}
+
+#[test]
+fn light_point_limits() {
+    expect_error(
+        "points",
+        &with_more(&area_light(
+            "shape = \"sphere\"\ncenter = [0, 0, 5]\nradius = 1\npoints = 100001",
+        )),
+        &[],
+        "scene.toml:39:10: lights[1].points: must be in [1, 100000], got 100001",
+    );
+    // 100 lights of 100 000 points are allowed; the 101st passes the total.
+    let full = "[[lights]]\ntype = \"area\"\nshape = \"sphere\"\ncenter = [0, 0, 5]\nradius = 1\npoints = 100000\n";
+    expect_error(
+        "total-points",
+        &with_more(&full.repeat(101)),
+        &[],
+        "scene.toml:638:10: lights[101].points: the scene would hold 10100000 light points with this light, at most 10000000 are allowed",
+    );
+}
+
+#[test]
+fn degenerate_area_lights_and_rectangles() {
+    expect_error(
+        "rectangle",
+        &with_more("\n[[shapes]]\ntype = \"rectangle\"\ncorner = [0, 0, 0]\nedge1 = [1, 0, 0]\nedge2 = [2, 0, 0]\n"),
+        &[],
+        "scene.toml:38:9: shapes[2].edge2: must not be parallel to edge1 [1.0, 0.0, 0.0], got [2.0, 0.0, 0.0]",
+    );
+    expect_error(
+        "tube",
+        &with_more(&area_light(
+            "shape = \"tube\"\nstart = [0, 0, 5]\nend = [0, 0, 5]\npoints = 4",
+        )),
+        &[],
+        "scene.toml:38:7: lights[1].end: must differ from start [0.0, 0.0, 5.0] (a tube of zero length is a point: use a sphere of radius 0)",
+    );
+    let window = |e1: &str, e2: &str| {
+        with_more(&area_light(&format!(
+            "shape = \"window\"\ncenter = [0, 0, 5]\nedge1 = {e1}\nedge2 = {e2}\npoints = 4"
+        )))
+    };
+    expect_error(
+        "window-zero",
+        &window("[0, 0, 0]", "[0, 1, 0]"),
+        &[],
+        "scene.toml:38:9: lights[1].edge1: must have a non-zero length, got [0.0, 0.0, 0.0]",
+    );
+    expect_error(
+        "window-parallel",
+        &window("[1, 0, 0]", "[-2, 0, 0]"),
+        &[],
+        "scene.toml:39:9: lights[1].edge2: must not be parallel to edge1 [1.0, 0.0, 0.0], got [-2.0, 0.0, 0.0]",
     );
 }
 

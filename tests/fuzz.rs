@@ -1,13 +1,16 @@
-//! Hostile input, as a proptest harness: mutated scene files and random text must give a
-//! located error or a scene, never a panic; random valid scenes must render without a
-//! panic and with no NaN or infinity in any pixel. The suite runs 256 cases per property;
-//! a longer run: `PROPTEST_CASES=20000 cargo test --release --test fuzz` (see BENCHMARKS.md).
+//! Hostile input, as a proptest harness: mutated scene files (of a scene with every shape,
+//! every light kind including area lights, and a `[[generate]]` table) and random text must
+//! give a located error or a scene, never a panic; random valid scenes (with random area
+//! lights) must render without a panic and with no NaN or infinity in any pixel. The suite
+//! runs 256 cases per property; the long run, 50 000 cases per property in about 10 s:
+//! `PROPTEST_CASES=50000 nice -n 10 cargo test --release --test fuzz` (see BENCHMARKS.md).
 
 use lumiere::render::render;
 use lumiere::scene::{self, World};
 use proptest::prelude::*;
 
-/// A scene using every section, shape and light kind.
+/// A scene using every section, shape and light kind: area lights of each shape, placement
+/// and mode (few points, so that each case stays fast), and a small `[[generate]]` table.
 const VALID: &str = r#"[image]
 width = 8
 height = 6
@@ -112,6 +115,54 @@ position = [0, 0, 10]
 direction = [0, 0, -1]
 angle = 70
 c_min = 0.2
+
+[[lights]]
+type = "area"
+shape = "sphere"
+center = [2, -2, 8]
+radius = 1
+points = 4
+placement = "chapter"
+mode = "fixed"
+attenuation = { quadratic = 0.005 }
+
+[[lights]]
+type = "area"
+shape = "tube"
+start = [-3, 0, 9]
+end = [3, 1, 9]
+points = 3
+placement = "stratified"
+mode = "per_sample"
+
+[[lights]]
+type = "area"
+shape = "window"
+center = [0, 4, 7]
+edge1 = [2, 0, 0]
+edge2 = [0, 1, 0.5]
+points = 5
+placement = "fibonacci"
+mode = "fixed"
+color = [0.5, 0.4, 0.3]
+
+[[lights]]
+type = "area"
+shape = "sphere"
+center = [-4, -4, 6]
+radius = 0.5
+points = 2
+placement = "uniform"
+mode = "per_sample"
+
+[[generate]]
+kind = "mixed"
+count = 5
+seed = 1
+min = [-6, -6, 0]
+max = [6, 6, 3]
+radius = [0.2, 0.5]
+materials = ["glass", "default"]
 "#;
 
 fn hostile_value() -> impl Strategy<Value = String> {
@@ -141,6 +192,19 @@ fn hostile_value() -> impl Strategy<Value = String> {
             "4294967296",
             "65536",
             "180.0000001",
+            "100000",
+            "100001",
+            "4000000",
+            "-0.0",
+            // Valid names in the wrong place: another type, shape, placement or mode.
+            "\"area\"",
+            "\"tube\"",
+            "\"window\"",
+            "\"torus\"",
+            "\"mirror_pair\"",
+            "\"fibonacci\"",
+            "\"per_sample\"",
+            "\"mixed\"",
         ])
         .prop_map(str::to_string),
         any::<f64>().prop_map(|x| format!("{x:e}")),
@@ -210,6 +274,44 @@ fn apply(text: &str, m: &Mutation) -> String {
     lines.join("\n")
 }
 
+/// One valid area light: a random shape (sphere, tube or window), placement, mode and 1 to 8
+/// points. Tube ends differ by at least 1e-3 and window edges are orthogonal, so that every
+/// light passes validation.
+fn area_light() -> impl Strategy<Value = String> {
+    (
+        0usize..3,
+        prop::sample::select(vec!["chapter", "uniform", "stratified", "fibonacci"]),
+        prop::sample::select(vec!["fixed", "per_sample"]),
+        1u32..9,
+        (-20.0..20.0f64, -20.0..20.0f64, 1.0..30.0f64),
+        (0.0..3.0f64, 1e-3..5.0f64, 1e-3..5.0f64),
+        (0.0..std::f64::consts::TAU, -1.0..1.0f64),
+    )
+        .prop_map(|(shape, placement, mode, points, (x, y, z), (r, a, b), (turn, tilt))| {
+            let (cos, sin) = (turn.cos(), turn.sin());
+            let geometry = match shape {
+                0 => format!("shape = \"sphere\"\ncenter = [{x}, {y}, {z}]\nradius = {r}"),
+                1 => format!(
+                    "shape = \"tube\"\nstart = [{x}, {y}, {z}]\nend = [{}, {}, {}]",
+                    x + a * cos,
+                    y + a * sin,
+                    z + tilt
+                ),
+                _ => format!(
+                    "shape = \"window\"\ncenter = [{x}, {y}, {z}]\nedge1 = [{}, {}, 0]\nedge2 = [{}, {}, {tilt}]",
+                    a * cos,
+                    a * sin,
+                    -b * sin,
+                    b * cos
+                ),
+            };
+            format!(
+                "[[lights]]\ntype = \"area\"\n{geometry}\npoints = {points}\nplacement = \"{placement}\"\n\
+                 mode = \"{mode}\"\nattenuation = {{ quadratic = 0.01 }}\n"
+            )
+        })
+}
+
 /// Renders a parsed scene at 6 x 4, 1 sample, depth at most 4, and checks every pixel.
 fn render_tiny(mut s: scene::Scene) {
     s.settings.width = 6;
@@ -225,7 +327,7 @@ fn render_tiny(mut s: scene::Scene) {
 #[test]
 fn the_fuzz_seed_scene_is_valid() {
     let s = scene::parse(VALID, "fuzz.toml").unwrap();
-    assert_eq!(s.objects.len(), 10);
+    assert_eq!((s.objects.len(), s.lights.len()), (15, 8));
     render_tiny(s);
 }
 
@@ -237,11 +339,19 @@ proptest! {
             Ok(s) => render_tiny(s),
             Err(e) => {
                 let msg = e.to_string();
-                // file:line:column: field: message
+                // file:line:column: field: message, at a place inside the text.
                 let mut parts = msg.splitn(4, ':');
                 prop_assert_eq!(parts.next(), Some("fuzz.toml"));
-                prop_assert!(parts.next().is_some_and(|l| l.parse::<usize>().is_ok()), "{}", msg);
-                prop_assert!(parts.next().is_some_and(|c| c.parse::<usize>().is_ok()), "{}", msg);
+                let line = parts.next().and_then(|l| l.parse::<usize>().ok());
+                let column = parts.next().and_then(|c| c.parse::<usize>().ok());
+                let (Some(line), Some(column)) = (line, column) else {
+                    return Err(TestCaseError::fail(msg));
+                };
+                let shown = line.checked_sub(1).and_then(|i| text.split('\n').nth(i)).map(|l| l.chars().count());
+                prop_assert!(shown.is_some_and(|n| column >= 1 && column <= n + 1), "{}", msg);
+                // ` field: message`, the field never empty.
+                let rest = parts.next().unwrap_or_default();
+                prop_assert!(rest.starts_with(' ') && rest[1..].split(": ").next().is_some_and(|f| !f.is_empty() && !f.contains(' ')), "{}", msg);
             }
         }
     }
@@ -262,6 +372,7 @@ proptest! {
         n in 0.2..3.0f64,
         light in (-20.0..20.0f64, -20.0..20.0f64, 1.0..30.0f64),
         camera in (-30.0..30.0f64, -30.0..-1.0f64, 0.5..30.0f64),
+        areas in prop::collection::vec(area_light(), 0..4),
     ) {
         let (ax, ay, az) = axis;
         let mut text = format!(
@@ -283,6 +394,7 @@ proptest! {
             };
         }
         text += "[[shapes]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n";
+        text += &areas.concat();
         let s = scene::parse(&text, "generated.toml").map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
         render_tiny(s);
     }

@@ -4,7 +4,8 @@
 //! The format is documented in `scenes/README.md`.
 
 use super::generate::{Generate, GenerateKind};
-use super::locate::{FieldPath, line_col, locate};
+use super::locate::{FieldError, FieldPath, line_col, locate, path_at};
+use super::tag;
 use super::{CameraSpec, Object, Scene, Settings, ShadingModel, Specular};
 use crate::area_light::{AreaLight, AreaShape, PointMode};
 use crate::light::{Attenuation, Light, PointLight, SpotLight};
@@ -16,6 +17,7 @@ use glam::DVec3;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use toml::de::DeTable;
 
 /// Why a scene could not be loaded.
 #[derive(Debug, thiserror::Error)]
@@ -49,33 +51,39 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 
 /// Parses and validates scene text; `file` is the name used in error messages.
 pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
-    let raw: FileScene = toml::from_str(text).map_err(|e| {
-        let (line, column) = line_col(text, e.span().map_or(0, |s| s.start));
+    let at = |offset: usize, field: String, message: String| {
+        let (line, column) = line_col(text, offset);
         SceneError::Invalid {
             file: file.to_string(),
             line,
             column,
-            field: "TOML".to_string(),
-            message: e.message().trim().to_string(),
+            field,
+            message,
         }
+    };
+    let located = |e: FieldError| at(locate(text, &e.path), e.path.to_string(), e.message);
+    let mut root = DeTable::parse(text).map_err(|e| {
+        at(
+            e.span().map_or(0, |s| s.start),
+            "TOML".to_string(),
+            e.message().trim().to_string(),
+        )
     })?;
-    raw.validate().map_err(|e| {
-        let (line, column) = line_col(text, locate(text, &e.path));
-        SceneError::Invalid {
-            file: file.to_string(),
-            line,
-            column,
-            field: e.path.to_string(),
-            message: e.message,
-        }
-    })
-}
-
-/// A value that failed validation, before it is located in the file.
-#[derive(Debug)]
-struct FieldError {
-    path: FieldPath,
-    message: String,
+    tag::lift(root.get_mut(), "shapes", SHAPE_TYPES).map_err(located)?;
+    tag::lift(root.get_mut(), "lights", LIGHT_TYPES).map_err(located)?;
+    let raw = FileScene::deserialize(toml::de::Deserializer::from(root)).map_err(|e| {
+        // A type, length or unknown-field error knows its span only: name the field there.
+        let (offset, path) = e
+            .span()
+            .map_or((0, FieldPath::default()), |span| (span.start, path_at(text, span)));
+        let field = if path.0.is_empty() {
+            "TOML".to_string()
+        } else {
+            path.to_string()
+        };
+        at(offset, field, e.message().trim().to_string())
+    })?;
+    raw.validate().map_err(located)
 }
 
 type Check<T> = Result<T, FieldError>;
@@ -250,81 +258,121 @@ struct FileMaterial {
     n: Option<f64>,
 }
 
+/// The values of `type` in `[[shapes]]`, in the order of [`FileShape`]'s variants.
+const SHAPE_TYPES: &[&str] = &[
+    "plane",
+    "rectangle",
+    "disk",
+    "sphere",
+    "box",
+    "cylinder",
+    "cone",
+    "mirror_pair",
+    "torus",
+];
+
+/// One `[[shapes]]` entry, tagged by its `type` (lifted to an outer key by `tag::lift`, so that
+/// errors keep their positions).
 #[derive(Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+#[serde(rename_all = "snake_case")]
 enum FileShape {
-    Plane {
-        point: [f64; 3],
-        normal: [f64; 3],
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Rectangle {
-        corner: [f64; 3],
-        edge1: [f64; 3],
-        edge2: [f64; 3],
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Disk {
-        center: [f64; 3],
-        normal: [f64; 3],
-        radius: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Sphere {
-        center: [f64; 3],
-        radius: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Box {
-        center: [f64; 3],
-        size: [f64; 3],
-        #[serde(default)]
-        rotation: [f64; 3],
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Cylinder {
-        base: [f64; 3],
-        #[serde(default = "z_up")]
-        axis: [f64; 3],
-        height: f64,
-        radius: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Cone {
-        base: [f64; 3],
-        #[serde(default = "z_up")]
-        axis: [f64; 3],
-        height: f64,
-        radius: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
-    MirrorPair {
-        #[serde(default)]
-        hinge: [f64; 3],
-        #[serde(default = "minus_y")]
-        bisector: [f64; 3],
-        opening: f64,
-        length: f64,
-        height: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
-    Torus {
-        center: [f64; 3],
-        #[serde(default = "z_up")]
-        axis: [f64; 3],
-        major_radius: f64,
-        minor_radius: f64,
-        material: Option<String>,
-        name: Option<String>,
-    },
+    Plane(FilePlane),
+    Rectangle(FileRectangle),
+    Disk(FileDisk),
+    Sphere(FileSphere),
+    Box(FileBox),
+    Cylinder(FileCapped),
+    Cone(FileCapped),
+    MirrorPair(FileMirrorPair),
+    Torus(FileTorus),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FilePlane {
+    point: [f64; 3],
+    normal: [f64; 3],
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileRectangle {
+    corner: [f64; 3],
+    edge1: [f64; 3],
+    edge2: [f64; 3],
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileDisk {
+    center: [f64; 3],
+    normal: [f64; 3],
+    radius: f64,
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileSphere {
+    center: [f64; 3],
+    radius: f64,
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileBox {
+    center: [f64; 3],
+    size: [f64; 3],
+    #[serde(default)]
+    rotation: [f64; 3],
+    material: Option<String>,
+    name: Option<String>,
+}
+
+/// A cylinder or a cone: the same fields, checked the same way ([`FileCapped::frame`]).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileCapped {
+    base: [f64; 3],
+    #[serde(default = "z_up")]
+    axis: [f64; 3],
+    height: f64,
+    radius: f64,
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileMirrorPair {
+    #[serde(default)]
+    hinge: [f64; 3],
+    #[serde(default = "minus_y")]
+    bisector: [f64; 3],
+    opening: f64,
+    length: f64,
+    height: f64,
+    material: Option<String>,
+    name: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileTorus {
+    center: [f64; 3],
+    #[serde(default = "z_up")]
+    axis: [f64; 3],
+    major_radius: f64,
+    minor_radius: f64,
+    material: Option<String>,
+    name: Option<String>,
 }
 
 #[derive(Deserialize, Default)]
@@ -335,58 +383,83 @@ struct FileAttenuation {
     quadratic: f64,
 }
 
+/// The values of `type` in `[[lights]]`, in the order of [`FileLight`]'s variants.
+const LIGHT_TYPES: &[&str] = &["ambient", "directional", "point", "spot", "area"];
+
+/// One `[[lights]]` entry, tagged by its `type` (lifted to an outer key by `tag::lift`, so that
+/// errors keep their positions).
 #[derive(Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+#[serde(rename_all = "snake_case")]
 enum FileLight {
-    Ambient {
-        #[serde(default = "one")]
-        color: [f64; 3],
-    },
-    Directional {
-        direction: [f64; 3],
-        #[serde(default = "one")]
-        color: [f64; 3],
-    },
-    Point {
-        position: [f64; 3],
-        #[serde(default = "one")]
-        color: [f64; 3],
-        #[serde(default)]
-        attenuation: FileAttenuation,
-    },
-    Spot {
-        position: [f64; 3],
-        direction: [f64; 3],
-        angle: f64,
-        #[serde(default)]
-        c_min: f64,
-        #[serde(default = "one_f")]
-        c_max: f64,
-        #[serde(default = "one")]
-        color: [f64; 3],
-        #[serde(default)]
-        attenuation: FileAttenuation,
-    },
-    /// N point lights on a sphere (`center`, `radius`), a tube (`start`, `end`) or a window
-    /// (`center`, `edge1`, `edge2`).
-    Area {
-        shape: String,
-        center: Option<[f64; 3]>,
-        radius: Option<f64>,
-        start: Option<[f64; 3]>,
-        end: Option<[f64; 3]>,
-        edge1: Option<[f64; 3]>,
-        edge2: Option<[f64; 3]>,
-        points: u32,
-        #[serde(default = "chapter")]
-        placement: String,
-        #[serde(default = "fixed")]
-        mode: String,
-        #[serde(default = "one")]
-        color: [f64; 3],
-        #[serde(default)]
-        attenuation: FileAttenuation,
-    },
+    Ambient(FileAmbientLight),
+    Directional(FileDirectionalLight),
+    Point(FilePointLight),
+    Spot(FileSpotLight),
+    Area(FileAreaLight),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileAmbientLight {
+    #[serde(default = "one")]
+    color: [f64; 3],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileDirectionalLight {
+    direction: [f64; 3],
+    #[serde(default = "one")]
+    color: [f64; 3],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FilePointLight {
+    position: [f64; 3],
+    #[serde(default = "one")]
+    color: [f64; 3],
+    #[serde(default)]
+    attenuation: FileAttenuation,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileSpotLight {
+    position: [f64; 3],
+    direction: [f64; 3],
+    angle: f64,
+    #[serde(default)]
+    c_min: f64,
+    #[serde(default = "one_f")]
+    c_max: f64,
+    #[serde(default = "one")]
+    color: [f64; 3],
+    #[serde(default)]
+    attenuation: FileAttenuation,
+}
+
+/// N point lights on a sphere (`center`, `radius`), a tube (`start`, `end`) or a window
+/// (`center`, `edge1`, `edge2`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileAreaLight {
+    shape: String,
+    center: Option<[f64; 3]>,
+    radius: Option<f64>,
+    start: Option<[f64; 3]>,
+    end: Option<[f64; 3]>,
+    edge1: Option<[f64; 3]>,
+    edge2: Option<[f64; 3]>,
+    points: u32,
+    #[serde(default = "chapter")]
+    placement: String,
+    #[serde(default = "fixed")]
+    mode: String,
+    #[serde(default = "one")]
+    color: [f64; 3],
+    #[serde(default)]
+    attenuation: FileAttenuation,
 }
 
 fn chapter() -> String {
@@ -434,19 +507,14 @@ impl FileScene {
             .enumerate()
             .map(|(i, g)| g.validate(&path.index(i), &material_names))
             .collect::<Check<Vec<_>>>()?;
-        let mut total = objects.len();
-        for (i, g) in tables.iter().enumerate() {
-            total += g.count;
-            if total > limits::MAX_OBJECTS {
-                return fail(
-                    &path.index(i).key("count"),
-                    format!(
-                        "the scene would hold {total} objects with this table, at most {} are allowed",
-                        limits::MAX_OBJECTS
-                    ),
-                );
-            }
-        }
+        running_total(
+            &path,
+            "count",
+            objects.len() as u64,
+            tables.iter().map(|g| g.count as u64),
+            limits::MAX_OBJECTS as u64,
+            "objects with this table",
+        )?;
         for (i, g) in tables.iter().enumerate() {
             objects.extend(g.objects(i));
         }
@@ -463,6 +531,19 @@ impl FileScene {
             .enumerate()
             .map(|(i, l)| l.validate(&path.index(i)))
             .collect::<Check<Vec<_>>>()?;
+        // Each point of a fixed light is kept in memory and every point is a shadow ray per
+        // shading point: bound the sum, not only each light.
+        running_total(
+            &path,
+            "points",
+            0,
+            lights.iter().map(|l| match l {
+                Light::Area(a) => a.count as u64,
+                _ => 0,
+            }),
+            limits::MAX_TOTAL_LIGHT_POINTS,
+            "light points with this light",
+        )?;
         Ok(Scene {
             settings,
             camera,
@@ -591,12 +672,12 @@ impl FileShape {
     fn validate(self, path: &FieldPath, index: usize, material_names: &[String]) -> Check<Vec<Object>> {
         let size = |key: &str, x: f64| positive(&path.key(key), x, limits::MAX_COORDINATE);
         let (shape, material, name) = match self {
-            FileShape::Plane {
+            FileShape::Plane(FilePlane {
                 point,
                 normal,
                 material,
                 name,
-            } => (
+            }) => (
                 Shape::Plane(Plane::new(
                     vec3(&path.key("point"), point)?,
                     direction(&path.key("normal"), normal)?,
@@ -604,31 +685,27 @@ impl FileShape {
                 material,
                 name,
             ),
-            FileShape::Rectangle {
+            FileShape::Rectangle(FileRectangle {
                 corner,
                 edge1,
                 edge2,
                 material,
                 name,
-            } => {
-                let e1 = vec3(&path.key("edge1"), edge1)?;
-                let e2 = vec3(&path.key("edge2"), edge2)?;
-                if e1.length() == 0.0 || e1.cross(e2).length() <= 1e-12 * e1.length() * e2.length() {
-                    return fail(&path.key("edge2"), "edge1 and edge2 must be non-zero and not parallel");
-                }
+            }) => {
+                let (e1, e2) = spanning_edges(path, edge1, edge2)?;
                 (
                     Shape::Rectangle(Rectangle::new(vec3(&path.key("corner"), corner)?, e1, e2)),
                     material,
                     name,
                 )
             }
-            FileShape::Disk {
+            FileShape::Disk(FileDisk {
                 center,
                 normal,
                 radius,
                 material,
                 name,
-            } => (
+            }) => (
                 Shape::Disk(Disk::new(
                     vec3(&path.key("center"), center)?,
                     direction(&path.key("normal"), normal)?,
@@ -637,23 +714,23 @@ impl FileShape {
                 material,
                 name,
             ),
-            FileShape::Sphere {
+            FileShape::Sphere(FileSphere {
                 center,
                 radius,
                 material,
                 name,
-            } => (
+            }) => (
                 Shape::Sphere(Sphere::new(vec3(&path.key("center"), center)?, size("radius", radius)?)),
                 material,
                 name,
             ),
-            FileShape::Box {
+            FileShape::Box(FileBox {
                 center,
                 size: s,
                 rotation,
                 material,
                 name,
-            } => {
+            }) => {
                 let sz = vec3(&path.key("size"), s)?;
                 if sz.min_element() <= 0.0 {
                     return fail(&path.key("size"), format!("each side must be > 0, got {s:?}"));
@@ -671,41 +748,19 @@ impl FileShape {
                     name,
                 )
             }
-            FileShape::Cylinder {
-                base,
-                axis,
-                height,
-                radius,
-                material,
-                name,
-            } => (
-                Shape::Cylinder(Cylinder::new(
-                    vec3(&path.key("base"), base)?,
-                    direction(&path.key("axis"), axis)?,
-                    size("height", height)?,
-                    size("radius", radius)?,
-                )),
-                material,
-                name,
-            ),
-            FileShape::Cone {
-                base,
-                axis,
-                height,
-                radius,
-                material,
-                name,
-            } => (
-                Shape::Cone(Cone::new(
-                    vec3(&path.key("base"), base)?,
-                    direction(&path.key("axis"), axis)?,
-                    size("height", height)?,
-                    size("radius", radius)?,
-                )),
-                material,
-                name,
-            ),
-            FileShape::MirrorPair {
+            FileShape::Cylinder(c) => {
+                let (base, axis, height, radius) = c.frame(path)?;
+                (
+                    Shape::Cylinder(Cylinder::new(base, axis, height, radius)),
+                    c.material,
+                    c.name,
+                )
+            }
+            FileShape::Cone(c) => {
+                let (base, axis, height, radius) = c.frame(path)?;
+                (Shape::Cone(Cone::new(base, axis, height, radius)), c.material, c.name)
+            }
+            FileShape::MirrorPair(FileMirrorPair {
                 hinge,
                 bisector,
                 opening,
@@ -713,7 +768,7 @@ impl FileShape {
                 height,
                 material,
                 name,
-            } => {
+            }) => {
                 return mirror_pair(
                     path,
                     index,
@@ -727,14 +782,14 @@ impl FileShape {
                     material_names,
                 );
             }
-            FileShape::Torus {
+            FileShape::Torus(FileTorus {
                 center,
                 axis,
                 major_radius,
                 minor_radius,
                 material,
                 name,
-            } => {
+            }) => {
                 let major = size("major_radius", major_radius)?;
                 let minor = size("minor_radius", minor_radius)?;
                 if minor > major {
@@ -763,6 +818,19 @@ impl FileShape {
             shape,
             material: material_index,
         }])
+    }
+}
+
+impl FileCapped {
+    /// The checked base, unit axis, height and radius.
+    fn frame(&self, path: &FieldPath) -> Check<(DVec3, DVec3, f64, f64)> {
+        let size = |key: &str, x: f64| positive(&path.key(key), x, limits::MAX_COORDINATE);
+        Ok((
+            vec3(&path.key("base"), self.base)?,
+            direction(&path.key("axis"), self.axis)?,
+            size("height", self.height)?,
+            size("radius", self.radius)?,
+        ))
     }
 }
 
@@ -822,6 +890,50 @@ impl FileGenerate {
             materials,
         })
     }
+}
+
+/// `start` plus the running sum of `counts` (one per entry of the array at `path`) must stay
+/// at most `max`; else an error at field `key` of the entry that passes it, saying the scene
+/// would hold that many `what`.
+fn running_total(
+    path: &FieldPath,
+    key: &str,
+    start: u64,
+    counts: impl IntoIterator<Item = u64>,
+    max: u64,
+    what: &str,
+) -> Check<()> {
+    let mut total = start;
+    for (i, n) in counts.into_iter().enumerate() {
+        total += n;
+        if total > max {
+            return fail(
+                &path.index(i).key(key),
+                format!("the scene would hold {total} {what}, at most {max} are allowed"),
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The two edges of a rectangle or window (`edge1`, `edge2` of the entry at `path`): each of
+/// non-zero length and not parallel, else the surface is a segment or a point.
+fn spanning_edges(path: &FieldPath, edge1: [f64; 3], edge2: [f64; 3]) -> Check<(DVec3, DVec3)> {
+    let e1 = vec3(&path.key("edge1"), edge1)?;
+    let e2 = vec3(&path.key("edge2"), edge2)?;
+    for (key, e, raw) in [("edge1", e1, edge1), ("edge2", e2, edge2)] {
+        // The length, not the components: a length that underflows to 0 cannot be normalised.
+        if e.length() == 0.0 {
+            return fail(&path.key(key), format!("must have a non-zero length, got {raw:?}"));
+        }
+    }
+    if e1.normalize().cross(e2.normalize()).length() <= 1e-12 {
+        return fail(
+            &path.key("edge2"),
+            format!("must not be parallel to edge1 {edge1:?}, got {edge2:?}"),
+        );
+    }
+    Ok((e1, e2))
 }
 
 /// Index of the named material (`None`: the default material, index 0).
@@ -908,23 +1020,23 @@ impl FileLight {
     fn validate(self, path: &FieldPath) -> Check<Light> {
         let light_color = |c: [f64; 3]| color(&path.key("color"), c, limits::MAX_LIGHT);
         Ok(match self {
-            FileLight::Ambient { color } => Light::Ambient {
+            FileLight::Ambient(FileAmbientLight { color }) => Light::Ambient {
                 color: light_color(color)?,
             },
-            FileLight::Directional { direction: d, color } => Light::Directional {
+            FileLight::Directional(FileDirectionalLight { direction: d, color }) => Light::Directional {
                 direction: direction(&path.key("direction"), d)?,
                 color: light_color(color)?,
             },
-            FileLight::Point {
+            FileLight::Point(FilePointLight {
                 position,
                 color,
                 attenuation,
-            } => Light::Point(PointLight {
+            }) => Light::Point(PointLight {
                 position: vec3(&path.key("position"), position)?,
                 color: light_color(color)?,
                 attenuation: attenuation.validate(&path.key("attenuation"))?,
             }),
-            FileLight::Spot {
+            FileLight::Spot(FileSpotLight {
                 position,
                 direction: d,
                 angle,
@@ -932,7 +1044,7 @@ impl FileLight {
                 c_max,
                 color,
                 attenuation,
-            } => Light::Spot(SpotLight::new(
+            }) => Light::Spot(SpotLight::new(
                 vec3(&path.key("position"), position)?,
                 direction(&path.key("direction"), d)?,
                 in_range(&path.key("angle"), angle, 0.0, 180.0)?,
@@ -941,7 +1053,7 @@ impl FileLight {
                 light_color(color)?,
                 attenuation.validate(&path.key("attenuation"))?,
             )),
-            FileLight::Area {
+            FileLight::Area(FileAreaLight {
                 shape,
                 center,
                 radius,
@@ -954,7 +1066,7 @@ impl FileLight {
                 mode,
                 color,
                 attenuation,
-            } => {
+            }) => {
                 // Which geometry fields each shape takes; any other one is an error.
                 let given = [
                     ("center", center.is_some()),
@@ -996,15 +1108,29 @@ impl FileLight {
                             limits::MAX_COORDINATE,
                         )?,
                     },
-                    "tube" => AreaShape::Tube {
-                        start: at("start", start)?,
-                        end: at("end", end)?,
-                    },
-                    _ => AreaShape::Window {
-                        center: at("center", center)?,
-                        edge1: at("edge1", edge1)?,
-                        edge2: at("edge2", edge2)?,
-                    },
+                    "tube" => {
+                        let (start, end) = (at("start", start)?, at("end", end)?);
+                        // Exact: two different finite points always differ by a non-zero vector.
+                        if start == end {
+                            return fail(
+                                &path.key("end"),
+                                format!(
+                                    "must differ from start {:?} (a tube of zero length is a point: use a sphere of radius 0)",
+                                    start.to_array()
+                                ),
+                            );
+                        }
+                        AreaShape::Tube { start, end }
+                    }
+                    _ => {
+                        let (edge1, edge2) =
+                            spanning_edges(path, edge1.unwrap_or_default(), edge2.unwrap_or_default())?;
+                        AreaShape::Window {
+                            center: at("center", center)?,
+                            edge1,
+                            edge2,
+                        }
+                    }
                 };
                 if points == 0 || points > limits::MAX_LIGHT_POINTS {
                     return fail(
@@ -1038,5 +1164,26 @@ impl FileLight {
                 })
             }
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every listed `type` is a variant the deserialiser knows: a listed name that serde
+    /// did not know would pass `tag::lift` and fail as an unknown variant.
+    #[test]
+    fn the_type_lists_match_the_enums() {
+        for (array, types) in [("shapes", SHAPE_TYPES), ("lights", LIGHT_TYPES)] {
+            for t in types {
+                let text = format!(
+                    "[image]\nwidth = 1\nheight = 1\n[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\n[[{array}]]\ntype = \"{t}\"\n"
+                );
+                if let Err(e) = parse(&text, "t.toml") {
+                    assert!(!e.to_string().contains("variant"), "{t}: {e}");
+                }
+            }
+        }
     }
 }

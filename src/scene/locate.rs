@@ -1,7 +1,9 @@
-//! Maps a field path (`shapes[3].radius`) back to its line and column in the TOML text,
-//! so validation errors found after deserialisation still point into the file.
+//! Maps between field paths (`shapes[3].radius`) and positions in the TOML text, both ways:
+//! a validation error found after deserialisation is located from its path ([`locate`]),
+//! and a deserialisation error, which only knows its span, is named from it ([`path_at`]).
 
 use std::fmt;
+use std::ops::Range;
 use toml::de::{DeTable, DeValue};
 
 /// One step of a field path.
@@ -42,6 +44,13 @@ impl fmt::Display for FieldPath {
     }
 }
 
+/// A value that is wrong, before it is located in the file.
+#[derive(Debug)]
+pub struct FieldError {
+    pub path: FieldPath,
+    pub message: String,
+}
+
 /// 1-based line and column of byte offset `offset` in `text`.
 pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];
@@ -76,6 +85,49 @@ pub fn locate(text: &str, path: &FieldPath) -> usize {
     best
 }
 
+/// The path of the deepest key or value whose span holds all of `span` (empty when only the
+/// whole document does, e.g. for a missing top-level table).
+pub fn path_at(text: &str, span: Range<usize>) -> FieldPath {
+    let Ok(root) = DeTable::parse(text) else {
+        return FieldPath::default();
+    };
+    let mut path = FieldPath::default();
+    within_table(root.get_ref(), &span, &mut path);
+    path
+}
+
+fn holds(outer: &Range<usize>, inner: &Range<usize>) -> bool {
+    outer.start <= inner.start && inner.end <= outer.end
+}
+
+/// Extends `path` into `table` as deep as `span` goes; whether it went in at all.
+fn within_table(table: &DeTable, span: &Range<usize>, path: &mut FieldPath) -> bool {
+    for (key, value) in table.iter() {
+        path.0.push(Seg::Key(key.get_ref().to_string()));
+        if holds(&key.span(), span) || within_value(value.get_ref(), span, path) || holds(&value.span(), span) {
+            return true;
+        }
+        path.0.pop();
+    }
+    false
+}
+
+fn within_value(value: &DeValue, span: &Range<usize>, path: &mut FieldPath) -> bool {
+    match value {
+        DeValue::Table(t) => within_table(t, span, path),
+        DeValue::Array(a) => a.iter().enumerate().any(|(i, item)| {
+            path.0.push(Seg::Index(i));
+            // An entry of an array of tables spans only its header: look inside it first.
+            let found = within_value(item.get_ref(), span, path) || holds(&item.span(), span);
+            if !found {
+                path.0.pop();
+            }
+            found
+        }),
+        _ => false,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -90,5 +142,20 @@ mod tests {
         // A missing field points at its table's header.
         let missing = FieldPath::default().key("shapes").index(0).key("center");
         assert_eq!(line_col(text, locate(text, &missing)).0, 4);
+    }
+
+    #[test]
+    fn names_the_deepest_field_holding_a_span() {
+        let text = "[image]\nwidth = 10\n\n[[shapes]]\ntype = \"sphere\"\n\n[[shapes]]\ncenter = [1, \"x\", 3]\n";
+        let at = |needle: &str| {
+            let start = text.find(needle).unwrap();
+            path_at(text, start..start + needle.len()).to_string()
+        };
+        assert_eq!(at("\"x\""), "shapes[1].center[1]");
+        assert_eq!(at("center"), "shapes[1].center");
+        assert_eq!(at("10"), "image.width");
+        // An entry of an array of tables is known by its header.
+        assert_eq!(at("[[shapes]]"), "shapes[0]");
+        assert_eq!(path_at(text, 0..text.len()).to_string(), "");
     }
 }

@@ -4,6 +4,7 @@
 mod file;
 pub mod generate;
 mod locate;
+mod tag;
 pub mod transform;
 
 pub use file::{SceneError, load, parse};

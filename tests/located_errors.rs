@@ -1,0 +1,207 @@
+//! Errors inside entries of `[[shapes]]`, `[[lights]]`, `[[generate]]` and `[materials.*]`
+//! point at the offending key or value of the right entry and name its field path: unknown
+//! fields list the valid ones for the entry's type, wrong types say what was expected, a
+//! misspelt `type` lists the allowed types. (Serde's internally tagged enums used to report
+//! every such error at the first entry of the array, with no field.)
+
+use lumiere::scene::parse;
+
+/// A valid scene; each case breaks one line of it. Line numbers in the expected messages
+/// count from `[image]` as line 1.
+const GOOD: &str = r#"[image]
+width = 16
+height = 12
+samples_per_pixel = 1
+
+[camera]
+position = [0, -8, 5]
+look_at = [0, 1, 0]
+
+[materials.red]
+color = [1, 0, 0]
+
+[[shapes]]
+type = "plane"
+point = [0, 0, 0]
+normal = [0, 0, 1]
+
+[[shapes]]
+type = "sphere"
+center = [0, 0, 1]
+radius = 1
+material = "red"
+
+[[shapes]]
+type = "torus"
+center = [2, 0, 1]
+major_radius = 1
+minor_radius = 0.25
+
+[[generate]]
+kind = "spheres"
+count = 10
+min = [-1, -1, 0]
+max = [1, 1, 1]
+radius = [0.05, 0.1]
+
+[[lights]]
+type = "ambient"
+color = [0.1, 0.1, 0.1]
+
+[[lights]]
+type = "spot"
+position = [0, 0, 10]
+direction = [0, 0, -1]
+angle = 70
+attenuation = { quadratic = 0.01 }
+
+[[lights]]
+type = "area"
+shape = "window"
+center = [0, 0, 8]
+edge1 = [2, 0, 0]
+edge2 = [0, 2, 0]
+points = 4
+"#;
+
+/// The error message of the scene with the first `from` replaced by `to`.
+fn error_after(from: &str, to: &str) -> String {
+    assert!(GOOD.contains(from), "{from:?} is not in the scene");
+    parse(&GOOD.replacen(from, to, 1), "s.toml")
+        .err()
+        .unwrap_or_else(|| panic!("{to:?} was accepted"))
+        .to_string()
+}
+
+#[test]
+fn the_scene_is_valid() {
+    let s = parse(GOOD, "s.toml").unwrap();
+    assert_eq!((s.objects.len(), s.lights.len()), (13, 3));
+}
+
+#[test]
+fn unknown_field_in_the_third_shape() {
+    assert_eq!(
+        error_after("minor_radius = 0.25", "minor_radius = 0.25\nminr_radius = 1"),
+        "s.toml:29:1: shapes[2].minr_radius: unknown field `minr_radius`, expected one of \
+         `center`, `axis`, `major_radius`, `minor_radius`, `material`, `name`"
+    );
+}
+
+#[test]
+fn wrong_type_in_a_light() {
+    assert_eq!(
+        error_after("angle = 70", "angle = \"0.5\""),
+        "s.toml:45:9: lights[1].angle: invalid type: string \"0.5\", expected f64"
+    );
+}
+
+#[test]
+fn wrong_array_length() {
+    assert_eq!(
+        error_after("center = [0, 0, 1]", "center = [1, 2]"),
+        "s.toml:20:10: shapes[1].center: invalid length 2, expected an array of length 3"
+    );
+}
+
+#[test]
+fn wrong_type_inside_an_array_names_the_element() {
+    assert_eq!(
+        error_after("color = [1, 0, 0]", "color = [1, \"0\", 0]"),
+        "s.toml:11:13: materials.red.color[1]: invalid type: string \"0\", expected f64"
+    );
+}
+
+#[test]
+fn misspelt_shape_type_lists_the_types() {
+    assert_eq!(
+        error_after("type = \"sphere\"", "type = \"sphear\""),
+        "s.toml:19:8: shapes[1].type: must be \"plane\", \"rectangle\", \"disk\", \"sphere\", \
+         \"box\", \"cylinder\", \"cone\", \"mirror_pair\" or \"torus\", got \"sphear\""
+    );
+}
+
+#[test]
+fn misspelt_light_type_lists_the_types() {
+    assert_eq!(
+        error_after("type = \"spot\"", "type = \"spotlight\""),
+        "s.toml:42:8: lights[1].type: must be \"ambient\", \"directional\", \"point\", \"spot\" \
+         or \"area\", got \"spotlight\""
+    );
+}
+
+#[test]
+fn missing_type_points_at_the_entry() {
+    assert_eq!(
+        error_after("type = \"torus\"\n", ""),
+        "s.toml:24:1: shapes[2].type: missing; must be \"plane\", \"rectangle\", \"disk\", \
+         \"sphere\", \"box\", \"cylinder\", \"cone\", \"mirror_pair\" or \"torus\""
+    );
+    assert_eq!(
+        error_after("type = \"torus\"", "type = 3"),
+        "s.toml:25:8: shapes[2].type: must be \"plane\", \"rectangle\", \"disk\", \"sphere\", \
+         \"box\", \"cylinder\", \"cone\", \"mirror_pair\" or \"torus\", got integer"
+    );
+}
+
+#[test]
+fn missing_field_points_at_its_entry() {
+    assert_eq!(
+        error_after("radius = 1\n", ""),
+        "s.toml:18:1: shapes[1]: missing field `radius`"
+    );
+}
+
+#[test]
+fn errors_in_generate_tables() {
+    assert_eq!(
+        error_after("count = 10", "count = 10\ndensity = 2"),
+        "s.toml:33:1: generate[0].density: unknown field `density`, expected one of `kind`, \
+         `count`, `seed`, `min`, `max`, `radius`, `materials`"
+    );
+    assert_eq!(
+        error_after("radius = [0.05, 0.1]", "radius = [0.05]"),
+        "s.toml:35:10: generate[0].radius: invalid length 1, expected an array of length 2"
+    );
+    assert_eq!(
+        error_after("count = 10", "count = \"10\""),
+        "s.toml:32:9: generate[0].count: invalid type: string \"10\", expected u64"
+    );
+}
+
+#[test]
+fn errors_in_inline_tables_and_area_lights() {
+    assert_eq!(
+        error_after("{ quadratic = 0.01 }", "{ quadric = 0.01 }"),
+        "s.toml:46:17: lights[1].attenuation.quadric: unknown field `quadric`, expected one of \
+         `constant`, `linear`, `quadratic`"
+    );
+    assert_eq!(
+        error_after("points = 4", "points = -4"),
+        "s.toml:54:10: lights[2].points: invalid value: integer `-4`, expected u32"
+    );
+    assert_eq!(
+        error_after("points = 4", "points = 4\nradius = 1\nsize = 2"),
+        "s.toml:56:1: lights[2].size: unknown field `size`, expected one of `shape`, `center`, \
+         `radius`, `start`, `end`, `edge1`, `edge2`, `points`, `placement`, `mode`, `color`, \
+         `attenuation`"
+    );
+}
+
+#[test]
+fn errors_in_top_level_tables() {
+    assert_eq!(
+        error_after("[camera]", "[kamera]"),
+        "s.toml:6:2: kamera: unknown field `kamera`, expected one of `image`, `camera`, \
+         `render`, `materials`, `shapes`, `lights`, `generate`"
+    );
+    assert_eq!(
+        error_after("height = 12", "height = 12.5"),
+        "s.toml:3:10: image.height: invalid type: floating point `12.5`, expected u32"
+    );
+    // Only the whole document can miss a top-level table: no field to name.
+    assert_eq!(
+        error_after("[image]\nwidth = 16\nheight = 12\nsamples_per_pixel = 1\n", ""),
+        "s.toml:1:1: TOML: missing field `image`"
+    );
+}
