@@ -374,6 +374,7 @@ fn render_command(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     let format = match args.shard {
         None => Some(check_output(&args.output, &args.scene)?),
         Some(_) => {
+            crate::shard::check_path(&args.output).map_err(CliError::BadInput)?;
             check_output_path(&args.output, &args.scene)?;
             None
         }

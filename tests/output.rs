@@ -44,6 +44,22 @@ fn sharded_renders_merge_to_the_same_bytes() {
 }
 
 #[test]
+fn shard_output_must_end_in_shard() {
+    // `-o x.png --shard 0/1` would write a shard file (not a PNG) under an image's name.
+    let dir = temp_dir("shardname");
+    let o = render(&dir.join("x.png"), &["--shard", "0/1"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("x.png: with --shard") && err.contains("must end in .shard"),
+        "{err}"
+    );
+    assert_eq!(fs::read_dir(&dir).unwrap().count(), 0);
+    // The same render named .shard is accepted.
+    assert_eq!(render(&dir.join("x.shard"), &["--shard", "0/1"]).status.code(), Some(0));
+}
+
+#[test]
 fn merge_refuses_incomplete_or_mixed_shards() {
     let dir = temp_dir("badshards");
     let a = dir.join("a.shard");
