@@ -20,10 +20,12 @@ const SHRUNK: [(&str, &str); 2] = [
 ];
 
 /// The `cargo` commands the README may show.
-const CARGO: [&str; 3] = [
+const CARGO: [&str; 4] = [
     "cargo build --release",
     "cargo test --release",
     "cargo run --release -- figures",
+    // The debug-build check of .ci/run (README, "Tests and CI").
+    "cargo test --test determinism reference_scene_hash_is_pinned",
 ];
 
 /// Lines of the README's ```sh blocks, without trailing comments.
@@ -85,6 +87,15 @@ fn every_readme_command_runs() {
                 CARGO.contains(&line.as_str()),
                 "unexpected cargo line in README: {line}"
             );
+            // `cargo test --test FILE NAME` passes when no test matches NAME: the test must
+            // exist, or the check it stands for (the debug build's in .ci/run) is gone.
+            if let ["cargo", "test", "--test", file, name] = line.split_whitespace().collect::<Vec<_>>()[..] {
+                let source = std::fs::read_to_string(repo(&format!("tests/{file}.rs"))).unwrap();
+                assert!(
+                    source.contains(&format!("fn {name}()")),
+                    "README: no test {name} in tests/{file}.rs"
+                );
+            }
             continue;
         }
         let line = SHRUNK
