@@ -23,6 +23,9 @@ pub enum CliError {
     /// Ctrl-C: nothing was written (exit 130, the shell's convention for SIGINT).
     #[error("interrupted; no output was written")]
     Interrupted,
+    /// Ctrl-C during a command that writes several outputs: what was and was not written.
+    #[error("interrupted; {0}")]
+    InterruptedAt(String),
 }
 
 impl CliError {
@@ -30,7 +33,7 @@ impl CliError {
         match self {
             CliError::BadInput(_) => 2,
             CliError::Failed(_) => 1,
-            CliError::Interrupted => 130,
+            CliError::Interrupted | CliError::InterruptedAt(_) => 130,
         }
     }
 }
@@ -91,7 +94,7 @@ pub enum Command {
     Compare(CompareArgs),
     /// Regenerate the course's figures (all sets when none is named).
     #[command(
-        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nExit codes: 0 ok, 1 a figure could not be written, 2 bad input."
+        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nCtrl-C leaves each set wholly old or wholly new.\nExit codes: 0 ok, 1 a figure could not be written, 2 bad input, 130 interrupted."
     )]
     Figures(FiguresArgs),
     /// Assemble the shard files of a split render (`render --shard K/N`) into one image,
@@ -374,6 +377,7 @@ fn render_command(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     let format = match args.shard {
         None => Some(check_output(&args.output, &args.scene)?),
         Some(_) => {
+            crate::shard::check_path(&args.output).map_err(CliError::BadInput)?;
             check_output_path(&args.output, &args.scene)?;
             None
         }
@@ -632,7 +636,7 @@ fn compare_command(args: &CompareArgs) -> Result<(), CliError> {
 }
 
 fn figures_command(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
-    use crate::figures::{generate, registry, write_index};
+    use crate::figures::{generate_until, registry, write_index};
     let all = registry();
     if args.list {
         for set in &all {
@@ -672,8 +676,26 @@ fn figures_command(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
         ))
     })?;
     let start = std::time::Instant::now();
+    // Ctrl-C stops the set being rendered and leaves its folder as it was; the sets before
+    // it are complete (see `generate_until`). If the handler cannot be installed, Ctrl-C
+    // kills the process, which also leaves every set whole unless it lands in the
+    // milliseconds a set's files take to write.
+    let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+    let mut written = Vec::new();
     for set in chosen {
-        let report = with_threads(args.threads, || generate(set, &args.out, args.scale))?.map_err(CliError::Failed)?;
+        let report = with_threads(args.threads, || {
+            generate_until(set, &args.out, args.scale, &INTERRUPTED)
+        })?
+        .map_err(CliError::Failed)?;
+        let stopped = INTERRUPTED.load(std::sync::atomic::Ordering::Relaxed);
+        let Some(report) = report else {
+            return Err(CliError::InterruptedAt(format!(
+                "figure set {:?} and the sets after it were left as they were; complete: [{}]",
+                set.name,
+                written.join(", ")
+            )));
+        };
+        written.push(set.name);
         if v != Verbosity::Quiet {
             println!(
                 "{:<12} {:>3} images  {:>7.2} s  {}",
@@ -682,6 +704,12 @@ fn figures_command(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
                 report.seconds,
                 report.dir.display()
             );
+        }
+        if stopped {
+            return Err(CliError::InterruptedAt(format!(
+                "figure sets written: [{}]; the sets after them were left as they were",
+                written.join(", ")
+            )));
         }
     }
     write_index(&args.out).map_err(CliError::Failed)?;

@@ -15,6 +15,21 @@ use std::str::FromStr;
 
 const MAGIC: &[u8] = b"LUMIERE-SHARD-1\n";
 
+/// The extension a shard file must have: a shard is not an image, and a name such as
+/// `part0.png` would pass it off as one.
+pub const EXTENSION: &str = "shard";
+
+/// Checks that `path` names a shard file (`.shard`, any case).
+pub fn check_path(path: &std::path::Path) -> Result<(), String> {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case(EXTENSION) => Ok(()),
+        _ => Err(format!(
+            "{}: with --shard the output is a shard file for `lumiere merge`, not an image: its name must end in .{EXTENSION}",
+            path.display()
+        )),
+    }
+}
+
 /// Which part of the image: shard `index` of `count` (`K/N` on the command line, 0-based).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ShardSpec {
@@ -161,6 +176,19 @@ mod tests {
         assert_eq!(rows, vec![0..3, 3..6, 6..10]);
         // More shards than rows: some are empty.
         assert_eq!(ShardSpec { index: 0, count: 7 }.rows(3), 0..0);
+    }
+
+    #[test]
+    fn shard_files_end_in_shard() {
+        assert_eq!(check_path(std::path::Path::new("out/part0.shard")), Ok(()));
+        assert_eq!(check_path(std::path::Path::new("PART0.SHARD")), Ok(()));
+        for bad in ["x.png", "x.shard.png", "shard", "x.exr"] {
+            let e = check_path(std::path::Path::new(bad)).unwrap_err();
+            assert!(
+                e.starts_with(&format!("{bad}: with --shard")) && e.ends_with("must end in .shard"),
+                "{e}"
+            );
+        }
     }
 
     #[test]

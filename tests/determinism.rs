@@ -1,5 +1,6 @@
 //! Same scene and seed, same bytes: for any thread count, run after run, debug or release
-//! (the pinned hash below is checked by `cargo test` in both profiles).
+//! (the pinned hash below is checked in both profiles: by `cargo test --release`, and by
+//! .ci/run in a debug build, README "Tests and CI").
 
 mod common;
 use common::*;

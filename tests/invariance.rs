@@ -1,6 +1,6 @@
 //! Invariance under similarity transforms (issue 7): the reference scene moved by
-//! (1e5, 1e5, 0), or scaled by 1e3 about the origin, renders the same 8-bit image within one
-//! level on at least 99.9 % of pixels; and neither shadow acne, self-hit reflections nor
+//! (1e5, 1e5, 0), scaled by 1e3 about the origin, or both (scaled, then moved), renders the
+//! same 8-bit image within one level on at least 99.9 % of pixels; and neither shadow acne, self-hit reflections nor
 //! light leaking through a refracting sphere appear on a directly lit sphere and plane at
 //! scales 1e-3 to 1e3 and 1e5 from the origin.
 
@@ -48,6 +48,11 @@ fn reference_scene_is_invariant_under_translation_and_scaling() {
     for t in [
         Similarity::translation(DVec3::new(1e5, 1e5, 0.0)),
         Similarity::scaling(1e3),
+        // Both at once: the scene 1e3 times larger, 1e5 away from the origin.
+        Similarity {
+            scale: 1e3,
+            offset: DVec3::new(1e5, 1e5, 0.0),
+        },
     ] {
         let moved = rgb(&t.scene(&base));
         let frac = agreement(&image, &moved);

@@ -1,5 +1,6 @@
 //! Output files as a user gets them: float radiance (PFM, EXR), sRGB PNG, split renders that
-//! merge to the one-machine bytes, and Ctrl-C leaving nothing behind.
+//! merge to the one-machine bytes, shard files named as such, and Ctrl-C leaving nothing
+//! half-written (a render writes nothing, `figures` leaves each set wholly old or new).
 
 mod common;
 use common::*;
@@ -41,6 +42,22 @@ fn sharded_renders_merge_to_the_same_bytes() {
         assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
         assert_eq!(fs::read(&merged).unwrap(), fs::read(&whole).unwrap(), "N = {n}");
     }
+}
+
+#[test]
+fn shard_output_must_end_in_shard() {
+    // `-o x.png --shard 0/1` would write a shard file (not a PNG) under an image's name.
+    let dir = temp_dir("shardname");
+    let o = render(&dir.join("x.png"), &["--shard", "0/1"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("x.png: with --shard") && err.contains("must end in .shard"),
+        "{err}"
+    );
+    assert_eq!(fs::read_dir(&dir).unwrap().count(), 0);
+    // The same render named .shard is accepted.
+    assert_eq!(render(&dir.join("x.shard"), &["--shard", "0/1"]).status.code(), Some(0));
 }
 
 #[test]
@@ -147,4 +164,88 @@ fn ctrl_c_leaves_no_output() {
     assert_eq!(o.status.code(), Some(130), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(String::from_utf8_lossy(&o.stderr).contains("interrupted; no output was written"));
     assert_eq!(fs::read_dir(&dir).unwrap().count(), 0);
+}
+
+/// Every file of a figure set folder, by name.
+#[cfg(unix)]
+fn set_files(dir: &std::path::Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    fs::read_dir(dir)
+        .unwrap()
+        .map(|f| {
+            let f = f.unwrap();
+            (f.file_name().into_string().unwrap(), fs::read(f.path()).unwrap())
+        })
+        .collect()
+}
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_during_figures_leaves_each_set_wholly_old_or_wholly_new() {
+    use std::io::BufRead;
+    use std::process::{Command, Stdio};
+    let out = temp_dir("figures-interrupt");
+    let o = lumiere(&[
+        "figures",
+        "lighting",
+        "mirrors",
+        "--scale",
+        "0.05",
+        "-q",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let old_lighting = set_files(&out.join("lighting"));
+    let old_mirrors = set_files(&out.join("mirrors"));
+    // Again at 200 x 150: the lighting set takes about 0.1 s, the mirrors (13 images at
+    // depth 10) about a second. Ctrl-C as soon as the lighting set is reported written lands
+    // while the mirrors render.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args([
+            "figures",
+            "lighting",
+            "mirrors",
+            "--scale",
+            "0.25",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut lines = std::io::BufReader::new(child.stdout.take().unwrap()).lines();
+    let first = lines.next().unwrap().unwrap();
+    assert!(first.starts_with("lighting "), "{first}");
+    // SAFETY: sending a signal to our own child process.
+    unsafe { libc::kill(child.id() as i32, libc::SIGINT) };
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    assert!(
+        err.contains(
+            "interrupted; figure set \"mirrors\" and the sets after it were left as they were; complete: [lighting]"
+        ),
+        "{err}"
+    );
+    // The mirrors set is the old one, byte for byte, with no stray temporary file.
+    assert_eq!(set_files(&out.join("mirrors")), old_mirrors);
+    // The lighting set is wholly new: same files, every one changed, and the manifest
+    // describes the new images (scale, size and the pixel hash of each PNG).
+    let new_lighting = set_files(&out.join("lighting"));
+    assert!(new_lighting.keys().eq(old_lighting.keys()));
+    assert!(new_lighting.iter().all(|(name, bytes)| old_lighting[name] != *bytes));
+    let manifest: serde_json::Value = serde_json::from_slice(&new_lighting["manifest.json"]).unwrap();
+    assert_eq!(manifest["scale"], 0.25);
+    for entry in manifest["images"].as_array().unwrap() {
+        let png = image::load_from_memory(&new_lighting[entry["file"].as_str().unwrap()])
+            .unwrap()
+            .to_rgb8();
+        assert_eq!((png.width(), png.height()), (200, 150));
+        let hash = format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(png.as_raw()));
+        assert_eq!(entry["pixel_hash"], hash.as_str());
+    }
+    // Nothing else beside the sets: no temporary file left in the output folder.
+    let names: Vec<_> = fs::read_dir(&out).unwrap().map(|f| f.unwrap().file_name()).collect();
+    assert_eq!(names.len(), 3, "{names:?}");
 }

@@ -2,6 +2,8 @@
 //! repository's `scenes/` linked and `figures/lighting/` copied in), and must succeed.
 //! `cargo` lines are the build and test steps themselves; `parallel` lines are expanded as
 //! GNU parallel would. Only the commands in `SHRUNK` are changed, to keep the suite fast.
+//! A bare ``` block right after a ```sh block is an excerpt of the output of that block's
+//! last command: its lines must be the command's real output (see `assert_excerpt`).
 
 mod common;
 use common::*;
@@ -20,33 +22,72 @@ const SHRUNK: [(&str, &str); 2] = [
 ];
 
 /// The `cargo` commands the README may show.
-const CARGO: [&str; 3] = [
+const CARGO: [&str; 4] = [
     "cargo build --release",
     "cargo test --release",
     "cargo run --release -- figures",
+    // The debug-build check of .ci/run (README, "Tests and CI").
+    "cargo test --test determinism reference_scene_hash_is_pinned",
 ];
 
-/// Lines of the README's ```sh blocks, without trailing comments.
-fn shell_lines() -> Vec<String> {
-    let text = std::fs::read_to_string(repo("README.md")).unwrap();
-    let mut lines = Vec::new();
-    let mut in_sh = false;
-    for line in text.lines() {
-        if line.starts_with("```") {
-            in_sh = line.trim() == "```sh";
-            continue;
-        }
-        if in_sh {
-            let cmd = line.split("  #").next().unwrap().trim();
-            if !cmd.is_empty() {
-                lines.push(cmd.to_string());
-            }
-        }
-    }
-    lines
+/// A command of the README's ```sh blocks, without its trailing comment, and the output
+/// excerpt shown after it, if any.
+struct Step {
+    command: String,
+    excerpt: Option<Vec<String>>,
 }
 
-fn run(dir: &Path, command: &str) {
+/// The commands of the README's ```sh blocks, in order, each with its output excerpt: the
+/// lines of a bare ``` block that follows a ```sh block with only blank lines between
+/// belong to that block's last command.
+fn steps() -> Vec<Step> {
+    let text = std::fs::read_to_string(repo("README.md")).unwrap();
+    let mut steps: Vec<Step> = Vec::new();
+    // The fence language of the open block, if one is open.
+    let mut open: Option<String> = None;
+    // Whether the last closed block was ```sh with nothing but blank lines since.
+    let mut after_sh = false;
+    for line in text.lines() {
+        if let Some(fence) = line.strip_prefix("```") {
+            match open.take() {
+                Some(lang) => after_sh = lang == "sh",
+                None => {
+                    let lang = fence.trim().to_string();
+                    if lang.is_empty() && after_sh {
+                        steps.last_mut().expect("a command").excerpt = Some(Vec::new());
+                    }
+                    open = Some(if lang.is_empty() && after_sh {
+                        "excerpt".into()
+                    } else {
+                        lang
+                    });
+                }
+            }
+            continue;
+        }
+        match open.as_deref() {
+            Some("sh") => {
+                let cmd = line.split("  #").next().unwrap().trim();
+                if !cmd.is_empty() {
+                    steps.push(Step {
+                        command: cmd.to_string(),
+                        excerpt: None,
+                    });
+                }
+            }
+            Some("excerpt") => {
+                let excerpt = steps.last_mut().and_then(|s| s.excerpt.as_mut()).unwrap();
+                excerpt.push(line.to_string());
+            }
+            Some(_) => {}
+            None => after_sh &= line.trim().is_empty(),
+        }
+    }
+    steps
+}
+
+/// Runs `command` (a `lumiere` line) in `dir`; it must succeed. Returns its stdout.
+fn run(dir: &Path, command: &str) -> String {
     let words: Vec<&str> = command.split_whitespace().collect();
     assert_eq!(words[0], "lumiere", "{command}");
     let out = Command::new(env!("CARGO_BIN_EXE_lumiere"))
@@ -60,6 +101,26 @@ fn run(dir: &Path, command: &str) {
         "README command failed: {command}\n{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// An excerpt is runs of lines separated by `...` lines (output left out). Each run must
+/// appear as consecutive whole lines of `output`, the runs in order.
+fn assert_excerpt(command: &str, output: &str, excerpt: &[String]) {
+    let out: Vec<&str> = output.lines().collect();
+    let mut from = 0;
+    for run in excerpt.split(|l| l == "...").filter(|r| !r.is_empty()) {
+        let at = (from..=out.len().saturating_sub(run.len()))
+            .find(|&i| out[i..i + run.len()].iter().zip(run).all(|(a, b)| a == b))
+            .unwrap_or_else(|| {
+                panic!(
+                    "README's output of `{command}` is stale: these lines are not in the real output \
+                     (after line {from}):\n{}\n--- real output:\n{output}",
+                    run.join("\n")
+                )
+            });
+        from = at + run.len();
+    }
 }
 
 #[test]
@@ -74,17 +135,31 @@ fn every_readme_command_runs() {
     }
     let tmp = format!("{}/", dir.join("tmp").display());
     std::fs::create_dir_all(dir.join("tmp")).unwrap();
-    let lines = shell_lines();
     let mut ran = 0;
-    for line in &lines {
-        let line = line
+    let mut excerpts = 0;
+    for step in steps() {
+        let line = step
+            .command
             .replace("./target/release/lumiere", "lumiere")
             .replace("/tmp/", &tmp);
+        assert!(
+            step.excerpt.is_none() || !(line.starts_with("cargo ") || line.starts_with("parallel ")),
+            "an output excerpt after `{line}` cannot be checked"
+        );
         if line.starts_with("cargo ") {
             assert!(
                 CARGO.contains(&line.as_str()),
                 "unexpected cargo line in README: {line}"
             );
+            // `cargo test --test FILE NAME` passes when no test matches NAME: the test must
+            // exist, or the check it stands for (the debug build's in .ci/run) is gone.
+            if let ["cargo", "test", "--test", file, name] = line.split_whitespace().collect::<Vec<_>>()[..] {
+                let source = std::fs::read_to_string(repo(&format!("tests/{file}.rs"))).unwrap();
+                assert!(
+                    source.contains(&format!("fn {name}()")),
+                    "README: no test {name} in tests/{file}.rs"
+                );
+            }
             continue;
         }
         let line = SHRUNK
@@ -99,10 +174,16 @@ fn every_readme_command_runs() {
             }
             continue;
         }
-        run(&dir, &line);
+        let output = run(&dir, &line);
         ran += 1;
+        if let Some(excerpt) = &step.excerpt {
+            assert_excerpt(&line, &output, excerpt);
+            excerpts += 1;
+        }
     }
     assert!(ran >= 15, "only {ran} commands found in README.md");
+    // The probe trace of "Why is this pixel this colour?".
+    assert!(excerpts >= 1, "no output excerpt found in README.md");
     // The walkthrough's point: the reference scene re-rendered equals the figure exactly.
     let o = Command::new(env!("CARGO_BIN_EXE_lumiere"))
         .args(["compare", "mine.png", "preview/lighting/03-ambient-directional.png"])

@@ -8,10 +8,11 @@ pub mod sets;
 pub mod sheet;
 
 use crate::film::{pixel_hash, write_atomic};
-use crate::render::render;
+use crate::render::render_rows;
 use crate::scene::{self, Scene, World};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// A fact measured on a rendered figure and recorded in the manifest.
@@ -98,13 +99,26 @@ pub struct RenderedFigure {
 
 /// Renders one figure (at `scale`) and measures its facts.
 pub fn render_figure(figure: Figure, scale: f64) -> RenderedFigure {
+    render_figure_until(figure, scale, &AtomicBool::new(false)).expect("never cancelled")
+}
+
+/// [`render_figure`], abandoned (`None`) as soon as `cancel` is true.
+pub fn render_figure_until(figure: Figure, scale: f64, cancel: &AtomicBool) -> Option<RenderedFigure> {
     let scene = scaled(figure.scene.clone(), scale);
     let world = World::new(&scene);
     let start = Instant::now();
-    let (film, stats) = render(&world, &|| {});
+    let (w, h) = (scene.settings.width, scene.settings.height);
+    let (pixels, stats) = render_rows(&world, 0..h, &|| {}, Some(cancel));
+    if cancel.load(Ordering::Relaxed) {
+        return None;
+    }
+    let film = crate::film::Film {
+        width: w,
+        height: h,
+        pixels,
+    };
     let seconds = start.elapsed().as_secs_f64();
     let rgb = film.to_rgb8();
-    let (w, h) = (scene.settings.width, scene.settings.height);
     let mut facts = serde_json::Map::new();
     for m in &figure.measures {
         match m {
@@ -143,11 +157,11 @@ pub fn render_figure(figure: Figure, scale: f64) -> RenderedFigure {
         "scene": scene,
     });
     let image = image::RgbImage::from_raw(w, h, rgb).expect("film size");
-    RenderedFigure {
+    Some(RenderedFigure {
         figure,
         image,
         manifest,
-    }
+    })
 }
 
 /// What generating a set wrote.
@@ -158,16 +172,29 @@ pub struct SetReport {
     pub dir: PathBuf,
 }
 
-fn write_png(path: &Path, img: &image::RgbImage) -> Result<(), String> {
-    let png = crate::film::encode_png(img.width(), img.height(), img.as_raw()).map_err(|e| e.to_string())?;
-    write_atomic(path, &png).map_err(|e| format!("{}: cannot write: {e}", path.display()))
+fn png_bytes(img: &image::RgbImage) -> Result<Vec<u8>, String> {
+    crate::film::encode_png(img.width(), img.height(), img.as_raw()).map_err(|e| e.to_string())
 }
 
 /// Renders every figure of `set` into `out/<set>/`, with its manifest and contact sheet.
 pub fn generate(set: &FigureSet, out: &Path, scale: f64) -> Result<SetReport, String> {
+    generate_until(set, out, scale, &AtomicBool::new(false)).map(|r| r.expect("never cancelled"))
+}
+
+/// [`generate`], abandoned as soon as `cancel` is true (Ctrl-C): then it returns `Ok(None)`
+/// and the set's folder is as it was. Every image is rendered, and every file encoded, in
+/// memory before the first file is written, so a set on disk is wholly old or wholly new:
+/// the writes take milliseconds, and Ctrl-C only sets `cancel` (the caller's handler), which
+/// is looked at again after the set is written. Each file is written atomically, the
+/// manifest last.
+pub fn generate_until(
+    set: &FigureSet,
+    out: &Path,
+    scale: f64,
+    cancel: &AtomicBool,
+) -> Result<Option<SetReport>, String> {
     let start = Instant::now();
     let dir = out.join(set.name);
-    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
     let mut rendered: Vec<RenderedFigure> = Vec::new();
     for figure in (set.figures)() {
         // A figure whose scene is an earlier one's (soft-shadows 02 is 07, shown beside the
@@ -186,18 +213,22 @@ pub fn generate(set: &FigureSet, out: &Path, scale: f64) -> Result<SetReport, St
                     manifest,
                 });
             }
-            None => rendered.push(render_figure(figure, scale)),
+            None => match render_figure_until(figure, scale, cancel) {
+                Some(r) => rendered.push(r),
+                None => return Ok(None),
+            },
         }
     }
+    let mut files = Vec::new();
     for r in &rendered {
-        write_png(&dir.join(format!("{}.png", r.figure.stem)), &r.image)?;
+        files.push((format!("{}.png", r.figure.stem), png_bytes(&r.image)?));
     }
     let sheet_items: Vec<(&image::RgbImage, &str)> =
         rendered.iter().map(|r| (&r.image, r.figure.caption.as_str())).collect();
-    write_png(
-        &dir.join("contact-sheet.png"),
-        &sheet::contact_sheet(set.title, &sheet_items),
-    )?;
+    files.push((
+        "contact-sheet.png".to_string(),
+        png_bytes(&sheet::contact_sheet(set.title, &sheet_items))?,
+    ));
     let manifest = json!({
         "set": set.name,
         "title": set.title,
@@ -207,14 +238,21 @@ pub fn generate(set: &FigureSet, out: &Path, scale: f64) -> Result<SetReport, St
         "images": rendered.iter().map(|r| r.manifest.clone()).collect::<Vec<_>>(),
     });
     let text = serde_json::to_string_pretty(&manifest).map_err(|e| e.to_string())? + "\n";
-    write_atomic(&dir.join("manifest.json"), text.as_bytes())
-        .map_err(|e| format!("{}: cannot write the manifest: {e}", dir.display()))?;
-    Ok(SetReport {
+    files.push(("manifest.json".to_string(), text.into_bytes()));
+    if cancel.load(Ordering::Relaxed) {
+        return Ok(None);
+    }
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
+    for (name, bytes) in &files {
+        let path = dir.join(name);
+        write_atomic(&path, bytes).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    }
+    Ok(Some(SetReport {
         name: set.name,
         images: rendered.len(),
         seconds: start.elapsed().as_secs_f64(),
         dir,
-    })
+    }))
 }
 
 fn html_escape(s: &str) -> String {

@@ -166,6 +166,85 @@ mod tests {
         assert!(c.intersect(&ray([-10., -3., -0.1], [1., 0., 0.]), 0.0, 1e9).is_none());
     }
 
+    /// A cone whose slope `k = r / h = 1/2` and `k^2 = 1/4` are exact in binary, so the
+    /// quadratic's coefficients below are exact and tangencies are decided exactly.
+    fn half_slope() -> Cone {
+        // Base (1, 2, 0), axis +z, height 2, radius 1: the side is
+        // (x - 1)^2 + (y - 2)^2 = (2 - z)^2 / 4, a circle of radius (2 - z) / 2 at height z.
+        Cone::new(DVec3::new(1., 2., 0.), DVec3::Z, 2.0, 1.0)
+    }
+
+    #[test]
+    fn tangent_to_a_circle_of_the_side() {
+        let c = half_slope();
+        // At z = 1 the side is the circle of radius 1/2. A ray along +x at y = 2 + 1/2 touches
+        // it at (1, 2.5, 1): in the local frame o = (-5, 0.5, 1), d = (1, 0, 0), so
+        // a = 1, b = 2 (-5) = -10, c = 25 + 0.25 - (1/4)(2 - 1)^2 = 25: b^2 - 4ac = 0 exactly,
+        // a double root t = 5. Normal: gradient (x, y, k^2 (h - z)) = (0, 1/2, 1/4), i.e.
+        // (0, 2, 1) / sqrt(5).
+        let n = DVec3::new(0., 2., 1.) / 5f64.sqrt();
+        assert_hit(c.intersect(&ray([-4., 2.5, 1.], [1., 0., 0.]), 0.0, 1e9), 5.0, n);
+        // One ulp of y further out (4.4e-16) the line misses the circle by 4.4e-16, but c
+        // would exceed 25 by 4.4e-16, less than half an ulp of 25.25 (1.8e-15): it rounds to
+        // 25 again and the ray still touches at t = 5. That is the grazing band of this
+        // quadratic; 1e-12 out, c = 25 + 1e-12 to its rounding, b^2 - 4ac < 0: a miss.
+        let one_ulp = c.intersect(&ray([-4., 2.5f64.next_up(), 1.], [1., 0., 0.]), 0.0, 1e9);
+        assert_eq!(one_ulp.map(|h| h.t), Some(5.0));
+        assert!(
+            c.intersect(&ray([-4., 2.5 + 1e-12, 1.], [1., 0., 0.]), 0.0, 1e9)
+                .is_none()
+        );
+        // 1e-6 inside, it crosses the circle twice: y - 2 = 0.5 - 1e-6 gives
+        // (x - 1)^2 = 0.25 - (0.5 - 1e-6)^2 = 1e-6 - 1e-12, the first crossing at
+        // x - 1 = -sqrt(1e-6 - 1e-12), about 1e-3 before the tangent point.
+        let h = c
+            .intersect(&ray([-4., 2.5 - 1e-6, 1.], [1., 0., 0.]), 0.0, 1e9)
+            .unwrap();
+        let want = 5.0 - (1e-6f64 - 1e-12).sqrt();
+        assert!((h.t - want).abs() < 1e-9, "t = {} expected {want}", h.t);
+    }
+
+    #[test]
+    fn ray_parallel_to_a_generator_and_in_its_tangent_plane() {
+        // Local frame = world frame shifted by the base (1, 2, 0); the generator from the
+        // apex (0, 0, 2) to the rim point (1, 0, 0) has direction g = (1, 0, -2) / sqrt(5).
+        // `normalize` scales by one rounded 1/|g|, so d.z = -2 d.x exactly and
+        // a = d.x^2 - (1/4) d.z^2 is exactly 0: the quadratic is linear, b t + c = 0.
+        let c = half_slope();
+        let g = [1., 0., -2.];
+        // Parallel to g through the axis point (0, 0, 1), from o = (-1, 0, 3): w = h - o.z = -1,
+        // b = 2 (o.x d.x + k^2 w d.z) = 2 (-d.x + d.x / 2) = -d.x, c = 1 - (1/4)(1) = 3/4, so
+        // t = -c / b = (3/4) sqrt(5), at (-1/4, 0, 3/2) on the opposite generator. A line
+        // parallel to a generator meets the double cone once: this is that crossing.
+        // Normal: (x, y, k^2 (h - z)) = (-1/4, 0, 1/8), i.e. (-2, 0, 1) / sqrt(5).
+        let n = DVec3::new(-2., 0., 1.) / 5f64.sqrt();
+        assert_hit(c.intersect(&ray([0., 2., 3.], g), 0.0, 1e9), 0.75 * 5f64.sqrt(), n);
+        // From o = (-1, 1/2, 4) along g (w = -2): the line lies in the tangent plane along
+        // that generator (spanned by g and the circle's tangent +y), which touches the cone
+        // only on the generator. Then b = 2 (-d.x + 0 + (1/4)(-2) d.z) = 0 exactly and
+        // c = 1 + 1/4 - 1 = 1/4: no root. It reaches the base plane at local (1, 1/2, 0),
+        // outside the base disk (1 + 1/4 > 1).
+        assert!(c.intersect(&ray([0., 2.5, 4.], g), 0.0, 1e9).is_none());
+    }
+
+    #[test]
+    fn rays_parallel_to_the_base_cap() {
+        let c = half_slope();
+        // At z = 1/2 the side's radius is 3/4: along +x through the axis, from x - 1 = -5, the
+        // side at x - 1 = -3/4, t = 4.25; every side normal along one generator is the same,
+        // (-3/4, 0, (1/4)(3/2)) ~ (-2, 0, 1) / sqrt(5). The cap (d.z = 0) is never hit.
+        let n = DVec3::new(-2., 0., 1.) / 5f64.sqrt();
+        assert_hit(c.intersect(&ray([-4., 2., 0.5], [1., 0., 0.]), 0.0, 1e9), 4.25, n);
+        // In the base plane itself: the cap's plane contains the ray (skipped: d.z = 0), and
+        // the side's roots x - 1 = -+1 are at z = 0, the rim, inside [0, h]: the hit is the
+        // rim, with the side's normal, at t = 4.
+        assert_hit(c.intersect(&ray([-4., 2., 0.], [1., 0., 0.]), 0.0, 1e9), 4.0, n);
+        // From inside, parallel to the base: the exit through the side at x - 1 = +3/4, with
+        // normal (3/4, 0, 3/8) ~ (2, 0, 1) / sqrt(5).
+        let exit = DVec3::new(2., 0., 1.) / 5f64.sqrt();
+        assert_hit(c.intersect(&ray([1., 2., 0.5], [1., 0., 0.]), 0.0, 1e9), 0.75, exit);
+    }
+
     #[test]
     fn upside_down_cone() {
         // Axis -z, base at z = 2: apex at z = 0. A ray down the axis hits the base cap at z = 2.

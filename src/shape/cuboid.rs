@@ -122,6 +122,76 @@ mod tests {
     }
 
     #[test]
+    fn grazing_an_edge_and_a_face() {
+        // The reference cube: centre (0, 0, 3), side 2, so x, y in [-1, 1] and z in [2, 4].
+        let c = Cuboid::new(DVec3::new(0., 0., 3.), DVec3::splat(2.), DVec3::ZERO);
+        // Along the top edge x = 1, z = 4 (parallel to y): the slabs of x and z hold the ray
+        // on their boundary (closed slabs), so it enters at the corner (1, -1, 4) through the
+        // y slab: t = -1 - (-8) = 7, normal -y.
+        assert_hit(c.intersect(&ray([1., -8., 4.], [0., 1., 0.]), 0.0, 1e9), 7.0, -DVec3::Y);
+        // Across the same edge: from (0, 0, 5) along (1, 0, -1) / sqrt(2), touching the edge
+        // at (1, 0, 4). In the box's frame o = (0, 0, 2); the x slab gives [-1, 1] / d.x and
+        // the z slab [1, 3] / d.x (d.z = -d.x exactly), so near = far = 1 / d.x = sqrt(2): a
+        // hit at the edge, entering through the z slab last (axis order breaks the tie):
+        // normal +z.
+        assert_hit(
+            c.intersect(&ray([0., 0., 5.], [1., 0., -1.]), 0.0, 1e9),
+            2f64.sqrt(),
+            DVec3::Z,
+        );
+        // Started 1e-9 higher, the parallel ray passes over the edge: the z slab becomes
+        // [1 + 1e-9, 3 + 1e-9] / d.x, entered after the x slab is left.
+        assert!(
+            c.intersect(&ray([0., 0., 5. + 1e-9], [1., 0., -1.]), 0.0, 1e9)
+                .is_none()
+        );
+        // Along the top face, z = 4, through its middle: enters through the front face's top
+        // edge at t = 7, normal -y; one ulp above the face, a miss.
+        assert_hit(
+            c.intersect(&ray([0.5, -8., 4.], [0., 1., 0.]), 0.0, 1e9),
+            7.0,
+            -DVec3::Y,
+        );
+        assert!(
+            c.intersect(&ray([0.5, -8., 4f64.next_up()], [0., 1., 0.]), 0.0, 1e9)
+                .is_none()
+        );
+        // From inside, along the top face: leaves through the back face at y = 1, t = 1.
+        assert_hit(c.intersect(&ray([0.5, 0., 4.], [0., 1., 0.]), 0.0, 1e9), 1.0, DVec3::Y);
+    }
+
+    #[test]
+    fn rotated_box_hit_has_the_rotated_normal() {
+        // Cube of side 2 at the origin turned 30 degrees about z: local axes
+        // x' = (cos 30, sin 30, 0) = (sqrt(3)/2, 1/2, 0) and y' = (-1/2, sqrt(3)/2, 0).
+        let c = Cuboid::new(DVec3::ZERO, DVec3::splat(2.), DVec3::new(0., 0., 30.));
+        let x_axis = DVec3::new(3f64.sqrt() / 2.0, 0.5, 0.0);
+        // From (5, 0, 0) along -x. Local origin (5 sqrt(3)/2, -5/2, 0), local direction
+        // (-sqrt(3)/2, 1/2, 0): the x' slab [-1, 1] is crossed for t in
+        // [5 - 2/sqrt(3), 5 + 2/sqrt(3)] = [3.845, 6.155], the y' slab for t in [3, 7]; the
+        // ray enters at t = 5 - 2/sqrt(3) through the +x' face, whose normal is x' (not the
+        // reversed ray direction +x).
+        assert_hit(
+            c.intersect(&ray([5., 0., 0.], [-1., 0., 0.]), 0.0, 1e9),
+            5.0 - 2.0 / 3f64.sqrt(),
+            x_axis,
+        );
+        // A box of size (2, 4, 6) turned 90 degrees about x: its local y (half-size 2) is
+        // world z, its local z (half-size 3) is world -y. Straight down onto it from z = 10:
+        // the top face at z = 2, t = 8, normal (0, cos 90, sin 90) = +z to rounding; an
+        // unturned box would be hit at z = 3.
+        let b = Cuboid::new(DVec3::ZERO, DVec3::new(2., 4., 6.), DVec3::new(90., 0., 0.));
+        assert_hit(b.intersect(&ray([0., 0., 10.], [0., 0., -1.]), 0.0, 1e9), 8.0, DVec3::Z);
+        // Along +y from y = -10 at the height of the centre: the face at y = -3, t = 7,
+        // normal -y.
+        assert_hit(
+            b.intersect(&ray([0., -10., 0.], [0., 1., 0.]), 0.0, 1e9),
+            7.0,
+            -DVec3::Y,
+        );
+    }
+
+    #[test]
     fn rotated_box() {
         // Unit cube rotated 45 degrees about z: its corner points along +x at x = sqrt(2)/2.
         let c = Cuboid::new(DVec3::ZERO, DVec3::ONE, DVec3::new(0., 0., 45.));

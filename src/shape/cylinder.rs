@@ -136,6 +136,29 @@ mod tests {
     }
 
     #[test]
+    fn rays_in_a_cap_plane_and_along_the_side() {
+        let c = reference();
+        // In the top cap's plane z = 3, along +x through the axis from x = -10: the caps'
+        // plane contains the ray (d.z = 0, skipped); the side's roots x = -5 -+ 1 are at
+        // z = 3, its closed top edge: the rim is hit at t = 4 with the side's normal -x.
+        assert_hit(
+            c.intersect(&ray([-10., 9., 3.], [1., 0., 0.]), 0.0, 1e9),
+            4.0,
+            -DVec3::X,
+        );
+        // Up the line x = -4, which lies in the side: a = d.x^2 + d.y^2 = 0, so the side is
+        // not intersected; the bottom cap takes the ray at its rim point (-4, 9, 0)
+        // (x^2 + y^2 = 1 <= r^2, exact), t = 2, normal -z.
+        assert_hit(
+            c.intersect(&ray([-4., 9., -2.], [0., 0., 1.]), 0.0, 1e9),
+            2.0,
+            -DVec3::Z,
+        );
+        // From inside the cylinder up the same kind of line (x = -4.5): the top cap, t = 2.
+        assert_hit(c.intersect(&ray([-4.5, 9., 1.], [0., 0., 1.]), 0.0, 1e9), 2.0, DVec3::Z);
+    }
+
+    #[test]
     fn tilted_axis() {
         // Axis along +x from the origin: a ray down -z hits the side at z = 1.
         let c = Cylinder::new(DVec3::ZERO, DVec3::X, 4.0, 1.0);

@@ -61,4 +61,38 @@ mod tests {
         assert_eq!(b.min, DVec3::new(-2., -2., 1.));
         assert_eq!(b.max, DVec3::new(2., 2., 1.));
     }
+
+    #[test]
+    fn edge_on_rays_never_hit() {
+        // A ray in the disk's plane crosses its interior (here through the centre) without
+        // crossing the plane: d.n = 0, no hit, rather than a division by zero.
+        let d = Disk::new(DVec3::new(0., 0., 1.), DVec3::Z, 2.0);
+        assert!(d.intersect(&ray([-5., 0., 1.], [1., 0., 0.]), 0.0, 1e9).is_none());
+        // Tilted disk, normal (1, 1, 0) / sqrt(2), and an in-plane direction (1, -1, 0) /
+        // sqrt(2): both normalised by one rounded factor, so d.n = s^2 - s^2 = 0 exactly.
+        let tilted = Disk::new(DVec3::new(1., 2., 3.), DVec3::new(1., 1., 0.), 2.0);
+        assert!(tilted.intersect(&ray([0., 3., 3.], [1., -1., 0.]), 0.0, 1e9).is_none());
+        // Control: from (0, 3, 3) moved 1e-3 off the plane along n, a ray aimed at the centre
+        // crosses the plane there, at t = sqrt(|(0, 3, 3) - c|^2 + 1e-6) = sqrt(2 + 1e-6)
+        // ((0, 3, 3) - c = (-1, 1, 0) is perpendicular to n).
+        let n = DVec3::new(1., 1., 0.).normalize();
+        let start = DVec3::new(0., 3., 3.) + 1e-3 * n;
+        let dir = (DVec3::new(1., 2., 3.) - start).normalize();
+        let h = tilted.intersect(&Ray::new(start, dir), 0.0, 1e9).unwrap();
+        assert!((h.t - (2.0f64 + 1e-6).sqrt()).abs() < 1e-12, "{}", h.t);
+        assert!((h.normal - n).length() < 1e-15);
+    }
+
+    #[test]
+    fn the_rim_belongs_to_the_disk() {
+        // Centre (0, 0, 1), radius 2: a vertical ray through the rim point (2, 0, 1) hits it
+        // (|p - c|^2 = 4 <= 4, every number exact), at t = 3 - 1 = 2 from above and from
+        // below alike: the normal is the disk's, whichever side the ray comes from.
+        let d = Disk::new(DVec3::new(0., 0., 1.), DVec3::Z, 2.0);
+        assert_hit(d.intersect(&ray([2., 0., 3.], [0., 0., -1.]), 0.0, 1e9), 2.0, DVec3::Z);
+        assert_hit(d.intersect(&ray([2., 0., -4.], [0., 0., 1.]), 0.0, 1e9), 5.0, DVec3::Z);
+        // One ulp outside the rim along x: |p - c|^2 = (2 + 2^-51)^2 rounds above 4.
+        let outside = 2f64.next_up();
+        assert!(d.intersect(&ray([outside, 0., 3.], [0., 0., -1.]), 0.0, 1e9).is_none());
+    }
 }

@@ -294,6 +294,56 @@ pub(crate) mod test_util {
     pub fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {
         Ray::new(DVec3::from(o), DVec3::from(d).normalize())
     }
+
+    /// `count` seeded rays from points of the cube of half-side `2 size` around `centre`
+    /// (some inside the shape) towards points of the cube of half-side `1.2 size`.
+    pub fn random_rays(seed: u64, centre: DVec3, size: f64, count: usize) -> Vec<Ray> {
+        use rand_chacha::ChaCha8Rng;
+        use rand_core::{Rng, SeedableRng};
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut point = |half: f64| {
+            let mut u = || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53) * 2.0 - 1.0;
+            centre + half * DVec3::new(u(), u(), u())
+        };
+        (0..count)
+            .map(|_| {
+                let from = point(2.0 * size);
+                let to = point(1.2 * size);
+                Ray::new(from, (to - from).normalize())
+            })
+            .collect()
+    }
+
+    /// Checks that `occludes` answers as `intersect` does. For each ray, the first hit `t`
+    /// and the next one after it (`t_min = t`): the segment ending one ulp past the hit is
+    /// occluded, the segments ending at it or one ulp before it are not (no earlier root),
+    /// and `intersect` limited to just past `t` returns the same hit to the bit. A ray with
+    /// no (further) hit is occluded nowhere. Returns how many hits and misses were checked.
+    pub fn check_occludes_agrees(shape: &Shape, rays: &[Ray]) -> (usize, usize) {
+        let (mut hits, mut misses) = (0, 0);
+        for ray in rays {
+            let mut t_min = 0.0;
+            for _ in 0..2 {
+                let Some(hit) = shape.intersect(ray, t_min, f64::INFINITY) else {
+                    assert!(!shape.occludes(ray, t_min, f64::INFINITY), "{ray:?} from {t_min}");
+                    misses += 1;
+                    break;
+                };
+                let t = hit.t;
+                assert!(shape.occludes(ray, t_min, t.next_up()), "{ray:?}: hit at {t} not seen");
+                assert!(!shape.occludes(ray, t_min, t), "{ray:?}: occluded before {t}");
+                assert!(
+                    !shape.occludes(ray, t_min, t.next_down()),
+                    "{ray:?}: occluded before {t}"
+                );
+                assert_eq!(shape.intersect(ray, t_min, t.next_up()), Some(hit), "{ray:?}");
+                assert_eq!(shape.intersect(ray, t_min, t), None, "{ray:?}");
+                hits += 1;
+                t_min = t;
+            }
+        }
+        (hits, misses)
+    }
 }
 
 #[cfg(test)]

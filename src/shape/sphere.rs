@@ -65,6 +65,7 @@ impl Sphere {
 
 #[cfg(test)]
 mod tests {
+    use super::super::Shape;
     use super::super::test_util::*;
     use super::*;
 
@@ -79,6 +80,14 @@ mod tests {
         assert_hit(s.intersect(&ray([1., -5., 3.], [0., 1., 0.]), 0.0, 1e9), 5.0, DVec3::X);
         // Just outside the tangent: a miss.
         assert!(s.intersect(&ray([1.000001, -5., 3.], [0., 1., 0.]), 0.0, 1e9).is_none());
+    }
+
+    #[test]
+    fn occludes_agrees_with_intersect() {
+        let s = Shape::Sphere(Sphere::new(DVec3::new(1., -5., 3.), 0.75));
+        let (hits, misses) = check_occludes_agrees(&s, &random_rays(21, DVec3::new(1., -5., 3.), 0.75, 400));
+        // Both answers are exercised, and second hits (the exit after the entry) too.
+        assert!(hits > 300 && misses > 100, "{hits} hits, {misses} misses");
     }
 
     #[test]

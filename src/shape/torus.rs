@@ -454,12 +454,124 @@ mod tests {
     #[test]
     fn tangent_on_top() {
         // Along +x on the top z = 2.5: touches the tube tops at x = 2.5 and x = 5.5 (double
-        // roots, t = 8.5 and 11.5); the polynomial is zero there only up to rounding, so
-        // accept a hit at either tangent point or a miss, but never a hit elsewhere.
+        // roots, t = 8.5 and 11.5). The origin is outside the clip sphere, so the quartic is
+        // solved from the clip entry, an irrational shift: the polynomial is zero there only
+        // up to rounding, so accept a hit at either tangent point or a miss, but never a hit
+        // elsewhere (`exact_tangent_on_top` has a tangency decided exactly).
         let t = reference();
         if let Some(h) = t.intersect(&ray([-6., 3., 2.5], [1., 0., 0.]), 0.0, 1e9) {
             assert!((h.t - 8.5).abs() < 1e-4 || (h.t - 11.5).abs() < 1e-4, "{}", h.t);
         }
+    }
+
+    #[test]
+    fn exact_tangent_on_top() {
+        // The reference torus (centre (4, 3, 2), R = 3/2, r = 1/2) and a ray along +x on its
+        // top plane z = 2.5, from (2.25, 3, 2.5): local o = (-7/4, 0, 1/2). With y = 0 and
+        // z = r, f = (x^2 + R^2)^2 - 4 R^2 x^2 = (x^2 - R^2)^2: double roots at x = -3/2
+        // (t = 1/4) and x = 3/2 (t = 13/4), where the ray touches the tops of the tube.
+        // Why it is exact: o is inside the clip sphere |p| <= 2 and on the slab's edge, so
+        // the origin is not shifted (enter = 0); every coefficient is a short dyadic
+        // fraction, f(s) = (s^2 - 7/2 s + 13/16)^2 expanded without rounding; the isolator
+        // splits [0, 3.69] at the roots of f', among them s = 1/4 where f' evaluates to
+        // exactly 0; and f at the point (-3/2, 0, 1/2) is exactly 0:
+        // (9/4 + 1/4 + 9/4 - 1/4)^2 - 9 (9/4) = 81/4 - 81/4. A zero at a split point is a root.
+        let t = reference();
+        let r = ray([2.25, 3., 2.5], [1., 0., 0.]);
+        let first = t.intersect(&r, 0.0, 1e9).expect("tangent hit");
+        assert_eq!(first.t, 0.25);
+        assert_eq!(first.normal, DVec3::Z);
+        let second = t.intersect(&r, 0.5, 1e9).expect("second tangent hit");
+        assert_eq!(second.t, 3.25);
+        assert_eq!(second.normal, DVec3::Z);
+        assert!(t.occludes(&r, 0.0, 0.5) && !t.occludes(&r, 0.5, 3.0));
+        // 1e-6 lower the line crosses the tube: with eta = r^2 - z^2 = 1e-6 - 1e-12,
+        // f = ((x - R)^2 - eta) ((x + R)^2 - eta), roots x = -+R -+ sqrt(eta); the first at
+        // x = -3/2 - sqrt(eta), t = 1/4 - sqrt(eta), normal within 1e-3 of +z.
+        let low = t
+            .intersect(&ray([2.25, 3., 2.5 - 1e-6], [1., 0., 0.]), 0.0, 1e9)
+            .unwrap();
+        let want = 0.25 - (1e-6f64 - 1e-12).sqrt();
+        assert!((low.t - want).abs() < 1e-9, "t = {} expected {want}", low.t);
+        assert!(low.normal.z > 0.999 && low.normal.x < 0.0, "{}", low.normal);
+        // 1e-6 higher it misses: the line is above the slab |z| <= r (and on it eta < 0, so
+        // both factors of f are at least -eta = 1e-6 + 1e-12: f > 0 everywhere).
+        assert!(
+            t.intersect(&ray([2.25, 3., 2.5 + 1e-6], [1., 0., 0.]), 0.0, 1e9)
+                .is_none()
+        );
+    }
+
+    /// A torus with a tilted axis: centre c = (1, 2, 3), axis a = (1, 0, 1) / sqrt(2),
+    /// R = 2, r = 1/2, and two unit vectors of its equatorial plane, u = (0, 1, 0) and
+    /// v = a x u = (-1, 0, 1) / sqrt(2). In the frame (u, v, a) a point is
+    /// (rho cos phi, rho sin phi, z) and the tube is (rho - 2)^2 + z^2 = 1/4.
+    fn tilted() -> (Torus, DVec3, DVec3, DVec3, DVec3) {
+        let c = DVec3::new(1., 2., 3.);
+        let a = DVec3::new(1., 0., 1.).normalize();
+        let (u, v) = (DVec3::Y, DVec3::new(-1., 0., 1.).normalize());
+        (Torus::new(c, a, 2.0, 0.5), c, a, u, v)
+    }
+
+    fn hit_of(t: &Torus, from: DVec3, dir: DVec3, t_min: f64) -> Option<SurfaceHit> {
+        t.intersect(&Ray::new(from, dir), t_min, 1e9)
+    }
+
+    #[test]
+    fn tilted_torus_from_outside() {
+        let (t, c, a, u, _) = tilted();
+        // From c + 5u along -u, in the equatorial plane: the coordinate along u, 5 - t,
+        // crosses the tube at 5/2 (t = 5/2, normal +u), 3/2 (t = 7/2, normal -u, towards the
+        // axis), then on the far side at -3/2 (t = 13/2, normal +u) and -5/2 (t = 15/2, -u).
+        let from = c + 5.0 * u;
+        assert_hit(hit_of(&t, from, -u, 0.0), 2.5, u);
+        assert_hit(hit_of(&t, from, -u, 3.0), 3.5, -u);
+        assert_hit(hit_of(&t, from, -u, 4.0), 6.5, u);
+        assert_hit(hit_of(&t, from, -u, 7.0), 7.5, -u);
+        // Down the axis direction onto the tube: from c + 2.25 u + 5 a along -a, at
+        // rho - R = 1/4 the tube's top is z = sqrt(1/4 - 1/16) = sqrt(3)/4, so t = 5 - sqrt(3)/4,
+        // normal (1/4 u + sqrt(3)/4 a) / (1/2) = u / 2 + (sqrt(3)/2) a.
+        let n = 0.5 * u + 3f64.sqrt() / 2.0 * a;
+        assert_hit(hit_of(&t, c + 2.25 * u + 5.0 * a, -a, 0.0), 5.0 - 3f64.sqrt() / 4.0, n);
+        // Obliquely along -(u + a) / sqrt(2) towards the tube's centre circle from 5 away:
+        // the surface at distance 5 - r, normal (u + a) / sqrt(2).
+        let w = (u + a).normalize();
+        assert_hit(hit_of(&t, c + 2.0 * u + 5.0 * w, -w, 0.0), 4.5, w);
+    }
+
+    #[test]
+    fn tilted_torus_from_the_hole() {
+        let (t, c, a, u, v) = tilted();
+        // From the centre along v: the inner wall at rho = 3/2, normal -v.
+        assert_hit(hit_of(&t, c, v, 0.0), 1.5, -v);
+        // From c + u/2 (in the hole, off-centre) along +u: rho = 3/2 at t = 1, normal -u.
+        assert_hit(hit_of(&t, c + 0.5 * u, u, 0.0), 1.0, -u);
+        // Along the axis through the hole, from either side: no hit.
+        assert!(hit_of(&t, c + 10.0 * a, -a, 0.0).is_none());
+        assert!(hit_of(&t, c - 10.0 * a + 0.5 * v, a, 0.0).is_none());
+    }
+
+    #[test]
+    fn tilted_torus_from_inside_the_tube() {
+        let (t, c, a, u, v) = tilted();
+        // From the tube's centre circle at c + 2u (or c + 2v), every direction of the tube's
+        // cross-section plane leaves at distance r = 1/2 with the direction as normal.
+        let w = (u + a).normalize();
+        for (from, dir) in [(c + 2.0 * u, a), (c + 2.0 * u, -u), (c + 2.0 * u, w), (c + 2.0 * v, -a)] {
+            assert_hit(hit_of(&t, from, dir, 0.0), 0.5, dir);
+        }
+        // Along the tube's own circle's tangent (v at c + 2u), from inside: the tube's
+        // cross-section is crossed lengthwise; the exit is where rho = sqrt(4 + s^2) = 5/2,
+        // s = 3/2, normal along the radius there: (2u + 3/2 v) / (5/2).
+        assert_hit(hit_of(&t, c + 2.0 * u, v, 0.0), 1.5, (2.0 * u + 1.5 * v) / 2.5);
+    }
+
+    #[test]
+    fn occludes_agrees_with_intersect() {
+        let (t, c, ..) = tilted();
+        let shape = super::super::Shape::Torus(t);
+        let (hits, misses) = check_occludes_agrees(&shape, &random_rays(22, c, 2.5, 400));
+        assert!(hits > 200 && misses > 100, "{hits} hits, {misses} misses");
     }
 
     #[test]
