@@ -15,7 +15,7 @@ fn torus_cases(family: Family) -> Vec<(Torus, Ray, f64)> {
     cases("torus", family, 256, 7)
         .into_iter()
         .map(|(spec, ray, t_min)| match spec.shape() {
-            Shape::Torus(t) => (t, ray, t_min),
+            Shape::Torus(t) => (*t, ray, t_min),
             _ => unreachable!("torus cases hold tori"),
         })
         .collect()

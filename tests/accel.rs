@@ -47,13 +47,17 @@ fn random_scene(seed: u64, n: usize, half: f64) -> Vec<Object> {
         let shape = match kind {
             0 if i % 7 == 0 => Shape::Plane(Plane::new(c, axis)),
             0 | 1 => Shape::Sphere(Sphere::new(c, r)),
-            2 => Shape::Rectangle(Rectangle::new(c, unit(&mut s) * r, unit(&mut s) * r)),
+            2 => Shape::Rectangle(Box::new(Rectangle::new(c, unit(&mut s) * r, unit(&mut s) * r))),
             3 => Shape::Disk(Disk::new(c, axis, r)),
-            4 => Shape::Cuboid(Cuboid::new(c, DVec3::new(r, 0.5 * r, 1.5 * r), point(&mut s, 180.0))),
-            5 => Shape::Cuboid(Cuboid::new(c.round(), DVec3::ONE, DVec3::ZERO)),
-            6 => Shape::Cylinder(Cylinder::new(c, axis, 2.0 * r, 0.5 * r)),
-            7 => Shape::Cone(Cone::new(c, axis, 2.0 * r, r)),
-            8 => Shape::Torus(Torus::new(c, axis, r, 0.3 * r)),
+            4 => Shape::Cuboid(Box::new(Cuboid::new(
+                c,
+                DVec3::new(r, 0.5 * r, 1.5 * r),
+                point(&mut s, 180.0),
+            ))),
+            5 => Shape::Cuboid(Box::new(Cuboid::new(c.round(), DVec3::ONE, DVec3::ZERO))),
+            6 => Shape::Cylinder(Box::new(Cylinder::new(c, axis, 2.0 * r, 0.5 * r))),
+            7 => Shape::Cone(Box::new(Cone::new(c, axis, 2.0 * r, r))),
+            8 => Shape::Torus(Box::new(Torus::new(c, axis, r, 0.3 * r))),
             _ if i > 0 => objects[(s.next_f64() * i as f64) as usize % i].shape.clone(),
             _ => Shape::Sphere(Sphere::new(c, r)),
         };
@@ -241,7 +245,7 @@ fn hand_checked_hits() {
     // BVH has a tree.
     let objects: Vec<Object> = [
         Shape::Plane(Plane::new(DVec3::ZERO, DVec3::Z)),
-        Shape::Cuboid(Cuboid::new(DVec3::splat(0.5), DVec3::ONE, DVec3::ZERO)),
+        Shape::Cuboid(Box::new(Cuboid::new(DVec3::splat(0.5), DVec3::ONE, DVec3::ZERO))),
         Shape::Sphere(Sphere::new(DVec3::new(0.5, 0.5, 3.0), 0.5)),
     ]
     .into_iter()

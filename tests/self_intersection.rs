@@ -86,7 +86,7 @@ fn surface_error_covers_a_displaced_point() {
     let s = Shape::Sphere(lumiere::shape::Sphere::new(DVec3::ZERO, 2.0));
     assert!(s.surface_error(DVec3::new(2.0 + 1e-6, 0.0, 0.0)) >= 1e-6);
     assert!(s.surface_error(DVec3::new(2.0, 0.0, 0.0)) < 1e-14);
-    let t = Shape::Torus(lumiere::shape::Torus::new(DVec3::ZERO, DVec3::Z, 1.5, 0.5));
+    let t = Shape::Torus(Box::new(lumiere::shape::Torus::new(DVec3::ZERO, DVec3::Z, 1.5, 0.5)));
     // (1.5, 0, 0.5 - 1e-7): inside the tube, 1e-7 below its top.
     let e = t.surface_error(DVec3::new(1.5, 0.0, 0.5 - 1e-7));
     assert!((1e-7..2e-7).contains(&e), "{e}");

@@ -694,7 +694,7 @@ impl FileShape {
             }) => {
                 let (e1, e2) = spanning_edges(path, edge1, edge2)?;
                 (
-                    Shape::Rectangle(Rectangle::new(vec3(&path.key("corner"), corner)?, e1, e2)),
+                    Shape::Rectangle(Box::new(Rectangle::new(vec3(&path.key("corner"), corner)?, e1, e2))),
                     material,
                     name,
                 )
@@ -743,7 +743,7 @@ impl FileShape {
                     );
                 }
                 (
-                    Shape::Cuboid(Cuboid::new(vec3(&path.key("center"), center)?, sz, rot)),
+                    Shape::Cuboid(Box::new(Cuboid::new(vec3(&path.key("center"), center)?, sz, rot))),
                     material,
                     name,
                 )
@@ -751,14 +751,18 @@ impl FileShape {
             FileShape::Cylinder(c) => {
                 let (base, axis, height, radius) = c.frame(path)?;
                 (
-                    Shape::Cylinder(Cylinder::new(base, axis, height, radius)),
+                    Shape::Cylinder(Box::new(Cylinder::new(base, axis, height, radius))),
                     c.material,
                     c.name,
                 )
             }
             FileShape::Cone(c) => {
                 let (base, axis, height, radius) = c.frame(path)?;
-                (Shape::Cone(Cone::new(base, axis, height, radius)), c.material, c.name)
+                (
+                    Shape::Cone(Box::new(Cone::new(base, axis, height, radius))),
+                    c.material,
+                    c.name,
+                )
             }
             FileShape::MirrorPair(FileMirrorPair {
                 hinge,
@@ -801,12 +805,12 @@ impl FileShape {
                     );
                 }
                 (
-                    Shape::Torus(Torus::new(
+                    Shape::Torus(Box::new(Torus::new(
                         vec3(&path.key("center"), center)?,
                         direction(&path.key("axis"), axis)?,
                         major,
                         minor,
-                    )),
+                    ))),
                     material,
                     name,
                 )
@@ -993,7 +997,7 @@ fn mirror_pair(
         .into_iter()
         .map(|(tag, s)| Object {
             name: format!("{base} {tag}"),
-            shape: Shape::Rectangle(Rectangle::new(hinge, side(s) * length, up)),
+            shape: Shape::Rectangle(Box::new(Rectangle::new(hinge, side(s) * length, up))),
             material,
         })
         .collect())

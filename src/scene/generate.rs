@@ -118,10 +118,10 @@ impl Generate {
                     Shape::Sphere(Sphere::new(center, r))
                 } else if which < 2.0 / 3.0 {
                     // Tube centre circle at 0.7 r, tube 0.3 r: within the ball of radius r.
-                    Shape::Torus(Torus::new(center, axis, 0.7 * r, 0.3 * r))
+                    Shape::Torus(Box::new(Torus::new(center, axis, 0.7 * r, 0.3 * r)))
                 } else {
                     // Height 1.2 r, base radius 0.8 r, centred: within the ball of radius r.
-                    Shape::Cone(Cone::new(center - axis * (0.6 * r), axis, 1.2 * r, 0.8 * r))
+                    Shape::Cone(Box::new(Cone::new(center - axis * (0.6 * r), axis, 1.2 * r, 0.8 * r)))
                 }
             }
         };

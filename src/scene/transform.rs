@@ -52,11 +52,11 @@ impl Similarity {
     pub fn shape(&self, shape: &Shape) -> Shape {
         match shape {
             Shape::Plane(p) => Shape::Plane(Plane::new(self.point(p.point), p.normal)),
-            Shape::Rectangle(r) => Shape::Rectangle(Rectangle::new(
+            Shape::Rectangle(r) => Shape::Rectangle(Box::new(Rectangle::new(
                 self.point(r.corner),
                 r.edge1 * self.scale,
                 r.edge2 * self.scale,
-            )),
+            ))),
             Shape::Disk(d) => Shape::Disk(Disk::new(self.point(d.center), d.normal, self.length(d.radius))),
             Shape::Sphere(s) => Shape::Sphere(Sphere::new(self.point(s.center), self.length(s.radius))),
             Shape::Cuboid(b) => {
@@ -72,7 +72,11 @@ impl Similarity {
                 c.radius = self.length(c.radius);
                 Shape::Cylinder(c)
             }
-            Shape::Cone(c) => Shape::Cone(c.resized(self.point(c.base), self.length(c.height), self.length(c.radius))),
+            Shape::Cone(c) => Shape::Cone(Box::new(c.resized(
+                self.point(c.base),
+                self.length(c.height),
+                self.length(c.radius),
+            ))),
             Shape::Torus(t) => {
                 let mut t = t.clone();
                 t.center = self.point(t.center);
@@ -170,7 +174,7 @@ mod tests {
     fn hits_scale_with_the_scene() {
         // The torus (R 1.5, r 0.5) at the origin, hit from x = -5 at t = 3; scaled by 1e3 and
         // moved by (1e5, 1e5, 0), the same ray (transformed) hits at t = 3000.
-        let torus = Shape::Torus(crate::shape::Torus::new(DVec3::ZERO, DVec3::Z, 1.5, 0.5));
+        let torus = Shape::Torus(Box::new(crate::shape::Torus::new(DVec3::ZERO, DVec3::Z, 1.5, 0.5)));
         let t = Similarity {
             scale: 1e3,
             offset: DVec3::new(1e5, 1e5, 0.0),

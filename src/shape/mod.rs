@@ -85,13 +85,15 @@ impl Aabb {
 #[serde(rename_all = "snake_case")]
 pub enum Shape {
     Plane(Plane),
-    Rectangle(Rectangle),
+    // The shapes with a frame are boxed: the enum stays at 64 bytes (a sphere's size), so
+    // scenes of millions of spheres keep twice as many objects per cache line and in memory.
+    Rectangle(Box<Rectangle>),
     Disk(Disk),
     Sphere(Sphere),
-    Cuboid(Cuboid),
-    Cylinder(Cylinder),
-    Cone(Cone),
-    Torus(Torus),
+    Cuboid(Box<Cuboid>),
+    Cylinder(Box<Cylinder>),
+    Cone(Box<Cone>),
+    Torus(Box<Torus>),
 }
 
 macro_rules! dispatch {
@@ -358,21 +360,21 @@ mod tests {
         let tilt = DVec3::new(0.3, -0.5, 1.0);
         vec![
             Shape::Sphere(Sphere::new(DVec3::new(1.0, -5.0, 3.0), 0.75)),
-            Shape::Cuboid(Cuboid::new(
+            Shape::Cuboid(Box::new(Cuboid::new(
                 DVec3::new(0.0, 0.0, 3.0),
                 DVec3::new(2.0, 1.0, 3.0),
                 DVec3::new(10.0, 20.0, 30.0),
-            )),
-            Shape::Cylinder(Cylinder::new(DVec3::new(-5.0, 9.0, 0.0), tilt, 3.0, 1.0)),
-            Shape::Cone(Cone::new(DVec3::new(-3.0, -3.0, 0.0), tilt, 2.5, 1.0)),
-            Shape::Cone(Cone::new(DVec3::ZERO, -tilt, 0.5, 2.0)),
-            Shape::Torus(Torus::new(DVec3::new(4.0, 3.0, 2.0), tilt, 1.5, 0.5)),
+            ))),
+            Shape::Cylinder(Box::new(Cylinder::new(DVec3::new(-5.0, 9.0, 0.0), tilt, 3.0, 1.0))),
+            Shape::Cone(Box::new(Cone::new(DVec3::new(-3.0, -3.0, 0.0), tilt, 2.5, 1.0))),
+            Shape::Cone(Box::new(Cone::new(DVec3::ZERO, -tilt, 0.5, 2.0))),
+            Shape::Torus(Box::new(Torus::new(DVec3::new(4.0, 3.0, 2.0), tilt, 1.5, 0.5))),
             Shape::Disk(Disk::new(DVec3::new(1.0, 2.0, 3.0), tilt, 2.0)),
-            Shape::Rectangle(Rectangle::new(
+            Shape::Rectangle(Box::new(Rectangle::new(
                 DVec3::ZERO,
                 DVec3::new(4.0, 0.0, 0.0),
                 DVec3::new(0.0, 3.0, 1.0),
-            )),
+            ))),
         ]
     }
 
@@ -381,17 +383,21 @@ mod tests {
         // Cone of height 2.5 and radius 1: the ball through the rim and the apex has its
         // centre at z0 = (6.25 - 1) / 5 = 1.05 and radius 2.5 - 1.05 = 1.45; the inscribed
         // ball has radius 2.5 / (1 + sqrt(7.25)) = 0.6771...
-        let cone = Shape::Cone(Cone::new(DVec3::ZERO, DVec3::Z, 2.5, 1.0));
+        let cone = Shape::Cone(Box::new(Cone::new(DVec3::ZERO, DVec3::Z, 2.5, 1.0)));
         let (c, r) = cone.bounding_ball().unwrap();
         assert!((c - DVec3::new(0.0, 0.0, 1.05)).length() < 1e-15 && (r - 1.45).abs() < 1e-15);
         let (c, r) = cone.inner_ball().unwrap();
         let rho = 2.5 / (1.0 + 7.25f64.sqrt());
         assert!((c - DVec3::new(0.0, 0.0, rho)).length() < 1e-15 && (r - rho).abs() < 1e-15);
         // The reference cube (side 2): sqrt(3) around, 1 inside; the torus: R + r = 2.
-        let cube = Shape::Cuboid(Cuboid::new(DVec3::new(0.0, 0.0, 3.0), DVec3::splat(2.0), DVec3::ZERO));
+        let cube = Shape::Cuboid(Box::new(Cuboid::new(
+            DVec3::new(0.0, 0.0, 3.0),
+            DVec3::splat(2.0),
+            DVec3::ZERO,
+        )));
         assert!((cube.bounding_ball().unwrap().1 - 3f64.sqrt()).abs() < 1e-15);
         assert_eq!(cube.inner_ball().unwrap(), (DVec3::new(0.0, 0.0, 3.0), 1.0));
-        let torus = Shape::Torus(Torus::new(DVec3::ZERO, DVec3::Z, 1.5, 0.5));
+        let torus = Shape::Torus(Box::new(Torus::new(DVec3::ZERO, DVec3::Z, 1.5, 0.5)));
         assert_eq!(torus.bounding_ball().unwrap().1, 2.0);
         assert_eq!(torus.inner_ball(), None);
         assert_eq!(Shape::Plane(Plane::new(DVec3::ZERO, DVec3::Z)).bounding_ball(), None);

@@ -569,7 +569,7 @@ mod tests {
     #[test]
     fn occludes_agrees_with_intersect() {
         let (t, c, ..) = tilted();
-        let shape = super::super::Shape::Torus(t);
+        let shape = super::super::Shape::Torus(Box::new(t));
         let (hits, misses) = check_occludes_agrees(&shape, &random_rays(22, c, 2.5, 400));
         assert!(hits > 200 && misses > 100, "{hits} hits, {misses} misses");
     }

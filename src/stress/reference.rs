@@ -64,14 +64,16 @@ impl Spec {
     pub fn shape(&self) -> Shape {
         match *self {
             Spec::Sphere { c, r } => Shape::Sphere(Sphere::new(c, r)),
-            Spec::Box { c, half } => Shape::Cuboid(Cuboid::new(c, half * 2.0, DVec3::ZERO)),
-            Spec::Cylinder { base, h, r } => Shape::Cylinder(Cylinder::new(base, DVec3::Z, h, r)),
-            Spec::Cone { base, h, r } => Shape::Cone(Cone::new(base, DVec3::Z, h, r)),
-            Spec::Torus { c, big, small } => Shape::Torus(Torus::new(c, DVec3::Z, big, small)),
+            Spec::Box { c, half } => Shape::Cuboid(Box::new(Cuboid::new(c, half * 2.0, DVec3::ZERO))),
+            Spec::Cylinder { base, h, r } => Shape::Cylinder(Box::new(Cylinder::new(base, DVec3::Z, h, r))),
+            Spec::Cone { base, h, r } => Shape::Cone(Box::new(Cone::new(base, DVec3::Z, h, r))),
+            Spec::Torus { c, big, small } => Shape::Torus(Box::new(Torus::new(c, DVec3::Z, big, small))),
             Spec::Disk { c, r } => Shape::Disk(Disk::new(c, DVec3::Z, r)),
-            Spec::Rect { corner, a, b } => {
-                Shape::Rectangle(Rectangle::new(corner, DVec3::new(a, 0.0, 0.0), DVec3::new(0.0, b, 0.0)))
-            }
+            Spec::Rect { corner, a, b } => Shape::Rectangle(Box::new(Rectangle::new(
+                corner,
+                DVec3::new(a, 0.0, 0.0),
+                DVec3::new(0.0, b, 0.0),
+            ))),
             Spec::Plane { p } => Shape::Plane(Plane::new(p, DVec3::Z)),
         }
     }
