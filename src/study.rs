@@ -433,8 +433,9 @@ pub fn time_to_reach(points: &[(f64, f64)], target: f64) -> Reach {
             if eb <= 0.0 {
                 return Reach::AtMost(tb);
             }
-            let f = (target.ln() - ea.ln()) / (eb.ln() - ea.ln());
-            return Reach::At((ta.ln() + f * (tb.ln() - ta.ln())).exp());
+            let ln = libm::log;
+            let f = (ln(target) - ln(ea)) / (ln(eb) - ln(ea));
+            return Reach::At(libm::exp(ln(ta) + f * (ln(tb) - ln(ta))));
         }
     }
     Reach::Never

@@ -32,7 +32,7 @@ impl Cylinder {
     pub fn ball(&self) -> (DVec3, f64) {
         (
             self.base + 0.5 * self.height * self.axis,
-            self.radius.hypot(0.5 * self.height),
+            libm::hypot(self.radius, 0.5 * self.height),
         )
     }
 

@@ -174,7 +174,7 @@ impl Shape {
             // The inscribed ball touches the base and the side: radius `r h / (r + sqrt(r^2 + h^2))`.
             Shape::Cone(c) => {
                 let (h, r) = (c.height, c.radius);
-                let rho = r * h / (r + r.hypot(h));
+                let rho = r * h / (r + libm::hypot(r, h));
                 Some((c.base + rho * c.axis, rho))
             }
         }

@@ -329,7 +329,7 @@ impl Torus {
         let l = self.frame.to_local(p - self.center);
         let (big, small) = (self.major, self.minor);
         let rho = l.truncate().length();
-        let residual = ((rho - big).hypot(l.z) - small).abs();
+        let residual = (libm::hypot(rho - big, l.z) - small).abs();
         let k = l.length_squared() + big * big - small * small;
         let grad = (4.0 * k * l - 8.0 * big * big * DVec3::new(l.x, l.y, 0.0)).length();
         let noise = gamma(16) * (k * k + 4.0 * big * big * rho * rho) / grad.max(f64::MIN_POSITIVE);

@@ -138,7 +138,7 @@ impl Gen {
     }
 
     fn in_ball(&mut self) -> DVec3 {
-        self.unit() * self.0.next_f64().cbrt()
+        self.unit() * libm::cbrt(self.0.next_f64())
     }
 
     /// A unit vector perpendicular to the unit `n`.
