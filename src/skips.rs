@@ -30,8 +30,9 @@ pub enum Skip {
     /// Shadow rays meet an object's bounding sphere before its exact (costly) test; for
     /// area lights, the cones of directions from the shading point decide most rays at once:
     /// outside the cone of the bounding sphere a ray misses, inside the cone through a ball
-    /// within the solid it hits, and a plane none of the segments to the light can cross is
-    /// not tested.
+    /// within the solid it hits, a plane none of the segments to the light can cross is not
+    /// tested, and neither is a convex shading object's own surface (rays leaving it outward
+    /// miss it; rays leaving a solid's inside wall towards a light outside it hit it).
     BoundingSpheres,
     /// Shading terms (specular power, tints) are not evaluated for a fully blocked light.
     BlockedShading,

@@ -186,6 +186,15 @@ impl Shape {
         !matches!(self, Shape::Torus(_))
     }
 
+    /// Whether the shape bounds a convex solid (sphere, box, capped cylinder and cone): a
+    /// ray that leaves its surface inward crosses it again on the far side.
+    pub fn is_convex_solid(&self) -> bool {
+        matches!(
+            self,
+            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_)
+        )
+    }
+
     /// The shape's kind as written in scene files.
     pub fn kind(&self) -> &'static str {
         match self {

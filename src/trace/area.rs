@@ -445,6 +445,17 @@ impl Tracer<'_, '_> {
             s.verdict.resize(len, Verdict::Test);
             match c.cone {
                 Some(cone) if cones => verdicts(&s.lanes, cone, c.sure, &mut s.verdict),
+                _ if cones && c.object == at.object && at.n == -at.outward && shape.is_convex_solid() && {
+                    let (o_centre, o_radius) = world.object_spheres[c.object].expect("solids are bounded");
+                    (centre - o_centre).length() > (radius + o_radius) * (1.0 + 1e-9)
+                } =>
+                {
+                    // From the inside of a convex solid's surface, towards a light wholly
+                    // outside the solid's bounding sphere: every ray crosses the far side
+                    // before reaching its light point (the exact tests agree: the origin is
+                    // offset inside, so the far root is positive; tests/skips.rs).
+                    s.verdict.fill(Verdict::Hit)
+                }
                 _ => s.verdict.fill(Verdict::Test),
             }
             let sphere = world.object_spheres[c.object].filter(|_| cones && c.cone.is_none() && world.costly[c.object]);
