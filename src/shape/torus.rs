@@ -77,6 +77,48 @@ impl Torus {
         }
     }
 
+    /// The quartic `f(o2 + s d) = c0 + c1 s + ... + c4 s^4` (coefficients in increasing
+    /// degree) and whether `o2` is on the surface: `at_start` (the clip did not move the
+    /// origin) and `|c0|` within its rounding bound. A ray starting on the surface (a
+    /// secondary ray from a hit on this torus) has `f(o2)` zero up to its own rounding error,
+    /// and any sign it has is noise that would make a spurious root next to `s = 0`; the
+    /// solver then forces `c0` to exactly zero so that root is exactly 0 and excluded by
+    /// `t > t_min`. The bound on the rounding of `k^2 - 4 R^2 rho^2` is
+    /// `gamma(8) (k^2 + 4 R^2 rho^2)`.
+    fn quartic(&self, o2: DVec3, d: DVec3, at_start: bool) -> ([f64; 5], bool) {
+        let (big, small) = (self.major, self.minor);
+        let k = o2.length_squared() + big * big - small * small;
+        let n = o2.dot(d);
+        let m = d.length_squared();
+        let four_r2 = 4.0 * big * big;
+        let rho2 = o2.x * o2.x + o2.y * o2.y;
+        let coeffs = [
+            k * k - four_r2 * rho2,
+            4.0 * n * k - 2.0 * four_r2 * (o2.x * d.x + o2.y * d.y),
+            4.0 * n * n + 2.0 * m * k - four_r2 * (d.x * d.x + d.y * d.y),
+            4.0 * m * n,
+            m * m,
+        ];
+        let on_surface = at_start && coeffs[0].abs() <= gamma(8) * (k * k + four_r2 * rho2);
+        (coeffs, on_surface)
+    }
+
+    /// Whether the root isolator would find no root on the clip interval because `f` rises
+    /// from a positive start: `f(0) = c0 > 0` (it is `implicit(o2)`, bit for bit) with `o2`
+    /// off the surface, `f'(s) >= c1 + 2 min(c2, 0) len + 3 min(c3, 0) len^2 > 0` on
+    /// `[0, len]` by a relative 1e-9 (far above the rounding of Horner's rule, so the
+    /// isolator finds no critical point), and `f(len) > 0` as the isolator computes it: one
+    /// window, no sign change. Most shadow rays leaving the torus's surface towards a light
+    /// stop here, instead of in the isolator.
+    fn rises_from_outside(&self, o: DVec3, d: DVec3, (enter, exit): (f64, f64), t_min: f64) -> bool {
+        let o2 = o + d * enter;
+        let (c, on_surface) = self.quartic(o2, d, enter == t_min);
+        let len = exit - enter;
+        let slope = c[1] + 2.0 * c[2].min(0.0) * len + 3.0 * c[3].min(0.0) * len * len;
+        let size = c[1].abs() + 2.0 * c[2].abs() * len + 3.0 * c[3].abs() * len * len + 4.0 * c[4] * len * len * len;
+        !on_surface && c[0] > 0.0 && slope > 1e-9 * size && self.implicit(o2 + d * len) > 0.0
+    }
+
     /// The ray in the local frame (`o`, `d`) and its clip interval `(enter, exit)`, or `None`
     /// when no root can lie in `(t_min, t_max)`. Clipped without `t_max`: the shifted origin,
     /// and so every root's bits, must not depend on how far the caller looks, or a
@@ -106,25 +148,7 @@ impl Torus {
     ) {
         // Shift the origin to the clip entry: p(s) = o' + s d, s in [0, exit - enter].
         let o2 = o + d * enter;
-        let (big, small) = (self.major, self.minor);
-        let k = o2.length_squared() + big * big - small * small;
-        let n = o2.dot(d);
-        let m = d.length_squared();
-        let four_r2 = 4.0 * big * big;
-        let rho2 = o2.x * o2.x + o2.y * o2.y;
-        let mut coeffs = [
-            k * k - four_r2 * rho2,
-            4.0 * n * k - 2.0 * four_r2 * (o2.x * d.x + o2.y * d.y),
-            4.0 * n * n + 2.0 * m * k - four_r2 * (d.x * d.x + d.y * d.y),
-            4.0 * m * n,
-            m * m,
-        ];
-        // A ray starting on the surface (a secondary ray from a hit on this torus, with no
-        // clip shift): `f(o)` is zero up to its own rounding error, and any sign it has is
-        // noise that would make a spurious root next to `s = 0`. Force the constant
-        // coefficient to exactly zero so that root is exactly 0 and excluded by `t > t_min`.
-        // Bound on the rounding of `k^2 - 4 R^2 rho^2`: gamma(8) (k^2 + 4 R^2 rho^2).
-        let on_surface = enter == t_min && coeffs[0].abs() <= gamma(8) * (k * k + four_r2 * rho2);
+        let (mut coeffs, on_surface) = self.quartic(o2, d, enter == t_min);
         if on_surface {
             coeffs[0] = 0.0;
         }
@@ -311,7 +335,7 @@ impl Torus {
         if self.surely_entered(o, d, clip, t_min, t_max) {
             return true;
         }
-        if self.clear_of_tube(o + d * clip.0, d, clip.1 - clip.0) {
+        if self.clear_of_tube(o + d * clip.0, d, clip.1 - clip.0) || self.rises_from_outside(o, d, clip, t_min) {
             return false;
         }
         let mut any = false;
@@ -383,7 +407,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
         let mut u = move |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
         let torus = Torus::new(DVec3::new(4., 3., 2.), DVec3::new(0.2, -0.1, 1.0), 1.5, 0.5);
-        let (mut hits, mut cleared, mut entered) = (0, 0, 0);
+        let (mut hits, mut cleared, mut entered, mut risen) = (0, 0, 0, 0);
         for k in 0..20_000 {
             let start = match k % 4 {
                 // floor points around the torus
@@ -416,6 +440,7 @@ mod tests {
             hits += want as u32;
             if let Some((o, d, clip)) = torus.local_clip(&ray, 0.0, t_max) {
                 entered += torus.surely_entered(o, d, clip, 0.0, t_max) as u32;
+                risen += torus.rises_from_outside(o, d, clip, 0.0) as u32;
             }
             let o = torus.frame.to_local(ray.origin - torus.center);
             let d = torus.frame.to_local(ray.dir);
@@ -424,8 +449,8 @@ mod tests {
             }
         }
         assert!(
-            hits > 1000 && entered > 500 && cleared > 1000,
-            "{hits} {entered} {cleared}"
+            hits > 1000 && entered > 500 && cleared > 1000 && risen > 500,
+            "{hits} {entered} {cleared} {risen}"
         );
     }
 
