@@ -682,9 +682,10 @@ fn figures_command(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     // milliseconds a set's files take to write.
     let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
     let mut written = Vec::new();
+    let mut reuse = crate::figures::Reuse::for_sets(&chosen);
     for set in chosen {
         let report = with_threads(args.threads, || {
-            generate_until(set, &args.out, args.scale, &INTERRUPTED)
+            generate_until(set, &args.out, args.scale, &INTERRUPTED, &mut reuse)
         })?
         .map_err(CliError::Failed)?;
         let stopped = INTERRUPTED.load(std::sync::atomic::Ordering::Relaxed);
@@ -725,9 +726,10 @@ fn figures_command(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
 
 fn check_figures(sets: &[&crate::figures::FigureSet], args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     let mut failures = 0;
+    let mut reuse = crate::figures::Reuse::for_sets(sets);
     for set in sets {
-        let mismatches =
-            with_threads(args.threads, || crate::figures::check(set, &args.out))?.map_err(CliError::BadInput)?;
+        let mismatches = with_threads(args.threads, || crate::figures::check(set, &args.out, &mut reuse))?
+            .map_err(CliError::BadInput)?;
         for m in &mismatches {
             println!(
                 "{}/{}: pixel hash {} (manifest {})",

@@ -30,6 +30,7 @@ pub mod area_light;
 pub mod camera;
 pub mod cli;
 pub mod compare;
+pub mod family;
 pub mod figures;
 pub mod film;
 pub mod light;

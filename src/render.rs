@@ -5,7 +5,7 @@
 use crate::film::Film;
 use crate::sampling::{Purpose, Stream};
 use crate::scene::World;
-use crate::trace::{NoRecord, RayCounts, Recorder, Tracer};
+use crate::trace::{Lane, NoRecord, RayCounts, Recorder, Tracer};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::ops::Range;
@@ -17,6 +17,9 @@ use std::time::{Duration, Instant};
 pub struct RenderStats {
     pub counts: RayCounts,
     pub elapsed: Duration,
+    /// A family's lanes could not all be traced exactly together (see
+    /// [`Tracer::diverged`]): the images must be rendered one by one. Never for one lane.
+    pub diverged: bool,
 }
 
 /// The jitter stream of pixel `(x, y)`: sample `k` reads its two numbers from words
@@ -43,20 +46,29 @@ pub fn sample_position(world: &World, x: u32, y: u32, k: u32) -> (f64, f64) {
 /// Radiance of one sample of one pixel, recorded by `rec`.
 pub fn render_sample<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, k: u32, rec: &mut R) -> DVec3 {
     let position = sample_position(tracer.world, x, y, k);
-    trace_at(tracer, position, x, y, k, rec)
+    trace_at(tracer, position, x, y, k, rec)[0]
 }
 
-/// Radiance along the camera ray through image position `(px, py)`; a NaN or infinity is
-/// counted and replaced by black (and is a bug: debug builds stop on it).
-fn trace_at<R: Recorder>(tracer: &mut Tracer, (px, py): (f64, f64), x: u32, y: u32, k: u32, rec: &mut R) -> DVec3 {
+/// Radiance of every lane along the camera ray through image position `(px, py)`; a NaN or
+/// infinity is counted and replaced by black (and is a bug: debug builds stop on it).
+fn trace_at<R: Recorder, const K: usize>(
+    tracer: &mut Tracer<K>,
+    (px, py): (f64, f64),
+    x: u32,
+    y: u32,
+    k: u32,
+    rec: &mut R,
+) -> [DVec3; K] {
     rec.sample(k, px, py);
     let s = &tracer.world.scene.settings;
     tracer.sample_key = (y as u64 * s.width as u64 + x as u64, k);
     let ray = tracer.world.camera.ray(px, py, s.width, s.height);
-    let c = tracer.trace_camera(&ray, rec);
-    debug_assert!(c.is_finite(), "non-finite radiance {c} at pixel ({x}, {y}) sample {k}");
-    let c = finite_or_black(c, &mut tracer.counts);
-    rec.sample_done(c);
+    let mut c = tracer.trace_camera_lanes(&ray, rec);
+    for (j, c) in c.iter_mut().enumerate() {
+        debug_assert!(c.is_finite(), "non-finite radiance {c} at pixel ({x}, {y}) sample {k}");
+        *c = finite_or_black(*c, tracer.lane_counts_mut(j));
+    }
+    rec.sample_done(c[0]);
     c
 }
 
@@ -81,15 +93,23 @@ pub fn render_pixel(tracer: &mut Tracer, x: u32, y: u32) -> DVec3 {
 /// mean of the samples in sample order, one jitter stream read sequentially (the same
 /// numbers as [`render_sample`] for each `k`).
 pub fn render_pixel_recorded<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, rec: &mut R) -> DVec3 {
+    render_pixel_lanes(tracer, x, y, rec)[0]
+}
+
+/// [`render_pixel_recorded`] for every lane of a family.
+fn render_pixel_lanes<R: Recorder, const K: usize>(tracer: &mut Tracer<K>, x: u32, y: u32, rec: &mut R) -> [DVec3; K] {
     let s = &tracer.world.scene.settings;
     let (spp, n) = (s.samples_per_pixel, s.grid_side());
     let mut rng = jitter_stream(tracer.world, x, y);
-    let mut sum = DVec3::ZERO;
+    let mut sum = [DVec3::ZERO; K];
     for k in 0..spp {
         let position = jittered(&mut rng, n, x, y, k);
-        sum += trace_at(tracer, position, x, y, k, rec);
+        let c = trace_at(tracer, position, x, y, k, rec);
+        for j in 0..K {
+            sum[j] += c[j];
+        }
     }
-    sum / spp as f64
+    sum.map(|s| s / spp as f64)
 }
 
 /// Renders the whole image on the current rayon pool. `progress` is called once per
@@ -113,32 +133,54 @@ pub fn render_rows(
     progress: &(dyn Fn() + Sync),
     cancel: Option<&AtomicBool>,
 ) -> (Vec<DVec3>, RenderStats) {
+    let (pixels, [stats]) = render_rows_lanes(world, [Lane::of(world)], rows, progress, cancel, |[c]| c);
+    (pixels, stats)
+}
+
+/// [`render_rows`] for the lanes of a one-pass family (see [`crate::family`]) over the
+/// world of its deepest, largest lane: each pixel's lane radiances go through `keep` (an
+/// 8-bit quantisation, say, so K images cost no more memory than one), with each lane's
+/// stats. The wall time is the family's.
+pub fn render_rows_lanes<T: Send + Clone, const K: usize>(
+    world: &World,
+    lanes: [Lane; K],
+    rows: Range<u32>,
+    progress: &(dyn Fn() + Sync),
+    cancel: Option<&AtomicBool>,
+    keep: impl Fn([DVec3; K]) -> T + Sync,
+) -> (Vec<T>, [RenderStats; K]) {
     let start = Instant::now();
     let width = world.scene.settings.width as usize;
-    let mut pixels = vec![DVec3::ZERO; width * rows.len()];
-    let counts = pixels
+    // What a cancelled row is left as: black.
+    let mut pixels = vec![keep([DVec3::ZERO; K]); width * rows.len()];
+    let (counts, diverged) = pixels
         .par_chunks_mut(width)
         .enumerate()
         .map(|(i, row)| {
-            let mut tracer = Tracer::new(world);
+            let mut tracer = Tracer::with_lanes(world, lanes);
             if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
-                return tracer.counts;
+                return (tracer.lane_totals(), false);
             }
             let y = rows.start + i as u32;
             for (x, px) in row.iter_mut().enumerate() {
-                *px = render_pixel(&mut tracer, x as u32, y);
+                *px = keep(render_pixel_lanes(&mut tracer, x as u32, y, &mut NoRecord));
             }
             progress();
-            tracer.counts
+            (tracer.lane_totals(), tracer.diverged)
         })
-        .reduce(RayCounts::default, |mut a, b| {
-            a.add(&b);
-            a
-        });
-    let stats = RenderStats {
+        .reduce(
+            || ([RayCounts::default(); K], false),
+            |(mut a, da), (b, db)| {
+                a.iter_mut().zip(&b).for_each(|(a, b)| a.add(b));
+                (a, da || db)
+            },
+        );
+    let elapsed = start.elapsed();
+    let stats = counts.map(|counts| RenderStats {
         counts,
-        elapsed: start.elapsed(),
-    };
+        elapsed,
+        diverged,
+    });
     (pixels, stats)
 }
 

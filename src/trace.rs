@@ -155,10 +155,51 @@ impl Facing {
     }
 }
 
-/// Traces rays in a world; one per thread (it keeps counters and scratch space).
-pub struct Tracer<'w, 's> {
+/// What sets one image of a one-pass family apart (see [`crate::family`]): its recursion
+/// depth, its adaptive-depth bounds, and the number of points it takes of the family's area
+/// light. A plain render has one lane, the world's own.
+#[derive(Clone, Copy, Debug)]
+pub struct Lane<'w> {
+    pub depth: u32,
+    /// `remaining_bound` of this lane's scene (see [`World::remaining_bound`]).
+    pub remaining_bound: &'w [f64],
+    /// The family's area light (index) and this lane's count `N`: its first `N` points.
+    pub area_count: Option<(usize, u32)>,
+}
+
+impl<'w> Lane<'w> {
+    /// The lane of a plain render of `world`.
+    pub fn of(world: &'w World) -> Self {
+        Lane {
+            depth: world.scene.settings.depth,
+            remaining_bound: &world.remaining_bound,
+            area_count: None,
+        }
+    }
+}
+
+/// The lanes of a bit mask of `K` lanes, in order.
+fn lanes_of<const K: usize>(mask: u32) -> impl Iterator<Item = usize> {
+    (0..K).filter(move |&j| mask >> j & 1 == 1)
+}
+
+/// Traces rays in a world; one per thread (it keeps counters and scratch space). With
+/// `K > 1` lanes it traces the images of a one-pass family together: each ray once, each
+/// lane's radiance with exactly the operations a render of that lane's scene alone does.
+pub struct Tracer<'w, 's, const K: usize = 1> {
     pub world: &'w World<'s>,
+    /// Rays and skipped work. With `K > 1`, only what the lanes share at a hit (shadow rays,
+    /// skips); the rest is in `lane_counts`.
     pub counts: RayCounts,
+    /// With `K > 1`, each lane's counts (its image's manifest).
+    pub lane_counts: [RayCounts; K],
+    pub lanes: [Lane<'w>; K],
+    /// Per lane, the shadow rays counted in `counts` that the lane's own area light count
+    /// does not cast (rays towards its points beyond `N`), for the current hit.
+    area_excess: [u64; K],
+    /// Set when a lane could not be traced exactly with the others (a light point black for
+    /// one lane's `L / N` and not another's): the family must be rendered image by image.
+    pub diverged: bool,
     /// The pixel index and sample being traced (keys the points of `per_sample` lights).
     pub sample_key: (u64, u32),
     /// Scratch list of transparent objects crossed by a shadow ray.
@@ -169,30 +210,90 @@ pub struct Tracer<'w, 's> {
 
 impl<'w, 's> Tracer<'w, 's> {
     pub fn new(world: &'w World<'s>) -> Self {
+        Tracer::with_lanes(world, [Lane::of(world)])
+    }
+
+    /// Radiance along a camera ray.
+    pub fn trace_camera<R: Recorder>(&mut self, ray: &Ray, rec: &mut R) -> DVec3 {
+        self.trace_camera_lanes(ray, rec)[0]
+    }
+}
+
+impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
+    /// A tracer of the family `lanes` over `world`, the world of the family's deepest lane
+    /// with its largest area light count.
+    pub fn with_lanes(world: &'w World<'s>, lanes: [Lane<'w>; K]) -> Self {
+        assert!(K >= 1 && K <= u32::BITS as usize, "1 to 32 lanes");
         Tracer {
             world,
             counts: RayCounts::default(),
+            lane_counts: [RayCounts::default(); K],
+            lanes,
+            area_excess: [0; K],
+            diverged: false,
             sample_key: (0, 0),
             crossed: Vec::new(),
             area: area::AreaScratch::default(),
         }
     }
 
-    /// Radiance along a camera ray.
-    pub fn trace_camera<R: Recorder>(&mut self, ray: &Ray, rec: &mut R) -> DVec3 {
-        self.counts.camera += 1;
-        self.radiance(RayKind::Camera, ray, 1, 1.0, rec)
+    /// Every lane.
+    const ALL: u32 = if K == 32 { u32::MAX } else { (1 << K) - 1 };
+
+    /// Counts `f` for every lane of `mask` (in `counts` itself with one lane).
+    fn count_lanes(&mut self, mask: u32, f: impl Fn(&mut RayCounts)) {
+        if K == 1 {
+            f(&mut self.counts);
+        } else {
+            lanes_of::<K>(mask).for_each(|j| f(&mut self.lane_counts[j]));
+        }
+    }
+
+    /// Each lane's counts: with one lane, `counts`; else the lane's rays, with the skipped
+    /// work of the whole family.
+    pub fn lane_totals(&self) -> [RayCounts; K] {
+        if K == 1 {
+            return [self.counts; K];
+        }
+        self.lane_counts.map(|mut c| {
+            c.saved = self.counts.saved;
+            c
+        })
+    }
+
+    /// The counts where a lane's non-finite samples go.
+    pub fn lane_counts_mut(&mut self, j: usize) -> &mut RayCounts {
+        if K == 1 {
+            &mut self.counts
+        } else {
+            &mut self.lane_counts[j]
+        }
+    }
+
+    /// Radiance of every lane along a camera ray.
+    pub fn trace_camera_lanes<R: Recorder>(&mut self, ray: &Ray, rec: &mut R) -> [DVec3; K] {
+        self.count_lanes(Self::ALL, |c| c.camera += 1);
+        self.radiance(RayKind::Camera, ray, 1, 1.0, Self::ALL, rec)
     }
 
     /// Radiance along `ray` at recursion `level` (1 = camera ray), whose contribution to the
-    /// pixel is scaled by `weight` (product of the k_r and k_t along the path).
-    fn radiance<R: Recorder>(&mut self, kind: RayKind, ray: &Ray, level: u32, weight: f64, rec: &mut R) -> DVec3 {
+    /// pixel is scaled by `weight` (product of the k_r and k_t along the path), for the
+    /// lanes of `mask` (the others' entries are meaningless).
+    fn radiance<R: Recorder>(
+        &mut self,
+        kind: RayKind,
+        ray: &Ray,
+        level: u32,
+        weight: f64,
+        mask: u32,
+        rec: &mut R,
+    ) -> [DVec3; K] {
         rec.ray(kind, ray, level, weight);
         let scene = self.world.scene;
         let Some((object, hit)) = self.world.accel.closest(&scene.objects, ray, 0.0, f64::INFINITY) else {
             rec.miss();
             rec.done(scene.settings.background);
-            return scene.settings.background;
+            return [scene.settings.background; K];
         };
         let mat = self.world.material_of(object);
         let point = ray.at(hit.t);
@@ -202,13 +303,16 @@ impl<'w, 's> Tracer<'w, 's> {
         let n = if entering { hit.normal } else { -hit.normal };
         rec.hit(object, hit.t, point, hit.normal, entering);
 
-        let mut color = self.local(point, n, hit.normal, err, -ray.dir, object, rec);
-        rec.local(color);
+        let mut color = self.local_counted(point, n, hit.normal, err, -ray.dir, object, mask, rec);
+        rec.local(color[0]);
 
-        let settings = &scene.settings;
         // Without the zero-weight skip, rays of weight 0 are traced (and add 0).
         let all = !self.world.skips.on(Skip::ZeroWeight);
-        if level < settings.depth {
+        // The lanes whose depth lets this hit spawn secondary rays.
+        let deeper = lanes_of::<K>(mask)
+            .filter(|&j| level < self.lanes[j].depth)
+            .fold(0, |m, j| m | 1 << j);
+        if deeper != 0 {
             let mut kr = mat.kr;
             let mut refracted = None;
             if mat.kt > 0.0 || all {
@@ -218,7 +322,7 @@ impl<'w, 's> Tracer<'w, 's> {
                     None => {
                         // Total internal reflection: the transmitted energy is reflected.
                         kr += mat.kt;
-                        self.counts.total_internal_reflections += 1;
+                        self.count_lanes(deeper, |c| c.total_internal_reflections += 1);
                         rec.total_internal_reflection();
                     }
                 }
@@ -231,38 +335,41 @@ impl<'w, 's> Tracer<'w, 's> {
             }
             if kr > 0.0 || all {
                 let dir = reflect(ray.dir, n).normalize();
-                color += kr
-                    * self.secondary(
-                        RayKind::Reflection,
-                        point,
-                        hit.normal,
-                        err,
-                        dir,
-                        level,
-                        weight * kr,
-                        rec,
-                    );
+                let reflected = self.secondary(
+                    RayKind::Reflection,
+                    point,
+                    hit.normal,
+                    err,
+                    dir,
+                    level,
+                    weight * kr,
+                    deeper,
+                    rec,
+                );
+                lanes_of::<K>(deeper).for_each(|j| color[j] += kr * reflected[j]);
             }
             if let Some(dir) = refracted {
-                color += mat.kt
-                    * self.secondary(
-                        RayKind::Refraction,
-                        point,
-                        hit.normal,
-                        err,
-                        dir,
-                        level,
-                        weight * mat.kt,
-                        rec,
-                    );
+                let transmitted = self.secondary(
+                    RayKind::Refraction,
+                    point,
+                    hit.normal,
+                    err,
+                    dir,
+                    level,
+                    weight * mat.kt,
+                    deeper,
+                    rec,
+                );
+                lanes_of::<K>(deeper).for_each(|j| color[j] += mat.kt * transmitted[j]);
             }
         }
-        rec.done(color);
+        rec.done(color[0]);
         color
     }
 
-    /// Traces a reflected or refracted ray from `point` unless adaptive depth control finds
-    /// that, with `weight`, it cannot change the 8-bit result.
+    /// Traces a reflected or refracted ray from `point` for the lanes of `mask` where
+    /// adaptive depth control does not find that, with `weight`, it cannot change the 8-bit
+    /// result; the lanes where it is cut off get 0.
     #[allow(clippy::too_many_arguments)]
     fn secondary<R: Recorder>(
         &mut self,
@@ -273,26 +380,64 @@ impl<'w, 's> Tracer<'w, 's> {
         dir: DVec3,
         level: u32,
         weight: f64,
+        mask: u32,
         rec: &mut R,
-    ) -> DVec3 {
+    ) -> [DVec3; K] {
         let threshold = self.world.scene.settings.adaptive_threshold;
-        let most = weight * self.world.remaining_bound[level as usize + 1] * 255.0;
-        if threshold > 0.0 && most < threshold {
-            self.counts.adaptive_cutoffs += 1;
+        let cut = lanes_of::<K>(mask)
+            .filter(|&j| {
+                threshold > 0.0 && weight * self.lanes[j].remaining_bound[level as usize + 1] * 255.0 < threshold
+            })
+            .fold(0, |m, j| m | 1 << j);
+        if cut != 0 {
+            self.count_lanes(cut, |c| c.adaptive_cutoffs += 1);
             rec.cutoff(kind, weight);
-            return DVec3::ZERO;
+        }
+        let traced = mask & !cut;
+        if traced == 0 {
+            return [DVec3::ZERO; K];
         }
         match kind {
-            RayKind::Reflection => self.counts.reflection += 1,
-            _ => self.counts.refraction += 1,
+            RayKind::Reflection => self.count_lanes(traced, |c| c.reflection += 1),
+            _ => self.count_lanes(traced, |c| c.refraction += 1),
         }
         let ray = Ray::new(offset_origin(point, normal, err, dir), dir);
-        self.radiance(kind, &ray, level + 1, weight, rec)
+        let mut radiance = self.radiance(kind, &ray, level + 1, weight, traced, rec);
+        lanes_of::<K>(cut).for_each(|j| radiance[j] = DVec3::ZERO);
+        radiance
+    }
+
+    /// [`Tracer::local`] for the lanes of `mask`, with what it counts added to each lane's
+    /// counts (less the shadow rays beyond a lane's own area light count).
+    #[allow(clippy::too_many_arguments)]
+    fn local_counted<R: Recorder>(
+        &mut self,
+        point: DVec3,
+        n: DVec3,
+        outward: DVec3,
+        err: f64,
+        eye: DVec3,
+        object: usize,
+        mask: u32,
+        rec: &mut R,
+    ) -> [DVec3; K] {
+        if K == 1 {
+            return self.local(point, n, outward, err, eye, object, mask, rec);
+        }
+        let shadow_before = self.counts.shadow;
+        let color = self.local(point, n, outward, err, eye, object, mask, rec);
+        let shadow = self.counts.shadow - shadow_before;
+        for j in lanes_of::<K>(mask) {
+            self.lane_counts[j].shadow += shadow - self.area_excess[j];
+        }
+        self.area_excess = [0; K];
+        color
     }
 
     /// Local illumination at a hit (slides' full model), with shadow rays:
     /// `L = L_a k_a S + sum_i A_i L_i [k_d S max(N.L_i, 0) + k_s [m S + (1 - m)] spec_i]`,
-    /// where an area light counts as its N points of colour `L / N`.
+    /// where an area light counts as its N points of colour `L / N`; for every lane of
+    /// `mask`, each summing in the same order.
     #[allow(clippy::too_many_arguments)]
     fn local<R: Recorder>(
         &mut self,
@@ -302,15 +447,16 @@ impl<'w, 's> Tracer<'w, 's> {
         err: f64,
         eye: DVec3,
         object: usize,
+        mask: u32,
         rec: &mut R,
-    ) -> DVec3 {
+    ) -> [DVec3; K] {
         let scene = self.world.scene;
         let mat = self.world.material_of(object);
-        let mut color = DVec3::ZERO;
+        let mut color = [DVec3::ZERO; K];
         if scene.settings.shading.ambient {
             let a = ambient(self.world.ambient, mat.ka, mat.color);
             rec.ambient(a);
-            color += a;
+            lanes_of::<K>(mask).for_each(|j| color[j] += a);
         }
         let surface = Surface {
             point,
@@ -323,8 +469,11 @@ impl<'w, 's> Tracer<'w, 's> {
         for (index, light) in scene.lights.iter().enumerate() {
             match light {
                 Light::Ambient { .. } => {}
-                Light::Area(area) => self.add_area_light(&mut color, index, area, &surface, rec),
-                _ => color += self.light_share(index, light.incidence(point), &surface, None, rec),
+                Light::Area(area) => self.add_area_light(&mut color, mask, index, area, &surface, rec),
+                _ => {
+                    let share = self.light_share(index, light.incidence(point), &surface, None, rec);
+                    lanes_of::<K>(mask).for_each(|j| color[j] += share);
+                }
             }
         }
         color

@@ -118,12 +118,50 @@ pub fn render_figure_until(figure: Figure, scale: f64, cancel: &AtomicBool) -> O
         pixels,
     };
     let seconds = start.elapsed().as_secs_f64();
-    let rgb = film.to_rgb8();
+    Some(finish(figure, &scene, film.to_rgb8(), &stats.counts, seconds))
+}
+
+/// Renders the figures of one family (see [`crate::family`]) at `scale` in passes of
+/// [`crate::family::LANES`], or one by one if their lanes diverge; `None` if cancelled.
+/// Each manifest records the images of its pass (`one_pass_with`) and an equal share of
+/// the pass's time.
+fn render_family_until(figures: Vec<Figure>, scale: f64, cancel: &AtomicBool) -> Option<Vec<RenderedFigure>> {
+    let mut done = Vec::new();
+    let mut figures = figures.into_iter().peekable();
+    while figures.peek().is_some() {
+        let pass: Vec<Figure> = figures.by_ref().take(crate::family::LANES).collect();
+        let scenes: Vec<Scene> = pass.iter().map(|f| scaled(f.scene.clone(), scale)).collect();
+        let start = Instant::now();
+        let images = crate::family::render(&scenes.iter().collect::<Vec<_>>(), cancel);
+        if cancel.load(Ordering::Relaxed) {
+            return None;
+        }
+        let Some(images) = images else {
+            for figure in pass {
+                done.push(render_figure_until(figure, scale, cancel)?);
+            }
+            continue;
+        };
+        let share = start.elapsed().as_secs_f64() / pass.len() as f64;
+        let files: Vec<String> = pass.iter().map(|f| format!("{}.png", f.stem)).collect();
+        for ((figure, scene), (rgb, stats)) in pass.into_iter().zip(&scenes).zip(images) {
+            let mut r = finish(figure, scene, rgb, &stats.counts, share);
+            let own = r.manifest["file"].clone();
+            r.manifest["one_pass_with"] = json!(files.iter().filter(|f| **f != own).collect::<Vec<_>>());
+            done.push(r);
+        }
+    }
+    Some(done)
+}
+
+/// A rendered figure's image, measured facts and manifest entry.
+fn finish(figure: Figure, scene: &Scene, rgb: Vec<u8>, c: &crate::trace::RayCounts, seconds: f64) -> RenderedFigure {
+    let (w, h) = (scene.settings.width, scene.settings.height);
     let mut facts = serde_json::Map::new();
     for m in &figure.measures {
         match m {
             Measure::AttenuationRange => {
-                let range = measure::attenuation_range(&world);
+                let range = measure::attenuation_range(&World::new(scene));
                 facts.insert("attenuation_min".into(), json!(range.map(|r| r.0)));
                 facts.insert("attenuation_max".into(), json!(range.map(|r| r.1)));
             }
@@ -133,7 +171,6 @@ pub fn render_figure_until(figure: Figure, scale: f64, cancel: &AtomicBool) -> O
             }
         }
     }
-    let c = &stats.counts;
     let manifest = json!({
         "file": format!("{}.png", figure.stem),
         "caption": figure.caption,
@@ -157,11 +194,137 @@ pub fn render_figure_until(figure: Figure, scale: f64, cancel: &AtomicBool) -> O
         "scene": scene,
     });
     let image = image::RgbImage::from_raw(w, h, rgb).expect("film size");
-    Some(RenderedFigure {
+    RenderedFigure {
         figure,
         image,
         manifest,
-    })
+    }
+}
+
+/// Figures that one run renders for an earlier set and uses again in a later one
+/// (light-shapes' sphere is soft-shadows' N = 100): same scene and seed, same bytes, so
+/// they are rendered once per run. Only the figures a later set wants are kept.
+#[derive(Default)]
+pub struct Reuse {
+    /// Scenes that appear in more than one set of the run.
+    wanted: Vec<Scene>,
+    /// Rendered figures of those scenes: `set/file`, image and manifest entry.
+    kept: Vec<(String, image::RgbImage, Value)>,
+    kept_scenes: Vec<Scene>,
+}
+
+impl Reuse {
+    /// For a run over `sets`, in that order.
+    pub fn for_sets(sets: &[&FigureSet]) -> Self {
+        let scenes: Vec<Vec<Scene>> = sets
+            .iter()
+            .map(|s| (s.figures)().into_iter().map(|f| f.scene).collect())
+            .collect();
+        let mut wanted: Vec<Scene> = Vec::new();
+        for (i, own) in scenes.iter().enumerate() {
+            for scene in own {
+                let later = scenes[i + 1..].iter().any(|other| other.contains(scene));
+                if later && !wanted.contains(scene) {
+                    wanted.push(scene.clone());
+                }
+            }
+        }
+        Reuse {
+            wanted,
+            ..Reuse::default()
+        }
+    }
+
+    /// The figure an earlier set of the run rendered with `scene`.
+    fn find(&self, scene: &Scene) -> Option<&(String, image::RgbImage, Value)> {
+        self.kept_scenes.iter().position(|s| s == scene).map(|i| &self.kept[i])
+    }
+
+    /// Keeps `r` (of set `set`) if a later set wants its scene.
+    fn offer(&mut self, set: &str, r: &RenderedFigure) {
+        if self.wanted.contains(&r.figure.scene) && self.find(&r.figure.scene).is_none() {
+            let file = r.manifest["file"].as_str().unwrap_or_default();
+            self.kept
+                .push((format!("{set}/{file}"), r.image.clone(), r.manifest.clone()));
+            self.kept_scenes.push(r.figure.scene.clone());
+        }
+    }
+}
+
+/// The manifest entry and image of `figure`, a copy of the image `twin` (file name
+/// `same_as`) that was rendered with the same scene.
+fn copy_of(figure: Figure, image: &image::RgbImage, twin: &Value, same_as: &str) -> RenderedFigure {
+    let mut manifest = twin.clone();
+    manifest["file"] = json!(format!("{}.png", figure.stem));
+    manifest["caption"] = json!(figure.caption);
+    manifest["same_image_as"] = json!(same_as);
+    manifest["render_seconds"] = json!(0.0);
+    if let Some(m) = manifest.as_object_mut() {
+        m.remove("one_pass_with");
+    }
+    RenderedFigure {
+        figure,
+        image: image.clone(),
+        manifest,
+    }
+}
+
+/// Renders every figure of `set` at `scale`, in the set's order: a figure whose scene is an
+/// earlier one's is rendered once (soft-shadows 02 is 07, shown beside the hard shadows:
+/// same scene and seed, same bytes), as is one an earlier set of the run rendered
+/// (`reuse`), and figures that differ only in depth or in an area light's count are
+/// rendered in one pass ([`crate::family`]). `None` if cancelled.
+pub fn render_set(set: &FigureSet, scale: f64, cancel: &AtomicBool, reuse: &mut Reuse) -> Option<Vec<RenderedFigure>> {
+    let figures = (set.figures)();
+    // The first figure of each distinct scene, and which of them each figure is.
+    let mut firsts: Vec<usize> = Vec::new();
+    let twin_of: Vec<usize> = (0..figures.len())
+        .map(
+            |i| match firsts.iter().find(|&&f| figures[f].scene == figures[i].scene) {
+                Some(&f) => f,
+                None => {
+                    firsts.push(i);
+                    i
+                }
+            },
+        )
+        .collect();
+    let mut rendered: Vec<Option<RenderedFigure>> = (0..figures.len()).map(|_| None).collect();
+    for &i in &firsts {
+        if let Some((same_as, image, twin)) = reuse.find(&figures[i].scene) {
+            rendered[i] = Some(copy_of(figures[i].clone(), image, twin, same_as));
+        }
+    }
+    firsts.retain(|&i| rendered[i].is_none());
+    let scenes: Vec<&Scene> = firsts.iter().map(|&i| &figures[i].scene).collect();
+    for group in crate::family::group(&scenes) {
+        let members: Vec<Figure> = group.iter().map(|&g| figures[firsts[g]].clone()).collect();
+        let done = if members.len() == 1 {
+            vec![render_figure_until(
+                members.into_iter().next().expect("one"),
+                scale,
+                cancel,
+            )?]
+        } else {
+            render_family_until(members, scale, cancel)?
+        };
+        for (g, r) in group.into_iter().zip(done) {
+            reuse.offer(set.name, &r);
+            rendered[firsts[g]] = Some(r);
+        }
+    }
+    let mut out: Vec<RenderedFigure> = Vec::new();
+    for (i, figure) in figures.into_iter().enumerate() {
+        if twin_of[i] == i {
+            out.push(rendered[i].take().expect("rendered"));
+            continue;
+        }
+        let twin = &out[twin_of[i]];
+        let same_as = twin.manifest["file"].as_str().unwrap_or_default().to_string();
+        let copy = copy_of(figure, &twin.image, &twin.manifest, &same_as);
+        out.push(copy);
+    }
+    Some(out)
 }
 
 /// What generating a set wrote.
@@ -178,7 +341,7 @@ fn png_bytes(img: &image::RgbImage) -> Result<Vec<u8>, String> {
 
 /// Renders every figure of `set` into `out/<set>/`, with its manifest and contact sheet.
 pub fn generate(set: &FigureSet, out: &Path, scale: f64) -> Result<SetReport, String> {
-    generate_until(set, out, scale, &AtomicBool::new(false)).map(|r| r.expect("never cancelled"))
+    generate_until(set, out, scale, &AtomicBool::new(false), &mut Reuse::default()).map(|r| r.expect("never cancelled"))
 }
 
 /// [`generate`], abandoned as soon as `cancel` is true (Ctrl-C): then it returns `Ok(None)`
@@ -192,33 +355,13 @@ pub fn generate_until(
     out: &Path,
     scale: f64,
     cancel: &AtomicBool,
+    reuse: &mut Reuse,
 ) -> Result<Option<SetReport>, String> {
     let start = Instant::now();
     let dir = out.join(set.name);
-    let mut rendered: Vec<RenderedFigure> = Vec::new();
-    for figure in (set.figures)() {
-        // A figure whose scene is an earlier one's (soft-shadows 02 is 07, shown beside the
-        // hard shadows) is rendered once: same scene and seed, same bytes.
-        match rendered.iter().find(|r| r.figure.scene == figure.scene) {
-            Some(twin) => {
-                let mut manifest = twin.manifest.clone();
-                manifest["file"] = json!(format!("{}.png", figure.stem));
-                manifest["caption"] = json!(figure.caption);
-                manifest["same_image_as"] = twin.manifest["file"].clone();
-                manifest["render_seconds"] = json!(0.0);
-                let image = twin.image.clone();
-                rendered.push(RenderedFigure {
-                    figure,
-                    image,
-                    manifest,
-                });
-            }
-            None => match render_figure_until(figure, scale, cancel) {
-                Some(r) => rendered.push(r),
-                None => return Ok(None),
-            },
-        }
-    }
+    let Some(rendered) = render_set(set, scale, cancel, reuse) else {
+        return Ok(None);
+    };
     let mut files = Vec::new();
     for r in &rendered {
         files.push((format!("{}.png", r.figure.stem), png_bytes(&r.image)?));
@@ -301,7 +444,7 @@ pub struct Mismatch {
 
 /// Re-renders `set` at the scale recorded in `out/<set>/manifest.json` and compares every
 /// image's pixel hash with the manifest's. Renders in memory; writes nothing.
-pub fn check(set: &FigureSet, out: &Path) -> Result<Vec<Mismatch>, String> {
+pub fn check(set: &FigureSet, out: &Path, reuse: &mut Reuse) -> Result<Vec<Mismatch>, String> {
     let path = out.join(set.name).join("manifest.json");
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
     let manifest: Value = serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", path.display()))?;
@@ -327,8 +470,8 @@ pub fn check(set: &FigureSet, out: &Path) -> Result<Vec<Mismatch>, String> {
             figures.len()
         ));
     }
-    for (figure, (file, hash)) in figures.into_iter().zip(expected) {
-        let r = render_figure(figure, scale);
+    let rendered = render_set(set, scale, &AtomicBool::new(false), reuse).expect("never cancelled");
+    for (r, (file, hash)) in rendered.into_iter().zip(expected) {
         let actual = r.manifest["pixel_hash"].as_str().unwrap_or_default().to_string();
         if actual != hash || r.manifest["file"] != file.as_str() {
             mismatches.push(Mismatch {

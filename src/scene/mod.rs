@@ -277,6 +277,11 @@ impl<'s> World<'s> {
         }
     }
 
+    /// [`World::remaining_bound`] of `scene`, without building its world.
+    pub fn remaining_bounds_of(scene: &Scene) -> Vec<f64> {
+        remaining_bounds(scene, scene.lights.iter().map(Light::ambient).sum())
+    }
+
     pub fn material_of(&self, object: usize) -> &Material {
         &self.scene.materials[self.scene.objects[object].material]
     }

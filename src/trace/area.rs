@@ -24,7 +24,7 @@
 //! [`phong`]: crate::shading::phong
 //! [`direct`]: crate::shading::direct
 
-use super::{Facing, LightShare, Recorder, Surface, Tracer, below_horizon, segment_meets_sphere};
+use super::{Facing, LightShare, Recorder, Surface, Tracer, below_horizon, lanes_of, segment_meets_sphere};
 use crate::area_light::{AreaLight, PointMode, PointSet};
 use crate::light::{Attenuation, Incidence};
 use crate::material::Material;
@@ -146,35 +146,21 @@ fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facin
     }
 }
 
-/// Pass 3: for every point, `A L filter [k_d S N.L]` and `A L filter [k_s [m S + (1 - m)]
-/// spec]` by channel, with Blinn's `spec = max(N.H, 0)^n`, `H = (L + E) / |L + E|` (0 when
-/// `|L + E| = 0`) or Phong's `max(R.E, 0)^n`, `R = 2 (N.L) N - L`: the operations of
-/// [`crate::shading::direct`], [`crate::shading::blinn`] and [`crate::shading::phong`] in
-/// their order. Values for points that do not face the surface are computed and ignored.
-#[allow(clippy::too_many_arguments)]
+/// Pass 3's first step: for every point, Blinn's `spec = max(N.H, 0)^n`,
+/// `H = (L + E) / |L + E|` (0 when `|L + E| = 0`) or Phong's `max(R.E, 0)^n`,
+/// `R = 2 (N.L) N - L`: the operations of [`crate::shading::blinn`] and
+/// [`crate::shading::phong`] in their order.
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn shares(
-    lanes: &mut Lanes,
-    len: usize,
-    point_color: DVec3,
-    filter: &[DVec3],
-    n: DVec3,
-    eye: DVec3,
-    mat: &Material,
-    model: ShadingModel,
-) {
+fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material, model: ShadingModel) {
     let Lanes {
         lx,
         ly,
         lz,
-        atten,
         n_dot_l,
         spec,
-        diffuse,
-        specular,
         ..
     } = lanes;
-    let (lx, ly, lz, atten, n_dot_l) = (&lx[..len], &ly[..len], &lz[..len], &atten[..len], &n_dot_l[..len]);
+    let (lx, ly, lz, n_dot_l) = (&lx[..len], &ly[..len], &lz[..len], &n_dot_l[..len]);
     let spec = &mut spec[..len];
     match model.specular {
         Specular::None => spec.fill(0.0),
@@ -204,6 +190,23 @@ fn shares(
             pow_each(spec, mat.shininess);
         }
     }
+}
+
+/// Pass 3's second step: for the first `len` points, each of colour `point_color`,
+/// `A L filter [k_d S N.L]` and `A L filter [k_s [m S + (1 - m)] spec]` by channel: the
+/// operations of [`crate::shading::direct`] in its order. Values for points that do not
+/// face the surface are computed and ignored.
+#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn shares(lanes: &mut Lanes, len: usize, point_color: DVec3, filter: &[DVec3], mat: &Material, model: ShadingModel) {
+    let Lanes {
+        atten,
+        n_dot_l,
+        spec,
+        diffuse,
+        specular,
+        ..
+    } = lanes;
+    let (atten, n_dot_l, spec) = (&atten[..len], &n_dot_l[..len], &spec[..len]);
     let filter = &filter[..len];
     let kd = if model.diffuse { mat.kd } else { 0.0 };
     let tint = specular_tint(mat.metal, mat.color);
@@ -227,13 +230,14 @@ fn shares(
     }
 }
 
-impl Tracer<'_, '_> {
-    /// Adds to `color`, point after point, the share of area light `index` at the surface
-    /// `at`, after the horizon test and the search for the objects that can block any of its
-    /// shadow rays.
+impl<const K: usize> Tracer<'_, '_, K> {
+    /// Adds to `color` (each lane of `mask`), point after point, the share of area light
+    /// `index` at the surface `at`, after the horizon test and the search for the objects
+    /// that can block any of its shadow rays.
     pub(super) fn add_area_light<R: Recorder>(
         &mut self,
-        color: &mut DVec3,
+        color: &mut [DVec3; K],
+        mask: u32,
         index: usize,
         area: &AreaLight,
         at: &Surface,
@@ -264,7 +268,7 @@ impl Tracer<'_, '_> {
                 world.shadow_candidates(at.point, centre, radius, 4.0 * at.err, &mut candidates);
             }
             let shadowing = culled.then_some(candidates.as_slice());
-            self.add_area_points(color, index, points, area, at, shadowing, &mut s, rec);
+            self.add_area_points(color, mask, index, points, area, at, shadowing, &mut s, rec);
             s.candidates = candidates;
         }
         self.area = s;
@@ -273,10 +277,13 @@ impl Tracer<'_, '_> {
     /// Passes 1 to 4 of the module doc for the light points `points` of `area`.
     /// `candidates`, when given, are the only objects that can block their shadow rays;
     /// without them each shadow ray goes through the acceleration structure on its own.
+    /// A lane whose area light count `N` is set for this light takes the first `N` points,
+    /// each of colour `L / N`: passes 1 and 2 are shared, passes 3 and 4 are the lane's.
     #[allow(clippy::too_many_arguments)]
     fn add_area_points<R: Recorder>(
         &mut self,
-        color: &mut DVec3,
+        color: &mut [DVec3; K],
+        mask: u32,
         index: usize,
         points: &PointSet,
         area: &AreaLight,
@@ -324,30 +331,58 @@ impl Tracer<'_, '_> {
         }
         let mat = self.world.material_of(at.object);
         let model = self.world.scene.settings.shading;
-        shares(&mut s.lanes, len, point_color, &s.filter, at.n, at.eye, mat, model);
         // Pass 4, in point order.
         let blocked_shading = self.world.skips.on(Skip::BlockedShading);
         if !R::RECORDS && grouped && self.world.skips.on(Skip::BackFacing) {
             // The same sums and counts as below, without the events (what `not_facing`
-            // counts, counted in bulk).
-            let [dr, dg, db] = &s.lanes.diffuse;
-            let [sr, sg, sb] = &s.lanes.specular;
-            let (mut away, mut black, mut blocked) = (0, 0, 0);
+            // counts, counted in bulk), lane by lane, over the points that add something
+            // (facing the surface, not blocked), packed in point order: the same terms
+            // summed in the same order.
+            let (mut away, mut black, mut blocked, mut lit) = (0, 0, 0, 0);
             for i in 0..len {
                 match s.facing[i] {
                     Facing::Towards if blocked_shading && s.filter[i] == DVec3::ZERO => blocked += 1,
-                    Facing::Towards => *color += DVec3::new(dr[i], dg[i], db[i]) + DVec3::new(sr[i], sg[i], sb[i]),
+                    Facing::Towards => lit += 1,
                     Facing::Away => away += 1,
                     Facing::Black => black += 1,
                     Facing::NoLight => {}
                 }
             }
+            let towards = lit + blocked;
+            if lit > 0 {
+                speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
+            }
             let saved = &mut self.counts.saved;
             saved.count(Skip::BlockedShading, blocked);
             saved.count(Skip::BackFacing, away * u64::from(shadows));
             saved.count(Skip::Unlit, black * u64::from(shadows));
+            // Lanes with the same count and the same sum so far end with the same sum.
+            let bits = |c: DVec3| c.to_array().map(f64::to_bits);
+            let mut done: [Option<(usize, [u64; 3], DVec3)>; K] = [None; K];
+            for j in lanes_of::<K>(mask) {
+                let (count, lane_color) = self.lane_points(j, index, area, len);
+                let before = color[j];
+                if let Some((_, _, after)) = done.iter().flatten().find(|d| (d.0, d.1) == (count, bits(before))) {
+                    color[j] = *after;
+                } else if lit > 0 {
+                    shares(&mut s.lanes, count, lane_color, &s.filter, mat, model);
+                    color[j] = lane_sum(before, &s.lanes, &s.facing[..count], &s.filter, blocked_shading);
+                }
+                done[j] = Some((count, bits(before), color[j]));
+                if K > 1 && count < len {
+                    if black > 0 {
+                        self.check_lane_facings(&s.lanes, &s.facing[..count], lane_color);
+                    }
+                    let own = s.facing[..count].iter().filter(|&&f| f == Facing::Towards).count() as u64;
+                    self.area_excess[j] += towards - own;
+                }
+            }
             return;
         }
+        debug_assert!(K == 1, "a family is traced without a recorder, with every skip on");
+        let color = &mut color[0];
+        speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
+        shares(&mut s.lanes, len, point_color, &s.filter, mat, model);
         for i in 0..len {
             let n_dot_l = s.lanes.n_dot_l[i];
             if s.facing[i] != Facing::Towards {
@@ -389,6 +424,32 @@ impl Tracer<'_, '_> {
                     diffuse,
                     specular,
                 });
+            }
+        }
+    }
+
+    /// How many of area light `index`'s `len` points lane `j` takes, and the colour `L / N`
+    /// each of them carries for it: all of them, unless the lane sets its own count.
+    fn lane_points(&self, j: usize, index: usize, area: &AreaLight, len: usize) -> (usize, DVec3) {
+        match self.lanes[j].area_count {
+            Some((light, count)) if light == index && (count as usize) < len => {
+                (count as usize, area.color / count as f64)
+            }
+            _ => (len, area.point_color()),
+        }
+    }
+
+    /// A lane with fewer points than the family's largest count sees each point brighter
+    /// (`L / N`); the shared facings were decided with the dimmest colour. They agree unless
+    /// a point's colour underflows to black for the dimmest and not for the lane's (only
+    /// possible where the dimmest has black points): then the family is marked
+    /// [`Tracer::diverged`] (and rendered image by image).
+    fn check_lane_facings(&mut self, lanes: &Lanes, facing: &[Facing], lane_color: DVec3) {
+        let unlit_skip = self.world.skips.on(Skip::Unlit);
+        for (i, &f) in facing.iter().enumerate() {
+            let black = unlit_skip && lane_color * (lanes.atten[i] * 1.0) == DVec3::ZERO;
+            if (f == Facing::Black) != (black && lanes.dist[i] != 0.0 && f != Facing::NoLight) {
+                self.diverged = true;
             }
         }
     }
@@ -510,6 +571,20 @@ impl Tracer<'_, '_> {
     }
 }
 
+/// `color` plus, in point order, the diffuse and specular shares of the points facing the
+/// surface and not blocked (a blocked point adds exactly 0, and with the blocked-shading
+/// skip nothing at all).
+fn lane_sum(mut color: DVec3, lanes: &Lanes, facing: &[Facing], filter: &[DVec3], blocked_shading: bool) -> DVec3 {
+    let [dr, dg, db] = &lanes.diffuse;
+    let [sr, sg, sb] = &lanes.specular;
+    for (i, &f) in facing.iter().enumerate() {
+        if f == Facing::Towards && !(blocked_shading && filter[i] == DVec3::ZERO) {
+            color += DVec3::new(dr[i], dg[i], db[i]) + DVec3::new(sr[i], sg[i], sb[i]);
+        }
+    }
+    color
+}
+
 /// What a candidate's cones say of one shadow ray.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Verdict {
@@ -600,7 +675,8 @@ mod tests {
             let mut lanes = Lanes::default();
             lanes.resize(points.len());
             incidences(&set, p, n, &att, &mut lanes);
-            shares(&mut lanes, points.len(), point_color, &filter, n, eye, &mat, model);
+            speculars(&mut lanes, points.len(), n, eye, &mat, model);
+            shares(&mut lanes, points.len(), point_color, &filter, &mat, model);
             for (i, &q) in points.iter().enumerate() {
                 let inc = point_incidence(q, point_color, &att, p, 1.0).unwrap();
                 assert_eq!(lanes.incidence(i, point_color), inc, "point {i}");

@@ -1,0 +1,144 @@
+//! One-pass families: images whose scenes differ only in their recursion depth, or only in
+//! the number `N` of points of one fixed area light (whose `N` points are the first `N` of
+//! one sequence), rendered together. Each ray of the deepest, largest image is traced once;
+//! each image (a lane of the tracer) keeps its own radiance, computed with exactly the
+//! operations a render of its scene alone performs, and its own ray counts, so its bytes
+//! and counts are those of that render (tests/family.rs). Depth 1 to 10 costs about what
+//! depth 10 alone costs; N = 1 ... 1000 shares the incidences and shadow rays of N = 1000,
+//! and each N adds only its own shading sum.
+
+use crate::area_light::PointMode;
+use crate::light::Light;
+use crate::render::{RenderStats, render_rows_lanes};
+use crate::scene::{Scene, World};
+use crate::trace::Lane;
+use glam::DVec3;
+use std::sync::atomic::AtomicBool;
+
+/// The most images traced together in one pass (longer families are rendered in passes of
+/// this many). A pass has 8 or 16 lanes, a short family's padded with copies of its last
+/// member (which cost nothing: a lane whose sum so far and count equal another's reuses it).
+pub const LANES: usize = 16;
+
+/// The scene with what may vary within a family (depth, every fixed area light's count)
+/// set to zero: scenes that can be traced together have equal keys.
+fn key(scene: &Scene) -> Scene {
+    let mut key = scene.clone();
+    key.settings.depth = 0;
+    for light in &mut key.lights {
+        if let Light::Area(a) = light
+            && a.mode == PointMode::Fixed
+        {
+            a.count = 0;
+        }
+    }
+    key
+}
+
+/// The count of fixed area light `index` in `scene`, if it is one.
+fn count_of(scene: &Scene, index: usize) -> Option<u32> {
+    match &scene.lights[index] {
+        Light::Area(a) if a.mode == PointMode::Fixed => Some(a.count),
+        _ => None,
+    }
+}
+
+/// Groups `scenes` (by index, each group ascending, groups in order of their first member)
+/// into families that one pass can render: equal but for depth and the count of at most one
+/// fixed area light, whose points for every member's count are a prefix of the largest
+/// count's. A scene that fits no family is a group of its own.
+pub fn group(scenes: &[&Scene]) -> Vec<Vec<usize>> {
+    let keys: Vec<Scene> = scenes.iter().map(|s| key(s)).collect();
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    'next: for i in 0..scenes.len() {
+        for g in &mut groups {
+            let mut members: Vec<&Scene> = g.iter().map(|&m| scenes[m]).collect();
+            members.push(scenes[i]);
+            if keys[g[0]] == keys[i] && varying_light(&members).is_ok() {
+                g.push(i);
+                continue 'next;
+            }
+        }
+        groups.push(vec![i]);
+    }
+    groups
+}
+
+/// The one area light whose count varies among `members` (`None` if none does), or `Err`
+/// when more than one does or a member's points are not a prefix of the largest set.
+fn varying_light(members: &[&Scene]) -> Result<Option<usize>, ()> {
+    let first = members[0];
+    let varying: Vec<usize> = (0..first.lights.len())
+        .filter(|&i| members.iter().any(|m| count_of(m, i) != count_of(first, i)))
+        .collect();
+    match varying[..] {
+        [] => Ok(None),
+        [index] => {
+            let largest = largest_scene(members, Some(index));
+            let Light::Area(big) = &largest.lights[index] else {
+                unreachable!("fixed area light")
+            };
+            let all = big.fixed_points(largest.settings.seed, index);
+            let prefixes = members.iter().all(|m| match &m.lights[index] {
+                Light::Area(a) => a.fixed_points(m.settings.seed, index)[..] == all[..a.count as usize],
+                _ => false,
+            });
+            if prefixes { Ok(Some(index)) } else { Err(()) }
+        }
+        _ => Err(()),
+    }
+}
+
+/// The scene of the family's world: the deepest depth and the largest count.
+fn largest_scene(members: &[&Scene], light: Option<usize>) -> Scene {
+    let mut scene = members[0].clone();
+    scene.settings.depth = members.iter().map(|m| m.settings.depth).max().unwrap_or(0);
+    if let Some(index) = light {
+        let most = members.iter().filter_map(|m| count_of(m, index)).max().unwrap_or(0);
+        if let Light::Area(a) = &mut scene.lights[index] {
+            a.count = most;
+        }
+    }
+    scene
+}
+
+/// Renders the members of one family (at most [`LANES`], as [`group`] formed them) in one
+/// pass: each member's 8-bit RGB pixels and stats, or `None` when cancelled or when the
+/// lanes diverged (then render them one by one).
+pub fn render(members: &[&Scene], cancel: &AtomicBool) -> Option<Vec<(Vec<u8>, RenderStats)>> {
+    assert!(!members.is_empty() && members.len() <= LANES, "1 to {LANES} members");
+    if members.len() <= 8 {
+        render_lanes::<8>(members, cancel)
+    } else {
+        render_lanes::<LANES>(members, cancel)
+    }
+}
+
+/// [`render`] with `K` lanes.
+fn render_lanes<const K: usize>(members: &[&Scene], cancel: &AtomicBool) -> Option<Vec<(Vec<u8>, RenderStats)>> {
+    let light = varying_light(members).expect("a family formed by `group`");
+    let largest = largest_scene(members, light);
+    let world = World::new(&largest);
+    let bounds: Vec<Vec<f64>> = members.iter().map(|m| World::remaining_bounds_of(m)).collect();
+    let lanes: [Lane; K] = std::array::from_fn(|j| {
+        let m = j.min(members.len() - 1);
+        Lane {
+            depth: members[m].settings.depth,
+            remaining_bound: &bounds[m],
+            area_count: light.and_then(|index| count_of(members[m], index).map(|n| (index, n))),
+        }
+    });
+    let h = largest.settings.height;
+    let quantise = |c: [DVec3; K]| c.map(|c| [c.x, c.y, c.z].map(crate::film::quantize));
+    let (pixels, stats) = render_rows_lanes(&world, lanes, 0..h, &|| {}, Some(cancel), quantise);
+    if cancel.load(std::sync::atomic::Ordering::Relaxed) || stats[0].diverged {
+        return None;
+    }
+    let images = (0..members.len())
+        .map(|j| {
+            let rgb = pixels.iter().flat_map(|p| p[j]).collect();
+            (rgb, stats[j].clone())
+        })
+        .collect();
+    Some(images)
+}

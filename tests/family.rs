@@ -1,0 +1,145 @@
+//! One-pass families (src/family.rs): images whose scenes differ only in depth or in one
+//! fixed area light's count, rendered together, give the bytes and ray counts of separate
+//! renders; and only such scenes are grouped.
+
+mod common;
+use common::*;
+use lumiere::area_light::PointMode;
+use lumiere::family;
+use lumiere::figures::{self, registry, scaled};
+use lumiere::light::Light;
+use lumiere::render::render;
+use lumiere::scene::{Scene, World};
+use lumiere::trace::RayCounts;
+use std::sync::atomic::AtomicBool;
+
+/// The scenes of the figures `stems` of set `set`, at `scale`.
+fn figure_scenes(set: &str, stems: &[&str], scale: f64) -> Vec<Scene> {
+    let set = registry().into_iter().find(|s| s.name == set).unwrap();
+    let figures = (set.figures)();
+    stems
+        .iter()
+        .map(|stem| {
+            let f = figures
+                .iter()
+                .find(|f| f.stem == *stem)
+                .unwrap_or_else(|| panic!("{stem}"));
+            scaled(f.scene.clone(), scale)
+        })
+        .collect()
+}
+
+/// The counts a figure's manifest records.
+fn recorded(c: &RayCounts) -> [u64; 7] {
+    [
+        c.camera,
+        c.shadow,
+        c.reflection,
+        c.refraction,
+        c.total_internal_reflections,
+        c.adaptive_cutoffs,
+        c.non_finite,
+    ]
+}
+
+/// Renders `scenes` as one family and each alone: same bytes, same counts, one group.
+fn family_equals_separate_renders(scenes: &[Scene]) {
+    let refs: Vec<&Scene> = scenes.iter().collect();
+    assert_eq!(family::group(&refs), vec![(0..scenes.len()).collect::<Vec<_>>()]);
+    let together = family::render(&refs, &AtomicBool::new(false)).expect("no divergence");
+    assert_eq!(together.len(), scenes.len());
+    for (i, (scene, (rgb, stats))) in scenes.iter().zip(&together).enumerate() {
+        let (film, alone) = render(&World::new(scene), &|| {});
+        assert!(rgb == &film.to_rgb8(), "image {i}: bytes differ");
+        assert_eq!(recorded(&stats.counts), recorded(&alone.counts), "image {i}: counts");
+        assert!(!stats.diverged);
+    }
+}
+
+#[test]
+fn area_light_counts_in_one_pass_are_separate_renders() {
+    // N = 1, 5, 25, 100 and 200 on the reference scene, with its transparent spheres
+    // (refracted rays shaded by every lane) and filtered soft shadows.
+    let stems = [
+        "03-points-1",
+        "04-points-5",
+        "05-points-25",
+        "06-points-100",
+        "02-soft-200",
+    ];
+    let scenes = figure_scenes("soft-shadows", &stems, 0.08);
+    family_equals_separate_renders(&scenes);
+    // The lanes differ: five distinct images.
+    let refs: Vec<&Scene> = scenes.iter().collect();
+    let images = family::render(&refs, &AtomicBool::new(false)).unwrap();
+    for i in 0..images.len() {
+        for j in 0..i {
+            assert_ne!(images[i].0, images[j].0, "images {i} and {j}");
+        }
+    }
+}
+
+#[test]
+fn depths_in_one_pass_are_separate_renders() {
+    // Mirrors at 60 degrees, depth 1 to 10 (adaptive cutoffs per lane), and the prism at
+    // depth 1 to 12 (16-lane pass: refraction and total internal reflection).
+    let stems: Vec<String> = (1..=10).map(|d| format!("{:02}-opening-60-depth-{d:02}", d)).collect();
+    let stems: Vec<&str> = stems.iter().map(String::as_str).collect();
+    family_equals_separate_renders(&figure_scenes("mirrors", &stems, 0.1));
+    let stems: Vec<String> = (1..=12).map(|d| format!("{:02}-depth-{d:02}", d + 1)).collect();
+    let stems: Vec<&str> = stems.iter().map(String::as_str).collect();
+    let prism = figure_scenes("prism", &stems, 0.1);
+    family_equals_separate_renders(&prism);
+}
+
+#[test]
+fn depth_and_count_together_are_separate_renders() {
+    let mut scenes = figure_scenes("soft-shadows", &["04-points-5", "05-points-25", "03-points-1"], 0.06);
+    scenes[0].settings.depth = 1;
+    scenes[1].settings.depth = 3;
+    scenes[2].settings.depth = 2;
+    family_equals_separate_renders(&scenes);
+}
+
+#[test]
+fn only_scenes_one_pass_can_render_are_grouped() {
+    let soft = figure_scenes(
+        "soft-shadows",
+        &["01-hard", "03-points-1", "08-points-1000", "04-points-5"],
+        0.1,
+    );
+    let refs: Vec<&Scene> = soft.iter().collect();
+    // The point light's scene is not an area light's.
+    assert_eq!(family::group(&refs), vec![vec![0], vec![1, 2, 3]]);
+    // Points drawn per sample are not one sequence's prefixes; a moved camera is another
+    // scene; so is another seed (other points, other jitter).
+    let mut per_sample = soft[3].clone();
+    if let Light::Area(a) = &mut per_sample.lights[1] {
+        a.mode = PointMode::PerSample;
+    }
+    let mut moved = soft[3].clone();
+    moved.camera.position.x += 0.5;
+    let mut reseeded = soft[3].clone();
+    reseeded.settings.seed += 1;
+    for other in [per_sample, moved, reseeded] {
+        assert_eq!(family::group(&[&soft[1], &other]), vec![vec![0], vec![1]]);
+    }
+    // Two lights whose counts both vary cannot share one pass.
+    let mut two = soft[1].clone();
+    two.lights.push(two.lights[1].clone());
+    let mut two_other = two.clone();
+    for (index, count) in [(1, 5), (2, 25)] {
+        if let Light::Area(a) = &mut two_other.lights[index] {
+            a.count = count;
+        }
+    }
+    assert_eq!(family::group(&[&two, &two_other]), vec![vec![0], vec![1]]);
+}
+
+#[test]
+fn committed_prism_set_is_reproduced_bit_for_bit_in_one_pass() {
+    // Full size, depth 1 to 20 in two passes (16 + 4 lanes) and the top view alone.
+    let set = registry().into_iter().find(|s| s.name == "prism").unwrap();
+    let mismatches = figures::check(&set, &repo("figures"), &mut figures::Reuse::default()).unwrap();
+    assert_eq!(mismatches, vec![]);
+}
