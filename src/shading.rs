@@ -24,13 +24,13 @@ pub fn spot_factor(o_dot_d: f64, cos_half: f64, c_min: f64, c_max: f64) -> f64 {
 
 /// Lambert's cosine (slides): `max(N.L, 0)`.
 pub fn lambert(n: DVec3, l: DVec3) -> f64 {
-    n.dot(l).max(0.0)
+    positive_part(n.dot(l))
 }
 
 /// Phong's specular term (slides): `max(R.E, 0)^n` with `R = 2 (N.L) N - L`.
 pub fn phong(n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
     let r = 2.0 * n.dot(l) * n - l;
-    pow(r.dot(e).max(0.0), exponent)
+    pow(positive_part(r.dot(e)), exponent)
 }
 
 /// Blinn's specular term (slides): `max(N.H, 0)^n` with `H = (L + E) / |L + E|`.
@@ -41,7 +41,17 @@ pub fn blinn(n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
     if len == 0.0 {
         return 0.0;
     }
-    pow(n.dot(sum / len).max(0.0), exponent)
+    pow(positive_part(n.dot(sum / len)), exponent)
+}
+
+/// `max(x, 0)`, the clamp of every cosine of the shading formulas, with a NaN taken as 0:
+/// written as a comparison and a select, which vectorizes where `f64::max` (with its NaN
+/// rule) does not. Same value as `x.max(0.0)` for every `x` except `-0.0`, which gives
+/// `+0.0` here; a zero's sign never reaches a pixel (it is multiplied, then added to a
+/// non-negative sum).
+#[inline(always)]
+pub fn positive_part(x: f64) -> f64 {
+    if x > 0.0 { x } else { 0.0 }
 }
 
 /// Specular colour factor of the slides' metal/plastic model: `m S + (1 - m)`.
@@ -60,7 +70,7 @@ pub fn ambient(la: DVec3, ka: f64, color: DVec3) -> DVec3 {
 /// the Phong or Blinn term (0 when N.L <= 0). Summed over lights, plus the ambient term
 /// once, this is `L = L_a k_a S + sum_i A_i L_i [...]`.
 pub fn direct(light: DVec3, kd: f64, color: DVec3, n_dot_l: f64, ks: f64, tint: DVec3, spec: f64) -> DVec3 {
-    light * (kd * color * n_dot_l.max(0.0) + ks * tint * spec)
+    light * (kd * color * positive_part(n_dot_l) + ks * tint * spec)
 }
 
 /// Shadow filter of chapter 7.4b: `L = L_lum prod_g S_g` over the transparent geometries

@@ -30,7 +30,7 @@ use crate::light::{Attenuation, Incidence};
 use crate::material::Material;
 use crate::math::{Ray, offset_origin};
 use crate::scene::{Candidate, ShadingModel, Specular};
-use crate::shading::{pow_each, specular_tint};
+use crate::shading::{positive_part, pow_each, specular_tint};
 use crate::shape::Shape;
 use crate::skips::Skip;
 use glam::DVec3;
@@ -48,6 +48,8 @@ pub(super) struct AreaScratch {
     blocked: Vec<bool>,
     /// The points whose shadow ray is still open (facing, not blocked yet).
     open: Vec<u32>,
+    /// Whether each point adds to the sum (facing, not blocked).
+    adds: Vec<bool>,
     /// The current candidate's verdict on each point's shadow ray.
     verdict: Vec<Verdict>,
     /// For a recorder only (else empty): the transparent objects each point's shadow ray
@@ -168,10 +170,10 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
             for i in 0..len {
                 let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
                 let h = (hx * hx + hy * hy + hz * hz).sqrt();
-                let n_dot_h = n.x * (hx / h) + n.y * (hy / h) + n.z * (hz / h);
-                // `max` first, then the zero-length case: `max` of a NaN is 0 anyway.
-                spec[i] = if h == 0.0 { 0.0 } else { n_dot_h.max(0.0) };
+                spec[i] = n.x * (hx / h) + n.y * (hy / h) + n.z * (hz / h);
             }
+            // `max(N.H, 0)`; a zero half vector's NaN or infinite N.H is set to 0 below.
+            spec.iter_mut().for_each(|s| *s = positive_part(*s));
             pow_each(spec, mat.shininess);
             // A zero half vector gives 0 (blinn returns before the power: 0^0 would be 1).
             for i in 0..len {
@@ -185,7 +187,7 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
             for i in 0..len {
                 let twice = 2.0 * n_dot_l[i];
                 let (rx, ry, rz) = (twice * n.x - lx[i], twice * n.y - ly[i], twice * n.z - lz[i]);
-                spec[i] = (rx * eye.x + ry * eye.y + rz * eye.z).max(0.0);
+                spec[i] = positive_part(rx * eye.x + ry * eye.y + rz * eye.z);
             }
             pow_each(spec, mat.shininess);
         }
@@ -220,7 +222,7 @@ fn shares(lanes: &mut Lanes, len: usize, point_color: DVec3, filter: &[DVec3], m
     for (c, filter_c) in filters.into_iter().enumerate() {
         let (dc, sc) = (&mut diffuse[c][..len], &mut specular[c][..len]);
         for (i, f) in filter_c.enumerate() {
-            let cos = n_dot_l[i].max(0.0);
+            let cos = positive_part(n_dot_l[i]);
             // `inc.color * filter`, with `inc.color = L / N * (A * 1)`.
             let arriving = pc[c] * (atten[i] * 1.0) * f;
             // `direct(arriving, kd, S, N.L, 0, tint, 0)`, `direct(arriving, 0, S, N.L, ks, tint, spec)`.
@@ -299,9 +301,15 @@ impl<const K: usize> Tracer<'_, '_, K> {
         s.facing.clear();
         s.facing.resize(len, Facing::NoLight);
         facings(&s.lanes, point_color, self.world.skips.on(Skip::Unlit), &mut s.facing);
-        s.open.clear();
-        s.open
-            .extend((0..len as u32).filter(|&i| s.facing[i as usize] == Facing::Towards));
+        // The facing points, compacted without a branch per point (their pattern is random).
+        s.open.resize(len + 1, 0);
+        let mut open = 0;
+        for (i, &f) in s.facing.iter().enumerate() {
+            // `open <= i < len + 1`: in bounds.
+            s.open[open] = i as u32;
+            open += usize::from(f == Facing::Towards);
+        }
+        s.open.truncate(open);
         let shadows = self.world.scene.settings.shadows;
         s.filter.clear();
         s.filter.resize(len, DVec3::ONE);
@@ -338,17 +346,23 @@ impl<const K: usize> Tracer<'_, '_, K> {
             // counts, counted in bulk), lane by lane, over the points that add something
             // (facing the surface, not blocked), packed in point order: the same terms
             // summed in the same order.
-            let (mut away, mut black, mut blocked, mut lit) = (0, 0, 0, 0);
-            for i in 0..len {
-                match s.facing[i] {
-                    Facing::Towards if blocked_shading && s.filter[i] == DVec3::ZERO => blocked += 1,
-                    Facing::Towards => lit += 1,
-                    Facing::Away => away += 1,
-                    Facing::Black => black += 1,
-                    Facing::NoLight => {}
-                }
+            // Counted without a branch per point, and the points that add to the sum marked.
+            let mut by_facing = [0u64; 4];
+            let mut blocked = 0;
+            s.adds.resize(len, false);
+            for ((&f, filter), add) in s.facing.iter().zip(&s.filter).zip(&mut s.adds) {
+                by_facing[f as usize] += 1;
+                let towards = f == Facing::Towards;
+                let dark = blocked_shading & (filter.x == 0.0) & (filter.y == 0.0) & (filter.z == 0.0);
+                blocked += u64::from(towards & dark);
+                *add = towards & !dark;
             }
-            let towards = lit + blocked;
+            let towards = by_facing[Facing::Towards as usize];
+            let (away, black, lit) = (
+                by_facing[Facing::Away as usize],
+                by_facing[Facing::Black as usize],
+                towards - blocked,
+            );
             if lit > 0 {
                 speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
             }
@@ -366,7 +380,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                     color[j] = *after;
                 } else if lit > 0 {
                     shares(&mut s.lanes, count, lane_color, &s.filter, mat, model);
-                    color[j] = lane_sum(before, &s.lanes, &s.facing[..count], &s.filter, blocked_shading);
+                    color[j] = lane_sum(before, &s.lanes, &s.adds[..count]);
                 }
                 done[j] = Some((count, bits(before), color[j]));
                 if K > 1 && count < len {
@@ -571,14 +585,15 @@ impl<const K: usize> Tracer<'_, '_, K> {
     }
 }
 
-/// `color` plus, in point order, the diffuse and specular shares of the points facing the
-/// surface and not blocked (a blocked point adds exactly 0, and with the blocked-shading
-/// skip nothing at all).
-fn lane_sum(mut color: DVec3, lanes: &Lanes, facing: &[Facing], filter: &[DVec3], blocked_shading: bool) -> DVec3 {
+/// `color` plus, in point order, the diffuse and specular shares of the points that add
+/// (`adds`: facing the surface and not blocked; a blocked point adds exactly 0, and with
+/// the blocked-shading skip nothing at all). The others are passed over by a select, not a
+/// branch: their pattern is random, and the sum is the same bits.
+fn lane_sum(mut color: DVec3, lanes: &Lanes, adds: &[bool]) -> DVec3 {
     let [dr, dg, db] = &lanes.diffuse;
     let [sr, sg, sb] = &lanes.specular;
-    for (i, &f) in facing.iter().enumerate() {
-        if f == Facing::Towards && !(blocked_shading && filter[i] == DVec3::ZERO) {
+    for (i, &add) in adds.iter().enumerate() {
+        if add {
             color += DVec3::new(dr[i], dg[i], db[i]) + DVec3::new(sr[i], sg[i], sb[i]);
         }
     }
