@@ -50,6 +50,9 @@ pub(super) struct AreaScratch {
     open: Vec<u32>,
     /// Whether each point adds to the sum (facing, not blocked).
     adds: Vec<bool>,
+    /// Whether some point's transparent colours multiplied to exactly 0 (so `blocked` does
+    /// not tell all the points whose filter is 0).
+    zero_product: bool,
     /// The current candidate's verdict on each point's shadow ray.
     verdict: Vec<Verdict>,
     /// For a recorder only (else empty): the transparent objects each point's shadow ray
@@ -315,6 +318,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         s.filter.resize(len, DVec3::ONE);
         s.blocked.clear();
         s.blocked.resize(len, false);
+        s.zero_product = false;
         s.crossed.truncate(if R::RECORDS { len } else { 0 });
         s.crossed.iter_mut().for_each(Vec::clear);
         if R::RECORDS {
@@ -346,23 +350,24 @@ impl<const K: usize> Tracer<'_, '_, K> {
             // counts, counted in bulk), lane by lane, over the points that add something
             // (facing the surface, not blocked), packed in point order: the same terms
             // summed in the same order.
-            // Counted without a branch per point, and the points that add to the sum marked.
-            let mut by_facing = [0u64; 4];
-            let mut blocked = 0;
+            // The points that add to the sum marked, and everything counted, in loops
+            // without a branch per point (their pattern is random) that vectorize. A facing
+            // point's filter is 0 where an opaque object blocks it, or (rarely: see
+            // `zero_product`) where its transparent colours multiply to 0.
             s.adds.resize(len, false);
-            for ((&f, filter), add) in s.facing.iter().zip(&s.filter).zip(&mut s.adds) {
-                by_facing[f as usize] += 1;
-                let towards = f == Facing::Towards;
-                let dark = blocked_shading & (filter.x == 0.0) & (filter.y == 0.0) & (filter.z == 0.0);
-                blocked += u64::from(towards & dark);
-                *add = towards & !dark;
+            if s.zero_product {
+                for ((&f, filter), add) in s.facing.iter().zip(&s.filter).zip(&mut s.adds) {
+                    *add = f == Facing::Towards && !(blocked_shading && *filter == DVec3::ZERO);
+                }
+            } else {
+                for ((&f, &blocked), add) in s.facing.iter().zip(&s.blocked).zip(&mut s.adds) {
+                    *add = (f == Facing::Towards) & !(blocked_shading & blocked);
+                }
             }
-            let towards = by_facing[Facing::Towards as usize];
-            let (away, black, lit) = (
-                by_facing[Facing::Away as usize],
-                by_facing[Facing::Black as usize],
-                towards - blocked,
-            );
+            let count = |facing: Facing| s.facing.iter().filter(|&&f| f == facing).count() as u64;
+            let (towards, away, black) = (count(Facing::Towards), count(Facing::Away), count(Facing::Black));
+            let lit = s.adds.iter().filter(|&&a| a).count() as u64;
+            let blocked = towards - lit;
             if lit > 0 {
                 speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
             }
@@ -571,6 +576,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                     let i = i as usize;
                     if meets(i) {
                         s.filter[i] *= color;
+                        s.zero_product |= s.filter[i] == DVec3::ZERO;
                         if let Some(list) = s.crossed.get_mut(i) {
                             list.push(c.object);
                         }
