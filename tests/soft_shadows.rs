@@ -354,6 +354,51 @@ fn fixed_points_are_n_point_lights_for_every_pixel() {
     }
 }
 
+#[test]
+fn fixed_points_are_point_lights_where_filters_multiply_to_zero() {
+    // The two transparent spheres made complementary, red (1, 0, 0) and cyan (0, 1, 1): a
+    // shadow ray crossing both is filtered to exactly 0, the area light's rare case
+    // (`zero_product`), and the radiance is still its N point lights' to the bit.
+    let complementary = |mut s: Scene| {
+        for (name, color) in [("yellow", DVec3::X), ("mauve", DVec3::new(0.0, 1.0, 1.0))] {
+            let m = s.material_names.iter().position(|n| n == name).unwrap();
+            s.materials[m].color = color;
+        }
+        s
+    };
+    let light = sphere_light(25, Placement::Chapter, PointMode::Fixed, RADIUS);
+    let area = complementary(soft_scene_with(vec![Light::Area(light.clone())]));
+    let explicit = complementary(soft_scene_with(
+        light
+            .fixed_points(area.settings.seed, 1)
+            .into_iter()
+            .map(|position| {
+                Light::Point(PointLight {
+                    position,
+                    color: light.point_color(),
+                    attenuation: ATTENUATION,
+                })
+            })
+            .collect(),
+    ));
+    let (a, e) = (render_small(&area, 80, 60, 4, 2), render_small(&explicit, 80, 60, 4, 2));
+    assert!(a.pixels == e.pixels, "radiance differs from the point lights'");
+    // And the points whose filter is 0 are the ones left out of the sum, as a point light
+    // blocked that way is (counted by the blocked-shading shortcut).
+    let blocked = |s: &Scene| {
+        let mut s = s.clone();
+        (s.settings.width, s.settings.height) = (80, 60);
+        let (_, stats) = lumiere::render::render(&World::new(&s), &|| {});
+        stats.counts.saved.0[lumiere::skips::Skip::BlockedShading as usize]
+    };
+    assert_eq!(blocked(&area), blocked(&explicit));
+    // Some shadow ray does cross both spheres: a pixel darker than with the spheres apart.
+    let mut apart = area.clone();
+    let yellow = apart.material_names.iter().position(|n| n == "yellow").unwrap();
+    apart.materials[yellow].color = DVec3::ONE;
+    assert!(a.pixels != render_small(&apart, 80, 60, 4, 2).pixels);
+}
+
 // ---------------------------------------------------------------------------------------
 // 4. per_sample points.
 // ---------------------------------------------------------------------------------------
