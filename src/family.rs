@@ -10,7 +10,7 @@
 use crate::area_light::PointMode;
 use crate::light::Light;
 use crate::render::{RenderStats, render_rows_lanes};
-use crate::scene::{Scene, World};
+use crate::scene::{Scene, ShadingModel, Specular, World};
 use crate::trace::Lane;
 use glam::DVec3;
 use std::sync::atomic::AtomicBool;
@@ -20,11 +20,20 @@ use std::sync::atomic::AtomicBool;
 /// member (which cost nothing: a lane whose sum so far and count equal another's reuses it).
 pub const LANES: usize = 16;
 
-/// The scene with what may vary within a family (depth, every fixed area light's count)
-/// set to zero: scenes that can be traced together have equal keys.
+/// The scene with what may vary within a family set to zero: the depth, every fixed area
+/// light's count, and the shading (model; each material's `k_a`, `k_d`, `k_s`, exponent and
+/// metal factor, which shape no ray). Scenes that can be traced together have equal keys.
 fn key(scene: &Scene) -> Scene {
     let mut key = scene.clone();
     key.settings.depth = 0;
+    key.settings.shading = ShadingModel {
+        ambient: false,
+        diffuse: false,
+        specular: Specular::None,
+    };
+    for m in &mut key.materials {
+        (m.ka, m.kd, m.ks, m.shininess, m.metal) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    }
     for light in &mut key.lights {
         if let Light::Area(a) = light
             && a.mode == PointMode::Fixed
@@ -126,6 +135,8 @@ fn render_lanes<const K: usize>(members: &[&Scene], cancel: &AtomicBool) -> Opti
             depth: members[m].settings.depth,
             remaining_bound: &bounds[m],
             area_count: light.and_then(|index| count_of(members[m], index).map(|n| (index, n))),
+            shading: members[m].settings.shading,
+            materials: &members[m].materials,
         }
     });
     let h = largest.settings.height;

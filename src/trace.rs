@@ -6,8 +6,9 @@
 //! passes a recorder that keeps the whole ray tree, so both see the same numbers.
 
 use crate::light::{Incidence, Light};
+use crate::material::Material;
 use crate::math::{Ray, hit_point_error, offset_origin, reflect, refract};
-use crate::scene::{Candidate, Specular, World};
+use crate::scene::{Candidate, ShadingModel, Specular, World};
 use crate::shading::{ambient, blinn, direct, phong, specular_tint};
 use crate::skips::{Saved, Skip};
 use glam::DVec3;
@@ -156,8 +157,9 @@ impl Facing {
 }
 
 /// What sets one image of a one-pass family apart (see [`crate::family`]): its recursion
-/// depth, its adaptive-depth bounds, and the number of points it takes of the family's area
-/// light. A plain render has one lane, the world's own.
+/// depth, its adaptive-depth bounds, the number of points it takes of the family's area
+/// light, and its shading (model, and materials whose colours, `k_r`, `k_t` and `n` are the
+/// world's). A plain render has one lane, the world's own.
 #[derive(Clone, Copy, Debug)]
 pub struct Lane<'w> {
     pub depth: u32,
@@ -165,6 +167,9 @@ pub struct Lane<'w> {
     pub remaining_bound: &'w [f64],
     /// The family's area light (index) and this lane's count `N`: its first `N` points.
     pub area_count: Option<(usize, u32)>,
+    pub shading: ShadingModel,
+    /// The lane's materials, indexed as the world's.
+    pub materials: &'w [Material],
 }
 
 impl<'w> Lane<'w> {
@@ -174,7 +179,14 @@ impl<'w> Lane<'w> {
             depth: world.scene.settings.depth,
             remaining_bound: &world.remaining_bound,
             area_count: None,
+            shading: world.scene.settings.shading,
+            materials: &world.scene.materials,
         }
+    }
+
+    /// Whether this lane shades every surface as `other` does.
+    fn shades_as(&self, other: &Lane) -> bool {
+        self.shading == other.shading && self.materials == other.materials
     }
 }
 
@@ -197,6 +209,8 @@ pub struct Tracer<'w, 's, const K: usize = 1> {
     /// Per lane, the shadow rays counted in `counts` that the lane's own area light count
     /// does not cast (rays towards its points beyond `N`), for the current hit.
     area_excess: [u64; K],
+    /// For each lane, the first lane that shades as it does (its shares are copied).
+    shading_twin: [usize; K],
     /// Set when a lane could not be traced exactly with the others (a light point black for
     /// one lane's `L / N` and not another's): the family must be rendered image by image.
     pub diverged: bool,
@@ -228,6 +242,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             world,
             counts: RayCounts::default(),
             lane_counts: [RayCounts::default(); K],
+            shading_twin: std::array::from_fn(|j| (0..=j).find(|&i| lanes[i].shades_as(&lanes[j])).unwrap_or(j)),
             lanes,
             area_excess: [0; K],
             diverged: false,
@@ -235,6 +250,12 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             crossed: Vec::new(),
             area: area::AreaScratch::default(),
         }
+    }
+
+    /// Lane `j`'s shading model and its material of `object`.
+    fn lane_shading(&self, j: usize, object: usize) -> (ShadingModel, &'w Material) {
+        let lane = &self.lanes[j];
+        (lane.shading, &lane.materials[self.world.scene.objects[object].material])
     }
 
     /// Every lane.
@@ -451,12 +472,14 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         rec: &mut R,
     ) -> [DVec3; K] {
         let scene = self.world.scene;
-        let mat = self.world.material_of(object);
         let mut color = [DVec3::ZERO; K];
-        if scene.settings.shading.ambient {
-            let a = ambient(self.world.ambient, mat.ka, mat.color);
-            rec.ambient(a);
-            lanes_of::<K>(mask).for_each(|j| color[j] += a);
+        for j in lanes_of::<K>(mask) {
+            let (model, mat) = self.lane_shading(j, object);
+            if model.ambient {
+                let a = ambient(self.world.ambient, mat.ka, mat.color);
+                rec.ambient(a);
+                color[j] += a;
+            }
         }
         let surface = Surface {
             point,
@@ -471,8 +494,8 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                 Light::Ambient { .. } => {}
                 Light::Area(area) => self.add_area_light(&mut color, mask, index, area, &surface, rec),
                 _ => {
-                    let share = self.light_share(index, light.incidence(point), &surface, None, rec);
-                    lanes_of::<K>(mask).for_each(|j| color[j] += share);
+                    let share = self.light_share(index, light.incidence(point), &surface, None, mask, rec);
+                    lanes_of::<K>(mask).for_each(|j| color[j] += share[j]);
                 }
             }
         }
@@ -482,16 +505,19 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     /// One point light's share at a surface point: `A L [k_d S max(N.L, 0) + k_s tint spec]`
     /// times the shadow filter. Nothing (and no shadow ray) when no light arrives or when
     /// N.L <= 0, where neither the diffuse nor (slides) the specular term counts.
-    /// `candidates`, when given, are the only objects that can block the shadow ray.
+    /// `candidates`, when given, are the only objects that can block the shadow ray. For
+    /// every lane of `mask`: one shadow ray, each lane's shading.
     fn light_share<R: Recorder>(
         &mut self,
         index: usize,
         inc: Option<Incidence>,
         at: &Surface,
         candidates: Option<&[Candidate]>,
+        mask: u32,
         rec: &mut R,
-    ) -> DVec3 {
+    ) -> [DVec3; K] {
         let n_dot_l = inc.map_or(0.0, |inc| at.n.dot(inc.to_light));
+        let mut shares = [DVec3::ZERO; K];
         match (inc, self.facing(inc.as_ref(), n_dot_l)) {
             (Some(inc), Facing::Towards) => {
                 let filter = if self.world.scene.settings.shadows {
@@ -499,13 +525,18 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                 } else {
                     DVec3::ONE
                 };
-                self.shade(index, &inc, n_dot_l, filter, at, rec)
+                for j in lanes_of::<K>(mask) {
+                    let twin = self.shading_twin[j];
+                    shares[j] = if twin < j && mask >> twin & 1 == 1 {
+                        shares[twin]
+                    } else {
+                        self.shade(j, index, &inc, n_dot_l, filter, at, rec)
+                    };
+                }
             }
-            (_, facing) => {
-                self.not_facing(index, facing, inc.as_ref(), n_dot_l, at, candidates, rec);
-                DVec3::ZERO
-            }
+            (_, facing) => self.not_facing(index, facing, inc.as_ref(), n_dot_l, at, candidates, rec),
         }
+        shares
     }
 
     /// How a light with incidence `inc` (`None`: no light) and `N.L = n_dot_l` stands
@@ -548,9 +579,12 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     }
 
     /// The share of a light that reaches a surface point facing it (`N.L > 0`), through the
-    /// shadow filter `filter`: `A L filter [k_d S N.L + k_s [m S + (1 - m)] spec]`.
+    /// shadow filter `filter`: `A L filter [k_d S N.L + k_s [m S + (1 - m)] spec]`, with lane
+    /// `lane`'s shading.
+    #[allow(clippy::too_many_arguments)]
     fn shade<R: Recorder>(
         &mut self,
+        lane: usize,
         index: usize,
         inc: &Incidence,
         n_dot_l: f64,
@@ -573,14 +607,14 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             });
             return DVec3::ZERO;
         }
-        let mat = self.world.material_of(at.object);
+        let (model, mat) = self.lane_shading(lane, at.object);
         let arriving = inc.color * filter;
-        let spec = match settings.shading.specular {
+        let spec = match model.specular {
             Specular::None => 0.0,
             Specular::Phong => phong(at.n, inc.to_light, at.eye, mat.shininess),
             Specular::Blinn => blinn(at.n, inc.to_light, at.eye, mat.shininess),
         };
-        let kd = if settings.shading.diffuse { mat.kd } else { 0.0 };
+        let kd = if model.diffuse { mat.kd } else { 0.0 };
         let tint = specular_tint(mat.metal, mat.color);
         let diffuse = direct(arriving, kd, mat.color, n_dot_l, 0.0, tint, 0.0);
         let specular = direct(arriving, 0.0, mat.color, n_dot_l, mat.ks, tint, spec);

@@ -1,6 +1,6 @@
-//! One-pass families (src/family.rs): images whose scenes differ only in depth or in one
-//! fixed area light's count, rendered together, give the bytes and ray counts of separate
-//! renders; and only such scenes are grouped.
+//! One-pass families (src/family.rs): images whose scenes differ only in depth, in one
+//! fixed area light's count or in shading, rendered together, give the bytes and ray counts
+//! of separate renders; and only such scenes are grouped.
 
 mod common;
 use common::*;
@@ -102,6 +102,44 @@ fn depth_and_count_together_are_separate_renders() {
 }
 
 #[test]
+fn shading_models_in_one_pass_are_separate_renders() {
+    // The slides' sweeps: terms on and off, Phong and Blinn exponents 2 ... 512, metal
+    // factors: one shadow ray per light for all, each lane its own shading.
+    let set = registry().into_iter().find(|s| s.name == "shading").unwrap();
+    let scenes: Vec<Scene> = (set.figures)()
+        .into_iter()
+        .filter(|f| f.stem != "23-metal-0") // the combined figure's scene again
+        .map(|f| scaled(f.scene, 0.1))
+        .collect();
+    assert_eq!(scenes.len(), 24);
+    family_equals_separate_renders(&scenes[..16]);
+    family_equals_separate_renders(&scenes[16..]);
+}
+
+#[test]
+fn shading_and_area_counts_together_are_separate_renders() {
+    // Area-light lanes with other exponents, another model and another metal factor: the
+    // specular terms are computed again per exponent, the sums kept apart per shading.
+    let mut scenes = figure_scenes(
+        "soft-shadows",
+        &["04-points-5", "05-points-25", "05-points-25", "04-points-5"],
+        0.06,
+    );
+    let torus = |s: &mut Scene| {
+        let m = s.material_names.iter().position(|n| n == "green").unwrap();
+        s.materials[m].shininess = 7.0;
+        s.materials[m].metal = 0.5;
+    };
+    torus(&mut scenes[1]);
+    scenes[2].settings.shading.specular = lumiere::scene::Specular::Phong;
+    scenes[3].settings.shading.diffuse = false;
+    family_equals_separate_renders(&scenes[..3]);
+    let refs: Vec<&Scene> = scenes.iter().collect();
+    assert_eq!(family::group(&refs), vec![vec![0, 1, 2, 3]]);
+    family_equals_separate_renders(&[scenes[3].clone(), scenes[0].clone(), scenes[1].clone()]);
+}
+
+#[test]
 fn only_scenes_one_pass_can_render_are_grouped() {
     let soft = figure_scenes(
         "soft-shadows",
@@ -122,6 +160,14 @@ fn only_scenes_one_pass_can_render_are_grouped() {
     let mut reseeded = soft[3].clone();
     reseeded.settings.seed += 1;
     for other in [per_sample, moved, reseeded] {
+        assert_eq!(family::group(&[&soft[1], &other]), vec![vec![0], vec![1]]);
+    }
+    // Another colour (shadow filters) or another k_t (the ray tree) is another scene.
+    let mut recoloured = soft[3].clone();
+    recoloured.materials[1].color.x *= 0.5;
+    let mut clearer = soft[3].clone();
+    clearer.materials[1].kt = 0.3;
+    for other in [recoloured, clearer] {
         assert_eq!(family::group(&[&soft[1], &other]), vec![vec![0], vec![1]]);
     }
     // Two lights whose counts both vary cannot share one pass.

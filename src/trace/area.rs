@@ -341,16 +341,12 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 }
             }
         }
-        let mat = self.world.material_of(at.object);
-        let model = self.world.scene.settings.shading;
         // Pass 4, in point order.
         let blocked_shading = self.world.skips.on(Skip::BlockedShading);
         if !R::RECORDS && grouped && self.world.skips.on(Skip::BackFacing) {
             // The same sums and counts as below, without the events (what `not_facing`
-            // counts, counted in bulk), lane by lane, over the points that add something
-            // (facing the surface, not blocked), packed in point order: the same terms
-            // summed in the same order.
-            // The points that add to the sum marked, and everything counted, in loops
+            // counts, counted in bulk), lane by lane: the same terms summed in the same
+            // order. The points that add to the sum marked, and everything counted, in loops
             // without a branch per point (their pattern is random) that vectorize. A facing
             // point's filter is 0 where an opaque object blocks it, or (rarely: see
             // `zero_product`) where its transparent colours multiply to 0.
@@ -368,26 +364,32 @@ impl<const K: usize> Tracer<'_, '_, K> {
             let (towards, away, black) = (count(Facing::Towards), count(Facing::Away), count(Facing::Black));
             let lit = s.adds.iter().filter(|&&a| a).count() as u64;
             let blocked = towards - lit;
-            if lit > 0 {
-                speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
-            }
             let saved = &mut self.counts.saved;
             saved.count(Skip::BlockedShading, blocked);
             saved.count(Skip::BackFacing, away * u64::from(shadows));
             saved.count(Skip::Unlit, black * u64::from(shadows));
-            // Lanes with the same count and the same sum so far end with the same sum.
+            // Lanes with the same count, the same shading and the same sum so far end with
+            // the same sum; the specular terms are computed again only for another exponent.
             let bits = |c: DVec3| c.to_array().map(f64::to_bits);
-            let mut done: [Option<(usize, [u64; 3], DVec3)>; K] = [None; K];
+            // (count, shading twin, sum before as bits) and the sum after, per lane done.
+            let mut done: [Option<(LaneKey, DVec3)>; K] = [None; K];
+            let mut speculars_for = None;
             for j in lanes_of::<K>(mask) {
                 let (count, lane_color) = self.lane_points(j, index, area, len);
-                let before = color[j];
-                if let Some((_, _, after)) = done.iter().flatten().find(|d| (d.0, d.1) == (count, bits(before))) {
-                    color[j] = *after;
+                let (model, mat) = self.lane_shading(j, at.object);
+                let key = (count, self.shading_twin[j], bits(color[j]));
+                if let Some(d) = done.iter().flatten().find(|d| d.0 == key) {
+                    color[j] = d.1;
                 } else if lit > 0 {
+                    let exponent = (model.specular, mat.shininess.to_bits());
+                    if speculars_for != Some(exponent) {
+                        speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
+                        speculars_for = Some(exponent);
+                    }
                     shares(&mut s.lanes, count, lane_color, &s.filter, mat, model);
-                    color[j] = lane_sum(before, &s.lanes, &s.adds[..count]);
+                    color[j] = lane_sum(color[j], &s.lanes, &s.adds[..count]);
                 }
-                done[j] = Some((count, bits(before), color[j]));
+                done[j] = Some((key, color[j]));
                 if K > 1 && count < len {
                     if black > 0 {
                         self.check_lane_facings(&s.lanes, &s.facing[..count], lane_color);
@@ -400,6 +402,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         }
         debug_assert!(K == 1, "a family is traced without a recorder, with every skip on");
         let color = &mut color[0];
+        let (model, mat) = self.lane_shading(0, at.object);
         speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
         shares(&mut s.lanes, len, point_color, &s.filter, mat, model);
         for i in 0..len {
@@ -418,7 +421,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
             } else if shadows && R::RECORDS {
                 // Traced only now, for the events' order; pass 3 had no filter for it.
                 let filter = self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, None, rec);
-                *color += self.shade(index, &inc, n_dot_l, filter, at, rec);
+                *color += self.shade(0, index, &inc, n_dot_l, filter, at, rec);
                 continue;
             }
             let filter = s.filter[i];
@@ -605,6 +608,10 @@ fn lane_sum(mut color: DVec3, lanes: &Lanes, adds: &[bool]) -> DVec3 {
     }
     color
 }
+
+/// What makes two lanes' sums of one area light equal: their point count, their shading
+/// (its first lane) and the bits of their sums before it.
+type LaneKey = (usize, usize, [u64; 3]);
 
 /// What a candidate's cones say of one shadow ray.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
