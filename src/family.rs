@@ -1,11 +1,17 @@
-//! One-pass families: images whose scenes differ only in their recursion depth, or only in
-//! the number `N` of points of one fixed area light (whose `N` points are the first `N` of
-//! one sequence), rendered together. Each ray of the deepest, largest image is traced once;
-//! each image (a lane of the tracer) keeps its own radiance, computed with exactly the
-//! operations a render of its scene alone performs, and its own ray counts, so its bytes
-//! and counts are those of that render (tests/family.rs). Depth 1 to 10 costs about what
-//! depth 10 alone costs; N = 1 ... 1000 shares the incidences and shadow rays of N = 1000,
-//! and each N adds only its own shading sum.
+//! One-pass families: images whose scenes differ only in their recursion depth, in the
+//! number `N` of points of one fixed area light (whose `N` points are the first `N` of one
+//! sequence), or in their shading (the model, and each material's `k_a`, `k_d`, `k_s`,
+//! exponent and metal factor), rendered together. Each ray of the deepest, largest image is
+//! traced once, and each shadow ray; each image (a lane of the tracer) keeps its own
+//! radiance, computed with exactly the operations a render of its scene alone performs, and
+//! its own ray counts, so its bytes and counts are those of that render (tests/family.rs).
+//! Depth 1 to 10 costs about what depth 10 alone costs; N = 1 ... 1000 shares the
+//! incidences and shadow rays of N = 1000, and each N adds only its own shading sum; the
+//! slides' 25 shading figures share their rays and shadow rays.
+//!
+//! Lanes are what differs; everything that shapes a ray (geometry, camera, image, seed,
+//! colours, `k_r`, `k_t`, `n`, the lights but for that one count) must be equal, or the
+//! scenes are not grouped ([`group`]).
 
 use crate::area_light::PointMode;
 use crate::light::Light;

@@ -17,6 +17,8 @@
 //! - [`render`], [`film`], [`output`]: parallel deterministic rendering, quantisation,
 //!   atomic PNG / PFM / EXR output.
 //! - [`compare`]: image differences (max, RMS, PSNR, heat-map) for `lumiere compare`.
+//! - [`family`]: images that differ only in depth, an area light's count or shading,
+//!   rendered in one pass (each image's bytes those of its own render).
 //! - [`figures`]: the course's figure sets, manifests, contact sheets and gallery.
 //! - [`shard`]: split renders (`--shard K/N`) and their bit-identical merge.
 //! - [`probe`]: `lumiere probe`, the recorded ray tree of one pixel.
