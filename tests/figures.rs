@@ -92,3 +92,54 @@ fn figures_command_rejects_bad_requests() {
     assert_eq!(o.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&o.stdout).contains("01-top-depth-01.png  Récursivité : 1 (vue de haut)"));
 }
+
+#[test]
+fn a_run_renders_a_scene_two_sets_share_once_and_families_in_one_pass() {
+    // Light-shapes' sphere is soft-shadows' N = 100: in a run over both it is copied, with
+    // the same bytes as when light-shapes is rendered alone.
+    let (both, alone) = (temp_dir("figures-both"), temp_dir("figures-alone"));
+    let scale = "0.05";
+    let run = |out: &std::path::Path, sets: &[&str]| {
+        let mut args = vec!["figures", "--scale", scale, "--out", out.to_str().unwrap(), "--quiet"];
+        args.extend_from_slice(sets);
+        let o = lumiere(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    run(&both, &["soft-shadows", "light-shapes"]);
+    run(&alone, &["light-shapes"]);
+    let sphere = |dir: &std::path::Path| std::fs::read(dir.join("light-shapes/01-sphere.png")).unwrap();
+    assert_eq!(sphere(&both), sphere(&alone));
+    let manifest = |dir: &std::path::Path, set: &str| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.join(set).join("manifest.json")).unwrap()).unwrap()
+    };
+    let shared = &manifest(&both, "light-shapes")["images"][0];
+    assert_eq!(shared["same_image_as"], "soft-shadows/06-points-100.png");
+    assert_eq!(shared["render_seconds"], 0.0);
+    assert!(
+        manifest(&alone, "light-shapes")["images"][0]
+            .get("same_image_as")
+            .is_none()
+    );
+    // The soft-shadows N = 1 ... 1000 figures were one pass: each lists the others.
+    let soft = manifest(&both, "soft-shadows");
+    let last = &soft["images"][7];
+    assert_eq!(last["file"], "08-points-1000.png");
+    let with: Vec<&str> = last["one_pass_with"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        with,
+        [
+            "02-soft-200.png",
+            "03-points-1.png",
+            "04-points-5.png",
+            "05-points-25.png",
+            "06-points-100.png"
+        ]
+    );
+    // The hard-shadow figure (a point light) is its own render.
+    assert!(soft["images"][0].get("one_pass_with").is_none());
+}
