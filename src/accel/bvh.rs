@@ -149,7 +149,9 @@ impl Bvh {
 
     /// Calls `hit(j)` for objects whose boxes the ray meets in `[t_min, t_max]`, until it
     /// returns true; returns whether it did.
-    fn visit(&self, ray: &Ray, t_min: f64, t_max: f64, hit: &mut dyn FnMut(usize) -> bool) -> bool {
+    /// Generic over `hit`, so each caller's test is inlined into the walk (no call through
+    /// a pointer per object).
+    fn visit(&self, ray: &Ray, t_min: f64, t_max: f64, mut hit: impl FnMut(usize) -> bool) -> bool {
         if self.unbounded.iter().any(|&j| hit(j as usize)) {
             return true;
         }
@@ -200,7 +202,7 @@ impl Bvh {
         t_max: f64,
         filter: &dyn Fn(usize) -> bool,
     ) -> bool {
-        self.visit(ray, t_min, t_max, &mut |j| {
+        self.visit(ray, t_min, t_max, |j| {
             filter(j) && objects[j].shape.occludes(ray, t_min, t_max)
         })
     }
@@ -216,7 +218,7 @@ impl Bvh {
         filter: &dyn Fn(usize) -> bool,
         visit: &mut dyn FnMut(usize),
     ) {
-        self.visit(ray, t_min, t_max, &mut |j| {
+        self.visit(ray, t_min, t_max, |j| {
             if filter(j) && objects[j].shape.occludes(ray, t_min, t_max) {
                 visit(j);
             }
