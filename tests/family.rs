@@ -189,3 +189,26 @@ fn committed_prism_set_is_reproduced_bit_for_bit_in_one_pass() {
     let mismatches = figures::check(&set, &repo("figures"), &mut figures::Reuse::default()).unwrap();
     assert_eq!(mismatches, vec![]);
 }
+
+#[test]
+fn lanes_that_cannot_share_light_points_are_refused() {
+    // A light of colour 1e-300 behind an attenuation of at most 6e-22 (C_quad 1e20, every
+    // surface 4 or more from the light points): each of the N = 1000
+    // points carries 1e-303 and arrives below 6e-325, which rounds to 0 (black: no shadow ray),
+    // while the lone point of N = 1 arrives as 1e-323 or more, not 0. The lanes would need
+    // different shadow rays, so the pass reports it and the images are rendered one by one.
+    let mut scenes = figure_scenes("soft-shadows", &["03-points-1", "08-points-1000"], 0.03);
+    for s in &mut scenes {
+        if let Light::Area(a) = &mut s.lights[1] {
+            a.color = glam::DVec3::splat(1e-300);
+            a.attenuation.quadratic = 1e20;
+        }
+    }
+    let refs: Vec<&Scene> = scenes.iter().collect();
+    assert_eq!(family::group(&refs), vec![vec![0, 1]]);
+    assert!(family::render(&refs, &AtomicBool::new(false)).is_none());
+    // Alone, N = 1000 casts no shadow ray at all and N = 1 casts some.
+    let shadow = |s: &Scene| render(&World::new(s), &|| {}).1.counts.shadow;
+    assert_eq!(shadow(&scenes[1]), 0);
+    assert!(shadow(&scenes[0]) > 0);
+}
