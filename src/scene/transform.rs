@@ -59,19 +59,12 @@ impl Similarity {
             ))),
             Shape::Disk(d) => Shape::Disk(Disk::new(self.point(d.center), d.normal, self.length(d.radius))),
             Shape::Sphere(s) => Shape::Sphere(Sphere::new(self.point(s.center), self.length(s.radius))),
-            Shape::Cuboid(b) => {
-                let mut b = b.clone();
-                b.center = self.point(b.center);
-                b.half_size *= self.scale;
-                Shape::Cuboid(b)
-            }
-            Shape::Cylinder(c) => {
-                let mut c = c.clone();
-                c.base = self.point(c.base);
-                c.height = self.length(c.height);
-                c.radius = self.length(c.radius);
-                Shape::Cylinder(c)
-            }
+            Shape::Cuboid(b) => Shape::Cuboid(Box::new(b.resized(self.point(b.center), b.half_size * self.scale))),
+            Shape::Cylinder(c) => Shape::Cylinder(Box::new(c.resized(
+                self.point(c.base),
+                self.length(c.height),
+                self.length(c.radius),
+            ))),
             Shape::Cone(c) => Shape::Cone(Box::new(c.resized(
                 self.point(c.base),
                 self.length(c.height),

@@ -15,6 +15,9 @@ pub struct Cuboid {
     /// World-space axes (columns), kept for the bounding box.
     #[serde(skip)]
     axes: DMat3,
+    /// The bounding ball ([`Cuboid::ball`]), tested before the slabs.
+    #[serde(skip)]
+    ball: (DVec3, f64),
 }
 
 impl Cuboid {
@@ -27,12 +30,24 @@ impl Cuboid {
             half_size: size * 0.5,
             frame: Frame::from_axes(axes.x_axis, axes.y_axis, axes.z_axis),
             axes,
+            ball: (center, (size * 0.5).length()),
+        }
+    }
+
+    /// The same box (axes and frame to the bit) with another centre and half size: what a
+    /// similarity transform makes of it.
+    pub fn resized(&self, center: DVec3, half_size: DVec3) -> Cuboid {
+        Cuboid {
+            center,
+            half_size,
+            ball: (center, half_size.length()),
+            ..self.clone()
         }
     }
 
     /// A ball around the whole box: its centre and half-diagonal.
     pub fn ball(&self) -> (DVec3, f64) {
-        (self.center, self.half_size.length())
+        self.ball
     }
 
     /// Slab test in the box's frame; the face normal is the axis whose slab was entered

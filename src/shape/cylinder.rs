@@ -14,6 +14,9 @@ pub struct Cylinder {
     pub radius: f64,
     #[serde(skip)]
     frame: Frame,
+    /// The bounding ball ([`Cylinder::ball`]), tested before the quadric.
+    #[serde(skip)]
+    ball: (DVec3, f64),
 }
 
 impl Cylinder {
@@ -25,15 +28,29 @@ impl Cylinder {
             height,
             radius,
             frame: Frame::from_z(axis),
+            ball: Self::ball_of(base, axis, height, radius),
+        }
+    }
+
+    /// The same cylinder (axis and frame to the bit) with another base, height and radius:
+    /// what a similarity transform makes of it.
+    pub fn resized(&self, base: DVec3, height: f64, radius: f64) -> Cylinder {
+        Cylinder {
+            base,
+            height,
+            radius,
+            ball: Self::ball_of(base, self.axis, height, radius),
+            ..self.clone()
         }
     }
 
     /// A ball around the whole cylinder: centred half-way up the axis, through the rims.
     pub fn ball(&self) -> (DVec3, f64) {
-        (
-            self.base + 0.5 * self.height * self.axis,
-            libm::hypot(self.radius, 0.5 * self.height),
-        )
+        self.ball
+    }
+
+    fn ball_of(base: DVec3, axis: DVec3, height: f64, radius: f64) -> (DVec3, f64) {
+        (base + 0.5 * height * axis, libm::hypot(radius, 0.5 * height))
     }
 
     /// In the local frame (axis = +z, base at the origin): side `x^2 + y^2 = r^2` for
