@@ -59,9 +59,9 @@ fn count_of(scene: &Scene, index: usize) -> Option<u32> {
 }
 
 /// Groups `scenes` (by index, each group ascending, groups in order of their first member)
-/// into families that one pass can render: equal but for depth and the count of at most one
-/// fixed area light, whose points for every member's count are a prefix of the largest
-/// count's. A scene that fits no family is a group of its own.
+/// into families that one pass can render: equal but for depth, shading, and the count of at
+/// most one fixed area light, whose points for every member's count are a prefix of the
+/// largest count's. A scene that fits no family is a group of its own.
 pub fn group(scenes: &[&Scene]) -> Vec<Vec<usize>> {
     let keys: Vec<Scene> = scenes.iter().map(|s| key(s)).collect();
     let mut groups: Vec<Vec<usize>> = Vec::new();
