@@ -324,7 +324,15 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         let n = if entering { hit.normal } else { -hit.normal };
         rec.hit(object, hit.t, point, hit.normal, entering);
 
-        let mut color = self.local_counted(point, n, hit.normal, err, -ray.dir, object, mask, rec);
+        let surface = Surface {
+            point,
+            n,
+            outward: hit.normal,
+            err,
+            eye: -ray.dir,
+            object,
+        };
+        let mut color = self.local_counted(&surface, mask, rec);
         rec.local(color[0]);
 
         // Without the zero-weight skip, rays of weight 0 are traced (and add 0).
@@ -430,23 +438,12 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
 
     /// [`Tracer::local`] for the lanes of `mask`, with what it counts added to each lane's
     /// counts (less the shadow rays beyond a lane's own area light count).
-    #[allow(clippy::too_many_arguments)]
-    fn local_counted<R: Recorder>(
-        &mut self,
-        point: DVec3,
-        n: DVec3,
-        outward: DVec3,
-        err: f64,
-        eye: DVec3,
-        object: usize,
-        mask: u32,
-        rec: &mut R,
-    ) -> [DVec3; K] {
+    fn local_counted<R: Recorder>(&mut self, at: &Surface, mask: u32, rec: &mut R) -> [DVec3; K] {
         if K == 1 {
-            return self.local(point, n, outward, err, eye, object, mask, rec);
+            return self.local(at, mask, rec);
         }
         let shadow_before = self.counts.shadow;
-        let color = self.local(point, n, outward, err, eye, object, mask, rec);
+        let color = self.local(at, mask, rec);
         let shadow = self.counts.shadow - shadow_before;
         for j in lanes_of::<K>(mask) {
             self.lane_counts[j].shadow += shadow - self.area_excess[j];
@@ -459,42 +456,23 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     /// `L = L_a k_a S + sum_i A_i L_i [k_d S max(N.L_i, 0) + k_s [m S + (1 - m)] spec_i]`,
     /// where an area light counts as its N points of colour `L / N`; for every lane of
     /// `mask`, each summing in the same order.
-    #[allow(clippy::too_many_arguments)]
-    fn local<R: Recorder>(
-        &mut self,
-        point: DVec3,
-        n: DVec3,
-        outward: DVec3,
-        err: f64,
-        eye: DVec3,
-        object: usize,
-        mask: u32,
-        rec: &mut R,
-    ) -> [DVec3; K] {
+    fn local<R: Recorder>(&mut self, at: &Surface, mask: u32, rec: &mut R) -> [DVec3; K] {
         let scene = self.world.scene;
         let mut color = [DVec3::ZERO; K];
         for j in lanes_of::<K>(mask) {
-            let (model, mat) = self.lane_shading(j, object);
+            let (model, mat) = self.lane_shading(j, at.object);
             if model.ambient {
                 let a = ambient(self.world.ambient, mat.ka, mat.color);
                 rec.ambient(a);
                 color[j] += a;
             }
         }
-        let surface = Surface {
-            point,
-            n,
-            outward,
-            err,
-            eye,
-            object,
-        };
         for (index, light) in scene.lights.iter().enumerate() {
             match light {
                 Light::Ambient { .. } => {}
-                Light::Area(area) => self.add_area_light(&mut color, mask, index, area, &surface, rec),
+                Light::Area(area) => self.add_area_light(&mut color, mask, index, area, at, rec),
                 _ => {
-                    let share = self.light_share(index, light.incidence(point), &surface, None, mask, rec);
+                    let share = self.light_share(index, light.incidence(at.point), at, None, mask, rec);
                     lanes_of::<K>(mask).for_each(|j| color[j] += share[j]);
                 }
             }

@@ -50,6 +50,8 @@ pub(super) struct AreaScratch {
     open: Vec<u32>,
     /// Whether each point adds to the sum (facing, not blocked).
     adds: Vec<bool>,
+    /// How each point would face the surface with a lane's own colour `L / N`.
+    lane_facing: Vec<Facing>,
     /// Whether some point's transparent colours multiplied to exactly 0 (so `blocked` does
     /// not tell all the points whose filter is 0).
     zero_product: bool,
@@ -349,11 +351,12 @@ impl<const K: usize> Tracer<'_, '_, K> {
             // order. The points that add to the sum marked, and everything counted, in loops
             // without a branch per point (their pattern is random) that vectorize. A facing
             // point's filter is 0 where an opaque object blocks it, or (rarely: see
-            // `zero_product`) where its transparent colours multiply to 0.
+            // `zero_product`) where its transparent colours multiply to 0; comparing every
+            // filter instead costs a fifth of an N = 1000 render.
             s.adds.resize(len, false);
             if s.zero_product {
                 for ((&f, filter), add) in s.facing.iter().zip(&s.filter).zip(&mut s.adds) {
-                    *add = f == Facing::Towards && !(blocked_shading && *filter == DVec3::ZERO);
+                    *add = (f == Facing::Towards) & !(blocked_shading & (*filter == DVec3::ZERO));
                 }
             } else {
                 for ((&f, &blocked), add) in s.facing.iter().zip(&s.blocked).zip(&mut s.adds) {
@@ -392,7 +395,13 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 done[j] = Some((key, color[j]));
                 if K > 1 && count < len {
                     if black > 0 {
-                        self.check_lane_facings(&s.lanes, &s.facing[..count], lane_color);
+                        // A lane with fewer points sees each brighter (`L / N`) than the
+                        // dimmest colour the shared facings used; they can differ only where
+                        // that made black points (so the unlit skip is on). If they do, the
+                        // family is rendered image by image.
+                        s.lane_facing.resize(count, Facing::NoLight);
+                        facings(&s.lanes, lane_color, true, &mut s.lane_facing[..count]);
+                        self.diverged |= s.lane_facing[..count] != s.facing[..count];
                     }
                     let own = s.facing[..count].iter().filter(|&&f| f == Facing::Towards).count() as u64;
                     self.area_excess[j] += towards - own;
@@ -458,21 +467,6 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 (count as usize, area.color / count as f64)
             }
             _ => (len, area.point_color()),
-        }
-    }
-
-    /// A lane with fewer points than the family's largest count sees each point brighter
-    /// (`L / N`); the shared facings were decided with the dimmest colour. They agree unless
-    /// a point's colour underflows to black for the dimmest and not for the lane's (only
-    /// possible where the dimmest has black points): then the family is marked
-    /// [`Tracer::diverged`] (and rendered image by image).
-    fn check_lane_facings(&mut self, lanes: &Lanes, facing: &[Facing], lane_color: DVec3) {
-        let unlit_skip = self.world.skips.on(Skip::Unlit);
-        for (i, &f) in facing.iter().enumerate() {
-            let black = unlit_skip && lane_color * (lanes.atten[i] * 1.0) == DVec3::ZERO;
-            if (f == Facing::Black) != (black && lanes.dist[i] != 0.0 && f != Facing::NoLight) {
-                self.diverged = true;
-            }
         }
     }
 
@@ -596,8 +590,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
 
 /// `color` plus, in point order, the diffuse and specular shares of the points that add
 /// (`adds`: facing the surface and not blocked; a blocked point adds exactly 0, and with
-/// the blocked-shading skip nothing at all). The others are passed over by a select, not a
-/// branch: their pattern is random, and the sum is the same bits.
+/// the blocked-shading skip nothing at all).
 fn lane_sum(mut color: DVec3, lanes: &Lanes, adds: &[bool]) -> DVec3 {
     let [dr, dg, db] = &lanes.diffuse;
     let [sr, sg, sb] = &lanes.specular;
