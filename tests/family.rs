@@ -6,7 +6,7 @@ mod common;
 use common::*;
 use lumiere::area_light::PointMode;
 use lumiere::family;
-use lumiere::figures::{self, registry, scaled};
+use lumiere::figures::{registry, scaled};
 use lumiere::light::Light;
 use lumiere::render::render;
 use lumiere::scene::{Scene, World};
@@ -185,9 +185,7 @@ fn only_scenes_one_pass_can_render_are_grouped() {
 #[test]
 fn committed_prism_set_is_reproduced_bit_for_bit_in_one_pass() {
     // Full size, depth 1 to 20 in two passes (16 + 4 lanes) and the top view alone.
-    let set = registry().into_iter().find(|s| s.name == "prism").unwrap();
-    let mismatches = figures::check(&set, &repo("figures"), &mut figures::Reuse::default()).unwrap();
-    assert_eq!(mismatches, vec![]);
+    assert_eq!(committed_set_mismatches("prism"), vec![]);
 }
 
 #[test]

@@ -31,9 +31,7 @@ fn every_figure_matches_its_snapshot() {
 fn committed_lighting_set_is_reproduced_bit_for_bit() {
     // Full size, 800 x 600 with 4 samples: the pixel hashes of figures/lighting/manifest.json.
     // `lumiere figures --check` does the same for every set.
-    let set = registry().into_iter().find(|s| s.name == "lighting").unwrap();
-    let mismatches = figures::check(&set, &repo("figures"), &mut figures::Reuse::default()).unwrap();
-    assert_eq!(mismatches, vec![]);
+    assert_eq!(committed_set_mismatches("lighting"), vec![]);
 }
 
 #[test]

@@ -51,3 +51,12 @@ pub fn snapshot_settings() -> insta::Settings {
     s.set_prepend_module_to_snapshot(false);
     s
 }
+
+/// Figure set `name` re-rendered at the scale of its committed manifest, and the images
+/// whose pixel hashes differ from `figures/<name>/manifest.json` (what `figures --check`
+/// does for one set).
+pub fn committed_set_mismatches(name: &str) -> Vec<lumiere::figures::Mismatch> {
+    use lumiere::figures;
+    let set = figures::registry().into_iter().find(|s| s.name == name).unwrap();
+    figures::check(&set, &repo("figures"), &mut figures::Reuse::default()).unwrap()
+}
