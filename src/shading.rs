@@ -94,8 +94,9 @@ pub fn pow(x: f64, y: f64) -> f64 {
 
 /// [`pow`] of every element of `xs` with the same exponent `y`, in place: the same
 /// operations on each element as [`pow`], arranged so that the integer case (one squaring
-/// chain shared by all elements) runs as vector instructions.
-#[inline]
+/// chain shared by all elements) runs as vector instructions. Always inlined, so that it
+/// takes the vector width of its caller's `multiversion` target.
+#[inline(always)]
 pub fn pow_each(xs: &mut [f64], y: f64) {
     if y >= 0.0 && y <= u32::MAX as f64 && y.fract() == 0.0 {
         for chunk in xs.chunks_mut(64) {

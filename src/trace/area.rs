@@ -48,6 +48,10 @@ pub(super) struct AreaScratch {
     blocked: Vec<bool>,
     /// The points whose shadow ray is still open (facing, not blocked yet).
     open: Vec<u32>,
+    /// The open points that meet the current candidate, and those its cones leave to the
+    /// exact test.
+    hits: Vec<u32>,
+    tests: Vec<u32>,
     /// Whether each point adds to the sum (facing, not blocked).
     adds: Vec<bool>,
     /// How each point would face the surface with a lane's own colour `L / N`.
@@ -175,16 +179,20 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
             for i in 0..len {
                 let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
                 let h = (hx * hx + hy * hy + hz * hz).sqrt();
-                spec[i] = n.x * (hx / h) + n.y * (hy / h) + n.z * (hz / h);
+                let n_dot_h = n.x * (hx / h) + n.y * (hy / h) + n.z * (hz / h);
+                // `max(N.H, 0)` ([`positive_part`]), and 0 for a zero half vector (blinn's
+                // early return), as one select: a store under a condition compiles to a
+                // masked store (slow on AMD cores), a select of a division to a branch.
+                spec[i] = if (h != 0.0) & (n_dot_h > 0.0) { n_dot_h } else { 0.0 };
             }
-            // `max(N.H, 0)`; a zero half vector's NaN or infinite N.H is set to 0 below.
-            spec.iter_mut().for_each(|s| *s = positive_part(*s));
             pow_each(spec, mat.shininess);
-            // A zero half vector gives 0 (blinn returns before the power: 0^0 would be 1).
-            for i in 0..len {
-                let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
-                if hx * hx + hy * hy + hz * hz == 0.0 {
-                    spec[i] = 0.0;
+            if !(mat.shininess > 0.0) {
+                // `0^0 = 1`, where blinn returns 0 before the power.
+                for i in 0..len {
+                    let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
+                    if (hx * hx + hy * hy + hz * hz).sqrt() == 0.0 {
+                        spec[i] = 0.0;
+                    }
                 }
             }
         }
@@ -536,47 +544,62 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 _ => s.verdict.fill(Verdict::Test),
             }
             let sphere = world.object_spheres[c.object].filter(|_| cones && c.cone.is_none() && world.costly[c.object]);
-            let lanes = &s.lanes;
-            let verdict = &s.verdict;
-            // Whether the shadow ray towards point `i` meets the candidate.
-            let mut meets = |i: usize| match verdict[i] {
-                Verdict::Miss | Verdict::Hit => {
+            // The open points the cones say meet the candidate, and those they leave
+            // undecided, listed without a branch per point (the pattern is random).
+            let open = s.open.len();
+            s.hits.resize(open + 1, 0);
+            s.tests.resize(open + 1, 0);
+            let (mut hits, mut tests) = (0, 0);
+            // Slices, not fields of `s`: the stores must not make each load of a vector's
+            // pointer suspect.
+            let (hit_list, test_list, verdict) = (&mut s.hits[..], &mut s.tests[..], &s.verdict[..]);
+            for &i in &s.open {
+                let v = verdict[i as usize];
+                // `hits, tests <= k < open + 1`: in bounds.
+                hit_list[hits] = i;
+                hits += usize::from(v == Verdict::Hit);
+                test_list[tests] = i;
+                tests += usize::from(v == Verdict::Test);
+            }
+            rejects += (open - tests) as u64;
+            for k in 0..tests {
+                let i = s.tests[k];
+                let ray = Ray::new(origin, s.lanes.to_light(i as usize));
+                let t_max = s.lanes.dist[i as usize];
+                if let Some((centre, radius)) = sphere
+                    && !segment_meets_sphere(&ray, t_max, centre, radius)
+                {
                     rejects += 1;
-                    verdict[i] == Verdict::Hit
+                } else if shape.occludes(&ray, 0.0, t_max) {
+                    s.hits[hits] = i;
+                    hits += 1;
                 }
-                Verdict::Test => {
-                    let ray = Ray::new(origin, lanes.to_light(i));
-                    let t_max = lanes.dist[i];
-                    if let Some((centre, radius)) = sphere
-                        && !segment_meets_sphere(&ray, t_max, centre, radius)
-                    {
-                        rejects += 1;
-                        return false;
-                    }
-                    shape.occludes(&ray, 0.0, t_max)
-                }
-            };
+            }
+            let met = &s.hits[..hits];
             if !world.material_of(c.object).is_transparent() {
-                let (filter, blocked) = (&mut s.filter, &mut s.blocked);
-                s.open.retain(|&i| {
-                    let i = i as usize;
-                    let hit = meets(i);
-                    if hit {
-                        filter[i] = DVec3::ZERO;
-                        blocked[i] = true;
+                for &i in met {
+                    s.filter[i as usize] = DVec3::ZERO;
+                    s.blocked[i as usize] = true;
+                }
+                if hits > 0 {
+                    let (list, blocked) = (&mut s.open[..], &s.blocked[..]);
+                    let mut kept = 0;
+                    for k in 0..open {
+                        let i = list[k];
+                        // `kept <= k`: in bounds.
+                        list[kept] = i;
+                        kept += usize::from(!blocked[i as usize]);
                     }
-                    !hit
-                });
+                    s.open.truncate(kept);
+                }
             } else {
                 let color = world.material_of(c.object).color;
-                for &i in &s.open {
+                for &i in met {
                     let i = i as usize;
-                    if meets(i) {
-                        s.filter[i] *= color;
-                        s.zero_product |= s.filter[i] == DVec3::ZERO;
-                        if let Some(list) = s.crossed.get_mut(i) {
-                            list.push(c.object);
-                        }
+                    s.filter[i] *= color;
+                    s.zero_product |= s.filter[i] == DVec3::ZERO;
+                    if let Some(list) = s.crossed.get_mut(i) {
+                        list.push(c.object);
                     }
                 }
             }
@@ -591,15 +614,19 @@ impl<const K: usize> Tracer<'_, '_, K> {
 /// `color` plus, in point order, the diffuse and specular shares of the points that add
 /// (`adds`: facing the surface and not blocked; a blocked point adds exactly 0, and with
 /// the blocked-shading skip nothing at all).
-fn lane_sum(mut color: DVec3, lanes: &Lanes, adds: &[bool]) -> DVec3 {
+fn lane_sum(color: DVec3, lanes: &Lanes, adds: &[bool]) -> DVec3 {
     let [dr, dg, db] = &lanes.diffuse;
     let [sr, sg, sb] = &lanes.specular;
+    let (mut r, mut g, mut b) = (color.x, color.y, color.z);
     for (i, &add) in adds.iter().enumerate() {
-        if add {
-            color += DVec3::new(dr[i], dg[i], db[i]) + DVec3::new(sr[i], sg[i], sb[i]);
-        }
+        // Adding `+0` leaves every sum but `-0` unchanged, and a sum of these non-negative
+        // terms is never `-0`: a select, not a branch on a random pattern.
+        let (tr, tg, tb) = (dr[i] + sr[i], dg[i] + sg[i], db[i] + sb[i]);
+        r += if add { tr } else { 0.0 };
+        g += if add { tg } else { 0.0 };
+        b += if add { tb } else { 0.0 };
     }
-    color
+    DVec3::new(r, g, b)
 }
 
 /// What makes two lanes' sums of one area light equal: their point count, their shading
