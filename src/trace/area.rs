@@ -186,7 +186,7 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
                 spec[i] = if (h != 0.0) & (n_dot_h > 0.0) { n_dot_h } else { 0.0 };
             }
             pow_each(spec, mat.shininess);
-            if !(mat.shininess > 0.0) {
+            if mat.shininess <= 0.0 || mat.shininess.is_nan() {
                 // `0^0 = 1`, where blinn returns 0 before the power.
                 for i in 0..len {
                     let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
