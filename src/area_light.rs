@@ -118,7 +118,11 @@ impl AreaLight {
         match &self.shape {
             AreaShape::Sphere { center, radius } => (*center, *radius),
             AreaShape::Tube { start, end } => (0.5 * (*start + *end), 0.5 * (*end - *start).length()),
-            AreaShape::Window { center, edge1, edge2 } => (*center, 0.5 * (edge1.length() + edge2.length())),
+            // The farthest corner: `|(+-edge1 +- edge2) / 2|`.
+            AreaShape::Window { center, edge1, edge2 } => (
+                *center,
+                0.5 * (*edge1 + *edge2).length().max((*edge1 - *edge2).length()),
+            ),
         }
     }
 
@@ -172,6 +176,43 @@ mod tests {
         for p in window.fixed_points(42, 1) {
             assert!(p.x.abs() <= 2.0 && p.y.abs() <= 1.5 && p.z == 10.0);
         }
+    }
+
+    #[test]
+    fn bounding_spheres_reach_the_farthest_point() {
+        // FIGURES.md's window: edges (4, 0, 0) and (0, 3, 0), corners 2.5 from the centre.
+        let window = AreaLight {
+            shape: AreaShape::Window {
+                center: DVec3::new(0.0, 0.0, 10.0),
+                edge1: DVec3::new(4.0, 0.0, 0.0),
+                edge2: DVec3::new(0.0, 3.0, 0.0),
+            },
+            ..sphere(400, Placement::Stratified)
+        };
+        assert_eq!(window.bounding_sphere(), (DVec3::new(0.0, 0.0, 10.0), 2.5));
+        // A sheared window: its long diagonal, |(4, 0, 0) + (2, 3, 0)| / 2.
+        let sheared = AreaLight {
+            shape: AreaShape::Window {
+                center: DVec3::ZERO,
+                edge1: DVec3::new(4.0, 0.0, 0.0),
+                edge2: DVec3::new(2.0, 3.0, 0.0),
+            },
+            ..window.clone()
+        };
+        let (_, r) = sheared.bounding_sphere();
+        assert_eq!(r, 0.5 * 45f64.sqrt());
+        for light in [&window, &sheared] {
+            let (c, r) = light.bounding_sphere();
+            assert!(light.fixed_points(42, 1).iter().all(|p| (*p - c).length() <= r));
+        }
+        let tube = AreaLight {
+            shape: AreaShape::Tube {
+                start: DVec3::new(-2.0, 0.0, 10.0),
+                end: DVec3::new(2.0, 0.0, 10.0),
+            },
+            ..window
+        };
+        assert_eq!(tube.bounding_sphere(), (DVec3::new(0.0, 0.0, 10.0), 2.0));
     }
 
     #[test]
