@@ -283,6 +283,33 @@ fn hand_checked_hits() {
     assert!(!bvh.any_hit(&objects, &up, 0.0, 9.0, &|j| j != 2));
 }
 
+/// A tree deeper than the short traversal stack (spheres of radius `0.1 x` at `x = 3^k`:
+/// the splits peel them off a few at a time) is traversed with the full one, and agrees
+/// with the linear scan.
+#[test]
+fn deep_trees_agree_with_the_linear_scan() {
+    let objects: Vec<Object> = (0..60)
+        .map(|i| object(Shape::Sphere(Sphere::new(DVec3::X * 3f64.powi(i), 0.1 * 3f64.powi(i)))))
+        .collect();
+    let tree = Bvh::new(&objects);
+    tree.check(&objects).unwrap();
+    assert!(tree.depth() >= 24, "depth {}", tree.depth());
+    let (linear, bvh) = (
+        Accel::build_with(&objects, AccelChoice::Linear),
+        Accel::build_with(&objects, AccelChoice::Bvh),
+    );
+    let mut hits = 0;
+    for i in 0..60 {
+        // Along the line from beyond its far end, and across it at each sphere.
+        let x = 3f64.powi(i);
+        let along = Ray::new(DVec3::new(-1.0, 0.05, 0.0), DVec3::X);
+        let across = Ray::new(DVec3::new(x, -(0.2 * x + 1.0), 0.0), DVec3::Y);
+        hits += assert_agree(&objects, &linear, &bvh, &along, "along") as usize;
+        hits += assert_agree(&objects, &linear, &bvh, &across, "across") as usize;
+    }
+    assert_eq!(hits, 120);
+}
+
 #[test]
 fn bvh_invariants_on_degenerate_inputs() {
     let same = |n: usize| -> Vec<Object> {

@@ -23,6 +23,9 @@ use rayon::prelude::*;
 
 /// Deepest possible tree: SAH splits up to `MAX_SAH_DEPTH`, then halving (`2^23 > MAX_OBJECTS`).
 const STACK: usize = MAX_SAH_DEPTH + 24;
+/// A traversal stack for trees at most this deep (most of them): a smaller array to
+/// initialise on every ray (the full one is 1.4 KB for a closest hit).
+const SHALLOW: usize = 24;
 
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Bvh {
@@ -32,6 +35,8 @@ pub struct Bvh {
     prims: Vec<u32>,
     /// Objects without bounds (planes), tested before the tree.
     unbounded: Vec<u32>,
+    /// Depth of the deepest node (the root at 0).
+    depth: usize,
 }
 
 impl Bvh {
@@ -53,6 +58,7 @@ impl Bvh {
         }
         let nodes = build(&mut refs);
         Bvh {
+            depth: depth_of(&nodes),
             nodes,
             prims: refs.iter().map(|r| r.index).collect(),
             unbounded,
@@ -64,6 +70,11 @@ impl Bvh {
         self.nodes.len()
     }
 
+    /// Depth of the deepest node (the root at 0): which traversal stack a ray gets.
+    pub fn depth(&self) -> usize {
+        self.depth
+    }
+
     /// Memory held by the structure: nodes, leaf order, unbounded list.
     pub fn bytes(&self) -> usize {
         self.nodes.len() * size_of::<Node>() + (self.prims.len() + self.unbounded.len()) * size_of::<u32>()
@@ -71,6 +82,21 @@ impl Bvh {
 
     /// Closest hit: see the module doc for why it equals the linear scan's.
     pub fn closest(&self, objects: &[Object], ray: &Ray, t_min: f64, t_max: f64) -> Option<(usize, SurfaceHit)> {
+        if self.depth < SHALLOW {
+            self.closest_with::<SHALLOW>(objects, ray, t_min, t_max)
+        } else {
+            self.closest_with::<STACK>(objects, ray, t_min, t_max)
+        }
+    }
+
+    /// [`Bvh::closest`] with a stack of `S` entries (more than the tree's depth).
+    fn closest_with<const S: usize>(
+        &self,
+        objects: &[Object],
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+    ) -> Option<(usize, SurfaceHit)> {
         let mut best: Option<(usize, SurfaceHit)> = None;
         let consider = |j: usize, best: &mut Option<(usize, SurfaceHit)>| {
             let limit = match *best {
@@ -96,7 +122,7 @@ impl Bvh {
         if slabs.enter(root, t_min, bound(&best)).is_none() {
             return best;
         }
-        let mut stack = [(0u32, 0.0f64); STACK];
+        let mut stack = [(0u32, 0.0f64); S];
         let mut depth = 0;
         let mut at = 0usize;
         loop {
@@ -135,10 +161,7 @@ impl Bvh {
     #[inline(always)]
     fn children(&self, slabs: &RaySlabs, n: &Node, t_min: f64, t_max: f64) -> (Option<usize>, Option<(usize, f64)>) {
         let (a, b) = (n.first as usize, n.first as usize + 1);
-        match (
-            slabs.enter(&self.nodes[a], t_min, t_max),
-            slabs.enter(&self.nodes[b], t_min, t_max),
-        ) {
+        match slabs.enter_pair([&self.nodes[a], &self.nodes[b]], t_min, t_max).into() {
             (Some(ta), Some(tb)) if tb < ta => (Some(b), Some((a, ta))),
             (Some(_), Some(tb)) => (Some(a), Some((b, tb))),
             (Some(_), None) => (Some(a), None),
@@ -151,7 +174,23 @@ impl Bvh {
     /// returns true; returns whether it did.
     /// Generic over `hit`, so each caller's test is inlined into the walk (no call through
     /// a pointer per object).
-    fn visit(&self, ray: &Ray, t_min: f64, t_max: f64, mut hit: impl FnMut(usize) -> bool) -> bool {
+    fn visit(&self, ray: &Ray, t_min: f64, t_max: f64, hit: impl FnMut(usize) -> bool) -> bool {
+        if self.depth < SHALLOW {
+            self.visit_with::<SHALLOW>(ray, t_min, t_max, hit)
+        } else {
+            self.visit_with::<STACK>(ray, t_min, t_max, hit)
+        }
+    }
+
+    /// [`Bvh::visit`] with a stack of `S` entries (more than the tree's depth).
+    #[inline(always)]
+    fn visit_with<const S: usize>(
+        &self,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        mut hit: impl FnMut(usize) -> bool,
+    ) -> bool {
         if self.unbounded.iter().any(|&j| hit(j as usize)) {
             return true;
         }
@@ -162,7 +201,7 @@ impl Bvh {
         if slabs.enter(root, t_min, t_max).is_none() {
             return false;
         }
-        let mut stack = [0u32; STACK];
+        let mut stack = [0u32; S];
         let mut depth = 0;
         let mut at = 0usize;
         loop {
@@ -229,7 +268,7 @@ impl Bvh {
     /// Checks the structure against `objects`: every bounded object in exactly one leaf and
     /// every unbounded one in the separate list, each node's box containing its children's
     /// (and a leaf's the stored boxes of its objects), sibling pairs on even indices, and
-    /// depth within the traversal stack. For tests.
+    /// depth within the traversal stack and as recorded. For tests.
     pub fn check(&self, objects: &[Object]) -> Result<(), String> {
         let mut seen = vec![0u32; objects.len()];
         for &j in &self.unbounded {
@@ -239,10 +278,12 @@ impl Bvh {
             seen[j as usize] += 1;
         }
         let mut stack = vec![(0usize, 0usize)];
+        let mut deepest = 0;
         while let Some((at, depth)) = stack.pop() {
             if self.nodes.is_empty() {
                 break;
             }
+            deepest = deepest.max(depth);
             if depth >= STACK {
                 return Err(format!("node {at} at depth {depth} is beyond the stack"));
             }
@@ -269,9 +310,26 @@ impl Bvh {
                 }
             }
         }
+        if deepest != self.depth {
+            return Err(format!("deepest node at {deepest}, recorded {}", self.depth));
+        }
         match seen.iter().position(|&s| s != 1) {
             Some(j) => Err(format!("object {j} is in {} leaves", seen[j])),
             None => Ok(()),
         }
     }
+}
+
+/// Depth of the deepest node of a flattened tree (0 for a lone root or an empty tree).
+fn depth_of(nodes: &[Node]) -> usize {
+    let mut deepest = 0;
+    let mut stack = vec![(0usize, 0usize)];
+    while let Some((at, depth)) = stack.pop() {
+        let Some(n) = nodes.get(at) else { break };
+        deepest = deepest.max(depth);
+        if !n.is_leaf() {
+            stack.extend([(n.first as usize, depth + 1), (n.first as usize + 1, depth + 1)]);
+        }
+    }
+    deepest
 }
