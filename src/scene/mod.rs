@@ -262,7 +262,9 @@ impl<'s> World<'s> {
             } else {
                 0.0
             };
-            let reach = radius + r + slack;
+            // Padded by a relative 1e-9: a light point is rounded after it is placed, so
+            // it may lie a few ulps outside the light's ball.
+            let reach = (radius + r) * (1.0 + 1e-9) + slack;
             if (p + s * axis - centre).length_squared() <= reach * reach {
                 // Outside the bounding sphere, the point is outside the object.
                 let outside = (centre - p).length() > radius * (1.0 + 1e-9) + slack;

@@ -619,8 +619,9 @@ fn lane_sum(color: DVec3, lanes: &Lanes, adds: &[bool]) -> DVec3 {
     let [sr, sg, sb] = &lanes.specular;
     let (mut r, mut g, mut b) = (color.x, color.y, color.z);
     for (i, &add) in adds.iter().enumerate() {
-        // Adding `+0` leaves every sum but `-0` unchanged, and a sum of these non-negative
-        // terms is never `-0`: a select, not a branch on a random pattern.
+        // Adding `+0` leaves every sum but `-0` unchanged, and these sums start at `+0`
+        // (`DVec3::ZERO`), which in round-to-nearest no addition turns into `-0`: a select,
+        // not a branch on a random pattern.
         let (tr, tg, tb) = (dr[i] + sr[i], dg[i] + sg[i], db[i] + sb[i]);
         r += if add { tr } else { 0.0 };
         g += if add { tg } else { 0.0 };
