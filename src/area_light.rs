@@ -150,45 +150,46 @@ mod tests {
         }
     }
 
-    #[test]
-    fn points_lie_on_their_shapes() {
-        for p in sphere(64, Placement::Uniform).fixed_points(42, 1) {
-            assert!(((p - DVec3::new(0.0, 0.0, 10.0)).length() - 2.0).abs() < 1e-12);
-        }
-        let tube = AreaLight {
+    /// FIGURES.md's tube: from (-2, 0, 10) to (2, 0, 10).
+    fn figure_tube(n: u32, placement: Placement) -> AreaLight {
+        AreaLight {
             shape: AreaShape::Tube {
                 start: DVec3::new(-2.0, 0.0, 10.0),
                 end: DVec3::new(2.0, 0.0, 10.0),
             },
-            ..sphere(32, Placement::Stratified)
-        };
-        for p in tube.fixed_points(42, 1) {
-            assert!(p.x.abs() <= 2.0 && p.y == 0.0 && p.z == 10.0);
+            ..sphere(n, placement)
         }
-        let window = AreaLight {
+    }
+
+    /// FIGURES.md's window: centre (0, 0, 10), edges (4, 0, 0) and (0, 3, 0).
+    fn figure_window(n: u32, placement: Placement) -> AreaLight {
+        AreaLight {
             shape: AreaShape::Window {
                 center: DVec3::new(0.0, 0.0, 10.0),
                 edge1: DVec3::new(4.0, 0.0, 0.0),
                 edge2: DVec3::new(0.0, 3.0, 0.0),
             },
-            ..sphere(32, Placement::Fibonacci)
-        };
-        for p in window.fixed_points(42, 1) {
+            ..sphere(n, placement)
+        }
+    }
+
+    #[test]
+    fn points_lie_on_their_shapes() {
+        for p in sphere(64, Placement::Uniform).fixed_points(42, 1) {
+            assert!(((p - DVec3::new(0.0, 0.0, 10.0)).length() - 2.0).abs() < 1e-12);
+        }
+        for p in figure_tube(32, Placement::Stratified).fixed_points(42, 1) {
+            assert!(p.x.abs() <= 2.0 && p.y == 0.0 && p.z == 10.0);
+        }
+        for p in figure_window(32, Placement::Fibonacci).fixed_points(42, 1) {
             assert!(p.x.abs() <= 2.0 && p.y.abs() <= 1.5 && p.z == 10.0);
         }
     }
 
     #[test]
     fn bounding_spheres_reach_the_farthest_point() {
-        // FIGURES.md's window: edges (4, 0, 0) and (0, 3, 0), corners 2.5 from the centre.
-        let window = AreaLight {
-            shape: AreaShape::Window {
-                center: DVec3::new(0.0, 0.0, 10.0),
-                edge1: DVec3::new(4.0, 0.0, 0.0),
-                edge2: DVec3::new(0.0, 3.0, 0.0),
-            },
-            ..sphere(400, Placement::Stratified)
-        };
+        // FIGURES.md's window: corners 2.5 from the centre.
+        let window = figure_window(400, Placement::Stratified);
         assert_eq!(window.bounding_sphere(), (DVec3::new(0.0, 0.0, 10.0), 2.5));
         // A sheared window: its long diagonal, |(4, 0, 0) + (2, 3, 0)| / 2.
         let sheared = AreaLight {
@@ -205,13 +206,7 @@ mod tests {
             let (c, r) = light.bounding_sphere();
             assert!(light.fixed_points(42, 1).iter().all(|p| (*p - c).length() <= r));
         }
-        let tube = AreaLight {
-            shape: AreaShape::Tube {
-                start: DVec3::new(-2.0, 0.0, 10.0),
-                end: DVec3::new(2.0, 0.0, 10.0),
-            },
-            ..window
-        };
+        let tube = figure_tube(400, Placement::Stratified);
         assert_eq!(tube.bounding_sphere(), (DVec3::new(0.0, 0.0, 10.0), 2.0));
     }
 

@@ -153,6 +153,12 @@ fn bin_count(n: usize) -> usize {
     (n / 2).clamp(4, BINS)
 }
 
+/// The axis along which the centroids spread most (the first on ties).
+fn widest_axis(centroids: &Bounds) -> usize {
+    let extent = (centroids.max - centroids.min).to_array();
+    (1..3).fold(0, |a, b| if extent[b] > extent[a] { b } else { a })
+}
+
 /// Maps a (doubled) centroid to its bin along one axis: the one where the centroids spread
 /// most in large trees (binning one axis instead of three saves a fifth of the build and
 /// loses little), each in turn in small ones, whose build takes microseconds anyway.
@@ -165,11 +171,9 @@ struct Binner {
 }
 
 impl Binner {
-    /// `None` when every centroid is the same point.
+    /// Along the widest axis; `None` when every centroid is the same point.
     fn new(centroids: &Bounds, used: usize) -> Option<Self> {
-        let extent = (centroids.max - centroids.min).to_array();
-        let axis = (1..3).fold(0, |a, b| if extent[b] > extent[a] { b } else { a });
-        Self::on_axis(centroids, used, axis)
+        Self::on_axis(centroids, used, widest_axis(centroids))
     }
 
     /// Along `axis`; `None` when the centroids do not spread along it.
@@ -289,42 +293,38 @@ fn decide(
     if n == 1 {
         return Decision::Leaf;
     }
-    let split = if depth < MAX_SAH_DEPTH {
+    let split = if depth >= MAX_SAH_DEPTH {
+        None
+    } else if parallel {
         Binner::new(centroids, bin_count(n)).and_then(|binner| {
-            if parallel {
-                *scratch = refs
-                    .par_chunks(16 * 1024)
-                    .map(|c| {
-                        let mut bins = Bins::new(binner.used);
-                        binner.fill(c, &mut bins);
-                        bins
-                    })
-                    .reduce(|| Bins::new(binner.used), Bins::merge);
-            } else if all_axes {
-                // Each axis binned, the cheapest split of the three kept (the first axis
-                // on ties).
-                let mut best: Option<(Split, Binner)> = None;
-                for axis in 0..3 {
-                    let Some(on_axis) = Binner::on_axis(centroids, binner.used, axis) else {
-                        continue;
-                    };
-                    scratch.reset(on_axis.used);
-                    on_axis.fill(refs, scratch);
-                    if let Some(split) = best_split(scratch)
-                        && best.as_ref().is_none_or(|(b, _)| split.cost < b.cost)
-                    {
-                        best = Some((split, on_axis));
-                    }
-                }
-                return best;
-            } else {
-                scratch.reset(binner.used);
-                binner.fill(refs, scratch);
-            }
+            *scratch = refs
+                .par_chunks(16 * 1024)
+                .map(|c| {
+                    let mut bins = Bins::new(binner.used);
+                    binner.fill(c, &mut bins);
+                    bins
+                })
+                .reduce(|| Bins::new(binner.used), Bins::merge);
             best_split(scratch).map(|s| (s, binner))
         })
     } else {
-        None
+        // The cheapest split along the axes tried (the first axis on ties).
+        let widest = widest_axis(centroids);
+        let axes = if all_axes { 0..3 } else { widest..widest + 1 };
+        let mut best: Option<(Split, Binner)> = None;
+        for axis in axes {
+            let Some(binner) = Binner::on_axis(centroids, bin_count(n), axis) else {
+                continue;
+            };
+            scratch.reset(binner.used);
+            binner.fill(refs, scratch);
+            if let Some(split) = best_split(scratch)
+                && best.as_ref().is_none_or(|(b, _)| split.cost < b.cost)
+            {
+                best = Some((split, binner));
+            }
+        }
+        best
     };
     let leaf_cost = n as f32;
     match split {

@@ -190,7 +190,8 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
                 // `0^0 = 1`, where blinn returns 0 before the power.
                 for i in 0..len {
                     let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
-                    if (hx * hx + hy * hy + hz * hz).sqrt() == 0.0 {
+                    // `|L + E| = 0` exactly when its square is.
+                    if hx * hx + hy * hy + hz * hz == 0.0 {
                         spec[i] = 0.0;
                     }
                 }
