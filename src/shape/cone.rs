@@ -1,9 +1,9 @@
 //! A capped cone: base centre, unit axis towards the apex, height, base radius.
 
-use super::{Aabb, SurfaceHit, cylinder::disk_bounds, first_root_in, local_cap, nearer};
+use super::{Aabb, SurfaceHit, cap_root, cylinder::disk_bounds};
 use super::{gamma, l1};
 use crate::math::{Frame, Ray};
-use crate::solve::quadratic;
+use crate::solve::quadratic_parts;
 use glam::DVec3;
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -67,19 +67,47 @@ impl Cone {
         if super::misses_ball(ray, t_min, t_max, self.ball) {
             return None;
         }
-        let o = self.frame.to_local(ray.origin - self.base);
-        let d = self.frame.to_local(ray.dir);
-        // Far origins: solve from the point of the ray nearest the shape (see `recentre`).
-        let shift = super::recentre(o, d, DVec3::new(0.0, 0.0, 0.5 * self.height), self.height + self.radius);
+        let (o, d, shift) = self.local_ray(ray);
+        let (side, base) = self.local_roots(o, d, t_min - shift);
+        // The nearer root, the side's on a tie.
+        let t = if base < side { base } else { side };
         // Solved without `t_max`, which only filters the world-space `t`: the answer must
         // not depend on how far the caller looks (see `Shape::intersect`).
-        self.intersect_local(o + d * shift, d, t_min - shift, f64::INFINITY)
-            .map(|h| SurfaceHit { t: h.t + shift, ..h })
-            .filter(|h| h.t < t_max)
+        if !(t < f64::INFINITY && t + shift < t_max) {
+            return None;
+        }
+        let normal = if base < side {
+            -self.axis
+        } else {
+            let (h, k) = (self.height, self.radius / self.height);
+            let p = o + d * t;
+            let g = DVec3::new(p.x, p.y, k * k * (h - p.z));
+            // At the apex the gradient vanishes: use the axis.
+            let n = if g.length_squared() > 0.0 {
+                g.normalize()
+            } else {
+                DVec3::Z
+            };
+            self.frame.to_world(n)
+        };
+        Some(SurfaceHit { t: t + shift, normal })
     }
 
-    /// The intersection in the local frame, for the ray `o + t d`.
-    fn intersect_local(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+    /// The ray in the local frame, its origin moved by `shift` along it: far origins are
+    /// solved from the point of the ray nearest the shape (see `recentre`).
+    #[inline(always)]
+    fn local_ray(&self, ray: &Ray) -> (DVec3, DVec3, f64) {
+        let o = self.frame.to_local(ray.origin - self.base);
+        let d = self.frame.to_local(ray.dir);
+        let shift = super::recentre(o, d, DVec3::new(0.0, 0.0, 0.5 * self.height), self.height + self.radius);
+        (o + d * shift, d, shift)
+    }
+
+    /// The first root above `t_min` of the ray `o + t d` (local frame) on the side and on the
+    /// base, infinity where there is none, without a branch (see [`super::fan`]).
+    #[inline(always)]
+    fn local_roots(&self, o: DVec3, d: DVec3, t_min: f64) -> (f64, f64) {
+        const NONE: f64 = f64::INFINITY;
         let (h, k) = (self.height, self.radius / self.height);
         let k2 = k * k;
         let w = h - o.z;
@@ -88,31 +116,34 @@ impl Cone {
         let c = o.x * o.x + o.y * o.y - k2 * w * w;
         let on_side = |t: f64| {
             let z = o.z + t * d.z;
-            t > t_min && t < t_max && (0.0..=h).contains(&z)
+            (t > t_min) & (t < NONE) & (z >= 0.0) & (z <= h)
         };
-        let side = quadratic(a, b, c).and_then(|(t0, t1)| {
-            let t0 = if on_side(t0) { t0 } else { f64::INFINITY };
-            let t1 = if on_side(t1) { t1 } else { f64::INFINITY };
-            first_root_in((t0.min(t1), t0.max(t1)), t_min, t_max)
-        });
-        let side = side.map(|t| {
-            let p = o + d * t;
-            let g = DVec3::new(p.x, p.y, k2 * (h - p.z));
-            // At the apex the gradient vanishes: use the axis.
-            let n = if g.length_squared() > 0.0 {
-                g.normalize()
-            } else {
-                DVec3::Z
-            };
-            SurfaceHit {
-                t,
-                normal: self.frame.to_world(n),
-            }
-        });
+        let (t0, t1, real) = quadratic_parts(a, b, c);
+        let t0 = if on_side(t0) { t0 } else { NONE };
+        let t1 = if on_side(t1) { t1 } else { NONE };
+        // The first of them inside `(t_min, infinity)`.
+        let (first, second) = (t0.min(t1), t0.max(t1));
+        let later = if (second > t_min) & (second < NONE) {
+            second
+        } else {
+            NONE
+        };
+        let side = if (first > t_min) & (first < NONE) { first } else { later };
         let r2 = self.radius * self.radius;
-        let base = local_cap(o, d, 0.0, t_min, t_max, |x, y| x * x + y * y <= r2)
-            .map(|t| SurfaceHit { t, normal: -self.axis });
-        nearer(side, base)
+        let base = cap_root(o, d, 0.0, t_min, NONE, |x, y| x * x + y * y <= r2);
+        (if real { side } else { NONE }, base)
+    }
+
+    /// Whether the shadow ray from `origin` along `dir` meets the cone on `(0, reach)`:
+    /// `intersect(..).is_some()`, without a branch.
+    #[inline(always)]
+    fn shadow_hit(&self, origin: DVec3, dir: DVec3, reach: f64) -> bool {
+        let ray = Ray::new(origin, dir);
+        let missed = super::misses_ball(&ray, 0.0, reach, self.ball);
+        let (o, d, shift) = self.local_ray(&ray);
+        let (side, base) = self.local_roots(o, d, 0.0 - shift);
+        let t = if base < side { base } else { side };
+        !missed & (t < f64::INFINITY) & (t + shift < reach)
     }
 
     /// Bound on the distance from `p` to the cone: the smallest of the distance to the side,
@@ -128,6 +159,18 @@ impl Cone {
 
     pub fn bounds(&self) -> Option<Aabb> {
         disk_bounds(self.base, self.axis, self.radius).map(|b| b.include(self.base + self.axis * self.height))
+    }
+}
+
+impl super::fan::FanShape for Cone {
+    type Origin = DVec3;
+    fn fan_origin(&self, origin: DVec3) -> DVec3 {
+        origin
+    }
+    #[inline(always)]
+    fn verdict(&self, origin: DVec3, dir: DVec3, reach: f64) -> super::Verdict {
+        let hit = self.shadow_hit(origin, dir, reach);
+        super::Verdict::of(hit, !hit)
     }
 }
 

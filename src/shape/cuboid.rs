@@ -58,37 +58,11 @@ impl Cuboid {
         }
         let o = self.frame.to_local(ray.origin - self.center);
         let d = self.frame.to_local(ray.dir);
-        let (mut near, mut far) = (f64::NEG_INFINITY, f64::INFINITY);
-        let (mut near_axis, mut far_axis) = (0usize, 0usize);
-        for axis in 0..3 {
-            let (oi, di, hi) = (o[axis], d[axis], self.half_size[axis]);
-            if di == 0.0 {
-                if oi < -hi || oi > hi {
-                    return None;
-                }
-                continue;
-            }
-            let inv = 1.0 / di;
-            let (mut t0, mut t1) = ((-hi - oi) * inv, (hi - oi) * inv);
-            if t0 > t1 {
-                std::mem::swap(&mut t0, &mut t1);
-            }
-            if t0 > near {
-                near = t0;
-                near_axis = axis;
-            }
-            if t1 < far {
-                far = t1;
-                far_axis = axis;
-            }
-        }
-        if near > far {
-            return None;
-        }
-        let (t, axis) = if near > t_min && near < t_max {
-            (near, near_axis)
-        } else if far > t_min && far < t_max {
-            (far, far_axis)
+        let slabs = self.slabs(o, d);
+        let (t, axis) = if slabs.near_hit(t_min, t_max) {
+            (slabs.near, slabs.near_axis)
+        } else if slabs.far_hit(t_min, t_max) {
+            (slabs.far, slabs.far_axis)
         } else {
             return None;
         };
@@ -98,6 +72,48 @@ impl Cuboid {
             t,
             normal: self.frame.to_world(local_n),
         })
+    }
+
+    /// The slab test of the ray `o + t d` in the box's frame, without a branch (see
+    /// [`super::fan`]).
+    #[inline(always)]
+    fn slabs(&self, o: DVec3, d: DVec3) -> Slabs {
+        let (mut near, mut far) = (f64::NEG_INFINITY, f64::INFINITY);
+        let (mut near_axis, mut far_axis) = (0usize, 0usize);
+        let mut shut = false;
+        for axis in 0..3 {
+            let (oi, di, hi) = (o[axis], d[axis], self.half_size[axis]);
+            // Parallel to the slab: inside it everywhere or nowhere (the quotients below
+            // are then unused).
+            let parallel = di == 0.0;
+            shut |= parallel & ((oi < -hi) | (oi > hi));
+            let inv = 1.0 / di;
+            let (t0, t1) = ((-hi - oi) * inv, (hi - oi) * inv);
+            let (t0, t1) = if t0 > t1 { (t1, t0) } else { (t0, t1) };
+            let enters = !parallel & (t0 > near);
+            near = if enters { t0 } else { near };
+            near_axis = if enters { axis } else { near_axis };
+            let leaves = !parallel & (t1 < far);
+            far = if leaves { t1 } else { far };
+            far_axis = if leaves { axis } else { far_axis };
+        }
+        Slabs {
+            near,
+            far,
+            near_axis,
+            far_axis,
+            // Never NaN: each starts infinite and takes only quotients that compare.
+            open: !shut & (near <= far),
+        }
+    }
+
+    /// Whether the shadow ray from `o` (local frame) along the world direction `dir` meets
+    /// the box on `(0, reach)`: `intersect(..).is_some()`, without a branch.
+    #[inline(always)]
+    fn shadow_hit(&self, o: DVec3, origin: DVec3, dir: DVec3, reach: f64) -> bool {
+        let missed = super::misses_ball(&Ray::new(origin, dir), 0.0, reach, self.ball());
+        let slabs = self.slabs(o, self.frame.to_local(dir));
+        !missed & (slabs.near_hit(0.0, reach) | slabs.far_hit(0.0, reach))
     }
 
     /// Bound on the distance from `p` (a hit on a face) to the box: the distance to the
@@ -113,6 +129,43 @@ impl Cuboid {
         let abs = DMat3::from_cols(self.axes.x_axis.abs(), self.axes.y_axis.abs(), self.axes.z_axis.abs());
         let ext = abs * self.half_size;
         Some(Aabb::new(self.center - ext, self.center + ext))
+    }
+}
+
+/// Where a ray is inside a box's three slabs: from `near` (entering the slab of axis
+/// `near_axis`) to `far` (leaving that of `far_axis`), when `open`.
+struct Slabs {
+    near: f64,
+    far: f64,
+    near_axis: usize,
+    far_axis: usize,
+    open: bool,
+}
+
+impl Slabs {
+    /// Whether the ray enters the box inside `(t_min, t_max)`.
+    #[inline(always)]
+    fn near_hit(&self, t_min: f64, t_max: f64) -> bool {
+        self.open & (self.near > t_min) & (self.near < t_max)
+    }
+
+    /// Whether the ray leaves the box inside `(t_min, t_max)`.
+    #[inline(always)]
+    fn far_hit(&self, t_min: f64, t_max: f64) -> bool {
+        self.open & (self.far > t_min) & (self.far < t_max)
+    }
+}
+
+impl super::fan::FanShape for Cuboid {
+    /// The origin in the world, and in the box's frame.
+    type Origin = (DVec3, DVec3);
+    fn fan_origin(&self, origin: DVec3) -> (DVec3, DVec3) {
+        (origin, self.frame.to_local(origin - self.center))
+    }
+    #[inline(always)]
+    fn verdict(&self, (origin, o): (DVec3, DVec3), dir: DVec3, reach: f64) -> super::Verdict {
+        let hit = self.shadow_hit(o, origin, dir, reach);
+        super::Verdict::of(hit, !hit)
     }
 }
 

@@ -8,6 +8,7 @@ mod cone;
 mod cuboid;
 mod cylinder;
 mod disk;
+mod fan;
 mod plane;
 mod rectangle;
 mod sphere;
@@ -17,6 +18,7 @@ pub use cone::Cone;
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
+pub use fan::{Fan, Verdict, fan_verdicts};
 pub use plane::Plane;
 pub use rectangle::Rectangle;
 pub use sphere::Sphere;
@@ -248,12 +250,14 @@ pub(crate) fn first_root_in(roots: (f64, f64), t_min: f64, t_max: f64) -> Option
 /// inside the ball, whatever that shape's own routine would compute, so the routine need not
 /// run. The perpendicular distance uses `|f - (f.d) d|` (Ray Tracing Gems, ch. 7), accurate
 /// for far origins.
+#[inline(always)]
 pub(crate) fn misses_ball(ray: &Ray, t_min: f64, t_max: f64, (centre, radius): (DVec3, f64)) -> bool {
     let f = ray.origin - centre;
     let b = f.dot(ray.dir);
     let reach = radius * (1.0 + 1e-9) + 1e-9 * l1(f);
     let perp = f - b * ray.dir;
-    perp.length_squared() > reach * reach || -b + reach < t_min || -b - reach > t_max
+    // Every comparison made, no branch (see `fan`).
+    (perp.length_squared() > reach * reach) | (-b + reach < t_min) | (-b - reach > t_max)
 }
 
 /// Parameter shift that moves a far ray origin `o` (local frame) to the point of the ray
@@ -262,10 +266,13 @@ pub(crate) fn misses_ball(ray: &Ray, t_min: f64, t_max: f64, (centre, radius): (
 /// and its rounding error with it (relative errors of `t` near 1e-9 from 1e7 away); from the
 /// shifted origin the coefficients are of the shape's own size. The shifted origin itself is
 /// exact to one rounding of `|o|`, which the hit point error bound covers.
+#[inline(always)]
 pub(crate) fn recentre(o: DVec3, d: DVec3, mid: DVec3, size: f64) -> f64 {
     let to_mid = mid - o;
+    // A select, not a branch (see [`fan`]).
+    let along = to_mid.dot(d);
     if to_mid.length_squared() > 256.0 * size * size {
-        to_mid.dot(d)
+        along
     } else {
         0.0
     }
@@ -280,15 +287,18 @@ pub(crate) fn local_cap(
     t_max: f64,
     inside: impl Fn(f64, f64) -> bool,
 ) -> Option<f64> {
-    if d.z == 0.0 {
-        return None;
-    }
+    let t = cap_root(o, d, h, t_min, t_max, inside);
+    (t < f64::INFINITY).then_some(t)
+}
+
+/// [`local_cap`] without a branch (see [`fan`]): the root, or infinity for none.
+#[inline(always)]
+pub(crate) fn cap_root(o: DVec3, d: DVec3, h: f64, t_min: f64, t_max: f64, inside: impl Fn(f64, f64) -> bool) -> f64 {
+    // A ray parallel to the cap's plane never meets it (the quotient is then unused).
     let t = (h - o.z) / d.z;
-    if !(t > t_min && t < t_max) {
-        return None;
-    }
     let p = o + d * t;
-    inside(p.x, p.y).then_some(t)
+    let hit = (d.z != 0.0) & (t > t_min) & (t < t_max) & inside(p.x, p.y);
+    if hit { t } else { f64::INFINITY }
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@
 //! origins). Roots are isolated and refined on `f` evaluated directly at the point, not on
 //! the expanded coefficients, so a hit point lies on the surface to rounding precision.
 
-use super::{Aabb, SurfaceHit, gamma, l1};
+use super::{Aabb, SurfaceHit, Verdict, gamma, l1};
 use crate::math::{Frame, Ray};
 use crate::solve::{ferrari, horner, orellana, poly_roots};
 use glam::DVec3;
@@ -48,6 +48,7 @@ impl Torus {
     }
 
     /// `f(p)` of the module doc, in local coordinates.
+    #[inline(always)]
     fn implicit(&self, p: DVec3) -> f64 {
         let (big, small) = (self.major, self.minor);
         let s = p.length_squared() + big * big - small * small;
@@ -85,6 +86,7 @@ impl Torus {
     /// solver then forces `c0` to exactly zero so that root is exactly 0 and excluded by
     /// `t > t_min`. The bound on the rounding of `k^2 - 4 R^2 rho^2` is
     /// `gamma(8) (k^2 + 4 R^2 rho^2)`.
+    #[inline(always)]
     fn quartic(&self, o2: DVec3, d: DVec3, at_start: bool) -> ([f64; 5], bool) {
         let (big, small) = (self.major, self.minor);
         let k = o2.length_squared() + big * big - small * small;
@@ -110,13 +112,14 @@ impl Torus {
     /// isolator finds no critical point), and `f(len) > 0` as the isolator computes it: one
     /// window, no sign change. Most shadow rays leaving the torus's surface towards a light
     /// stop here, instead of in the isolator.
+    #[inline(always)]
     fn rises_from_outside(&self, o: DVec3, d: DVec3, (enter, exit): (f64, f64), t_min: f64) -> bool {
         let o2 = o + d * enter;
         let (c, on_surface) = self.quartic(o2, d, enter == t_min);
         let len = exit - enter;
         let slope = c[1] + 2.0 * c[2].min(0.0) * len + 3.0 * c[3].min(0.0) * len * len;
         let size = c[1].abs() + 2.0 * c[2].abs() * len + 3.0 * c[3].abs() * len * len + 4.0 * c[4] * len * len * len;
-        !on_surface && c[0] > 0.0 && slope > 1e-9 * size && self.implicit(o2 + d * len) > 0.0
+        !on_surface & (c[0] > 0.0) & (slope > 1e-9 * size) & (self.implicit(o2 + d * len) > 0.0)
     }
 
     /// The ray in the local frame (`o`, `d`) and its clip interval `(enter, exit)`, or `None`
@@ -210,25 +213,33 @@ impl Torus {
 
     /// Parameter interval inside both the bounding sphere and the slab `|z| <= r`.
     fn clip(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
+        let (lo, hi, inside) = self.clip_parts(o, d, t_min, t_max);
+        inside.then_some((lo, hi))
+    }
+
+    /// [`Torus::clip`] without a branch (see [`Torus::shadow_verdict`]): the interval, and
+    /// whether it is one (the bounds are meaningless when not).
+    #[inline(always)]
+    // The negated comparisons keep NaN's answers those of the branches they replace.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    fn clip_parts(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> (f64, f64, bool) {
         let bound = self.major + self.minor;
         let b = o.dot(d);
         let perp = (o - b * d).length_squared();
         let disc = bound * bound - perp;
-        if disc < 0.0 {
-            return None;
-        }
+        // NaN when `disc < 0` (no interval then).
         let h = disc.sqrt();
-        let (mut lo, mut hi) = ((-b - h).max(t_min), (-b + h).min(t_max));
-        if d.z != 0.0 {
-            let (a, c) = ((-self.minor - o.z) / d.z, (self.minor - o.z) / d.z);
-            lo = lo.max(a.min(c));
-            hi = hi.min(a.max(c));
-        } else if o.z.abs() > self.minor {
-            return None;
-        }
+        let (lo, hi) = ((-b - h).max(t_min), (-b + h).min(t_max));
+        let (a, c) = ((-self.minor - o.z) / d.z, (self.minor - o.z) / d.z);
+        // A ray parallel to the slab is inside it everywhere or nowhere.
+        let slab = d.z != 0.0;
+        let lo = if slab { lo.max(a.min(c)) } else { lo };
+        let hi = if slab { hi.min(a.max(c)) } else { hi };
+        let in_slab = slab | !(o.z.abs() > self.minor);
         // Widen by a hair so roots on the clip boundary are not lost to rounding.
         let pad = 1e-9 * (hi - lo).abs().max(bound);
-        (lo <= hi).then_some(((lo - pad).max(t_min), (hi + pad).min(t_max)))
+        let inside = !(disc < 0.0) & in_slab & (lo <= hi);
+        ((lo - pad).max(t_min), (hi + pad).min(t_max), inside)
     }
 
     /// Whether the segment `p + s d`, `s` in `[0, len]` (local frame, `p` next to the torus),
@@ -239,6 +250,7 @@ impl Torus {
     /// (relative 1e-9 of the torus's size) is far above the rounding here and in the
     /// quartic's own evaluation, so on a segment cleared here the root isolator would find no
     /// sign change either: the answer is the same, without solving the quartic.
+    #[inline(always)]
     fn clear_of_tube(&self, p: DVec3, d: DVec3, len: f64) -> bool {
         const PIECES: usize = 4;
         let (big, small) = (self.major, self.minor);
@@ -249,20 +261,21 @@ impl Torus {
             x * x + y * y
         };
         let across = d.x * d.x + d.y * d.y;
-        let vertex = if across > 0.0 {
-            -(p.x * d.x + p.y * d.y) / across
-        } else {
-            0.0
-        };
-        (0..PIECES).all(|k| {
+        // A select, not a branch (see `shadow_verdict`); the quotient is unused when 0 / 0.
+        let quotient = -(p.x * d.x + p.y * d.y) / across;
+        let vertex = if across > 0.0 { quotient } else { 0.0 };
+        (0..PIECES).fold(true, |clear, k| {
             let (a, b) = (len * k as f64 / PIECES as f64, len * (k + 1) as f64 / PIECES as f64);
             let (ra, rb) = (rho2(a), rho2(b));
-            let nearest = ra.min(rb).min(rho2(vertex.clamp(a, b)));
+            // `vertex.clamp(a, b)`, which would panic on the NaN bounds of a lane without a
+            // clip interval.
+            let low = if vertex < a { a } else { vertex };
+            let nearest = ra.min(rb).min(rho2(if low > b { b } else { low }));
             let (rho_lo, rho_hi) = (nearest.sqrt(), ra.max(rb).sqrt());
             let rho_gap = (rho_lo - big).max(big - rho_hi).max(0.0);
             let (za, zb) = (p.z + a * d.z, p.z + b * d.z);
             let z_gap = za.min(zb).max(-za.max(zb)).max(0.0);
-            rho_gap * rho_gap + z_gap * z_gap > reach * reach
+            clear & (rho_gap * rho_gap + z_gap * z_gap > reach * reach)
         })
     }
 
@@ -274,25 +287,22 @@ impl Torus {
     /// `t_max`. The root isolator would find that sign change too (so the answer is the
     /// same); this finds it with two evaluations of `f` instead of solving the quartic. The
     /// margin, `1e-10 (|p|^2 + R^2 + r^2)^2`, is far above the rounding of `f`.
+    #[inline(always)]
     fn surely_entered(&self, o: DVec3, d: DVec3, (enter, exit): (f64, f64), t_min: f64, t_max: f64) -> bool {
-        if d.z == 0.0 {
-            return false;
-        }
         let p = o + d * enter;
         let s = -p.z / d.z;
         // The root is at some `s'` in (0, s): `enter + s'` is above `t_min` when `enter` is
-        // (or is 0), and below `t_max` when `enter + s` is.
-        let after_start = enter > t_min || enter == 0.0;
-        if !(after_start && s > 0.0 && s <= exit - enter && enter + s < t_max) {
-            return false;
-        }
+        // (or is 0), and below `t_max` when `enter + s` is. Every condition evaluated, no
+        // branch (see `shadow_verdict`).
+        let after_start = (enter > t_min) | (enter == 0.0);
+        let crosses = (d.z != 0.0) & after_start & (s > 0.0) & (s <= exit - enter) & (enter + s < t_max);
         let (big, small) = (self.major, self.minor);
         let scale = |q: DVec3| {
             let k = q.length_squared() + big * big + small * small;
             1e-10 * k * k
         };
         let q = p + d * s;
-        self.implicit(p) > scale(p) && self.implicit(q) < -scale(q)
+        crosses & (self.implicit(p) > scale(p)) & (self.implicit(q) < -scale(q))
     }
 
     /// Outward normal: gradient of `f`, `4 s p - 8 R^2 (x, y, 0)` with `s = |p|^2 + R^2 - r^2`.
@@ -329,21 +339,49 @@ impl Torus {
     }
 
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
-        let Some((o, d, clip)) = self.local_clip(ray, t_min, t_max) else {
-            return false;
-        };
-        if self.surely_entered(o, d, clip, t_min, t_max) {
-            return true;
+        let o = self.local_origin(ray.origin);
+        match self.shadow_verdict(o, ray.dir, t_min, t_max) {
+            Verdict::Miss => false,
+            Verdict::Hit => true,
+            Verdict::Test => {
+                let d = self.frame.to_local(ray.dir);
+                let clip = self
+                    .clip(o, d, t_min, f64::INFINITY)
+                    .expect("a Test verdict has a clip interval");
+                let mut any = false;
+                self.solve(QuarticMethod::Isolator, o, d, clip, t_min, t_max, &mut |_, _, _| {
+                    any = true;
+                    true
+                });
+                any
+            }
         }
-        if self.clear_of_tube(o + d * clip.0, d, clip.1 - clip.0) || self.rises_from_outside(o, d, clip, t_min) {
-            return false;
-        }
-        let mut any = false;
-        self.solve(QuarticMethod::Isolator, o, d, clip, t_min, t_max, &mut |_, _, _| {
-            any = true;
-            true
-        });
-        any
+    }
+
+    /// A ray origin in the local frame, as [`Torus::shadow_verdict`] takes it.
+    pub(crate) fn local_origin(&self, origin: DVec3) -> DVec3 {
+        self.frame.to_local(origin - self.center)
+    }
+
+    /// What the shortcuts before the quartic say of the ray from `o` (local frame, see
+    /// [`Torus::local_origin`]) along the world direction `dir`, on `(t_min, t_max)`:
+    /// [`Verdict::Miss`] outside the clip interval or clear of the tube or rising from
+    /// outside, [`Verdict::Hit`] when surely entered, else [`Verdict::Test`] (the quartic).
+    /// Every shortcut is evaluated and the verdict selected, without a branch: the verdicts
+    /// of a fan of shadow rays ([`super::fan_verdicts`]) are a loop whose iterations the
+    /// processor overlaps, where a branch taken at random would stop it.
+    #[inline(always)]
+    pub(crate) fn shadow_verdict(&self, o: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> Verdict {
+        let d = self.frame.to_local(dir);
+        let (enter, exit, inside) = self.clip_parts(o, d, t_min, f64::INFINITY);
+        // Every root is at `enter + s >= enter`: none can be below `t_max` otherwise.
+        let clipped = inside & (enter < t_max);
+        let entered = self.surely_entered(o, d, (enter, exit), t_min, t_max);
+        let cleared =
+            self.clear_of_tube(o + d * enter, d, exit - enter) | self.rises_from_outside(o, d, (enter, exit), t_min);
+        let hit = clipped & entered;
+        let miss = !clipped | (!entered & cleared);
+        Verdict::of(hit, miss)
     }
 
     /// Bound on the distance from `p` to the torus: the exact distance
@@ -367,6 +405,17 @@ impl Torus {
         let ring = super::Disk::new(self.center, self.axis, self.major).bounds()?;
         let r = DVec3::splat(self.minor);
         Some(Aabb::new(ring.min - r, ring.max + r))
+    }
+}
+
+impl super::fan::FanShape for Torus {
+    type Origin = DVec3;
+    fn fan_origin(&self, origin: DVec3) -> DVec3 {
+        self.local_origin(origin)
+    }
+    #[inline(always)]
+    fn verdict(&self, origin: DVec3, dir: DVec3, reach: f64) -> Verdict {
+        self.shadow_verdict(origin, dir, 0.0, reach)
     }
 }
 

@@ -18,26 +18,27 @@ pub mod orellana;
 /// cancellation: `q = -(b + sign(b) sqrt(b^2 - 4ac)) / 2`, roots `q / a` and `c / q`
 /// (Numerical Recipes 5.6). Degenerate `a = 0` falls back to the linear root.
 pub fn quadratic(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
-    if a == 0.0 {
-        if b == 0.0 {
-            return None;
-        }
-        let t = -c / b;
-        return Some((t, t));
-    }
+    let (t0, t1, real) = quadratic_parts(a, b, c);
+    real.then_some((t0, t1))
+}
+
+/// [`quadratic`] without a branch (for loops over many rays, see `shape::fan`): the roots,
+/// and whether there are any (the roots are meaningless when not).
+#[inline(always)]
+// `!(disc < 0.0)`: a NaN discriminant gives NaN roots, as the branch it replaces did.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+pub fn quadratic_parts(a: f64, b: f64, c: f64) -> (f64, f64, bool) {
+    // Degenerate `a = 0`: the linear root, when `b != 0`.
+    let flat = a == 0.0;
+    let linear = -c / b;
     let disc = b * b - 4.0 * a * c;
-    if disc < 0.0 {
-        return None;
-    }
     let root = disc.sqrt();
     let q = if b < 0.0 { -0.5 * (b - root) } else { -0.5 * (b + root) };
-    let (t0, t1) = if q == 0.0 {
-        // b = 0 and c = 0: a double root at zero.
-        (0.0, 0.0)
-    } else {
-        (q / a, c / q)
-    };
-    Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+    // `q = 0` when b = 0 and c = 0: a double root at zero.
+    let (t0, t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
+    let (t0, t1) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+    let real = if flat { b != 0.0 } else { !(disc < 0.0) };
+    (if flat { linear } else { t0 }, if flat { linear } else { t1 }, real)
 }
 
 /// Evaluates `sum c[i] t^i` by Horner's rule (coefficients in increasing degree).

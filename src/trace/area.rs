@@ -31,7 +31,7 @@ use crate::material::Material;
 use crate::math::{Ray, offset_origin};
 use crate::scene::{Candidate, ShadingModel, Specular};
 use crate::shading::{positive_part, pow_each, specular_tint};
-use crate::shape::Shape;
+use crate::shape::{Fan, Shape, Verdict, fan_verdicts};
 use crate::skips::Skip;
 use glam::DVec3;
 use multiversion::multiversion;
@@ -61,6 +61,8 @@ pub(super) struct AreaScratch {
     zero_product: bool,
     /// The current candidate's verdict on each point's shadow ray.
     verdict: Vec<Verdict>,
+    /// The candidate's own verdicts on the rays of `tests` ([`fan_verdicts`]).
+    fan: Vec<Verdict>,
     /// For a recorder only (else empty): the transparent objects each point's shadow ray
     /// crosses.
     crossed: Vec<Vec<usize>>,
@@ -489,7 +491,9 @@ impl<const K: usize> Tracer<'_, '_, K> {
     /// objects, each ray meeting the objects in the order [`Tracer::shadow_filter`] uses
     /// (opaque ones until one blocks, then every transparent one in ascending order), with
     /// the same counts. For each candidate, a lane loop first sorts every point's direction
-    /// by the candidate's cones ([`verdicts`]); only the undecided ones get the exact test.
+    /// by the candidate's cones ([`verdicts`]); the undecided ones get the candidate's own
+    /// shortcuts, all together ([`fan_verdicts`]: for a box or a cone the whole exact test),
+    /// and what is still undecided its exact test.
     fn shadow_points(&mut self, candidates: &[Candidate], at: &Surface, light: (DVec3, f64), s: &mut AreaScratch) {
         let world = self.world;
         let objects = &world.scene.objects;
@@ -563,18 +567,43 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 tests += usize::from(v == Verdict::Test);
             }
             rejects += (open - tests) as u64;
+            if let Some((centre, radius)) = sphere {
+                // The undecided rays that meet the candidate's bounding sphere.
+                let mut kept = 0;
+                for k in 0..tests {
+                    let i = s.tests[k];
+                    let ray = Ray::new(origin, s.lanes.to_light(i as usize));
+                    // `kept <= k`: in bounds.
+                    s.tests[kept] = i;
+                    kept += usize::from(segment_meets_sphere(&ray, s.lanes.dist[i as usize], centre, radius));
+                }
+                rejects += (tests - kept) as u64;
+                tests = kept;
+            }
+            let lanes = &s.lanes;
+            let fan = Fan {
+                origin,
+                x: &lanes.lx,
+                y: &lanes.ly,
+                z: &lanes.lz,
+                reach: &lanes.dist,
+            };
+            s.fan.resize(open, Verdict::Test);
+            fan_verdicts(shape, &fan, &s.tests[..tests], &mut s.fan);
             for k in 0..tests {
                 let i = s.tests[k];
-                let ray = Ray::new(origin, s.lanes.to_light(i as usize));
-                let t_max = s.lanes.dist[i as usize];
-                if let Some((centre, radius)) = sphere
-                    && !segment_meets_sphere(&ray, t_max, centre, radius)
-                {
-                    rejects += 1;
-                } else if shape.occludes(&ray, 0.0, t_max) {
-                    s.hits[hits] = i;
-                    hits += 1;
-                }
+                let met = match s.fan[k] {
+                    Verdict::Hit => true,
+                    Verdict::Miss => false,
+                    Verdict::Test => shape.occludes(
+                        &Ray::new(origin, lanes.to_light(i as usize)),
+                        0.0,
+                        lanes.dist[i as usize],
+                    ),
+                };
+                // `hits <= open`: in bounds.
+                s.hits[hits] = i;
+                hits += usize::from(met);
             }
             let met = &s.hits[..hits];
             if !world.material_of(c.object).is_transparent() {
@@ -634,17 +663,6 @@ fn lane_sum(color: DVec3, lanes: &Lanes, adds: &[bool]) -> DVec3 {
 /// What makes two lanes' sums of one area light equal: their point count, their shading
 /// (its first lane) and the bits of their sums before it.
 type LaneKey = (usize, usize, [u64; 3]);
-
-/// What a candidate's cones say of one shadow ray.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Verdict {
-    /// Outside the cone of directions meeting its bounding sphere: misses.
-    Miss,
-    /// Inside the cone through its inner ball, and long enough to get there: meets it.
-    Hit,
-    /// Undecided: the exact test.
-    Test,
-}
 
 /// The verdict of a candidate's cones (`cone`: axis and cosine of the bounding cone;
 /// `sure`: axis, cosine and reach of the cone through the inner ball, see

@@ -1,0 +1,199 @@
+//! Fans of shadow rays: many rays leaving one point (towards the points of an area light),
+//! and what quick tests say of each of them before the exact [`Shape::occludes`].
+//!
+//! A shape's verdicts on a fan come from the same code as its `occludes` (the shortcuts
+//! `occludes` takes first), written without branches and run as one loop over the rays, so
+//! that the processor overlaps the rays' long dependency chains instead of stopping on
+//! branches whose outcome is random from one ray to the next. Where a verdict is
+//! [`Verdict::Hit`] or [`Verdict::Miss`], `occludes` answers the same, to the bit of every
+//! value it computes on the way.
+
+use super::Shape;
+use glam::DVec3;
+use multiversion::multiversion;
+
+/// What a quick test says of one shadow ray.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum Verdict {
+    /// It surely misses.
+    Miss,
+    /// It surely meets the shape.
+    Hit,
+    /// Undecided: the exact test.
+    Test,
+}
+
+impl Verdict {
+    /// `Hit` when `hit`, else `Miss` when `miss`, else `Test`, as selects.
+    #[inline(always)]
+    pub(crate) fn of(hit: bool, miss: bool) -> Verdict {
+        let undecided = if miss { Verdict::Miss } else { Verdict::Test };
+        if hit { Verdict::Hit } else { undecided }
+    }
+}
+
+/// Shadow rays from one origin: ray `i` goes along the unit direction `(x[i], y[i], z[i])`
+/// and is tested on `(0, reach[i])` (its light point's distance).
+pub struct Fan<'a> {
+    pub origin: DVec3,
+    pub x: &'a [f64],
+    pub y: &'a [f64],
+    pub z: &'a [f64],
+    pub reach: &'a [f64],
+}
+
+/// A shape whose shortcuts before its exact shadow test run as a fan loop: the part of
+/// [`Shape::occludes`] that depends on the origin only, computed once per fan, and the
+/// branch-free verdict on one ray from it.
+pub(super) trait FanShape {
+    type Origin: Copy;
+    fn fan_origin(&self, origin: DVec3) -> Self::Origin;
+    /// The verdict on the ray from `origin` along the unit `dir`, on `(0, reach)`.
+    fn verdict(&self, origin: Self::Origin, dir: DVec3, reach: f64) -> Verdict;
+}
+
+/// The verdict of `shape`'s shortcuts on the rays `list` of `fan`: `out[k]` for ray
+/// `list[k]`. Shapes without shortcuts of their own get [`Verdict::Test`] throughout.
+pub fn fan_verdicts(shape: &Shape, fan: &Fan, list: &[u32], out: &mut [Verdict]) {
+    let out = &mut out[..list.len()];
+    match shape {
+        Shape::Torus(torus) => in_chunks(&**torus, fan, list, out),
+        Shape::Cuboid(cuboid) => in_chunks(&**cuboid, fan, list, out),
+        Shape::Cone(cone) => in_chunks(&**cone, fan, list, out),
+        _ => out.fill(Verdict::Test),
+    }
+}
+
+/// Rays gathered from a fan, at most [`CHUNK`].
+const CHUNK: usize = 64;
+struct Chunk {
+    x: [f64; CHUNK],
+    y: [f64; CHUNK],
+    z: [f64; CHUNK],
+    reach: [f64; CHUNK],
+}
+
+/// The verdicts of `shape` on the rays `list` of `fan`, [`CHUNK`] rays at a time: each
+/// chunk's directions and reaches gathered into arrays, so that the loop over them
+/// compiles to vector instructions.
+fn in_chunks<S: FanShape>(shape: &S, fan: &Fan, list: &[u32], out: &mut [Verdict]) {
+    let origin = shape.fan_origin(fan.origin);
+    let mut chunk = Chunk {
+        x: [0.0; CHUNK],
+        y: [0.0; CHUNK],
+        z: [0.0; CHUNK],
+        reach: [0.0; CHUNK],
+    };
+    for (rays, out) in list.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+        for (k, &i) in rays.iter().enumerate() {
+            let i = i as usize;
+            (chunk.x[k], chunk.y[k], chunk.z[k], chunk.reach[k]) = (fan.x[i], fan.y[i], fan.z[i], fan.reach[i]);
+        }
+        chunk_verdicts(shape, origin, &chunk, out);
+    }
+}
+
+#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn chunk_verdicts<S: FanShape>(shape: &S, origin: S::Origin, chunk: &Chunk, out: &mut [Verdict]) {
+    for (k, verdict) in out.iter_mut().enumerate() {
+        let dir = DVec3::new(chunk.x[k], chunk.y[k], chunk.z[k]);
+        *verdict = shape.verdict(origin, dir, chunk.reach[k]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Ray;
+    use crate::shape::{Cone, Cuboid, Torus};
+    use rand_chacha::ChaCha8Rng;
+    use rand_core::{Rng, SeedableRng};
+
+    /// Fans from around, inside, on and far from `shape`: directions towards random points
+    /// near it and along the axes (zero components), reaches short and long, rays listed
+    /// out of order and more than a chunk at a time. Every decided verdict is `occludes`'s
+    /// answer; returns the counts of hits, misses and undecided rays.
+    fn check_fans(shape: &Shape, centre: DVec3, size: f64, seed: u64) -> [usize; 3] {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut u = move || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53) * 2.0 - 1.0;
+        let mut counts = [0; 3];
+        for f in 0..120 {
+            let mut point = |half: f64| centre + half * DVec3::new(u(), u(), u());
+            let origin = match f % 4 {
+                0 | 1 => point(2.0 * size),
+                // on the surface: the first hit of a ray from outside
+                2 => {
+                    let from = point(3.0 * size) + DVec3::splat(4.0 * size);
+                    let ray = Ray::new(from, (point(0.5 * size) - from).normalize());
+                    shape.intersect(&ray, 0.0, f64::INFINITY).map_or(from, |h| ray.at(h.t))
+                }
+                _ => centre + DVec3::new(1e4, -3e3, 2e3) * size,
+            };
+            let mut dirs = Vec::new();
+            let mut reach = Vec::new();
+            for k in 0..150 {
+                let (dir, length) = if k % 10 == 9 {
+                    let axis = [DVec3::X, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z][k / 10 % 4];
+                    (axis, 3.0 * size)
+                } else {
+                    let to = point(1.2 * size) - origin;
+                    let scale = [0.3, 1.0, 2.0][k % 3];
+                    (to.normalize(), to.length() * scale)
+                };
+                dirs.push(dir);
+                reach.push(length);
+            }
+            let (x, y, z): (Vec<f64>, Vec<f64>, Vec<f64>) = dirs.iter().map(|d| (d.x, d.y, d.z)).collect();
+            let fan = Fan {
+                origin,
+                x: &x,
+                y: &y,
+                z: &z,
+                reach: &reach,
+            };
+            let list: Vec<u32> = (0..150).rev().filter(|i| i % 7 != 3).collect();
+            let mut out = vec![Verdict::Test; list.len() + 5];
+            fan_verdicts(shape, &fan, &list, &mut out);
+            for (&i, &verdict) in list.iter().zip(&out) {
+                let i = i as usize;
+                let ray = Ray::new(origin, dirs[i]);
+                let occluded = shape.occludes(&ray, 0.0, reach[i]);
+                match verdict {
+                    Verdict::Hit => assert!(occluded, "fan {f}, ray {i}: {ray:?} up to {}", reach[i]),
+                    Verdict::Miss => assert!(!occluded, "fan {f}, ray {i}: {ray:?} up to {}", reach[i]),
+                    Verdict::Test => {}
+                }
+                counts[verdict as usize] += 1;
+            }
+        }
+        counts
+    }
+
+    #[test]
+    fn fan_verdicts_are_the_answers_of_occludes() {
+        let centre = DVec3::new(4.0, 3.0, 2.0);
+        let boxes = [DVec3::ZERO, DVec3::new(20.0, -35.0, 70.0)]
+            .map(|turn| Shape::Cuboid(Box::new(Cuboid::new(centre, DVec3::new(2.0, 1.0, 3.0), turn))));
+        let cones =
+            [DVec3::Z, DVec3::new(0.3, -0.5, 1.0)].map(|axis| Shape::Cone(Box::new(Cone::new(centre, axis, 2.5, 1.0))));
+        let tori = [DVec3::Z, DVec3::new(0.2, -0.1, 1.0)]
+            .map(|axis| Shape::Torus(Box::new(Torus::new(centre, axis, 1.5, 0.5))));
+        for (k, shape) in boxes.iter().chain(&cones).enumerate() {
+            let [hits, misses, undecided] = check_fans(shape, centre, 2.0, k as u64);
+            // Boxes and cones decide every ray: their verdict is the whole test.
+            assert_eq!(undecided, 0, "shape {k}");
+            assert!(hits > 2000 && misses > 2000, "shape {k}: {hits} hits, {misses} misses");
+        }
+        for (k, torus) in tori.iter().enumerate() {
+            let [hits, misses, undecided] = check_fans(torus, centre, 2.0, 10 + k as u64);
+            assert!(
+                hits > 1000 && misses > 1000 && undecided > 100,
+                "torus {k}: {hits} {misses} {undecided}"
+            );
+        }
+        // Shapes without shortcuts leave every ray to `occludes`.
+        let sphere = Shape::Sphere(crate::shape::Sphere::new(centre, 1.0));
+        assert_eq!(check_fans(&sphere, centre, 1.0, 20)[..2], [0, 0]);
+    }
+}
