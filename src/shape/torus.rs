@@ -129,7 +129,7 @@ impl Torus {
     /// in another visiting order (the linear scan and the BVH must agree to the bit).
     /// `t_max` only filters the roots.
     fn local_clip(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(DVec3, DVec3, (f64, f64))> {
-        let o = self.frame.to_local(ray.origin - self.center);
+        let o = self.local_origin(ray.origin);
         let d = self.frame.to_local(ray.dir);
         let (enter, exit) = self.clip(o, d, t_min, f64::INFINITY)?;
         // Every root is at `enter + s >= enter`: none can be below `t_max`.
@@ -213,21 +213,44 @@ impl Torus {
 
     /// Parameter interval inside both the bounding sphere and the slab `|z| <= r`.
     fn clip(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
-        let (lo, hi, inside) = self.clip_parts(o, d, t_min, t_max);
+        // Most rays miss the sphere: no square root nor slab for them.
+        let sphere = self.sphere_crossing(o, d);
+        if sphere.1 < 0.0 {
+            return None;
+        }
+        let (lo, hi, inside) = self.clip_to(sphere, o, d, t_min, t_max);
         inside.then_some((lo, hi))
     }
 
     /// [`Torus::clip`] without a branch (see [`Torus::shadow_verdict`]): the interval, and
     /// whether it is one (the bounds are meaningless when not).
     #[inline(always)]
-    // The negated comparisons keep NaN's answers those of the branches they replace.
+    // The negated comparison keeps NaN's answer that of `clip`'s branch.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn clip_parts(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> (f64, f64, bool) {
+        let sphere = self.sphere_crossing(o, d);
+        let (lo, hi, inside) = self.clip_to(sphere, o, d, t_min, t_max);
+        (lo, hi, inside & !(sphere.1 < 0.0))
+    }
+
+    /// Where the ray crosses the bounding sphere `|p| = R + r`: `(b, disc)` with
+    /// `b = o.d`, crossings at `-b -+ sqrt(disc)`; none when `disc < 0`.
+    #[inline(always)]
+    fn sphere_crossing(&self, o: DVec3, d: DVec3) -> (f64, f64) {
         let bound = self.major + self.minor;
         let b = o.dot(d);
         let perp = (o - b * d).length_squared();
-        let disc = bound * bound - perp;
-        // NaN when `disc < 0` (no interval then).
+        (b, bound * bound - perp)
+    }
+
+    /// The clip interval of a ray that crosses the bounding sphere (`sphere`, see
+    /// [`Torus::sphere_crossing`]), without a branch, and whether it is not empty.
+    #[inline(always)]
+    // The negated comparison keeps NaN's answer that of the branch it replaces.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    fn clip_to(&self, (b, disc): (f64, f64), o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> (f64, f64, bool) {
+        let bound = self.major + self.minor;
+        // NaN when `disc < 0` (the caller has no interval then).
         let h = disc.sqrt();
         let (lo, hi) = ((-b - h).max(t_min), (-b + h).min(t_max));
         let (a, c) = ((-self.minor - o.z) / d.z, (self.minor - o.z) / d.z);
@@ -238,7 +261,7 @@ impl Torus {
         let in_slab = slab | !(o.z.abs() > self.minor);
         // Widen by a hair so roots on the clip boundary are not lost to rounding.
         let pad = 1e-9 * (hi - lo).abs().max(bound);
-        let inside = !(disc < 0.0) & in_slab & (lo <= hi);
+        let inside = in_slab & (lo <= hi);
         ((lo - pad).max(t_min), (hi + pad).min(t_max), inside)
     }
 
@@ -338,24 +361,25 @@ impl Torus {
         hit
     }
 
+    /// Whether the ray meets the torus inside `(t_min, t_max)`: the shortcuts of
+    /// [`Torus::shadow_verdict`] one after the other, stopping at the first that decides,
+    /// then the quartic.
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
-        let o = self.local_origin(ray.origin);
-        match self.shadow_verdict(o, ray.dir, t_min, t_max) {
-            Verdict::Miss => false,
-            Verdict::Hit => true,
-            Verdict::Test => {
-                let d = self.frame.to_local(ray.dir);
-                let clip = self
-                    .clip(o, d, t_min, f64::INFINITY)
-                    .expect("a Test verdict has a clip interval");
-                let mut any = false;
-                self.solve(QuarticMethod::Isolator, o, d, clip, t_min, t_max, &mut |_, _, _| {
-                    any = true;
-                    true
-                });
-                any
-            }
+        let Some((o, d, clip)) = self.local_clip(ray, t_min, t_max) else {
+            return false;
+        };
+        if self.surely_entered(o, d, clip, t_min, t_max) {
+            return true;
         }
+        if self.clear_of_tube(o + d * clip.0, d, clip.1 - clip.0) || self.rises_from_outside(o, d, clip, t_min) {
+            return false;
+        }
+        let mut any = false;
+        self.solve(QuarticMethod::Isolator, o, d, clip, t_min, t_max, &mut |_, _, _| {
+            any = true;
+            true
+        });
+        any
     }
 
     /// A ray origin in the local frame, as [`Torus::shadow_verdict`] takes it.
@@ -368,8 +392,9 @@ impl Torus {
     /// [`Verdict::Miss`] outside the clip interval or clear of the tube or rising from
     /// outside, [`Verdict::Hit`] when surely entered, else [`Verdict::Test`] (the quartic).
     /// Every shortcut is evaluated and the verdict selected, without a branch: the verdicts
-    /// of a fan of shadow rays ([`super::fan_verdicts`]) are a loop whose iterations the
-    /// processor overlaps, where a branch taken at random would stop it.
+    /// of a fan of shadow rays ([`super::fan_verdicts`]) are a loop that runs on vector
+    /// lanes. [`Torus::occludes`] takes the same shortcuts with branches, stopping at the
+    /// first that decides (cheaper for one ray).
     #[inline(always)]
     pub(crate) fn shadow_verdict(&self, o: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> Verdict {
         let d = self.frame.to_local(dir);

@@ -18,27 +18,42 @@ pub mod orellana;
 /// cancellation: `q = -(b + sign(b) sqrt(b^2 - 4ac)) / 2`, roots `q / a` and `c / q`
 /// (Numerical Recipes 5.6). Degenerate `a = 0` falls back to the linear root.
 pub fn quadratic(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
-    let (t0, t1, real) = quadratic_parts(a, b, c);
-    real.then_some((t0, t1))
+    if a == 0.0 {
+        // Degenerate: the linear root.
+        let t = -c / b;
+        return (b != 0.0).then_some((t, t));
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    Some(quadratic_roots(a, b, c, disc))
 }
 
-/// [`quadratic`] without a branch (for loops over many rays, see `shape::fan`): the roots,
-/// and whether there are any (the roots are meaningless when not).
+/// [`quadratic`] without a branch (for loops over many rays, see `shape::fan`; for one
+/// equation the branches are cheaper): the roots, and whether there are any (the roots are
+/// meaningless when not).
 #[inline(always)]
-// `!(disc < 0.0)`: a NaN discriminant gives NaN roots, as the branch it replaces did.
+// `!(disc < 0.0)`: a NaN discriminant gives NaN roots, as in `quadratic`.
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 pub fn quadratic_parts(a: f64, b: f64, c: f64) -> (f64, f64, bool) {
-    // Degenerate `a = 0`: the linear root, when `b != 0`.
     let flat = a == 0.0;
     let linear = -c / b;
     let disc = b * b - 4.0 * a * c;
+    let (t0, t1) = quadratic_roots(a, b, c, disc);
+    let real = if flat { b != 0.0 } else { !(disc < 0.0) };
+    (if flat { linear } else { t0 }, if flat { linear } else { t1 }, real)
+}
+
+/// The roots of [`quadratic`] for `a != 0` and the discriminant `disc = b^2 - 4ac >= 0`,
+/// in increasing order.
+#[inline(always)]
+fn quadratic_roots(a: f64, b: f64, c: f64, disc: f64) -> (f64, f64) {
     let root = disc.sqrt();
     let q = if b < 0.0 { -0.5 * (b - root) } else { -0.5 * (b + root) };
     // `q = 0` when b = 0 and c = 0: a double root at zero.
     let (t0, t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
-    let (t0, t1) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-    let real = if flat { b != 0.0 } else { !(disc < 0.0) };
-    (if flat { linear } else { t0 }, if flat { linear } else { t1 }, real)
+    if t0 <= t1 { (t0, t1) } else { (t1, t0) }
 }
 
 /// Evaluates `sum c[i] t^i` by Horner's rule (coefficients in increasing degree).
