@@ -143,16 +143,13 @@ impl Facing {
     /// The decision for a light that arrives (`arrives`: not at distance 0), black or not
     /// (`black`: its colour before the shadow test is zero and the unlit skip is on), at an
     /// angle of cosine `n_dot_l`.
+    /// Selects, not branches: the area lights' lane loop ([`area`]) compiles to vector
+    /// instructions only so.
+    #[inline(always)]
     fn of(arrives: bool, black: bool, n_dot_l: f64) -> Facing {
-        if !arrives {
-            Facing::NoLight
-        } else if black {
-            Facing::Black
-        } else if n_dot_l <= 0.0 {
-            Facing::Away
-        } else {
-            Facing::Towards
-        }
+        let lit = if n_dot_l <= 0.0 { Facing::Away } else { Facing::Towards };
+        let unblack = if black { Facing::Black } else { lit };
+        if arrives { unblack } else { Facing::NoLight }
     }
 }
 

@@ -154,8 +154,10 @@ fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facin
     let len = out.len();
     let (dist, atten, n_dot_l) = (&lanes.dist[..len], &lanes.atten[..len], &lanes.n_dot_l[..len]);
     for i in 0..len {
-        let black = unlit_skip && point_color * (atten[i] * 1.0) == DVec3::ZERO;
-        out[i] = Facing::of(dist[i] != 0.0, black, n_dot_l[i]);
+        // `point_color * (A * 1) == 0`, each channel compared, no branch.
+        let a = atten[i] * 1.0;
+        let zero = (point_color.x * a == 0.0) & (point_color.y * a == 0.0) & (point_color.z * a == 0.0);
+        out[i] = Facing::of(dist[i] != 0.0, unlit_skip & zero, n_dot_l[i]);
     }
 }
 
@@ -317,15 +319,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         s.facing.clear();
         s.facing.resize(len, Facing::NoLight);
         facings(&s.lanes, point_color, self.world.skips.on(Skip::Unlit), &mut s.facing);
-        // The facing points, compacted without a branch per point (their pattern is random).
-        s.open.resize(len + 1, 0);
-        let mut open = 0;
-        for (i, &f) in s.facing.iter().enumerate() {
-            // `open <= i < len + 1`: in bounds.
-            s.open[open] = i as u32;
-            open += usize::from(f == Facing::Towards);
-        }
-        s.open.truncate(open);
+        list_facing(&s.facing, &mut s.open);
         let shadows = self.world.scene.settings.shadows;
         s.filter.clear();
         s.filter.resize(len, DVec3::ONE);
@@ -554,18 +548,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
             let open = s.open.len();
             s.hits.resize(open + 1, 0);
             s.tests.resize(open + 1, 0);
-            let (mut hits, mut tests) = (0, 0);
-            // Slices, not fields of `s`: the stores must not make each load of a vector's
-            // pointer suspect.
-            let (hit_list, test_list, verdict) = (&mut s.hits[..], &mut s.tests[..], &s.verdict[..]);
-            for &i in &s.open {
-                let v = verdict[i as usize];
-                // `hits, tests <= k < open + 1`: in bounds.
-                hit_list[hits] = i;
-                hits += usize::from(v == Verdict::Hit);
-                test_list[tests] = i;
-                tests += usize::from(v == Verdict::Test);
-            }
+            let (mut hits, mut tests) = sort_by_verdict(&s.open, &s.verdict, &mut s.hits, &mut s.tests);
             rejects += (open - tests) as u64;
             if let Some((centre, radius)) = sphere {
                 // The undecided rays that meet the candidate's bounding sphere.
@@ -641,6 +624,45 @@ impl<const K: usize> Tracer<'_, '_, K> {
     }
 }
 
+/// Lists in `open` the points facing the surface, without a branch per point (their
+/// pattern is random). A function of its own: inside the caller, the list's pointer was
+/// loaded from the stack at every point.
+#[inline(never)]
+fn list_facing(facing: &[Facing], open: &mut Vec<u32>) {
+    if facing.iter().all(|&f| f == Facing::Towards) {
+        // Every point, as for most surfaces that see the whole light.
+        open.clear();
+        open.extend(0..facing.len() as u32);
+        return;
+    }
+    open.resize(facing.len() + 1, 0);
+    let mut count = 0;
+    for (i, &f) in facing.iter().enumerate() {
+        // `count <= i < len + 1`: in bounds.
+        open[count] = i as u32;
+        count += usize::from(f == Facing::Towards);
+    }
+    open.truncate(count);
+}
+
+/// Lists the points of `open` whose verdict is a hit in `hits` and those left to the exact
+/// test in `tests` (each at least `open.len() + 1` long), without a branch per point (the
+/// pattern is random); returns how many of each. A function of its own: inside the
+/// caller, the counts lived on the stack.
+#[inline(never)]
+fn sort_by_verdict(open: &[u32], verdict: &[Verdict], hits: &mut [u32], tests: &mut [u32]) -> (usize, usize) {
+    let (mut hit_count, mut test_count) = (0, 0);
+    for &i in open {
+        let v = verdict[i as usize];
+        // `hit_count, test_count <= k < open.len() + 1`: in bounds.
+        hits[hit_count] = i;
+        hit_count += usize::from(v == Verdict::Hit);
+        tests[test_count] = i;
+        test_count += usize::from(v == Verdict::Test);
+    }
+    (hit_count, test_count)
+}
+
 /// `color` plus, in point order, the diffuse and specular shares of the points that add
 /// (`adds`: facing the surface and not blocked; a blocked point adds exactly 0, and with
 /// the blocked-shading skip nothing at all).
@@ -677,13 +699,11 @@ fn verdicts(lanes: &Lanes, (axis, cos): (DVec3, f64), sure: Option<(DVec3, f64, 
         // `DVec3::dot` order, as the scalar test would compute it.
         let outer = lx[i] * axis.x + ly[i] * axis.y + lz[i] * axis.z;
         let inner = lx[i] * sure_axis.x + ly[i] * sure_axis.y + lz[i] * sure_axis.z;
-        out[i] = if outer < cos {
-            Verdict::Miss
-        } else if dist[i] > reach && inner > sure_cos {
-            Verdict::Hit
-        } else {
-            Verdict::Test
-        };
+        // Every comparison made and the verdict selected: a condition on the load of
+        // `dist` would compile to a masked load (slow on AMD cores).
+        let sure = (dist[i] > reach) & (inner > sure_cos);
+        let miss = outer < cos;
+        out[i] = Verdict::of(sure & !miss, miss);
     }
 }
 
