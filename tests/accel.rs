@@ -352,6 +352,8 @@ fn the_tree_does_not_depend_on_the_thread_count() {
     let a = one.install(|| Bvh::new(&objects));
     let b = three.install(|| Bvh::new(&objects));
     assert!(a == b, "the trees differ");
+    // Subtrees built as tasks (of 4096 objects here) and spliced in: a sound tree.
+    a.check(&objects).unwrap();
 }
 
 #[test]

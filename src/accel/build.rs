@@ -108,12 +108,15 @@ impl Bounds {
 
 #[derive(Clone, Copy)]
 struct Bin {
+    /// The union of the objects' boxes, and the bounds of their (doubled) centroids.
     bounds: Bounds,
+    centroids: Bounds,
     count: u32,
 }
 
 const EMPTY_BIN: Bin = Bin {
     bounds: Bounds::EMPTY,
+    centroids: Bounds::EMPTY,
     count: 0,
 };
 
@@ -141,6 +144,7 @@ impl Bins {
     fn merge(mut self, o: Bins) -> Bins {
         for (x, y) in self.row[..self.used].iter_mut().zip(o.row.iter()) {
             x.bounds = x.bounds.union(y.bounds);
+            x.centroids = x.centroids.union(y.centroids);
             x.count += y.count;
         }
         self
@@ -200,6 +204,8 @@ impl Binner {
         for r in refs {
             let bin = &mut bins.row[self.bin(r)];
             bin.bounds.grow(Vec3A::from_array(r.min), Vec3A::from_array(r.max));
+            let c = r.centroid2();
+            bin.centroids.grow(c, c);
             bin.count += 1;
         }
     }
@@ -209,61 +215,67 @@ impl Binner {
 struct Split {
     last_left: usize,
     cost: f32,
-    left: Bounds,
-    right: Bounds,
+    /// Each side's box and centroid bounds.
+    left: (Bounds, Bounds),
+    right: (Bounds, Bounds),
 }
 
 /// The cheapest split by the SAH (`A_L N_L + A_R N_R`), the first bin on ties.
 fn best_split(bins: &Bins) -> Option<Split> {
-    let (row, used) = (&bins.row, bins.used);
-    // Suffix unions: the right side of a split after bin i is right[i + 1].
-    let mut right = [Bounds::EMPTY; BINS];
-    let mut right_n = [0u32; BINS];
+    let (row, used) = (&bins.row[..bins.used], bins.used);
+    // `A_L N_L` and `N_L` for the split after bin i, from the left: a few bytes per bin
+    // (every node sweeps its bins; most nodes are small).
+    let mut left_cost = [0f32; BINS];
+    let mut left_n = [0u32; BINS];
     let (mut acc, mut n) = (Bounds::EMPTY, 0);
-    for i in (1..used).rev() {
+    for i in 0..used - 1 {
         acc = acc.union(row[i].bounds);
         n += row[i].count;
-        right[i] = acc;
-        right_n[i] = n;
+        left_cost[i] = acc.half_area() * n as f32;
+        left_n[i] = n;
     }
-    let mut best: Option<Split> = None;
-    let (mut left, mut left_n) = (Bounds::EMPTY, 0);
-    for i in 0..used - 1 {
-        left = left.union(row[i].bounds);
-        left_n += row[i].count;
-        if left_n == 0 || right_n[i + 1] == 0 {
+    // From the right, keeping the cheapest (the last seen, so the first bin, on ties).
+    let mut best: Option<(usize, f32)> = None;
+    let (mut acc, mut n) = (Bounds::EMPTY, 0);
+    for i in (0..used - 1).rev() {
+        acc = acc.union(row[i + 1].bounds);
+        n += row[i + 1].count;
+        if left_n[i] == 0 || n == 0 {
             continue;
         }
-        let cost = left.half_area() * left_n as f32 + right[i + 1].half_area() * right_n[i + 1] as f32;
-        if best.as_ref().is_none_or(|b| cost < b.cost) {
-            best = Some(Split {
-                last_left: i,
-                cost,
-                left,
-                right: right[i + 1],
-            });
+        let cost = left_cost[i] + acc.half_area() * n as f32;
+        if best.is_none_or(|(_, b)| cost <= b) {
+            best = Some((i, cost));
         }
     }
-    best
+    let (last_left, cost) = best?;
+    let side = |bins: &[Bin]| {
+        bins.iter().fold((Bounds::EMPTY, Bounds::EMPTY), |(b, c), bin| {
+            (b.union(bin.bounds), c.union(bin.centroids))
+        })
+    };
+    Some(Split {
+        last_left,
+        cost,
+        left: side(&row[..=last_left]),
+        right: side(&row[last_left + 1..]),
+    })
 }
 
-/// Moves the objects going left to the front; returns their count and the centroid bounds
-/// of both sides.
-fn partition(refs: &mut [PrimRef], binner: &Binner, split: &Split) -> (usize, Bounds, Bounds) {
-    let (mut i, mut j) = (0, refs.len());
-    let (mut lc, mut rc) = (Bounds::EMPTY, Bounds::EMPTY);
-    while i < j {
-        let c = refs[i].centroid2();
-        if binner.bin(&refs[i]) <= split.last_left {
-            lc.grow(c, c);
-            i += 1;
-        } else {
-            rc.grow(c, c);
-            j -= 1;
-            refs.swap(i, j);
-        }
+/// Moves the objects going left to the front; returns their count. Without a branch per
+/// object (which side an object goes is random in object order): each object is swapped
+/// with the first one of the right side so far, and that side's start moves on when the
+/// object goes left.
+fn partition(refs: &mut [PrimRef], binner: &Binner, split: &Split) -> usize {
+    let mut first_right = 0;
+    for k in 0..refs.len() {
+        let r = refs[k];
+        // `first_right <= k`: everything in `first_right..k` goes right.
+        refs[k] = refs[first_right];
+        refs[first_right] = r;
+        first_right += usize::from(binner.bin(&r) <= split.last_left);
     }
-    (i, lc, rc)
+    first_right
 }
 
 /// What to do with a node's range.
@@ -333,11 +345,11 @@ fn decide(
             if n <= MAX_LEAF && leaf_cost <= split_cost {
                 return Decision::Leaf;
             }
-            let (count, lc, rc) = partition(refs, &binner, &s);
+            let count = partition(refs, &binner, &s);
             Decision::Split {
                 count,
-                left: (s.left, lc),
-                right: (s.right, rc),
+                left: s.left,
+                right: s.right,
             }
         }
         None if n <= MAX_LEAF => Decision::Leaf,
@@ -373,10 +385,11 @@ struct Task {
 }
 
 /// Builds the tree over `refs` (reordered in place into leaf order). Returns the nodes (root
-/// at 0, index 1 unused so that sibling pairs start at even indices).
-pub fn build(refs: &mut [PrimRef]) -> Vec<Node> {
+/// at 0, index 1 unused so that sibling pairs start at even indices) and the depth of the
+/// deepest node (the root at 0).
+pub fn build(refs: &mut [PrimRef]) -> (Vec<Node>, usize) {
     if refs.is_empty() {
-        return Vec::new();
+        return (Vec::new(), 0);
     }
     let (boxes, centroids) = refs.par_chunks(16 * 1024).map(Bounds::of).reduce(
         || (Bounds::EMPTY, Bounds::EMPTY),
@@ -395,7 +408,7 @@ pub fn build(refs: &mut [PrimRef]) -> Vec<Node> {
         slices.push(head);
         rest = tail;
     }
-    let subtrees: Vec<Vec<Node>> = slices
+    let subtrees: Vec<(Vec<Node>, usize)> = slices
         .into_par_iter()
         .zip(tasks.par_iter())
         .map(|(s, t)| {
@@ -404,27 +417,38 @@ pub fn build(refs: &mut [PrimRef]) -> Vec<Node> {
             nodes.push(Node::default());
             let mut b = Builder::new(nodes, 0, all_axes);
             b.grow(s, t.start, t.boxes, t.centroids, t.depth, 0);
-            b.nodes
+            (b.nodes, b.deepest)
         })
         .collect();
-    // Splice: local node i >= 1 goes to `offset + i - 1` (offset even, so local pairs
-    // (1, 2), (3, 4), ... stay on even starts); the local root fills the task's slot.
-    nodes.reserve(subtrees.iter().map(|s| s.len()).sum());
-    for (t, local) in tasks.iter().zip(subtrees) {
-        if nodes.len() % 2 == 1 {
-            nodes.push(Node::default());
-        }
-        let offset = nodes.len();
-        let remap = |mut n: Node| {
-            if !n.is_leaf() {
-                n.first = (offset + n.first as usize - 1) as u32;
-            }
-            n
-        };
-        nodes[t.slot] = remap(local[0]);
-        nodes.extend(local[1..].iter().map(|&n| remap(n)));
+    let depth = subtrees.iter().map(|s| s.1).fold(top.deepest, usize::max);
+    // Splice: local node i >= 1 goes to `offset + i - 1`; the local root fills the task's
+    // slot. The top part holds its root, the unused slot and pairs, each task adds pairs:
+    // every offset is even, so the local pairs (1, 2), (3, 4), ... stay on even starts.
+    let mut offsets = Vec::with_capacity(tasks.len());
+    let mut end = nodes.len();
+    for (local, _) in &subtrees {
+        offsets.push(end);
+        end += local.len() - 1;
     }
-    nodes
+    debug_assert!(offsets.iter().all(|o| o % 2 == 0));
+    let remap = |mut n: Node, offset: usize| {
+        if !n.is_leaf() {
+            n.first = (offset + n.first as usize - 1) as u32;
+        }
+        n
+    };
+    for ((t, (local, _)), &offset) in tasks.iter().zip(&subtrees).zip(&offsets) {
+        nodes[t.slot] = remap(local[0], offset);
+    }
+    // The rest in parallel, written in place: the pages of a large tree's array are first
+    // touched here, by all threads.
+    let start = nodes.len();
+    nodes.par_extend((start..end).into_par_iter().map(|k| {
+        // The last task starting at or before `k`.
+        let task = offsets.partition_point(|&o| o <= k) - 1;
+        remap(subtrees[task].0[k - offsets[task] + 1], offsets[task])
+    }));
+    (nodes, depth)
 }
 
 /// Builds subtrees into `nodes`. Ranges larger than `task_size` are binned by all threads;
@@ -436,6 +460,8 @@ struct Builder {
     /// Whether nodes are binned along all three axes (see [`ALL_AXES_UP_TO`]).
     all_axes: bool,
     scratch: Bins,
+    /// Depth of the deepest node built so far.
+    deepest: usize,
 }
 
 impl Builder {
@@ -446,6 +472,7 @@ impl Builder {
             task_size,
             all_axes,
             scratch: Bins::new(BINS),
+            deepest: 0,
         }
     }
 
@@ -459,6 +486,7 @@ impl Builder {
         depth: usize,
         slot: usize,
     ) {
+        self.deepest = self.deepest.max(depth);
         if refs.len() <= self.task_size {
             self.tasks.push(Task {
                 slot,
@@ -508,7 +536,7 @@ mod tests {
                 PrimRef::new(i, [x - 0.1, y - 0.1, -0.1], [x + 0.1, y + 0.1, 0.1])
             })
             .collect();
-        let nodes = build(&mut refs);
+        let (nodes, _) = build(&mut refs);
         let first = nodes[0].first as usize;
         let (a, b) = (&nodes[first], &nodes[first + 1]);
         let (low, high) = if a.min[1] < b.min[1] { (a, b) } else { (b, a) };
