@@ -269,11 +269,10 @@ fn best_split(bins: &Bins) -> Option<Split> {
 fn partition(refs: &mut [PrimRef], binner: &Binner, split: &Split) -> usize {
     let mut first_right = 0;
     for k in 0..refs.len() {
-        let r = refs[k];
+        let left = binner.bin(&refs[k]) <= split.last_left;
         // `first_right <= k`: everything in `first_right..k` goes right.
-        refs[k] = refs[first_right];
-        refs[first_right] = r;
-        first_right += usize::from(binner.bin(&r) <= split.last_left);
+        refs.swap(first_right, k);
+        first_right += usize::from(left);
     }
     first_right
 }
