@@ -29,8 +29,8 @@ pub const MAX_SAH_DEPTH: usize = 64;
 /// On the intersection bench all axes took the BVH's geometric mean throughput against
 /// obvhs from 0.918 to 0.948 over the 24 rows with N = 8 to 1000, and from 0.84 to 0.99
 /// over the 8 rows with N = 100 000 (a build of 51 ms); on 1 000 000 spheres they would
-/// cost a third more build time (0.37 s -> 0.47 s with all axes below 64 objects alone),
-/// where the build has a budget of 0.3 s.
+/// cost a third more build time (third session: 0.37 s -> 0.47 s with all axes below 64
+/// objects alone), where the build has a budget of 0.3 s.
 const ALL_AXES_UP_TO: usize = 200_000;
 /// Cost of visiting an interior node (two box tests) relative to one object test.
 const TRAVERSE_COST: f32 = 2.0;
