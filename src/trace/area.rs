@@ -48,8 +48,9 @@ pub(super) struct AreaScratch {
     blocked: Vec<bool>,
     /// The points whose shadow ray is still open (facing, not blocked yet).
     open: Vec<u32>,
-    /// The open points that meet the current candidate, and those its cones leave to the
-    /// exact test.
+    /// The open points that meet the current candidate, and those its cones leave
+    /// undecided (then only those that meet its bounding sphere, for a costly shape
+    /// without cones), for its fan verdicts and exact test.
     hits: Vec<u32>,
     tests: Vec<u32>,
     /// Whether each point adds to the sum (facing, not blocked).
