@@ -513,10 +513,46 @@ impl Builder {
                 self.nodes.extend([Node::default(); 2]);
                 self.nodes[slot] = node(&boxes, first, 0);
                 let (l, r) = refs.split_at_mut(count);
-                self.grow(l, start, left.0, left.1, depth + 1, first);
-                self.grow(r, start + count, right.0, right.1, depth + 1, first + 1);
+                if parallel {
+                    // Above the task size, both children at once, each into a builder of
+                    // its own (its root at 0), appended as this one would have built them:
+                    // the left subtree, then the right, so the tree and the tasks' order do
+                    // not depend on the threads.
+                    let (task_size, all_axes) = (self.task_size, self.all_axes);
+                    let child = |refs: &mut [PrimRef], start: usize, (boxes, centroids): (Bounds, Bounds)| {
+                        let mut b = Builder::new(vec![Node::default()], task_size, all_axes);
+                        b.grow(refs, start, boxes, centroids, depth + 1, 0);
+                        b
+                    };
+                    let (lb, rb) = rayon::join(|| child(l, start, left), || child(r, start + count, right));
+                    self.append(lb, first);
+                    self.append(rb, first + 1);
+                } else {
+                    self.grow(l, start, left.0, left.1, depth + 1, first);
+                    self.grow(r, start + count, right.0, right.1, depth + 1, first + 1);
+                }
             }
         }
+    }
+
+    /// Appends the subtree `sub` built (its root at 0), its root filling `slot`: its node
+    /// `i >= 1` goes to `offset + i - 1`, where `offset` (even) is the current length.
+    fn append(&mut self, sub: Builder, slot: usize) {
+        let offset = self.nodes.len();
+        let global = |i: usize| if i == 0 { slot } else { offset + i - 1 };
+        let remap = |mut n: Node| {
+            if !n.is_leaf() {
+                n.first = global(n.first as usize) as u32;
+            }
+            n
+        };
+        self.nodes[slot] = remap(sub.nodes[0]);
+        self.nodes.extend(sub.nodes[1..].iter().map(|&n| remap(n)));
+        self.tasks.extend(sub.tasks.into_iter().map(|t| Task {
+            slot: global(t.slot),
+            ..t
+        }));
+        self.deepest = self.deepest.max(sub.deepest);
     }
 }
 
