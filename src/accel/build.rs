@@ -420,9 +420,8 @@ pub fn build(refs: &mut [PrimRef]) -> (Vec<Node>, usize) {
         })
         .collect();
     let depth = subtrees.iter().map(|s| s.1).fold(top.deepest, usize::max);
-    // Splice: local node i >= 1 goes to `offset + i - 1`; the local root fills the task's
-    // slot. The top part holds its root, the unused slot and pairs, each task adds pairs:
-    // every offset is even, so the local pairs (1, 2), (3, 4), ... stay on even starts.
+    // Splice ([`global_index`]): the top part holds its root, the unused slot and pairs,
+    // and each task adds pairs, so every offset is even.
     let mut offsets = Vec::with_capacity(tasks.len());
     let mut end = nodes.len();
     for (local, _) in &subtrees {
@@ -430,14 +429,8 @@ pub fn build(refs: &mut [PrimRef]) -> (Vec<Node>, usize) {
         end += local.len() - 1;
     }
     debug_assert!(offsets.iter().all(|o| o % 2 == 0));
-    let remap = |mut n: Node, offset: usize| {
-        if !n.is_leaf() {
-            n.first = (offset + n.first as usize - 1) as u32;
-        }
-        n
-    };
     for ((t, (local, _)), &offset) in tasks.iter().zip(&subtrees).zip(&offsets) {
-        nodes[t.slot] = remap(local[0], offset);
+        nodes[t.slot] = relocated(local[0], t.slot, offset);
     }
     // The rest in parallel, written in place: the pages of a large tree's array are first
     // touched here, by all threads.
@@ -445,9 +438,25 @@ pub fn build(refs: &mut [PrimRef]) -> (Vec<Node>, usize) {
     nodes.par_extend((start..end).into_par_iter().map(|k| {
         // The last task starting at or before `k`.
         let task = offsets.partition_point(|&o| o <= k) - 1;
-        remap(subtrees[task].0[k - offsets[task] + 1], offsets[task])
+        let slot = tasks[task].slot;
+        relocated(subtrees[task].0[k - offsets[task] + 1], slot, offsets[task])
     }));
     (nodes, depth)
+}
+
+/// Where node `i` of a subtree built on its own (its root at 0) goes in the tree it joins:
+/// its root to `slot`, node `i >= 1` to `offset + i - 1` (`offset` even, so that its
+/// sibling pairs (1, 2), (3, 4), ... stay on even starts).
+fn global_index(i: usize, slot: usize, offset: usize) -> usize {
+    if i == 0 { slot } else { offset + i - 1 }
+}
+
+/// A node of such a subtree with its children's index moved by [`global_index`].
+fn relocated(mut n: Node, slot: usize, offset: usize) -> Node {
+    if !n.is_leaf() {
+        n.first = global_index(n.first as usize, slot, offset) as u32;
+    }
+    n
 }
 
 /// Builds subtrees into `nodes`. Ranges larger than `task_size` are binned by all threads;
@@ -535,21 +544,15 @@ impl Builder {
         }
     }
 
-    /// Appends the subtree `sub` built (its root at 0), its root filling `slot`: its node
-    /// `i >= 1` goes to `offset + i - 1`, where `offset` (even) is the current length.
+    /// Appends the subtree `sub` built on its own, its root filling `slot` and the rest at
+    /// the current length ([`global_index`]).
     fn append(&mut self, sub: Builder, slot: usize) {
         let offset = self.nodes.len();
-        let global = |i: usize| if i == 0 { slot } else { offset + i - 1 };
-        let remap = |mut n: Node| {
-            if !n.is_leaf() {
-                n.first = global(n.first as usize) as u32;
-            }
-            n
-        };
-        self.nodes[slot] = remap(sub.nodes[0]);
-        self.nodes.extend(sub.nodes[1..].iter().map(|&n| remap(n)));
+        self.nodes[slot] = relocated(sub.nodes[0], slot, offset);
+        self.nodes
+            .extend(sub.nodes[1..].iter().map(|&n| relocated(n, slot, offset)));
         self.tasks.extend(sub.tasks.into_iter().map(|t| Task {
-            slot: global(t.slot),
+            slot: global_index(t.slot, slot, offset),
             ..t
         }));
         self.deepest = self.deepest.max(sub.deepest);

@@ -56,9 +56,7 @@ impl Bvh {
                 None => PrimRef::new(UNBOUNDED, [0.0; 3], [0.0; 3]),
             })
             .collect();
-        if refs.iter().any(|r| r.index == UNBOUNDED) {
-            refs.retain(|r| r.index != UNBOUNDED);
-        }
+        refs.retain(|r| r.index != UNBOUNDED);
         // The unbounded objects are the gaps in `refs`, which is in object order.
         let mut unbounded = Vec::new();
         let mut next = 0;

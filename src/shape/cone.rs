@@ -1,6 +1,6 @@
 //! A capped cone: base centre, unit axis towards the apex, height, base radius.
 
-use super::{Aabb, SurfaceHit, cap_root, cylinder::disk_bounds};
+use super::{Aabb, SurfaceHit, cap_root, cylinder::disk_bounds, first_root};
 use super::{gamma, l1};
 use crate::math::{Frame, Ray};
 use crate::solve::quadratic_parts;
@@ -121,14 +121,7 @@ impl Cone {
         let (t0, t1, real) = quadratic_parts(a, b, c);
         let t0 = if on_side(t0) { t0 } else { NONE };
         let t1 = if on_side(t1) { t1 } else { NONE };
-        // The first of them inside `(t_min, infinity)`.
-        let (first, second) = (t0.min(t1), t0.max(t1));
-        let later = if (second > t_min) & (second < NONE) {
-            second
-        } else {
-            NONE
-        };
-        let side = if (first > t_min) & (first < NONE) { first } else { later };
+        let side = first_root((t0.min(t1), t0.max(t1)), t_min, NONE);
         let r2 = self.radius * self.radius;
         let base = cap_root(o, d, 0.0, t_min, NONE, |x, y| x * x + y * y <= r2);
         (if real { side } else { NONE }, base)

@@ -235,14 +235,15 @@ pub(crate) fn nearer(a: Option<SurfaceHit>, b: Option<SurfaceHit>) -> Option<Sur
 
 /// The first of the two quadratic roots inside `(t_min, t_max)`.
 pub(crate) fn first_root_in(roots: (f64, f64), t_min: f64, t_max: f64) -> Option<f64> {
-    let (t0, t1) = roots;
-    if t0 > t_min && t0 < t_max {
-        Some(t0)
-    } else if t1 > t_min && t1 < t_max {
-        Some(t1)
-    } else {
-        None
-    }
+    let t = first_root(roots, t_min, t_max);
+    (t < f64::INFINITY).then_some(t)
+}
+
+/// [`first_root_in`] without a branch (see [`fan`]): the root, or infinity for none.
+#[inline(always)]
+pub(crate) fn first_root((t0, t1): (f64, f64), t_min: f64, t_max: f64) -> f64 {
+    let later = if (t1 > t_min) & (t1 < t_max) { t1 } else { f64::INFINITY };
+    if (t0 > t_min) & (t0 < t_max) { t0 } else { later }
 }
 
 /// Whether the ray misses the ball (`centre`, `radius`) within `(t_min, t_max)` by a clear
