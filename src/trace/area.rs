@@ -60,6 +60,9 @@ pub(super) struct AreaScratch {
     /// Whether some point's transparent colours multiplied to exactly 0 (so `blocked` does
     /// not tell all the points whose filter is 0).
     zero_product: bool,
+    /// Whether a transparent object met some point's shadow ray (so some filter is neither
+    /// 0 nor 1).
+    tinted: bool,
     /// The current candidate's verdict on each point's shadow ray.
     verdict: Vec<Verdict>,
     /// The candidate's own verdicts on the rays of `tests` ([`fan_verdicts`]).
@@ -213,11 +216,50 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
     }
 }
 
-/// Pass 3's second step: for the first `len` points, each of colour `point_color`,
-/// `A L filter [k_d S N.L]` and `A L filter [k_s [m S + (1 - m)] spec]` by channel: the
-/// operations of [`crate::shading::direct`] in its order. Values for points that do not
-/// face the surface are computed and ignored.
-#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+/// The per-channel factors of [`crate::shading::direct`]'s two calls for one material and
+/// shading model, `direct(arriving, k_d, S, N.L, 0, tint, 0)` and
+/// `direct(arriving, 0, S, N.L, k_s, tint, spec)`, with `arriving = L / N * (A * 1) * filter`.
+struct ShareFactors {
+    /// The point's colour `L / N`.
+    point: [f64; 3],
+    /// `k_d S` and the diffuse call's `0 tint * 0`.
+    diffuse: [f64; 3],
+    diffuse_zero: [f64; 3],
+    /// The specular call's `0 S` and `k_s tint`.
+    specular_zero: [f64; 3],
+    specular: [f64; 3],
+}
+
+impl ShareFactors {
+    fn new(point_color: DVec3, mat: &Material, model: ShadingModel) -> Self {
+        let kd = if model.diffuse { mat.kd } else { 0.0 };
+        let tint = specular_tint(mat.metal, mat.color);
+        ShareFactors {
+            point: point_color.to_array(),
+            diffuse: (kd * mat.color).to_array(),
+            diffuse_zero: (0.0 * tint * 0.0).to_array(),
+            specular_zero: (0.0 * mat.color).to_array(),
+            specular: (mat.ks * tint).to_array(),
+        }
+    }
+
+    /// Channel `c`'s diffuse and specular terms of a point with attenuation `atten`,
+    /// shadow filter `filter`, `cos = max(N.L, 0)` and specular term `spec`: the operations
+    /// of `direct` in its order.
+    #[inline(always)]
+    fn terms(&self, c: usize, atten: f64, filter: f64, cos: f64, spec: f64) -> (f64, f64) {
+        let arriving = self.point[c] * (atten * 1.0) * filter;
+        (
+            arriving * (self.diffuse[c] * cos + self.diffuse_zero[c]),
+            arriving * (self.specular_zero[c] * cos + self.specular[c] * spec),
+        )
+    }
+}
+
+/// Pass 3's second step, for a recorder: for the first `len` points, each of colour
+/// `point_color`, `A L filter [k_d S N.L]` and `A L filter [k_s [m S + (1 - m)] spec]` by
+/// channel ([`ShareFactors::terms`]). Values for points that do not face the surface are
+/// computed and ignored.
 fn shares(lanes: &mut Lanes, len: usize, point_color: DVec3, filter: &[DVec3], mat: &Material, model: ShadingModel) {
     let Lanes {
         atten,
@@ -227,28 +269,53 @@ fn shares(lanes: &mut Lanes, len: usize, point_color: DVec3, filter: &[DVec3], m
         specular,
         ..
     } = lanes;
-    let (atten, n_dot_l, spec) = (&atten[..len], &n_dot_l[..len], &spec[..len]);
-    let filter = &filter[..len];
-    let kd = if model.diffuse { mat.kd } else { 0.0 };
-    let tint = specular_tint(mat.metal, mat.color);
-    // `direct`'s factors `k_d S` and `k_s tint`, and the zero factors of its other term.
-    let diffuse_factor = (kd * mat.color).to_array();
-    let specular_factor = (mat.ks * tint).to_array();
-    let zero_factor = (0.0 * mat.color).to_array();
-    let zero_tint = (0.0 * tint).to_array();
-    let pc = point_color.to_array();
-    let filters = [0, 1, 2].map(|c| filter.iter().map(move |f| f[c]));
-    for (c, filter_c) in filters.into_iter().enumerate() {
-        let (dc, sc) = (&mut diffuse[c][..len], &mut specular[c][..len]);
-        for (i, f) in filter_c.enumerate() {
-            let cos = positive_part(n_dot_l[i]);
-            // `inc.color * filter`, with `inc.color = L / N * (A * 1)`.
-            let arriving = pc[c] * (atten[i] * 1.0) * f;
-            // `direct(arriving, kd, S, N.L, 0, tint, 0)`, `direct(arriving, 0, S, N.L, ks, tint, spec)`.
-            dc[i] = arriving * (diffuse_factor[c] * cos + zero_tint[c] * 0.0);
-            sc[i] = arriving * (zero_factor[c] * cos + specular_factor[c] * spec[i]);
+    let factors = ShareFactors::new(point_color, mat, model);
+    for i in 0..len {
+        let cos = positive_part(n_dot_l[i]);
+        for c in 0..3 {
+            (diffuse[c][i], specular[c][i]) = factors.terms(c, atten[i], filter[i][c], cos, spec[i]);
         }
     }
+}
+
+/// Passes 3 (second step) and 4 at once, without a recorder: `color` plus, in point order,
+/// the diffuse and specular terms ([`ShareFactors::terms`]) of the points that add (`adds`:
+/// facing the surface and not blocked; a blocked point adds exactly 0, and with the
+/// blocked-shading skip nothing at all), each point of colour `point_color`. `filter`:
+/// the shadow filters, `None` when every point that adds has filter 1 (`x * 1 = x`).
+///
+/// The sum's additions must run in point order, one after the other (3 cycles each); the
+/// terms of four points at a time are computed in vector registers meanwhile, and never
+/// stored: a pass writing six arrays and a second one reading them cost four times as much.
+#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn lane_sum(
+    color: DVec3,
+    lanes: &Lanes,
+    point_color: DVec3,
+    filter: Option<&[DVec3]>,
+    adds: &[bool],
+    mat: &Material,
+    model: ShadingModel,
+) -> DVec3 {
+    let len = adds.len();
+    let factors = ShareFactors::new(point_color, mat, model);
+    let (atten, n_dot_l, spec) = (&lanes.atten[..len], &lanes.n_dot_l[..len], &lanes.spec[..len]);
+    let mut sum = color;
+    let terms = SumTerms {
+        factors: &factors,
+        atten,
+        n_dot_l,
+        spec,
+        adds,
+    };
+    for start in (0..len).step_by(SUM_BLOCK) {
+        let block = SUM_BLOCK.min(len - start);
+        sum = match filter {
+            Some(f) => terms.add(start, block, |i, c| f[i][c], sum),
+            None => terms.add(start, block, |_, _| 1.0, sum),
+        };
+    }
+    sum
 }
 
 impl<const K: usize> Tracer<'_, '_, K> {
@@ -327,6 +394,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         s.blocked.clear();
         s.blocked.resize(len, false);
         s.zero_product = false;
+        s.tinted = false;
         s.crossed.truncate(if R::RECORDS { len } else { 0 });
         s.crossed.iter_mut().for_each(Vec::clear);
         if R::RECORDS {
@@ -383,6 +451,9 @@ impl<const K: usize> Tracer<'_, '_, K> {
             // (count, shading twin, sum before as bits) and the sum after, per lane done.
             let mut done: [Option<(LaneKey, DVec3)>; K] = [None; K];
             let mut speculars_for = None;
+            // Every point that adds has filter 1 unless a transparent object tinted one, or
+            // blocked points add their 0.
+            let filter = (s.tinted || !blocked_shading).then_some(&s.filter[..]);
             for j in lanes_of::<K>(mask) {
                 let (count, lane_color) = self.lane_points(j, index, area, len);
                 let (model, mat) = self.lane_shading(j, at.object);
@@ -395,8 +466,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                         speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
                         speculars_for = Some(exponent);
                     }
-                    shares(&mut s.lanes, count, lane_color, &s.filter, mat, model);
-                    color[j] = lane_sum(color[j], &s.lanes, &s.adds[..count]);
+                    color[j] = lane_sum(color[j], &s.lanes, lane_color, filter, &s.adds[..count], mat, model);
                 }
                 done[j] = Some((key, color[j]));
                 if K > 1 && count < len {
@@ -608,6 +678,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 }
             } else {
                 let color = world.material_of(c.object).color;
+                s.tinted |= hits > 0;
                 for &i in met {
                     let i = i as usize;
                     s.filter[i] *= color;
@@ -622,6 +693,52 @@ impl<const K: usize> Tracer<'_, '_, K> {
             self.counts.saved.count(Skip::OpaqueOnly, s.open.len() as u64);
         }
         self.counts.saved.count(Skip::BoundingSpheres, rejects);
+    }
+}
+
+/// What [`lane_sum`] reads, for its blocks of points.
+struct SumTerms<'a> {
+    factors: &'a ShareFactors,
+    atten: &'a [f64],
+    n_dot_l: &'a [f64],
+    spec: &'a [f64],
+    adds: &'a [bool],
+}
+
+/// How many points [`lane_sum`] takes at a time: their terms fit in the L1 cache.
+const SUM_BLOCK: usize = 64;
+
+impl SumTerms<'_> {
+    /// Adds to `sum` the terms of the points `start .. start + len` (`len <= SUM_BLOCK`)
+    /// that add, in point order, with point `i`'s filter in channel `c` `filter(i, c)`.
+    /// Inlined into each of [`lane_sum`]'s versions, with its target features.
+    #[inline(always)]
+    fn add(&self, start: usize, len: usize, filter: impl Fn(usize, usize) -> f64, sum: DVec3) -> DVec3 {
+        let block = start..start + len;
+        let (atten, n_dot_l) = (&self.atten[block.clone()], &self.n_dot_l[block.clone()]);
+        let (spec, adds) = (&self.spec[block.clone()], &self.adds[block]);
+        // The terms, a loop over the points that vectorizes...
+        let mut total = [[0.0; SUM_BLOCK]; 3];
+        for (c, total) in total.iter_mut().enumerate() {
+            for l in 0..len {
+                let cos = positive_part(n_dot_l[l]);
+                let (d, s) = self.factors.terms(c, atten[l], filter(start + l, c), cos, spec[l]);
+                // A point that does not add adds `+0`: all bits cleared, not a product with
+                // 0 (NaN for an infinite term), and no branch on a random pattern. Adding
+                // `+0` leaves every sum but `-0` unchanged, and these sums start at `+0`
+                // (`DVec3::ZERO`), which in round-to-nearest no addition turns into `-0`.
+                total[l] = f64::from_bits((d + s).to_bits() & 0u64.wrapping_sub(u64::from(adds[l])));
+            }
+        }
+        // ... then the sums, one addition after the other, in registers.
+        let [tr, tg, tb] = &total;
+        let (mut r, mut g, mut b) = (sum.x, sum.y, sum.z);
+        for l in 0..len {
+            r += tr[l];
+            g += tg[l];
+            b += tb[l];
+        }
+        DVec3::new(r, g, b)
     }
 }
 
@@ -662,25 +779,6 @@ fn sort_by_verdict(open: &[u32], verdict: &[Verdict], hits: &mut [u32], tests: &
         test_count += usize::from(v == Verdict::Test);
     }
     (hit_count, test_count)
-}
-
-/// `color` plus, in point order, the diffuse and specular shares of the points that add
-/// (`adds`: facing the surface and not blocked; a blocked point adds exactly 0, and with
-/// the blocked-shading skip nothing at all).
-fn lane_sum(color: DVec3, lanes: &Lanes, adds: &[bool]) -> DVec3 {
-    let [dr, dg, db] = &lanes.diffuse;
-    let [sr, sg, sb] = &lanes.specular;
-    let (mut r, mut g, mut b) = (color.x, color.y, color.z);
-    for (i, &add) in adds.iter().enumerate() {
-        // Adding `+0` leaves every sum but `-0` unchanged, and these sums start at `+0`
-        // (`DVec3::ZERO`), which in round-to-nearest no addition turns into `-0`: a select,
-        // not a branch on a random pattern.
-        let (tr, tg, tb) = (dr[i] + sr[i], dg[i] + sg[i], db[i] + sb[i]);
-        r += if add { tr } else { 0.0 };
-        g += if add { tg } else { 0.0 };
-        b += if add { tb } else { 0.0 };
-    }
-    DVec3::new(r, g, b)
 }
 
 /// What makes two lanes' sums of one area light equal: their point count, their shading
@@ -784,6 +882,59 @@ mod tests {
                 assert_eq!(DVec3::new(dr[i], dg[i], db[i]), diffuse, "point {i}");
                 assert_eq!(DVec3::new(sr[i], sg[i], sb[i]), spec_term, "point {i}");
             }
+        }
+    }
+
+    /// The fused pass 3 and 4 ([`lane_sum`]) gives the bits of [`shares`] followed by a
+    /// sum in point order of the points that add, with and without the filters, for a
+    /// count that is not a multiple of the block or of a vector.
+    #[test]
+    fn lane_sum_is_shares_summed_in_point_order() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let len = 2 * SUM_BLOCK + 37;
+        let points: Vec<DVec3> = (0..len)
+            .map(|_| DVec3::new(uniform(-5.0, 5.0), uniform(-5.0, 5.0), uniform(0.0, 12.0)))
+            .collect();
+        let adds: Vec<bool> = (0..len).map(|_| uniform(0.0, 1.0) < 0.7).collect();
+        let set = PointSet::from_points(&points);
+        let att = Attenuation {
+            constant: 1.0,
+            linear: 0.0,
+            quadratic: 0.005,
+        };
+        let (p, n) = (DVec3::new(0.3, -1.7, 0.2), DVec3::new(0.1, -0.2, 1.0).normalize());
+        let eye = DVec3::new(-0.3, -0.8, 0.6).normalize();
+        let point_color = DVec3::splat(1.0 / len as f64);
+        let mat = Material {
+            color: DVec3::new(0.85, 0.5, 0.2),
+            ..Material::default()
+        };
+        let model = ShadingModel {
+            ambient: true,
+            diffuse: true,
+            specular: Specular::Blinn,
+        };
+        let tinted: Vec<DVec3> = (0..len)
+            .map(|i| [DVec3::ONE, DVec3::ZERO, DVec3::new(0.6, 0.27, 0.08)][i % 3])
+            .collect();
+        let mut lanes = Lanes::default();
+        lanes.resize(len);
+        incidences(&set, p, n, &att, &mut lanes);
+        speculars(&mut lanes, len, n, eye, &mat, model);
+        let start = DVec3::new(0.25, 0.125, 0.0);
+        for filter in [Some(&tinted[..]), None] {
+            let ones = vec![DVec3::ONE; len];
+            shares(&mut lanes, len, point_color, filter.unwrap_or(&ones), &mat, model);
+            let [dr, dg, db] = &lanes.diffuse;
+            let [sr, sg, sb] = &lanes.specular;
+            let mut want = start;
+            for i in (0..len).filter(|&i| adds[i]) {
+                want += DVec3::new(dr[i] + sr[i], dg[i] + sg[i], db[i] + sb[i]);
+            }
+            let got = lane_sum(start, &lanes, point_color, filter, &adds, &mat, model);
+            assert_eq!(got.to_array().map(f64::to_bits), want.to_array().map(f64::to_bits));
+            assert!(got.x > start.x + 1e-3, "the points add light: {got}");
         }
     }
 }
