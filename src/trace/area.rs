@@ -153,16 +153,23 @@ fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mu
 
 /// Pass 2's first step: how each point faces the surface, [`Facing::of`] as a lane loop.
 /// A point is black when its colour `L / N * A` is zero (and the unlit skip is on).
+/// Returns how many points face away and how many are black (counted here, in the same
+/// vector loop, rather than by two more passes).
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facing]) {
+fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facing]) -> (u64, u64) {
     let len = out.len();
     let (dist, atten, n_dot_l) = (&lanes.dist[..len], &lanes.atten[..len], &lanes.n_dot_l[..len]);
+    let (mut away, mut black) = (0u32, 0u32);
     for i in 0..len {
         // `point_color * (A * 1) == 0`, each channel compared, no branch.
         let a = atten[i] * 1.0;
         let zero = (point_color.x * a == 0.0) & (point_color.y * a == 0.0) & (point_color.z * a == 0.0);
-        out[i] = Facing::of(dist[i] != 0.0, unlit_skip & zero, n_dot_l[i]);
+        let facing = Facing::of(dist[i] != 0.0, unlit_skip & zero, n_dot_l[i]);
+        away += u32::from(facing == Facing::Away);
+        black += u32::from(facing == Facing::Black);
+        out[i] = facing;
     }
+    (u64::from(away), u64::from(black))
 }
 
 /// Pass 3's first step: for every point, Blinn's `spec = max(N.H, 0)^n`,
@@ -386,8 +393,9 @@ impl<const K: usize> Tracer<'_, '_, K> {
         incidences(points, at.point, at.n, &area.attenuation, &mut s.lanes);
         s.facing.clear();
         s.facing.resize(len, Facing::NoLight);
-        facings(&s.lanes, point_color, self.world.skips.on(Skip::Unlit), &mut s.facing);
+        let (away, black) = facings(&s.lanes, point_color, self.world.skips.on(Skip::Unlit), &mut s.facing);
         list_facing(&s.facing, &mut s.open);
+        let towards = s.open.len() as u64;
         let shadows = self.world.scene.settings.shadows;
         s.filter.clear();
         s.filter.resize(len, DVec3::ONE);
@@ -428,18 +436,19 @@ impl<const K: usize> Tracer<'_, '_, K> {
             // `zero_product`) where its transparent colours multiply to 0; comparing every
             // filter instead costs a fifth of an N = 1000 render.
             s.adds.resize(len, false);
+            let mut lit = 0u32;
             if s.zero_product {
                 for ((&f, filter), add) in s.facing.iter().zip(&s.filter).zip(&mut s.adds) {
                     *add = (f == Facing::Towards) & !(blocked_shading & (*filter == DVec3::ZERO));
+                    lit += u32::from(*add);
                 }
             } else {
                 for ((&f, &blocked), add) in s.facing.iter().zip(&s.blocked).zip(&mut s.adds) {
                     *add = (f == Facing::Towards) & !(blocked_shading & blocked);
+                    lit += u32::from(*add);
                 }
             }
-            let count = |facing: Facing| s.facing.iter().filter(|&&f| f == facing).count() as u64;
-            let (towards, away, black) = (count(Facing::Towards), count(Facing::Away), count(Facing::Black));
-            let lit = s.adds.iter().filter(|&&a| a).count() as u64;
+            let lit = u64::from(lit);
             let blocked = towards - lit;
             let saved = &mut self.counts.saved;
             saved.count(Skip::BlockedShading, blocked);
