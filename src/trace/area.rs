@@ -153,23 +153,24 @@ fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mu
 
 /// Pass 2's first step: how each point faces the surface, [`Facing::of`] as a lane loop.
 /// A point is black when its colour `L / N * A` is zero (and the unlit skip is on).
-/// Returns how many points face away and how many are black (counted here, in the same
-/// vector loop, rather than by two more passes).
+/// Returns how many points face the surface, face away and are black (counted here, in
+/// the same vector loop, rather than by more passes).
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facing]) -> (u64, u64) {
+fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facing]) -> [u64; 3] {
     let len = out.len();
     let (dist, atten, n_dot_l) = (&lanes.dist[..len], &lanes.atten[..len], &lanes.n_dot_l[..len]);
-    let (mut away, mut black) = (0u32, 0u32);
+    let (mut towards, mut away, mut black) = (0u32, 0u32, 0u32);
     for i in 0..len {
         // `point_color * (A * 1) == 0`, each channel compared, no branch.
         let a = atten[i] * 1.0;
         let zero = (point_color.x * a == 0.0) & (point_color.y * a == 0.0) & (point_color.z * a == 0.0);
         let facing = Facing::of(dist[i] != 0.0, unlit_skip & zero, n_dot_l[i]);
+        towards += u32::from(facing == Facing::Towards);
         away += u32::from(facing == Facing::Away);
         black += u32::from(facing == Facing::Black);
         out[i] = facing;
     }
-    (u64::from(away), u64::from(black))
+    [towards, away, black].map(u64::from)
 }
 
 /// Pass 3's first step: for every point, Blinn's `spec = max(N.H, 0)^n`,
@@ -393,9 +394,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
         incidences(points, at.point, at.n, &area.attenuation, &mut s.lanes);
         s.facing.clear();
         s.facing.resize(len, Facing::NoLight);
-        let (away, black) = facings(&s.lanes, point_color, self.world.skips.on(Skip::Unlit), &mut s.facing);
-        list_facing(&s.facing, &mut s.open);
-        let towards = s.open.len() as u64;
+        let [towards, away, black] = facings(&s.lanes, point_color, self.world.skips.on(Skip::Unlit), &mut s.facing);
+        list_facing(&s.facing, towards as usize, &mut s.open);
         let shadows = self.world.scene.settings.shadows;
         s.filter.clear();
         s.filter.resize(len, DVec3::ONE);
@@ -751,12 +751,12 @@ impl SumTerms<'_> {
     }
 }
 
-/// Lists in `open` the points facing the surface, without a branch per point (their
-/// pattern is random). A function of its own: inside the caller, the list's pointer was
-/// loaded from the stack at every point.
+/// Lists in `open` the `towards` points facing the surface, without a branch per point
+/// (their pattern is random). A function of its own: inside the caller, the list's pointer
+/// was loaded from the stack at every point.
 #[inline(never)]
-fn list_facing(facing: &[Facing], open: &mut Vec<u32>) {
-    if facing.iter().all(|&f| f == Facing::Towards) {
+fn list_facing(facing: &[Facing], towards: usize, open: &mut Vec<u32>) {
+    if towards == facing.len() {
         // Every point, as for most surfaces that see the whole light.
         open.clear();
         open.extend(0..facing.len() as u32);
@@ -769,6 +769,7 @@ fn list_facing(facing: &[Facing], open: &mut Vec<u32>) {
         open[count] = i as u32;
         count += usize::from(f == Facing::Towards);
     }
+    debug_assert_eq!(count, towards);
     open.truncate(count);
 }
 
