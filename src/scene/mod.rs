@@ -128,7 +128,7 @@ pub struct Candidate {
 /// The cone of directions from `p` meeting the ball (`centre`, `radius`), widened by a
 /// relative 1e-9 so rounding never excludes a direction that meets it; `None` if `p` is
 /// (nearly) inside the ball.
-fn direction_cone(p: DVec3, centre: DVec3, radius: f64) -> Option<(DVec3, f64)> {
+pub(crate) fn direction_cone(p: DVec3, centre: DVec3, radius: f64) -> Option<(DVec3, f64)> {
     let to_centre = centre - p;
     let dist = to_centre.length();
     let padded = radius * (1.0 + 1e-9) + 1e-9 * dist;
@@ -137,6 +137,22 @@ fn direction_cone(p: DVec3, centre: DVec3, radius: f64) -> Option<(DVec3, f64)> 
     }
     let sin = padded / dist;
     Some((to_centre / dist, (1.0 - sin * sin).sqrt() - 1e-12))
+}
+
+/// Whether two cones of directions (unit axis, cosine of the half-angle, as
+/// [`direction_cone`] gives them) share no direction: the angle between their axes exceeds
+/// the sum of their half-angles, `a.b < cos(alpha + beta) = cos a cos b - sin a sin b`, by
+/// a margin of 1e-9 far above the rounding of a unit direction's dot product. Only for
+/// half-angles below 90 degrees (else `false`).
+pub(crate) fn cones_apart((a, cos_a): (DVec3, f64), (b, cos_b): (DVec3, f64)) -> bool {
+    if cos_a <= 0.0 || cos_b <= 0.0 {
+        return false;
+    }
+    let (sin_a, sin_b) = (
+        (1.0 - cos_a * cos_a).max(0.0).sqrt(),
+        (1.0 - cos_b * cos_b).max(0.0).sqrt(),
+    );
+    a.dot(b) < cos_a * cos_b - sin_a * sin_b - 1e-9
 }
 
 /// The cone of directions from `p` that pass through the ball (`centre`, `radius`), shrunk
@@ -315,6 +331,30 @@ fn remaining_bounds(scene: &Scene, ambient: DVec3) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cones_apart_when_the_angle_exceeds_the_half_angles() {
+        // Two cones of half-angle 30 degrees: apart when their axes are more than 60
+        // degrees apart.
+        let half = 30f64.to_radians().cos();
+        let axis_at = |deg: f64| DVec3::new(deg.to_radians().sin(), 0.0, deg.to_radians().cos());
+        assert!(cones_apart((DVec3::Z, half), (axis_at(60.001), half)));
+        assert!(!cones_apart((DVec3::Z, half), (axis_at(59.999), half)));
+        assert!(!cones_apart((DVec3::Z, half), (axis_at(60.0), half)));
+        assert!(cones_apart((DVec3::Z, half), (-DVec3::Z, half)));
+        // Half-angles of 90 degrees or more are never apart.
+        assert!(!cones_apart((DVec3::Z, 0.0), (-DVec3::Z, 0.99)));
+        // Every direction of one ball's cone misses the other's: a ball of radius 1 at
+        // distance 2 (30 degrees) on +z and one on an axis 61 degrees away.
+        let p = DVec3::new(0.3, -0.2, 0.1);
+        let (a, b) = (p + 2.0 * DVec3::Z, p + 2.0 * axis_at(61.0));
+        let (ca, cb) = (direction_cone(p, a, 1.0).unwrap(), direction_cone(p, b, 1.0).unwrap());
+        assert!(cones_apart(ca, cb));
+        assert!(!cones_apart(
+            ca,
+            direction_cone(p, p + 2.0 * axis_at(59.0), 1.0).unwrap()
+        ));
+    }
 
     #[test]
     fn direction_cones_bracket_the_ball() {

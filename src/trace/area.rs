@@ -29,7 +29,7 @@ use crate::area_light::{AreaLight, PointMode, PointSet};
 use crate::light::{Attenuation, Incidence};
 use crate::material::Material;
 use crate::math::{Ray, offset_origin};
-use crate::scene::{Candidate, ShadingModel, Specular};
+use crate::scene::{Candidate, ShadingModel, Specular, cones_apart, direction_cone};
 use crate::shading::{positive_part, pow_each, specular_tint};
 use crate::shape::{Fan, Shape, Verdict, fan_verdicts};
 use crate::skips::Skip;
@@ -584,6 +584,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
         // offset origin (the offset's side is the side of the light: see `offset_origin`).
         let origin = shadow_ray_along(at, s.lanes.to_light(first as usize)).origin;
         let (centre, radius) = light;
+        // The directions from the shading point (as in `incidences`) to every light point.
+        let light_cone = direction_cone(at.point, centre, radius);
         let mut rejects = 0;
         let len = s.lanes.dist.len();
         // Opaque candidates, then transparent ones, each in ascending order.
@@ -603,6 +605,15 @@ impl<const K: usize> Tracer<'_, '_, K> {
             if cones && c.object == at.object && at.n == at.outward && shape.is_convex() {
                 // Rays leaving a convex surface outward, from origins offset past its
                 // rounding error, never meet it again (tests/self_intersection.rs).
+                rejects += s.open.len() as u64;
+                continue;
+            }
+            if let (true, Some(light), Some(cone)) = (cones, light_cone, c.cone)
+                && cones_apart(light, cone)
+            {
+                // No direction towards the light meets the candidate's bounding sphere: every
+                // verdict below would be a miss (two thirds of the candidates of the soft
+                // shadows' shading points).
                 rejects += s.open.len() as u64;
                 continue;
             }
@@ -946,5 +957,57 @@ mod tests {
             assert_eq!(got.to_array().map(f64::to_bits), want.to_array().map(f64::to_bits));
             assert!(got.x > start.x + 1e-3, "the points add light: {got}");
         }
+    }
+
+    /// When the light's cone of directions and a candidate's share none
+    /// ([`crate::scene::cones_apart`]), the cones' verdict on every light point is a miss:
+    /// skipping the candidate changes nothing.
+    #[test]
+    fn cones_apart_means_every_verdict_misses() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let (mut apart, mut near) = (0, 0);
+        for _ in 0..2000 {
+            let p = DVec3::new(uniform(-6.0, 6.0), uniform(-6.0, 6.0), uniform(0.0, 4.0));
+            let (centre, radius) = (
+                DVec3::new(uniform(-1.0, 1.0), uniform(-1.0, 1.0), 10.0),
+                uniform(0.5, 3.0),
+            );
+            // Points on the light's sphere, the chapter's placement, rounded as placed.
+            let points: Vec<DVec3> = (0..64)
+                .map(|_| {
+                    let (theta, phi) = (uniform(0.0, std::f64::consts::PI), uniform(0.0, std::f64::consts::TAU));
+                    centre + radius * DVec3::new(phi.cos() * theta.sin(), phi.sin() * theta.sin(), theta.cos())
+                })
+                .collect();
+            let object = (
+                DVec3::new(uniform(-6.0, 6.0), uniform(-6.0, 6.0), uniform(0.0, 9.0)),
+                uniform(0.1, 2.0),
+            );
+            let (Some(light), Some(cone)) = (direction_cone(p, centre, radius), direction_cone(p, object.0, object.1))
+            else {
+                continue;
+            };
+            if !cones_apart(light, cone) {
+                near += 1;
+                continue;
+            }
+            apart += 1;
+            let mut lanes = Lanes::default();
+            lanes.resize(points.len());
+            let att = Attenuation {
+                constant: 1.0,
+                linear: 0.0,
+                quadratic: 0.0,
+            };
+            incidences(&PointSet::from_points(&points), p, DVec3::Z, &att, &mut lanes);
+            let mut verdict = vec![Verdict::Test; points.len()];
+            verdicts(&lanes, cone, None, &mut verdict);
+            assert!(
+                verdict.iter().all(|&v| v == Verdict::Miss),
+                "p {p}, light {light:?}, cone {cone:?}"
+            );
+        }
+        assert!(apart > 300 && near > 100, "both cases met: {apart} apart, {near} not");
     }
 }
