@@ -42,8 +42,11 @@ use multiversion::multiversion;
 pub(super) struct AreaScratch {
     lanes: Lanes,
     facing: Vec<Facing>,
-    /// Shadow filter of each point: 1 unshadowed, 0 blocked, else the product of colours.
+    /// Shadow filter of each point: 1 unshadowed, 0 blocked, else the product of colours;
+    /// filled with 1 only when first written at a shading point ([`AreaScratch::ensure_filter`]).
     filter: Vec<DVec3>,
+    /// Whether `filter` holds this shading point's filters (else every one is 1).
+    filter_ready: bool,
     /// Whether an opaque object blocks the point's shadow ray.
     blocked: Vec<bool>,
     /// The points whose shadow ray is still open (facing, not blocked yet).
@@ -71,6 +74,18 @@ pub(super) struct AreaScratch {
     /// crosses.
     crossed: Vec<Vec<usize>>,
     candidates: Vec<Candidate>,
+}
+
+impl AreaScratch {
+    /// Fills the `len` filters with 1, unless this shading point's are already there: a
+    /// fill per shading point (24 bytes a point) was a cost where no shadow ray is blocked.
+    fn ensure_filter(&mut self, len: usize) {
+        if !self.filter_ready {
+            self.filter.clear();
+            self.filter.resize(len, DVec3::ONE);
+            self.filter_ready = true;
+        }
+    }
 }
 
 /// Coordinate arrays of the per-point quantities (pass 1 and 3 outputs).
@@ -316,11 +331,13 @@ fn lane_sum(
         spec,
         adds,
     };
+    // Set once per call, not per block (a memset of 1.5 KB each time).
+    let mut total = [[0.0; SUM_BLOCK]; 3];
     for start in (0..len).step_by(SUM_BLOCK) {
         let block = SUM_BLOCK.min(len - start);
         sum = match filter {
-            Some(f) => terms.add(start, block, |i, c| f[i][c], sum),
-            None => terms.add(start, block, |_, _| 1.0, sum),
+            Some(f) => terms.add(start, block, |i, c| f[i][c], &mut total, sum),
+            None => terms.add(start, block, |_, _| 1.0, &mut total, sum),
         };
     }
     sum
@@ -397,8 +414,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         let [towards, away, black] = facings(&s.lanes, point_color, self.world.skips.on(Skip::Unlit), &mut s.facing);
         list_facing(&s.facing, towards as usize, &mut s.open);
         let shadows = self.world.scene.settings.shadows;
-        s.filter.clear();
-        s.filter.resize(len, DVec3::ONE);
+        s.filter_ready = false;
         s.blocked.clear();
         s.blocked.resize(len, false);
         s.zero_product = false;
@@ -416,6 +432,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
             _ => false,
         };
         if !grouped && shadows {
+            s.ensure_filter(len);
             // One shadow ray at a time through the acceleration structure, in point order;
             // for a recorder in pass 4, where its events interleave with the others.
             for i in 0..len {
@@ -462,7 +479,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
             let mut speculars_for = None;
             // Every point that adds has filter 1 unless a transparent object tinted one, or
             // blocked points add their 0.
-            let filter = (s.tinted || !blocked_shading).then_some(&s.filter[..]);
+            let filter = (s.filter_ready && (s.tinted || !blocked_shading)).then_some(&s.filter[..]);
             for j in lanes_of::<K>(mask) {
                 let (count, lane_color) = self.lane_points(j, index, area, len);
                 let (model, mat) = self.lane_shading(j, at.object);
@@ -497,6 +514,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         debug_assert!(K == 1, "a family is traced without a recorder, with every skip on");
         let color = &mut color[0];
         let (model, mat) = self.lane_shading(0, at.object);
+        s.ensure_filter(len);
         speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
         shares(&mut s.lanes, len, point_color, &s.filter, mat, model);
         for i in 0..len {
@@ -679,6 +697,9 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 s.hits[hits] = i;
                 hits += usize::from(met);
             }
+            if hits > 0 {
+                s.ensure_filter(len);
+            }
             let met = &s.hits[..hits];
             if !world.material_of(c.object).is_transparent() {
                 for &i in met {
@@ -733,12 +754,18 @@ impl SumTerms<'_> {
     /// that add, in point order, with point `i`'s filter in channel `c` `filter(i, c)`.
     /// Inlined into each of [`lane_sum`]'s versions, with its target features.
     #[inline(always)]
-    fn add(&self, start: usize, len: usize, filter: impl Fn(usize, usize) -> f64, sum: DVec3) -> DVec3 {
+    fn add(
+        &self,
+        start: usize,
+        len: usize,
+        filter: impl Fn(usize, usize) -> f64,
+        total: &mut [[f64; SUM_BLOCK]; 3],
+        sum: DVec3,
+    ) -> DVec3 {
         let block = start..start + len;
         let (atten, n_dot_l) = (&self.atten[block.clone()], &self.n_dot_l[block.clone()]);
         let (spec, adds) = (&self.spec[block.clone()], &self.adds[block]);
         // The terms, a loop over the points that vectorizes...
-        let mut total = [[0.0; SUM_BLOCK]; 3];
         for (c, total) in total.iter_mut().enumerate() {
             for l in 0..len {
                 let cos = positive_part(n_dot_l[l]);
@@ -751,7 +778,7 @@ impl SumTerms<'_> {
             }
         }
         // ... then the sums, one addition after the other, in registers.
-        let [tr, tg, tb] = &total;
+        let [tr, tg, tb] = &*total;
         let (mut r, mut g, mut b) = (sum.x, sum.y, sum.z);
         for l in 0..len {
             r += tr[l];
