@@ -9,6 +9,10 @@
 //! 3. the diffuse and specular terms of every point ([`shares`]);
 //! 4. in point order, the recorder's events and the running sum.
 //!
+//! Without a recorder, passes 3 and 4 are one ([`lane_sum`]: the terms of a block of
+//! points, then their sum), and a candidate whose cone of directions misses the light's
+//! is passed over before pass 2 looks at its points.
+//!
 //! Passes 1 and 3 are straight loops over coordinate arrays that compile to vector
 //! instructions, in versions for AVX-512 and AVX2 chosen at run time (`multiversion`):
 //! the same IEEE operations on each lane whatever the vector width (Rust never fuses a
