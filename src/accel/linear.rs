@@ -25,13 +25,13 @@ impl Linear {
         best
     }
 
-    pub fn any_hit(
+    pub fn any_hit<F: Fn(usize) -> bool + ?Sized>(
         &self,
         objects: &[Object],
         ray: &Ray,
         t_min: f64,
         t_max: f64,
-        filter: &dyn Fn(usize) -> bool,
+        filter: &F,
     ) -> bool {
         objects[..self.count]
             .iter()
@@ -39,14 +39,14 @@ impl Linear {
             .any(|(i, o)| filter(i) && o.shape.occludes(ray, t_min, t_max))
     }
 
-    pub fn each_hit(
+    pub fn each_hit<F: Fn(usize) -> bool + ?Sized, V: FnMut(usize) + ?Sized>(
         &self,
         objects: &[Object],
         ray: &Ray,
         t_min: f64,
         t_max: f64,
-        filter: &dyn Fn(usize) -> bool,
-        visit: &mut dyn FnMut(usize),
+        filter: &F,
+        visit: &mut V,
     ) {
         for (i, o) in objects[..self.count].iter().enumerate() {
             if filter(i) && o.shape.occludes(ray, t_min, t_max) {
