@@ -37,7 +37,7 @@ fn jittered(rng: &mut Stream, n: u32, x: u32, y: u32, k: u32) -> (f64, f64) {
     (x as f64 + (cx + jx) / n as f64, y as f64 + (cy + jy) / n as f64)
 }
 
-/// Image position of sample `k` of pixel `(x, y)` (see [`jittered`]).
+/// Image position of sample `k` of pixel `(x, y)` (see `jittered`).
 pub fn sample_position(world: &World, x: u32, y: u32, k: u32) -> (f64, f64) {
     let mut rng = jitter_stream(world, x, y).skip_words(4 * k as u128);
     jittered(&mut rng, world.scene.settings.grid_side(), x, y, k)

@@ -367,7 +367,7 @@ impl Torus {
     }
 
     /// Whether the ray meets the torus inside `(t_min, t_max)`: the shortcuts of
-    /// [`Torus::shadow_verdict`] one after the other, stopping at the first that decides,
+    /// `Torus::shadow_verdict` one after the other, stopping at the first that decides,
     /// then the quartic.
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let Some((o, d, clip)) = self.local_clip(ray, t_min, t_max) else {

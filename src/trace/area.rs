@@ -311,9 +311,10 @@ fn shares(lanes: &mut Lanes, len: usize, point_color: DVec3, filter: &[DVec3], m
 /// blocked-shading skip nothing at all), each point of colour `point_color`. `filter`:
 /// the shadow filters, `None` when every point that adds has filter 1 (`x * 1 = x`).
 ///
-/// The sum's additions must run in point order, one after the other (3 cycles each); the
-/// terms of four points at a time are computed in vector registers meanwhile, and never
-/// stored: a pass writing six arrays and a second one reading them cost four times as much.
+/// The sum's additions must run in point order, one after the other (3 cycles each). The
+/// terms are computed [`SUM_BLOCK`] points at a time, four per vector, into a block that
+/// stays in the L1 cache, then summed from it: a pass writing six arrays of terms and a
+/// second one reading them back took 16 % of a soft N = 1000 render, this one 11 %.
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn lane_sum(
     color: DVec3,
