@@ -80,7 +80,7 @@ pub fn poly_roots_with(c: &[f64], lo: f64, hi: f64, f: &dyn Fn(f64) -> f64, out:
 
 /// As [`poly_roots_with`], returning the roots on the stack (the torus calls it once per
 /// ray: no heap allocation).
-pub fn poly_roots(c: &[f64], lo: f64, hi: f64, f: &dyn Fn(f64) -> f64) -> Few {
+pub fn poly_roots<F: Fn(f64) -> f64 + ?Sized>(c: &[f64], lo: f64, hi: f64, f: &F) -> Few {
     debug_assert!(c.len() <= 5, "degree at most 4");
     let mut few = Few::default();
     roots_into(c, lo, hi, f, &mut few);
@@ -107,8 +107,10 @@ impl Few {
     }
 }
 
-/// The isolator proper (see the module doc), for at most 5 coefficients.
-fn roots_into(c: &[f64], lo: f64, hi: f64, f: &dyn Fn(f64) -> f64, out: &mut Few) {
+/// The isolator proper (see the module doc), for at most 5 coefficients. Generic over `f`,
+/// so that a caller's evaluation (the torus's implicit equation) is inlined into the
+/// bracketing and refinement that call it dozens of times per root.
+fn roots_into<F: Fn(f64) -> f64 + ?Sized>(c: &[f64], lo: f64, hi: f64, f: &F, out: &mut Few) {
     let mut len = c.len().min(5);
     while len > 1 && c[len - 1] == 0.0 {
         len -= 1;
@@ -138,7 +140,10 @@ fn roots_into(c: &[f64], lo: f64, hi: f64, f: &dyn Fn(f64) -> f64, out: &mut Few
             .all(|&c| c == 0.0 || c.is_sign_positive() == deriv[0].is_sign_positive());
     if degree >= 2 && !monotone_from_zero {
         let mut crit = Few::default();
-        roots_into(deriv, lo, hi, &|t| horner(deriv, t), &mut crit);
+        // Through `dyn`: a closure type of each instance would instantiate the next one
+        // without end.
+        let derivative: &dyn Fn(f64) -> f64 = &|t| horner(deriv, t);
+        roots_into(deriv, lo, hi, derivative, &mut crit);
         for &t in crit.as_slice() {
             if t > lo && t < hi {
                 splits[ns] = t;
@@ -172,7 +177,7 @@ fn push_unique(out: &mut Vec<f64>, t: f64) {
 /// Safeguarded Newton-bisection on a bracket `[a, b]` where `f` changes sign (`fa = f(a)`).
 /// Newton steps use the expanded derivative; a step leaving the bracket is replaced by
 /// bisection. Stops when the bracket cannot shrink further in floating point.
-fn refine(f: &dyn Fn(f64) -> f64, deriv: &[f64], mut a: f64, mut b: f64, fa: f64) -> f64 {
+fn refine<F: Fn(f64) -> f64 + ?Sized>(f: &F, deriv: &[f64], mut a: f64, mut b: f64, fa: f64) -> f64 {
     let neg_at_a = fa < 0.0;
     let mut t = 0.5 * (a + b);
     for _ in 0..200 {
