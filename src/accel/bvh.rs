@@ -241,13 +241,13 @@ impl Bvh {
 
     /// True when some object accepted by `filter` is hit with `t_min < t < t_max`; stops at
     /// the first.
-    pub fn any_hit<F: Fn(usize) -> bool + ?Sized>(
+    pub fn any_hit(
         &self,
         objects: &[Object],
         ray: &Ray,
         t_min: f64,
         t_max: f64,
-        filter: &F,
+        filter: &dyn Fn(usize) -> bool,
     ) -> bool {
         self.visit(ray, t_min, t_max, |j| {
             filter(j) && objects[j].shape.occludes(ray, t_min, t_max)
@@ -256,14 +256,14 @@ impl Bvh {
 
     /// Calls `visit` for every object accepted by `filter` hit in `(t_min, t_max)`, in tree
     /// order (callers that combine the objects sort them first).
-    pub fn each_hit<F: Fn(usize) -> bool + ?Sized, V: FnMut(usize) + ?Sized>(
+    pub fn each_hit(
         &self,
         objects: &[Object],
         ray: &Ray,
         t_min: f64,
         t_max: f64,
-        filter: &F,
-        visit: &mut V,
+        filter: &dyn Fn(usize) -> bool,
+        visit: &mut dyn FnMut(usize),
     ) {
         self.visit(ray, t_min, t_max, |j| {
             if filter(j) && objects[j].shape.occludes(ray, t_min, t_max) {

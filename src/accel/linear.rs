@@ -25,13 +25,13 @@ impl Linear {
         best
     }
 
-    pub fn any_hit<F: Fn(usize) -> bool + ?Sized>(
+    pub fn any_hit(
         &self,
         objects: &[Object],
         ray: &Ray,
         t_min: f64,
         t_max: f64,
-        filter: &F,
+        filter: &dyn Fn(usize) -> bool,
     ) -> bool {
         objects[..self.count]
             .iter()
@@ -39,14 +39,14 @@ impl Linear {
             .any(|(i, o)| filter(i) && o.shape.occludes(ray, t_min, t_max))
     }
 
-    pub fn each_hit<F: Fn(usize) -> bool + ?Sized, V: FnMut(usize) + ?Sized>(
+    pub fn each_hit(
         &self,
         objects: &[Object],
         ray: &Ray,
         t_min: f64,
         t_max: f64,
-        filter: &F,
-        visit: &mut V,
+        filter: &dyn Fn(usize) -> bool,
+        visit: &mut dyn FnMut(usize),
     ) {
         for (i, o) in objects[..self.count].iter().enumerate() {
             if filter(i) && o.shape.occludes(ray, t_min, t_max) {

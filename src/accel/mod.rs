@@ -85,13 +85,13 @@ impl Accel {
     }
 
     /// True when some object accepted by `filter` is hit with `t_min < t < t_max`.
-    pub fn any_hit<F: Fn(usize) -> bool + ?Sized>(
+    pub fn any_hit(
         &self,
         objects: &[Object],
         ray: &Ray,
         t_min: f64,
         t_max: f64,
-        filter: &F,
+        filter: &dyn Fn(usize) -> bool,
     ) -> bool {
         match self {
             Accel::Linear(l) => l.any_hit(objects, ray, t_min, t_max, filter),
@@ -101,14 +101,14 @@ impl Accel {
 
     /// Calls `visit` once for every object accepted by `filter` that the ray hits in
     /// `(t_min, t_max)`, in no particular order.
-    pub fn each_hit<F: Fn(usize) -> bool + ?Sized, V: FnMut(usize) + ?Sized>(
+    pub fn each_hit(
         &self,
         objects: &[Object],
         ray: &Ray,
         t_min: f64,
         t_max: f64,
-        filter: &F,
-        visit: &mut V,
+        filter: &dyn Fn(usize) -> bool,
+        visit: &mut dyn FnMut(usize),
     ) {
         match self {
             Accel::Linear(l) => l.each_hit(objects, ray, t_min, t_max, filter, visit),
