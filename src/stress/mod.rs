@@ -1,8 +1,8 @@
 //! `lumiere stress`: a seeded campaign that fires families of hard rays at every shape and
 //! compares each f64 hit with a double-double reference ([`reference`](mod@reference)).
-//! For each shape and ray family it counts the rays, the hits the reference has, missed hits, false hits,
-//! disagreements inside the grazing band, non-finite results, and the median and maximum
-//! relative error of `t`.
+//! For each shape and ray family it counts the rays, the hits the reference has, missed
+//! hits, false hits, disagreements inside the grazing band, non-finite results, and the
+//! median and maximum relative error of `t`.
 //!
 //! **Grazing band.** A ray is in the band when moving its origin sideways by
 //! `delta = max(1e-9 x object size, 16 ulp of the coordinates)` (eight directions
