@@ -9,8 +9,13 @@
 //! incidences and shadow rays of N = 1000, and each N adds only its own shading sum; the
 //! slides' 25 shading figures share their rays and shadow rays.
 //!
+//! Scenes without an area light may also differ in their lights (the lighting, directional,
+//! attenuation and spotlight sets, and soft-shadows' hard shadows, are the reference scene
+//! under eleven lightings): the family's world has the union of their lights, each lane
+//! shades with its own, in its own order, and counts only its own lights' shadow rays.
+//!
 //! Lanes are what differs; everything that shapes a ray (geometry, camera, image, seed,
-//! colours, `k_r`, `k_t`, `n`, the lights but for that one count) must be equal, or the
+//! colours, `k_r`, `k_t`, `n`, the area lights but for that one count) must be equal, or the
 //! scenes are not grouped ([`group`]).
 
 use crate::area_light::PointMode;
@@ -40,6 +45,10 @@ fn key(scene: &Scene) -> Scene {
     for m in &mut key.materials {
         (m.ka, m.kd, m.ks, m.shininess, m.metal) = (0.0, 0.0, 0.0, 0.0, 0.0);
     }
+    if !has_area_light(scene) {
+        // Each lane shades with its own lights ([`light_union`]).
+        key.lights.clear();
+    }
     for light in &mut key.lights {
         if let Light::Area(a) = light
             && a.mode == PointMode::Fixed
@@ -48,6 +57,68 @@ fn key(scene: &Scene) -> Scene {
         }
     }
     key
+}
+
+fn has_area_light(scene: &Scene) -> bool {
+    scene.lights.iter().any(|l| matches!(l, Light::Area(_)))
+}
+
+/// The lights of one world for `members` without area lights, and the lights of each member
+/// in it (as [`Lane::lights`] bits): each member's lights but the ambient ones, in its
+/// order, each matched to the first equal light of the union after the one its previous
+/// light matched, or added at the end. So every member's lights keep their order (and each
+/// lane sums its lights' shares as a render of its scene alone does). `None` past 64 lights.
+fn light_union(members: &[&Scene]) -> Option<(Vec<Light>, Vec<u64>)> {
+    let mut union: Vec<Light> = Vec::new();
+    let mut uses = Vec::with_capacity(members.len());
+    for m in members {
+        let (mut next, mut bits) = (0, 0u64);
+        for light in m.lights.iter().filter(|l| !matches!(l, Light::Ambient { .. })) {
+            let index = match union[next..].iter().position(|u| u == light) {
+                Some(k) => next + k,
+                None => {
+                    union.push(light.clone());
+                    union.len() - 1
+                }
+            };
+            if index >= 64 {
+                return None;
+            }
+            bits |= 1 << index;
+            next = index + 1;
+        }
+        uses.push(bits);
+    }
+    Some((union, uses))
+}
+
+/// How one pass renders a family: its world's scene, the area light whose count varies
+/// (if any), and the lights each member has ([`Lane::lights`]).
+struct Plan {
+    scene: Scene,
+    light: Option<usize>,
+    lights: Vec<u64>,
+}
+
+/// The [`Plan`] of `members`, whose [`key`]s are equal; `Err` if one pass cannot render them.
+fn plan(members: &[&Scene]) -> Result<Plan, ()> {
+    if members.iter().any(|m| has_area_light(m)) {
+        // Equal keys: every member has the same lights, but for area light counts.
+        let light = varying_light(members)?;
+        return Ok(Plan {
+            scene: largest_scene(members, light),
+            light,
+            lights: vec![u64::MAX; members.len()],
+        });
+    }
+    let (lights, uses) = light_union(members).ok_or(())?;
+    let mut scene = largest_scene(members, None);
+    scene.lights = lights;
+    Ok(Plan {
+        scene,
+        light: None,
+        lights: uses,
+    })
 }
 
 /// The count of fixed area light `index` in `scene`, if it is one.
@@ -61,7 +132,8 @@ fn count_of(scene: &Scene, index: usize) -> Option<u32> {
 /// Groups `scenes` (by index, each group ascending, groups in order of their first member)
 /// into families that one pass can render: equal but for depth, shading, and the count of at
 /// most one fixed area light, whose points for every member's count are a prefix of the
-/// largest count's. A scene that fits no family is a group of its own.
+/// largest count's, or, without area lights, their lights. A scene that fits no family is a
+/// group of its own.
 pub fn group(scenes: &[&Scene]) -> Vec<Vec<usize>> {
     let keys: Vec<Scene> = scenes.iter().map(|s| key(s)).collect();
     let mut groups: Vec<Vec<usize>> = Vec::new();
@@ -69,7 +141,7 @@ pub fn group(scenes: &[&Scene]) -> Vec<Vec<usize>> {
         for g in &mut groups {
             let mut members: Vec<&Scene> = g.iter().map(|&m| scenes[m]).collect();
             members.push(scenes[i]);
-            if keys[g[0]] == keys[i] && varying_light(&members).is_ok() {
+            if keys[g[0]] == keys[i] && plan(&members).is_ok() {
                 g.push(i);
                 continue 'next;
             }
@@ -131,8 +203,14 @@ pub fn render(members: &[&Scene], cancel: &AtomicBool) -> Option<Vec<(Vec<u8>, R
 
 /// [`render`] with `K` lanes.
 fn render_lanes<const K: usize>(members: &[&Scene], cancel: &AtomicBool) -> Option<Vec<(Vec<u8>, RenderStats)>> {
-    let light = varying_light(members).expect("a family formed by `group`");
-    let largest = largest_scene(members, light);
+    let Ok(Plan {
+        scene: largest,
+        light,
+        lights,
+    }) = plan(members)
+    else {
+        panic!("a family formed by `group`")
+    };
     let world = World::new(&largest);
     let bounds: Vec<Vec<f64>> = members.iter().map(|m| World::remaining_bounds_of(m)).collect();
     let lanes: [Lane; K] = std::array::from_fn(|j| {
@@ -143,6 +221,8 @@ fn render_lanes<const K: usize>(members: &[&Scene], cancel: &AtomicBool) -> Opti
             area_count: light.and_then(|index| count_of(members[m], index).map(|n| (index, n))),
             shading: members[m].settings.shading,
             materials: &members[m].materials,
+            lights: lights[m],
+            ambient: members[m].ambient(),
         }
     });
     let h = largest.settings.height;

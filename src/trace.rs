@@ -155,8 +155,9 @@ impl Facing {
 
 /// What sets one image of a one-pass family apart (see [`crate::family`]): its recursion
 /// depth, its adaptive-depth bounds, the number of points it takes of the family's area
-/// light, and its shading (model, and materials whose colours, `k_r`, `k_t` and `n` are the
-/// world's). A plain render has one lane, the world's own.
+/// light, its shading (model, and materials whose colours, `k_r`, `k_t` and `n` are the
+/// world's), and which of the world's lights it has. A plain render has one lane, the
+/// world's own.
 #[derive(Clone, Copy, Debug)]
 pub struct Lane<'w> {
     pub depth: u32,
@@ -167,6 +168,11 @@ pub struct Lane<'w> {
     pub shading: ShadingModel,
     /// The lane's materials, indexed as the world's.
     pub materials: &'w [Material],
+    /// The world's lights this lane's scene has, one bit per light index (ambient lights
+    /// aside: see `ambient`); a light of index 64 or more belongs to every lane.
+    pub lights: u64,
+    /// The sum of this lane's ambient lights' colours, `L_a`.
+    pub ambient: DVec3,
 }
 
 impl<'w> Lane<'w> {
@@ -178,7 +184,14 @@ impl<'w> Lane<'w> {
             area_count: None,
             shading: world.scene.settings.shading,
             materials: &world.scene.materials,
+            lights: u64::MAX,
+            ambient: world.ambient,
         }
+    }
+
+    /// Whether this lane's scene has the world's light `index`.
+    fn has_light(&self, index: usize) -> bool {
+        index >= 64 || self.lights >> index & 1 == 1
     }
 
     /// Whether this lane shades every surface as `other` does.
@@ -203,9 +216,12 @@ pub struct Tracer<'w, 's, const K: usize = 1> {
     /// With `K > 1`, each lane's counts (its image's manifest).
     pub lane_counts: [RayCounts; K],
     pub lanes: [Lane<'w>; K],
-    /// Per lane, the shadow rays counted in `counts` that the lane's own area light count
-    /// does not cast (rays towards its points beyond `N`), for the current hit.
+    /// Per lane, the shadow rays counted in `counts` that the lane's own scene does not
+    /// cast (rays towards its area light's points beyond `N`, or towards lights it does not
+    /// have), for the current hit.
     area_excess: [u64; K],
+    /// For each of the world's lights, the lanes that have it, as bits.
+    light_lanes: Vec<u32>,
     /// For each lane, the first lane that shades as it does (its shares are copied).
     shading_twin: [usize; K],
     /// Set when a lane could not be traced exactly with the others (a light point black for
@@ -240,6 +256,9 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             counts: RayCounts::default(),
             lane_counts: [RayCounts::default(); K],
             shading_twin: std::array::from_fn(|j| (0..=j).find(|&i| lanes[i].shades_as(&lanes[j])).unwrap_or(j)),
+            light_lanes: (0..world.scene.lights.len())
+                .map(|index| (0..K).filter(|&j| lanes[j].has_light(index)).fold(0, |m, j| m | 1 << j))
+                .collect(),
             lanes,
             area_excess: [0; K],
             diverged: false,
@@ -459,19 +478,29 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         for j in lanes_of::<K>(mask) {
             let (model, mat) = self.lane_shading(j, at.object);
             if model.ambient {
-                let a = ambient(self.world.ambient, mat.ka, mat.color);
+                let a = ambient(self.lanes[j].ambient, mat.ka, mat.color);
                 rec.ambient(a);
                 color[j] += a;
             }
         }
         for (index, light) in scene.lights.iter().enumerate() {
+            // The lanes whose scene has this light; the others do not see its shadow rays.
+            let lit = mask & self.light_lanes[index];
+            if lit == 0 {
+                continue;
+            }
+            let shadow_before = self.counts.shadow;
             match light {
                 Light::Ambient { .. } => {}
-                Light::Area(area) => self.add_area_light(&mut color, mask, index, area, at, rec),
+                Light::Area(area) => self.add_area_light(&mut color, lit, index, area, at, rec),
                 _ => {
-                    let share = self.light_share(index, light.incidence(at.point), at, None, mask, rec);
-                    lanes_of::<K>(mask).for_each(|j| color[j] += share[j]);
+                    let share = self.light_share(index, light.incidence(at.point), at, None, lit, rec);
+                    lanes_of::<K>(lit).for_each(|j| color[j] += share[j]);
                 }
+            }
+            if lit != mask {
+                let cast = self.counts.shadow - shadow_before;
+                lanes_of::<K>(mask & !lit).for_each(|j| self.area_excess[j] += cast);
             }
         }
         color

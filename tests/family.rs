@@ -79,6 +79,36 @@ fn area_light_counts_in_one_pass_are_separate_renders() {
     }
 }
 
+/// Every figure's scene of set `set`, at `scale`.
+fn set_scenes(set: &str, scale: f64) -> Vec<Scene> {
+    let set = registry().into_iter().find(|s| s.name == set).unwrap();
+    (set.figures)().into_iter().map(|f| scaled(f.scene, scale)).collect()
+}
+
+#[test]
+fn lightings_in_one_pass_are_separate_renders() {
+    // The reference scene under the lightings of four sets and soft-shadows' hard shadows:
+    // ambient alone, a directional light alone, with ambient, in four orientations, point
+    // lights with and without attenuation, two spots. One pass, each lane its own lights'
+    // shares and shadow rays (the spots' unlit points cast none).
+    let mut scenes: Vec<Scene> = ["lighting", "directional", "attenuation", "spotlight"]
+        .into_iter()
+        .flat_map(|set| set_scenes(set, 0.08))
+        .collect();
+    scenes.extend(figure_scenes("soft-shadows", &["01-hard"], 0.08));
+    assert_eq!(scenes.len(), 12);
+    family_equals_separate_renders(&scenes);
+    // Two lights in both orders, one of them twice: the union [a, b, a] keeps each lane's
+    // order (b then a is not a then b: the sums round differently).
+    let [ambient, a] = [&scenes[2].lights[0], &scenes[2].lights[1]].map(Clone::clone);
+    let b = scenes[8].lights[1].clone();
+    let mut orders = vec![scenes[2].clone(), scenes[2].clone(), scenes[2].clone()];
+    orders[0].lights = vec![ambient.clone(), a.clone(), b.clone()];
+    orders[1].lights = vec![b.clone(), ambient, a.clone()];
+    orders[2].lights = vec![a.clone(), a, b];
+    family_equals_separate_renders(&orders);
+}
+
 #[test]
 fn depths_in_one_pass_are_separate_renders() {
     // Mirrors at 60 degrees, depth 1 to 10 (adaptive cutoffs per lane), and the prism at

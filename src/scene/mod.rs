@@ -106,6 +106,13 @@ pub struct Scene {
     pub lights: Vec<Light>,
 }
 
+impl Scene {
+    /// The sum of the ambient lights' colours, `L_a`.
+    pub fn ambient(&self) -> DVec3 {
+        self.lights.iter().map(Light::ambient).sum()
+    }
+}
+
 /// An object that may block some shadow ray from one shading point (see
 /// [`World::shadow_candidates`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -214,7 +221,7 @@ impl<'s> World<'s> {
             scene.camera.vfov_deg,
             s.width as f64 / s.height as f64,
         );
-        let ambient = scene.lights.iter().map(Light::ambient).sum();
+        let ambient = scene.ambient();
         let has_transparent = scene
             .objects
             .iter()
@@ -297,7 +304,7 @@ impl<'s> World<'s> {
 
     /// [`World::remaining_bound`] of `scene`, without building its world.
     pub fn remaining_bounds_of(scene: &Scene) -> Vec<f64> {
-        remaining_bounds(scene, scene.lights.iter().map(Light::ambient).sum())
+        remaining_bounds(scene, scene.ambient())
     }
 
     pub fn material_of(&self, object: usize) -> &Material {
