@@ -92,6 +92,65 @@ fn figures_command_rejects_bad_requests() {
 }
 
 #[test]
+fn a_run_renders_the_lightings_of_several_sets_in_one_pass() {
+    // The reference scene under lighting's, directional's and spotlight's lights: one pass
+    // in a run over the three sets, each image the bytes of its set rendered alone.
+    let (run, alone) = (temp_dir("figures-lightings"), temp_dir("figures-lightings-alone"));
+    let generate = |out: &std::path::Path, sets: &[&str]| {
+        let mut args = vec!["figures", "--scale", "0.05", "--out", out.to_str().unwrap(), "--quiet"];
+        args.extend_from_slice(sets);
+        let o = lumiere(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    let sets = ["lighting", "directional", "spotlight"];
+    generate(&run, &sets);
+    for set in sets {
+        generate(&alone, &[set]);
+    }
+    let manifest = |dir: &std::path::Path, set: &str| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.join(set).join("manifest.json")).unwrap()).unwrap()
+    };
+    for set in sets {
+        for image in manifest(&alone, set)["images"].as_array().unwrap() {
+            let file = image["file"].as_str().unwrap();
+            let read = |dir: &std::path::Path| std::fs::read(dir.join(set).join(file)).unwrap();
+            assert!(read(&run) == read(&alone), "{set}/{file}");
+        }
+    }
+    // Directional's first figure is lighting's third (same scene): a copy. The other eight
+    // distinct scenes were one pass, and each manifest names the others with their set.
+    let directional = manifest(&run, "directional");
+    assert_eq!(
+        directional["images"][0]["same_image_as"],
+        "lighting/03-ambient-directional.png"
+    );
+    let with: Vec<&str> = directional["images"][1]["one_pass_with"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        with,
+        [
+            "lighting/01-ambient.png",
+            "lighting/02-directional.png",
+            "lighting/03-ambient-directional.png",
+            "directional/03-d-0-1--1.png",
+            "directional/04-d--1-1--1.png",
+            "spotlight/01-theta-70.png",
+            "spotlight/02-theta-120.png"
+        ]
+    );
+    // Rendered alone, a set's family names its own files only.
+    let alone_with = &manifest(&alone, "directional")["images"][1]["one_pass_with"];
+    assert_eq!(
+        alone_with,
+        &serde_json::json!(["01-d-1-1--1.png", "03-d-0-1--1.png", "04-d--1-1--1.png"])
+    );
+}
+
+#[test]
 fn a_run_renders_a_scene_two_sets_share_once_and_families_in_one_pass() {
     // Light-shapes' sphere is soft-shadows' N = 100: in a run over both it is copied, with
     // the same bytes as when light-shapes is rendered alone.

@@ -124,13 +124,13 @@ pub fn render_figure_until(figure: Figure, scale: f64, cancel: &AtomicBool) -> O
 
 /// Renders the figures of one family (see [`crate::family`]) at `scale` in passes of
 /// [`crate::family::LANES`], or one by one if their lanes diverge; `None` if cancelled.
-/// Each manifest records the images of its pass (`one_pass_with`) and an equal share of
-/// the pass's time.
-fn render_family_until(figures: Vec<Figure>, scale: f64, cancel: &AtomicBool) -> Option<Vec<RenderedFigure>> {
+/// Each manifest records the images of its pass (`one_pass_with`: each figure's `label`,
+/// its file name, or `set/file` for another set's) and an equal share of the pass's time.
+fn render_family_until(figures: Vec<(Figure, String)>, scale: f64, cancel: &AtomicBool) -> Option<Vec<RenderedFigure>> {
     let mut done = Vec::new();
     let mut figures = figures.into_iter().peekable();
     while figures.peek().is_some() {
-        let pass: Vec<Figure> = figures.by_ref().take(crate::family::LANES).collect();
+        let (pass, labels): (Vec<Figure>, Vec<String>) = figures.by_ref().take(crate::family::LANES).unzip();
         let scenes: Vec<Scene> = pass.iter().map(|f| scaled(f.scene.clone(), scale)).collect();
         let start = Instant::now();
         let images = crate::family::render(&scenes.iter().collect::<Vec<_>>(), cancel);
@@ -144,11 +144,15 @@ fn render_family_until(figures: Vec<Figure>, scale: f64, cancel: &AtomicBool) ->
             continue;
         };
         let share = start.elapsed().as_secs_f64() / pass.len() as f64;
-        let files: Vec<String> = pass.iter().map(|f| format!("{}.png", f.stem)).collect();
-        for ((figure, scene), (rgb, stats)) in pass.into_iter().zip(&scenes).zip(images) {
+        for (j, ((figure, scene), (rgb, stats))) in pass.into_iter().zip(&scenes).zip(images).enumerate() {
             let mut r = finish(figure, scene, rgb, &stats.counts, share);
-            let own = r.manifest["file"].clone();
-            r.manifest["one_pass_with"] = json!(files.iter().filter(|f| **f != own).collect::<Vec<_>>());
+            let others: Vec<&String> = labels
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != j)
+                .map(|(_, l)| l)
+                .collect();
+            r.manifest["one_pass_with"] = json!(others);
             done.push(r);
         }
     }
@@ -202,53 +206,96 @@ fn finish(figure: Figure, scene: &Scene, rgb: Vec<u8>, c: &crate::trace::RayCoun
     }
 }
 
-/// Figures that one run renders for an earlier set and uses again in a later one
-/// (light-shapes' sphere is soft-shadows' N = 100): same scene and seed, same bytes, so
-/// they are rendered once per run. Only the figures a later set wants are kept.
+/// What one run of several sets shares between them. Figures that one run renders for an
+/// earlier set and uses again in a later one (light-shapes' sphere is soft-shadows'
+/// N = 100): same scene and seed, same bytes, so they are rendered once per run; only the
+/// figures a later set wants are kept. And figures of later sets that can join a family of
+/// an earlier set's (the reference scene's eleven lightings across five sets): rendered in
+/// its pass, and kept until their set is generated.
 #[derive(Default)]
 pub struct Reuse {
     /// Scenes that appear in more than one set of the run.
     wanted: Vec<Scene>,
-    /// Rendered figures of those scenes: `set/file`, image and manifest entry.
+    /// Rendered figures of those scenes, at a scale: `set/file`, image and manifest entry.
     kept: Vec<(String, image::RgbImage, Value)>,
-    kept_scenes: Vec<Scene>,
+    kept_scenes: Vec<(Scene, f64)>,
+    /// The sets of the run not generated yet, in order, with their figures.
+    later: Vec<(&'static str, Vec<Figure>)>,
+    /// Figures of later sets rendered in an earlier set's pass: set name, scale, figure.
+    ahead: Vec<(&'static str, f64, RenderedFigure)>,
 }
 
 impl Reuse {
     /// For a run over `sets`, in that order.
     pub fn for_sets(sets: &[&FigureSet]) -> Self {
-        let scenes: Vec<Vec<Scene>> = sets
-            .iter()
-            .map(|s| (s.figures)().into_iter().map(|f| f.scene).collect())
-            .collect();
+        let later: Vec<(&'static str, Vec<Figure>)> = sets.iter().map(|s| (s.name, (s.figures)())).collect();
         let mut wanted: Vec<Scene> = Vec::new();
-        for (i, own) in scenes.iter().enumerate() {
-            for scene in own {
-                let later = scenes[i + 1..].iter().any(|other| other.contains(scene));
-                if later && !wanted.contains(scene) {
+        for (i, (_, own)) in later.iter().enumerate() {
+            for scene in own.iter().map(|f| &f.scene) {
+                let again = later[i + 1..]
+                    .iter()
+                    .any(|(_, other)| other.iter().any(|f| f.scene == *scene));
+                if again && !wanted.contains(scene) {
                     wanted.push(scene.clone());
                 }
             }
         }
         Reuse {
             wanted,
+            later,
             ..Reuse::default()
         }
     }
 
-    /// The figure an earlier set of the run rendered with `scene`.
-    fn find(&self, scene: &Scene) -> Option<&(String, image::RgbImage, Value)> {
-        self.kept_scenes.iter().position(|s| s == scene).map(|i| &self.kept[i])
+    /// The figure an earlier set of the run rendered with `scene` at `scale`.
+    fn find(&self, scene: &Scene, scale: f64) -> Option<&(String, image::RgbImage, Value)> {
+        self.kept_scenes
+            .iter()
+            .position(|(s, at)| s == scene && *at == scale)
+            .map(|i| &self.kept[i])
     }
 
-    /// Keeps `r` (of set `set`) if a later set wants its scene.
-    fn offer(&mut self, set: &str, r: &RenderedFigure) {
-        if self.wanted.contains(&r.figure.scene) && self.find(&r.figure.scene).is_none() {
+    /// Keeps `r` (of set `set`, rendered at `scale`) if a later set wants its scene.
+    fn offer(&mut self, set: &str, r: &RenderedFigure, scale: f64) {
+        if self.wanted.contains(&r.figure.scene) && self.find(&r.figure.scene, scale).is_none() {
             let file = r.manifest["file"].as_str().unwrap_or_default();
             self.kept
                 .push((format!("{set}/{file}"), r.image.clone(), r.manifest.clone()));
-            self.kept_scenes.push(r.figure.scene.clone());
+            self.kept_scenes.push((r.figure.scene.clone(), scale));
         }
+    }
+
+    /// Marks `set` as being generated: from now on only the sets after it are later.
+    fn start(&mut self, set: &str) {
+        if let Some(i) = self.later.iter().position(|(name, _)| *name == set) {
+            self.later.drain(..=i);
+        }
+    }
+
+    /// The figures of later sets that an earlier set's pass may render: each of a scene that
+    /// is not one of `own` nor an earlier candidate's, nor rendered ahead already.
+    fn candidates(&self, own: &[&Scene]) -> Vec<(&'static str, Figure)> {
+        let mut out: Vec<(&'static str, Figure)> = Vec::new();
+        for (set, figures) in &self.later {
+            for f in figures {
+                let seen = own.contains(&&f.scene)
+                    || out.iter().any(|(_, g)| g.scene == f.scene)
+                    || self.ahead.iter().any(|(_, _, r)| r.figure.scene == f.scene);
+                if !seen {
+                    out.push((set, f.clone()));
+                }
+            }
+        }
+        out
+    }
+
+    /// The figure `stem` of `set` rendered ahead at `scale`, if it was.
+    fn take_ahead(&mut self, set: &str, stem: &str, scale: f64) -> Option<RenderedFigure> {
+        let i = self
+            .ahead
+            .iter()
+            .position(|(s, at, r)| *s == set && *at == scale && r.figure.stem == stem)?;
+        Some(self.ahead.remove(i).2)
     }
 }
 
@@ -273,9 +320,12 @@ fn copy_of(figure: Figure, image: &image::RgbImage, twin: &Value, same_as: &str)
 /// Renders every figure of `set` at `scale`, in the set's order: a figure whose scene is an
 /// earlier one's is rendered once (soft-shadows 02 is 07, shown beside the hard shadows:
 /// same scene and seed, same bytes), as is one an earlier set of the run rendered
-/// (`reuse`), and figures that differ only in depth or in an area light's count are
-/// rendered in one pass ([`crate::family`]). `None` if cancelled.
+/// (`reuse`), and figures that differ only in depth, in an area light's count, in shading
+/// or (without area lights) in their lights are rendered in one pass ([`crate::family`]),
+/// with the figures of the run's later sets that can join that pass (kept in `reuse`).
+/// `None` if cancelled.
 pub fn render_set(set: &FigureSet, scale: f64, cancel: &AtomicBool, reuse: &mut Reuse) -> Option<Vec<RenderedFigure>> {
+    reuse.start(set.name);
     let figures = (set.figures)();
     // The first figure of each distinct scene, and which of them each figure is.
     let mut firsts: Vec<usize> = Vec::new();
@@ -292,26 +342,57 @@ pub fn render_set(set: &FigureSet, scale: f64, cancel: &AtomicBool, reuse: &mut 
         .collect();
     let mut rendered: Vec<Option<RenderedFigure>> = (0..figures.len()).map(|_| None).collect();
     for &i in &firsts {
-        if let Some((same_as, image, twin)) = reuse.find(&figures[i].scene) {
+        if let Some(r) = reuse.take_ahead(set.name, &figures[i].stem, scale) {
+            rendered[i] = Some(r);
+        } else if let Some((same_as, image, twin)) = reuse.find(&figures[i].scene, scale) {
             rendered[i] = Some(copy_of(figures[i].clone(), image, twin, same_as));
         }
     }
     firsts.retain(|&i| rendered[i].is_none());
-    let scenes: Vec<&Scene> = firsts.iter().map(|&i| &figures[i].scene).collect();
+    // This set's scenes, then the later sets' figures that may join their families.
+    let own: Vec<&Scene> = firsts.iter().map(|&i| &figures[i].scene).collect();
+    let candidates = reuse.candidates(&own);
+    let scenes: Vec<&Scene> = own
+        .iter()
+        .copied()
+        .chain(candidates.iter().map(|(_, f)| &f.scene))
+        .collect();
     for group in crate::family::group(&scenes) {
-        let members: Vec<Figure> = group.iter().map(|&g| figures[firsts[g]].clone()).collect();
+        if group.iter().all(|&g| g >= own.len()) {
+            continue;
+        }
+        // Each member: the figure, its set (`None`: this one) and its label in manifests.
+        let members: Vec<(Figure, Option<&'static str>)> = group
+            .iter()
+            .map(|&g| match g.checked_sub(own.len()) {
+                None => (figures[firsts[g]].clone(), None),
+                Some(c) => (candidates[c].1.clone(), Some(candidates[c].0)),
+            })
+            .collect();
+        let sets: Vec<Option<&'static str>> = members.iter().map(|m| m.1).collect();
         let done = if members.len() == 1 {
-            vec![render_figure_until(
-                members.into_iter().next().expect("one"),
-                scale,
-                cancel,
-            )?]
+            vec![render_figure_until(members[0].0.clone(), scale, cancel)?]
         } else {
-            render_family_until(members, scale, cancel)?
+            // A pass over several sets names every file with its set.
+            let across = sets.iter().any(Option::is_some);
+            let labelled = members
+                .into_iter()
+                .map(|(f, other)| {
+                    let label = match across {
+                        false => format!("{}.png", f.stem),
+                        true => format!("{}/{}.png", other.unwrap_or(set.name), f.stem),
+                    };
+                    (f, label)
+                })
+                .collect();
+            render_family_until(labelled, scale, cancel)?
         };
-        for (g, r) in group.into_iter().zip(done) {
-            reuse.offer(set.name, &r);
-            rendered[firsts[g]] = Some(r);
+        for ((g, r), other) in group.into_iter().zip(done).zip(sets) {
+            reuse.offer(other.unwrap_or(set.name), &r, scale);
+            match other {
+                None => rendered[firsts[g]] = Some(r),
+                Some(other) => reuse.ahead.push((other, scale, r)),
+            }
         }
     }
     let mut out: Vec<RenderedFigure> = Vec::new();
