@@ -33,15 +33,16 @@ pub fn phong(n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
     pow(positive_part(r.dot(e)), exponent)
 }
 
-/// Blinn's specular term (slides): `max(N.H, 0)^n` with `H = (L + E) / |L + E|`.
-/// When `L = -E` the half vector is undefined and the term is 0.
+/// Blinn's specular term (slides): `max(N.H, 0)^n` with `H = (L + E) / |L + E|`, computed
+/// as `N.H = N.(L + E) / |L + E|`: one division, not three (the divider limits an area
+/// light's lane loops). When `L = -E` the half vector is undefined and the term is 0.
 pub fn blinn(n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
     let sum = l + e;
     let len = sum.length();
     if len == 0.0 {
         return 0.0;
     }
-    pow(positive_part(n.dot(sum / len)), exponent)
+    pow(positive_part(n.dot(sum) / len), exponent)
 }
 
 /// `max(x, 0)`, the clamp of every cosine of the shading formulas, with a NaN taken as 0:

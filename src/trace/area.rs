@@ -147,7 +147,7 @@ impl Lanes {
     }
 }
 
-/// Pass 1: for every light point `q_i`, the unit direction `L_i = (q_i - p) / d_i` with
+/// Pass 1: for every light point `q_i`, the unit direction `L_i = (q_i - p) (1 / d_i)` with
 /// `d_i = |q_i - p|`, the attenuation `A = 1 / (C_const + C_lin d + C_quad d^2)` and `N.L_i`,
 /// each rounded exactly as [`crate::light::point_incidence`] and `DVec3::dot` round them.
 /// A point at distance 0 gets NaN directions (no light arrives from it; see [`Facing`]).
@@ -160,7 +160,8 @@ fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mu
     for i in 0..len {
         let (tx, ty, tz) = (xs[i] - p.x, ys[i] - p.y, zs[i] - p.z);
         let d = (tx * tx + ty * ty + tz * tz).sqrt();
-        let (x, y, z) = (tx / d, ty / d, tz / d);
+        let r = 1.0 / d;
+        let (x, y, z) = (tx * r, ty * r, tz * r);
         lx[i] = x;
         ly[i] = y;
         lz[i] = z;
@@ -193,7 +194,7 @@ fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facin
 }
 
 /// Pass 3's first step: for every point, Blinn's `spec = max(N.H, 0)^n`,
-/// `H = (L + E) / |L + E|` (0 when `|L + E| = 0`) or Phong's `max(R.E, 0)^n`,
+/// `N.H = N.(L + E) / |L + E|` (0 when `|L + E| = 0`) or Phong's `max(R.E, 0)^n`,
 /// `R = 2 (N.L) N - L`: the operations of [`crate::shading::blinn`] and
 /// [`crate::shading::phong`] in their order.
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
@@ -214,7 +215,7 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
             for i in 0..len {
                 let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
                 let h = (hx * hx + hy * hy + hz * hz).sqrt();
-                let n_dot_h = n.x * (hx / h) + n.y * (hy / h) + n.z * (hz / h);
+                let n_dot_h = (n.x * hx + n.y * hy + n.z * hz) / h;
                 // `max(N.H, 0)` ([`positive_part`]), and 0 for a zero half vector (blinn's
                 // early return), as one select: a store under a condition compiles to a
                 // masked store (slow on AMD cores), a select of a division to a branch.
