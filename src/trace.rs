@@ -529,12 +529,18 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                 } else {
                     DVec3::ONE
                 };
+                // The first lane of `mask` of each shading computes its share; the others
+                // that shade as it does copy it (the first of all, `shading_twin`, may not
+                // be in `mask`: a shallower lane past its depth).
+                let mut first_of = [usize::MAX; K];
                 for j in lanes_of::<K>(mask) {
                     let twin = self.shading_twin[j];
-                    shares[j] = if twin < j && mask >> twin & 1 == 1 {
-                        shares[twin]
-                    } else {
-                        self.shade(j, index, &inc, n_dot_l, filter, at, rec)
+                    shares[j] = match first_of[twin] {
+                        usize::MAX => {
+                            first_of[twin] = j;
+                            self.shade(j, index, &inc, n_dot_l, filter, at, rec)
+                        }
+                        first => shares[first],
                     };
                 }
             }
