@@ -86,11 +86,17 @@ pub fn shadow_filter<'a>(colors: impl IntoIterator<Item = &'a DVec3>) -> DVec3 {
 /// relative error of at most about `y * 2^-53` (5.7e-14 at y = 512: invisible in 8 bits).
 /// Other exponents go through libm.
 pub fn pow(x: f64, y: f64) -> f64 {
-    if y >= 0.0 && y <= u32::MAX as f64 && y.fract() == 0.0 {
-        powi_exact_order(x, y as u32)
-    } else {
-        libm::pow(x, y)
+    match integer_exponent(y) {
+        Some(n) => powi_exact_order(x, n),
+        None => libm::pow(x, y),
     }
+}
+
+/// `y` as a `u32` if it is one (a conversion and a comparison: `f64::fract` is a call to
+/// libm's `trunc` on baseline x86-64, at every shading of every light).
+#[inline(always)]
+fn integer_exponent(y: f64) -> Option<u32> {
+    (y >= 0.0 && y <= u32::MAX as f64 && (y as u32) as f64 == y).then_some(y as u32)
 }
 
 /// [`pow`] of every element of `xs` with the same exponent `y`, in place: the same
@@ -99,12 +105,12 @@ pub fn pow(x: f64, y: f64) -> f64 {
 /// takes the vector width of its caller's `multiversion` target.
 #[inline(always)]
 pub fn pow_each(xs: &mut [f64], y: f64) {
-    if y >= 0.0 && y <= u32::MAX as f64 && y.fract() == 0.0 {
+    if let Some(n) = integer_exponent(y) {
         for chunk in xs.chunks_mut(64) {
             // `powi_exact_order` with the loop over the bits of `n` outside the elements'.
             let mut acc = [1.0; 64];
             let acc = &mut acc[..chunk.len()];
-            let mut n = y as u32;
+            let mut n = n;
             while n > 0 {
                 if n & 1 == 1 {
                     acc.iter_mut().zip(chunk.iter()).for_each(|(a, x)| *a *= x);
