@@ -34,7 +34,7 @@ use crate::light::{Attenuation, Incidence};
 use crate::material::Material;
 use crate::math::{Ray, offset_origin};
 use crate::scene::{Candidate, ShadingModel, Specular, cones_apart, direction_cone};
-use crate::shading::{positive_part, pow_each, specular_tint};
+use crate::shading::{half_of_even, positive_part, pow_each, specular_tint};
 use crate::shape::{Fan, Shape, Verdict, fan_verdicts};
 use crate::skips::Skip;
 use glam::DVec3;
@@ -211,6 +211,17 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
     let spec = &mut spec[..len];
     match model.specular {
         Specular::None => spec.fill(0.0),
+        Specular::Blinn if let Some(m) = half_of_even(mat.shininess) => {
+            // `((N.(L + E))^2 / |L + E|^2)^m`, as `blinn` computes an even power.
+            for i in 0..len {
+                let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
+                let len2 = hx * hx + hy * hy + hz * hz;
+                let along = n.x * hx + n.y * hy + n.z * hz;
+                let cos2 = along * along / len2;
+                spec[i] = if (len2 != 0.0) & (along > 0.0) { cos2 } else { 0.0 };
+            }
+            pow_each(spec, f64::from(m));
+        }
         Specular::Blinn => {
             for i in 0..len {
                 let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
