@@ -9,8 +9,9 @@
 //!   whose strict `<` keeps the first: an object of lower index than the best so far is
 //!   asked for hits up to and including the best `t`, one of higher index strictly below.
 //!
-//! Traversal tests both children of a node and descends into the nearer first, the farther
-//! waiting on a stack with its entry distance; an entry beyond the best hit is skipped. The
+//! Traversal tests both children of a node. A closest-hit walk descends into the nearer
+//! first, the farther waiting on a stack with its entry distance; an entry beyond the best
+//! hit is skipped. An any-hit (or every-hit) walk takes them in stored order. The
 //! box tests are conservative (see [`super::node`]), so no object that holds the answer is
 //! ever skipped.
 
@@ -222,14 +223,30 @@ impl Bvh {
                 {
                     return true;
                 }
-            } else if let (Some(near), far) = self.children(&slabs, n, t_min, t_max) {
-                // Nearer first: an occluder near the origin is found sooner.
-                if let Some((far, _)) = far {
-                    stack[depth] = far as u32;
-                    depth += 1;
+            } else {
+                // The children in stored order (the lower side of the split first), not the
+                // nearer first as for a closest hit: any hit ends the walk, and on the
+                // intersect bench's any-hit rows this order was 5 to 15 % faster than
+                // nearer-first and than the order of the ray's direction along the split
+                // axis (BENCHMARKS.md, "Eighth session").
+                let (a, b) = (n.first as usize, n.first as usize + 1);
+                match slabs.enter_pair([&self.nodes[a], &self.nodes[b]], t_min, t_max) {
+                    [Some(_), Some(_)] => {
+                        stack[depth] = b as u32;
+                        depth += 1;
+                        at = a;
+                        continue;
+                    }
+                    [Some(_), None] => {
+                        at = a;
+                        continue;
+                    }
+                    [None, Some(_)] => {
+                        at = b;
+                        continue;
+                    }
+                    [None, None] => {}
                 }
-                at = near;
-                continue;
             }
             if depth == 0 {
                 return false;
