@@ -1,7 +1,7 @@
 //! One-pass families: images whose scenes differ only in their recursion depth, in the
 //! number `N` of points of one fixed area light (whose `N` points are the first `N` of one
-//! sequence), or in their shading (the model, and each material's `k_a`, `k_d`, `k_s`,
-//! exponent and metal factor), rendered together. Each ray of the deepest, largest image is
+//! sequence), in their shading (the model, and each material's `k_a`, `k_d`, `k_s`,
+//! exponent and metal factor), or, without area lights, in their lights, rendered together. Each ray of the deepest, largest image is
 //! traced once, and each shadow ray; each image (a lane of the tracer) keeps its own
 //! radiance, computed with exactly the operations a render of its scene alone performs, and
 //! its own ray counts, so its bytes and counts are those of that render (tests/family.rs).
@@ -32,8 +32,9 @@ use std::sync::atomic::AtomicBool;
 pub const LANES: usize = 16;
 
 /// The scene with what may vary within a family set to zero: the depth, every fixed area
-/// light's count, and the shading (model; each material's `k_a`, `k_d`, `k_s`, exponent and
-/// metal factor, which shape no ray). Scenes that can be traced together have equal keys.
+/// light's count, the shading (model; each material's `k_a`, `k_d`, `k_s`, exponent and
+/// metal factor, which shape no ray), and, in a scene without area lights, the lights.
+/// Scenes that can be traced together have equal keys.
 fn key(scene: &Scene) -> Scene {
     let mut key = scene.clone();
     key.settings.depth = 0;
@@ -190,8 +191,10 @@ fn largest_scene(members: &[&Scene], light: Option<usize>) -> Scene {
 }
 
 /// Renders the members of one family (at most [`LANES`], as [`group`] formed them) in one
-/// pass: each member's 8-bit RGB pixels and stats, or `None` when cancelled or when the
-/// lanes diverged (then render them one by one).
+/// pass: each member's 8-bit RGB pixels and stats, or `None` when cancelled, when the
+/// lanes diverged, or when one pass cannot hold them (a slice of a longer family may need
+/// more than 64 lights where the whole did not, or one scene have more than 64): then render
+/// them one by one.
 pub fn render(members: &[&Scene], cancel: &AtomicBool) -> Option<Vec<(Vec<u8>, RenderStats)>> {
     assert!(!members.is_empty() && members.len() <= LANES, "1 to {LANES} members");
     if members.len() <= 8 {
@@ -209,7 +212,7 @@ fn render_lanes<const K: usize>(members: &[&Scene], cancel: &AtomicBool) -> Opti
         lights,
     }) = plan(members)
     else {
-        panic!("a family formed by `group`")
+        return None;
     };
     let world = World::new(&largest);
     let bounds: Vec<Vec<f64>> = members.iter().map(|m| World::remaining_bounds_of(m)).collect();
@@ -238,4 +241,56 @@ fn render_lanes<const K: usize>(members: &[&Scene], cancel: &AtomicBool) -> Opti
         })
         .collect();
     Some(images)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn directional(x: f64) -> Light {
+        Light::Directional {
+            direction: DVec3::new(x, 1.0, -1.0),
+            color: DVec3::ONE,
+        }
+    }
+
+    fn reference_with(lights: Vec<Light>) -> Scene {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/reference.toml");
+        let mut scene = crate::scene::load(&path).expect("the reference scene loads");
+        scene.lights = lights;
+        scene
+    }
+
+    #[test]
+    fn the_light_union_keeps_each_members_order() {
+        // [a, b], [b, a], [a, a, b]: b after a matches a's b; a after b is a new entry; the
+        // second a of [a, a, b] matches that one, and its b comes after it, new again.
+        let (a, b) = (directional(1.0), directional(-1.0));
+        let ambient = Light::Ambient { color: DVec3::ONE };
+        let scenes = [
+            reference_with(vec![ambient.clone(), a.clone(), b.clone()]),
+            reference_with(vec![b.clone(), ambient, a.clone()]),
+            reference_with(vec![a.clone(), a.clone(), b.clone()]),
+        ];
+        let (union, bits) = light_union(&scenes.iter().collect::<Vec<_>>()).unwrap();
+        assert_eq!(union, vec![a.clone(), b.clone(), a, b]);
+        assert_eq!(bits, vec![0b0011, 0b0110, 0b1101]);
+    }
+
+    #[test]
+    fn past_64_lights_there_is_no_pass_and_no_panic() {
+        let lights = |from: usize, to: usize| (from..to).map(|i| directional(i as f64)).collect::<Vec<_>>();
+        let (first, second) = (reference_with(lights(0, 40)), reference_with(lights(40, 80)));
+        assert_eq!(light_union(&[&first]).map(|(u, _)| u.len()), Some(40));
+        assert!(light_union(&[&first, &second]).is_none());
+        // So `group` keeps them apart, and a slice of a family (or one scene) that needs more
+        // than 64 lights is not rendered in a pass: `render` says so instead of panicking.
+        assert_eq!(group(&[&first, &second]), vec![vec![0], vec![1]]);
+        let many = reference_with(lights(0, 65));
+        assert!(render(&[&many], &AtomicBool::new(false)).is_none());
+        assert_eq!(
+            light_union(&[&reference_with(lights(0, 64))]).map(|(u, _)| u.len()),
+            Some(64)
+        );
+    }
 }

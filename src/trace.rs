@@ -219,10 +219,11 @@ pub struct Tracer<'w, 's, const K: usize = 1> {
     /// Per lane, the shadow rays counted in `counts` that the lane's own scene does not
     /// cast (rays towards its area light's points beyond `N`, or towards lights it does not
     /// have), for the current hit.
-    area_excess: [u64; K],
+    shadow_excess: [u64; K],
     /// For each of the world's lights, the lanes that have it, as bits.
     light_lanes: Vec<u32>,
-    /// For each lane, the first lane that shades as it does (its shares are copied).
+    /// For each lane, the first lane of the family that shades as it does: the lanes of a
+    /// hit with the same twin share their light shares (copied from the first of them).
     shading_twin: [usize; K],
     /// Set when a lane could not be traced exactly with the others (a light point black for
     /// one lane's `L / N` and not another's): the family must be rendered image by image.
@@ -260,7 +261,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                 .map(|index| (0..K).filter(|&j| lanes[j].has_light(index)).fold(0, |m, j| m | 1 << j))
                 .collect(),
             lanes,
-            area_excess: [0; K],
+            shadow_excess: [0; K],
             diverged: false,
             sample_key: (0, 0),
             crossed: Vec::new(),
@@ -453,7 +454,8 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     }
 
     /// [`Tracer::local`] for the lanes of `mask`, with what it counts added to each lane's
-    /// counts (less the shadow rays beyond a lane's own area light count).
+    /// counts, less the shadow rays its own scene does not cast (`shadow_excess`: towards
+    /// area light points beyond its count, or towards lights it does not have).
     fn local_counted<R: Recorder>(&mut self, at: &Surface, mask: u32, rec: &mut R) -> [DVec3; K] {
         if K == 1 {
             return self.local(at, mask, rec);
@@ -462,9 +464,9 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         let color = self.local(at, mask, rec);
         let shadow = self.counts.shadow - shadow_before;
         for j in lanes_of::<K>(mask) {
-            self.lane_counts[j].shadow += shadow - self.area_excess[j];
+            self.lane_counts[j].shadow += shadow - self.shadow_excess[j];
         }
-        self.area_excess = [0; K];
+        self.shadow_excess = [0; K];
         color
     }
 
@@ -500,7 +502,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             }
             if lit != mask {
                 let cast = self.counts.shadow - shadow_before;
-                lanes_of::<K>(mask & !lit).for_each(|j| self.area_excess[j] += cast);
+                lanes_of::<K>(mask & !lit).for_each(|j| self.shadow_excess[j] += cast);
             }
         }
         color

@@ -1,6 +1,7 @@
 //! One-pass families (src/family.rs): images whose scenes differ only in depth, in one
-//! fixed area light's count or in shading, rendered together, give the bytes and ray counts
-//! of separate renders; and only such scenes are grouped.
+//! fixed area light's count, in shading or (without area lights) in their lights, rendered
+//! together, give the bytes and ray counts of separate renders; and only such scenes are
+//! grouped.
 
 mod common;
 use common::*;
@@ -98,8 +99,8 @@ fn lightings_in_one_pass_are_separate_renders() {
     scenes.extend(figure_scenes("soft-shadows", &["01-hard"], 0.08));
     assert_eq!(scenes.len(), 12);
     family_equals_separate_renders(&scenes);
-    // Two lights in both orders, one of them twice: the union [a, b, a] keeps each lane's
-    // order (b then a is not a then b: the sums round differently).
+    // Two lights in both orders, one of them twice: the union [a, b, a, b] keeps each
+    // lane's order (the union itself is checked in src/family.rs's unit tests).
     let [ambient, a] = [&scenes[2].lights[0], &scenes[2].lights[1]].map(Clone::clone);
     let b = scenes[8].lights[1].clone();
     let mut orders = vec![scenes[2].clone(), scenes[2].clone(), scenes[2].clone()];

@@ -125,7 +125,8 @@ pub fn render_figure_until(figure: Figure, scale: f64, cancel: &AtomicBool) -> O
 /// Renders the figures of one family (see [`crate::family`]) at `scale` in passes of
 /// [`crate::family::LANES`], or one by one if their lanes diverge; `None` if cancelled.
 /// Each manifest records the images of its pass (`one_pass_with`: each figure's `label`,
-/// its file name, or `set/file` for another set's) and an equal share of the pass's time.
+/// its file name, or `set/file` when the family spans sets) and an equal share of the
+/// pass's time.
 fn render_family_until(figures: Vec<(Figure, String)>, scale: f64, cancel: &AtomicBool) -> Option<Vec<RenderedFigure>> {
     let mut done = Vec::new();
     let mut figures = figures.into_iter().peekable();
@@ -272,15 +273,17 @@ impl Reuse {
         }
     }
 
-    /// The figures of later sets that an earlier set's pass may render: each of a scene that
-    /// is not one of `own` nor an earlier candidate's, nor rendered ahead already.
-    fn candidates(&self, own: &[&Scene]) -> Vec<(&'static str, Figure)> {
+    /// The figures of later sets that an earlier set's pass at `scale` may render: each of
+    /// a scene that is not one of `own` nor an earlier candidate's, nor rendered ahead
+    /// already, nor kept from an earlier set (its set will copy that image).
+    fn candidates(&self, own: &[&Scene], scale: f64) -> Vec<(&'static str, Figure)> {
         let mut out: Vec<(&'static str, Figure)> = Vec::new();
         for (set, figures) in &self.later {
             for f in figures {
                 let seen = own.contains(&&f.scene)
                     || out.iter().any(|(_, g)| g.scene == f.scene)
-                    || self.ahead.iter().any(|(_, _, r)| r.figure.scene == f.scene);
+                    || self.ahead.iter().any(|(_, _, r)| r.figure.scene == f.scene)
+                    || self.find(&f.scene, scale).is_some();
                 if !seen {
                     out.push((set, f.clone()));
                 }
@@ -351,7 +354,7 @@ pub fn render_set(set: &FigureSet, scale: f64, cancel: &AtomicBool, reuse: &mut 
     firsts.retain(|&i| rendered[i].is_none());
     // This set's scenes, then the later sets' figures that may join their families.
     let own: Vec<&Scene> = firsts.iter().map(|&i| &figures[i].scene).collect();
-    let candidates = reuse.candidates(&own);
+    let candidates = reuse.candidates(&own, scale);
     let scenes: Vec<&Scene> = own
         .iter()
         .copied()
@@ -373,7 +376,8 @@ pub fn render_set(set: &FigureSet, scale: f64, cancel: &AtomicBool, reuse: &mut 
         let done = if members.len() == 1 {
             vec![render_figure_until(members[0].0.clone(), scale, cancel)?]
         } else {
-            // A pass over several sets names every file with its set.
+            // A family over several sets names every file with its set (in each of its
+            // passes, should it need more than one).
             let across = sets.iter().any(Option::is_some);
             let labelled = members
                 .into_iter()

@@ -523,7 +523,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                         self.diverged |= s.lane_facing[..count] != s.facing[..count];
                     }
                     let own = s.facing[..count].iter().filter(|&&f| f == Facing::Towards).count() as u64;
-                    self.area_excess[j] += towards - own;
+                    self.shadow_excess[j] += towards - own;
                 }
             }
             return;

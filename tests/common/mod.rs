@@ -36,8 +36,9 @@ pub fn lumiere(args: &[&str]) -> Output {
         .expect("lumiere runs")
 }
 
-/// A fresh empty directory for one test, removed when the test passes: a failing test
-/// (one that panics) leaves it behind, named in the panic's output, to be looked at.
+/// A fresh empty directory for one test (`lumiere-test-<name>-<pid>` in the system's
+/// temporary directory), removed when the test passes: a failing test (one that panics)
+/// leaves it behind to be looked at.
 pub fn temp_dir(name: &str) -> TempDir {
     let dir = std::env::temp_dir().join(format!("lumiere-test-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
