@@ -91,27 +91,41 @@ fn figures_command_rejects_bad_requests() {
     assert!(String::from_utf8_lossy(&o.stdout).contains("01-top-depth-01.png  Récursivité : 1 (vue de haut)"));
 }
 
+/// Runs `lumiere figures` on `sets` at scale 0.05 into `out`, quietly; asserts it succeeds.
+fn generate_sets(out: &std::path::Path, sets: &[&str]) {
+    let mut args = vec!["figures", "--scale", "0.05", "--out", out.to_str().unwrap(), "--quiet"];
+    args.extend_from_slice(sets);
+    let o = lumiere(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// `<dir>/<set>/manifest.json`, parsed.
+fn set_manifest(dir: &std::path::Path, set: &str) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join(set).join("manifest.json")).unwrap()).unwrap()
+}
+
+/// A manifest entry's `one_pass_with` list.
+fn one_pass_with(image: &serde_json::Value) -> Vec<&str> {
+    image["one_pass_with"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_str().unwrap())
+        .collect()
+}
+
 #[test]
 fn a_run_renders_the_lightings_of_several_sets_in_one_pass() {
     // The reference scene under lighting's, directional's and spotlight's lights: one pass
     // in a run over the three sets, each image the bytes of its set rendered alone.
     let (run, alone) = (temp_dir("figures-lightings"), temp_dir("figures-lightings-alone"));
-    let generate = |out: &std::path::Path, sets: &[&str]| {
-        let mut args = vec!["figures", "--scale", "0.05", "--out", out.to_str().unwrap(), "--quiet"];
-        args.extend_from_slice(sets);
-        let o = lumiere(&args);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    };
     let sets = ["lighting", "directional", "spotlight"];
-    generate(&run, &sets);
+    generate_sets(&run, &sets);
     for set in sets {
-        generate(&alone, &[set]);
+        generate_sets(&alone, &[set]);
     }
-    let manifest = |dir: &std::path::Path, set: &str| -> serde_json::Value {
-        serde_json::from_str(&std::fs::read_to_string(dir.join(set).join("manifest.json")).unwrap()).unwrap()
-    };
     for set in sets {
-        for image in manifest(&alone, set)["images"].as_array().unwrap() {
+        for image in set_manifest(&alone, set)["images"].as_array().unwrap() {
             let file = image["file"].as_str().unwrap();
             let read = |dir: &std::path::Path| std::fs::read(dir.join(set).join(file)).unwrap();
             assert!(read(&run) == read(&alone), "{set}/{file}");
@@ -119,19 +133,13 @@ fn a_run_renders_the_lightings_of_several_sets_in_one_pass() {
     }
     // Directional's first figure is lighting's third (same scene): a copy. The other eight
     // distinct scenes were one pass, and each manifest names the others with their set.
-    let directional = manifest(&run, "directional");
+    let directional = set_manifest(&run, "directional");
     assert_eq!(
         directional["images"][0]["same_image_as"],
         "lighting/03-ambient-directional.png"
     );
-    let with: Vec<&str> = directional["images"][1]["one_pass_with"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|f| f.as_str().unwrap())
-        .collect();
     assert_eq!(
-        with,
+        one_pass_with(&directional["images"][1]),
         [
             "lighting/01-ambient.png",
             "lighting/02-directional.png",
@@ -143,7 +151,7 @@ fn a_run_renders_the_lightings_of_several_sets_in_one_pass() {
         ]
     );
     // Rendered alone, a set's family names its own files only.
-    let alone_with = &manifest(&alone, "directional")["images"][1]["one_pass_with"];
+    let alone_with = &set_manifest(&alone, "directional")["images"][1]["one_pass_with"];
     assert_eq!(
         alone_with,
         &serde_json::json!(["01-d-1-1--1.png", "03-d-0-1--1.png", "04-d--1-1--1.png"])
@@ -155,40 +163,24 @@ fn a_run_renders_a_scene_two_sets_share_once_and_families_in_one_pass() {
     // Light-shapes' sphere is soft-shadows' N = 100: in a run over both it is copied, with
     // the same bytes as when light-shapes is rendered alone.
     let (both, alone) = (temp_dir("figures-both"), temp_dir("figures-alone"));
-    let scale = "0.05";
-    let run = |out: &std::path::Path, sets: &[&str]| {
-        let mut args = vec!["figures", "--scale", scale, "--out", out.to_str().unwrap(), "--quiet"];
-        args.extend_from_slice(sets);
-        let o = lumiere(&args);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    };
-    run(&both, &["soft-shadows", "light-shapes"]);
-    run(&alone, &["light-shapes"]);
+    generate_sets(&both, &["soft-shadows", "light-shapes"]);
+    generate_sets(&alone, &["light-shapes"]);
     let sphere = |dir: &std::path::Path| std::fs::read(dir.join("light-shapes/01-sphere.png")).unwrap();
     assert_eq!(sphere(&both), sphere(&alone));
-    let manifest = |dir: &std::path::Path, set: &str| -> serde_json::Value {
-        serde_json::from_str(&std::fs::read_to_string(dir.join(set).join("manifest.json")).unwrap()).unwrap()
-    };
-    let shared = &manifest(&both, "light-shapes")["images"][0];
+    let shared = &set_manifest(&both, "light-shapes")["images"][0];
     assert_eq!(shared["same_image_as"], "soft-shadows/06-points-100.png");
     assert_eq!(shared["render_seconds"], 0.0);
     assert!(
-        manifest(&alone, "light-shapes")["images"][0]
+        set_manifest(&alone, "light-shapes")["images"][0]
             .get("same_image_as")
             .is_none()
     );
     // The soft-shadows N = 1 ... 1000 figures were one pass: each lists the others.
-    let soft = manifest(&both, "soft-shadows");
+    let soft = set_manifest(&both, "soft-shadows");
     let last = &soft["images"][7];
     assert_eq!(last["file"], "08-points-1000.png");
-    let with: Vec<&str> = last["one_pass_with"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|f| f.as_str().unwrap())
-        .collect();
     assert_eq!(
-        with,
+        one_pass_with(last),
         [
             "02-soft-200.png",
             "03-points-1.png",
