@@ -155,6 +155,11 @@ pub fn render_rows_lanes<T: Send + Clone, const K: usize>(
     let mut pixels = vec![keep([DVec3::ZERO; K]); width * rows.len()];
     let (counts, diverged) = pixels
         .par_chunks_mut(width)
+        // One row per task: rayon otherwise splits only as far as it has threads, then
+        // again only when work is stolen, so a thread left with a run of costly rows (the
+        // mirrors' lower half) renders them alone while the other waits. A row is enough
+        // work (hundreds of pixels) for the task's overhead not to show.
+        .with_max_len(1)
         .enumerate()
         .map(|(i, row)| {
             let mut tracer = Tracer::with_lanes(world, lanes);
