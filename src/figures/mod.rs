@@ -217,13 +217,21 @@ fn finish(figure: Figure, scene: &Scene, rgb: Vec<u8>, c: &crate::trace::RayCoun
 pub struct Reuse {
     /// Scenes that appear in more than one set of the run.
     wanted: Vec<Scene>,
-    /// Rendered figures of those scenes, at a scale: `set/file`, image and manifest entry.
-    kept: Vec<(String, image::RgbImage, Value)>,
-    kept_scenes: Vec<(Scene, f64)>,
+    /// Rendered figures of those scenes.
+    kept: Vec<Kept>,
     /// The sets of the run not generated yet, in order, with their figures.
     later: Vec<(&'static str, Vec<Figure>)>,
     /// Figures of later sets rendered in an earlier set's pass: set name, scale, figure.
     ahead: Vec<(&'static str, f64, RenderedFigure)>,
+}
+
+/// A figure kept for later sets: its scene and scale, `set/file`, image and manifest entry.
+struct Kept {
+    scene: Scene,
+    scale: f64,
+    file: String,
+    image: image::RgbImage,
+    manifest: Value,
 }
 
 impl Reuse {
@@ -249,20 +257,21 @@ impl Reuse {
     }
 
     /// The figure an earlier set of the run rendered with `scene` at `scale`.
-    fn find(&self, scene: &Scene, scale: f64) -> Option<&(String, image::RgbImage, Value)> {
-        self.kept_scenes
-            .iter()
-            .position(|(s, at)| s == scene && *at == scale)
-            .map(|i| &self.kept[i])
+    fn find(&self, scene: &Scene, scale: f64) -> Option<&Kept> {
+        self.kept.iter().find(|k| k.scene == *scene && k.scale == scale)
     }
 
     /// Keeps `r` (of set `set`, rendered at `scale`) if a later set wants its scene.
     fn offer(&mut self, set: &str, r: &RenderedFigure, scale: f64) {
         if self.wanted.contains(&r.figure.scene) && self.find(&r.figure.scene, scale).is_none() {
             let file = r.manifest["file"].as_str().unwrap_or_default();
-            self.kept
-                .push((format!("{set}/{file}"), r.image.clone(), r.manifest.clone()));
-            self.kept_scenes.push((r.figure.scene.clone(), scale));
+            self.kept.push(Kept {
+                scene: r.figure.scene.clone(),
+                scale,
+                file: format!("{set}/{file}"),
+                image: r.image.clone(),
+                manifest: r.manifest.clone(),
+            });
         }
     }
 
@@ -347,8 +356,8 @@ pub fn render_set(set: &FigureSet, scale: f64, cancel: &AtomicBool, reuse: &mut 
     for &i in &firsts {
         if let Some(r) = reuse.take_ahead(set.name, &figures[i].stem, scale) {
             rendered[i] = Some(r);
-        } else if let Some((same_as, image, twin)) = reuse.find(&figures[i].scene, scale) {
-            rendered[i] = Some(copy_of(figures[i].clone(), image, twin, same_as));
+        } else if let Some(k) = reuse.find(&figures[i].scene, scale) {
+            rendered[i] = Some(copy_of(figures[i].clone(), &k.image, &k.manifest, &k.file));
         }
     }
     firsts.retain(|&i| rendered[i].is_none());
