@@ -1,5 +1,6 @@
-//! The bounding volume hierarchy: closest hit, any hit and every hit over a binary tree of
-//! `f32` boxes (built by [`super::build`]), with unbounded objects (planes) tested apart.
+//! The bounding volume hierarchy: closest hit, any hit and every hit over a tree of `f32`
+//! boxes (built binary by [`super::build`], walked 4-wide as collapsed by [`super::wide`]),
+//! with unbounded objects (planes) tested apart.
 //!
 //! It returns exactly what the linear scan returns, bit for bit. Two facts make that so:
 //! - every shape's hit does not depend on the `t_max` it is given, except that a hit at or
@@ -9,35 +10,49 @@
 //!   whose strict `<` keeps the first: an object of lower index than the best so far is
 //!   asked for hits up to and including the best `t`, one of higher index strictly below.
 //!
-//! Traversal tests both children of a node. A closest-hit walk descends into the nearer
-//! first, the farther waiting on a stack with its entry distance; an entry beyond the best
-//! hit is skipped. An any-hit (or every-hit) walk takes them in stored order. The
-//! box tests are conservative (see [`super::node`]), so no object that holds the answer is
+//! Traversal tests a node's four child boxes at once and pushes the entered children on a
+//! stack, farthest first in the node's order for the ray's octant, so the nearest is taken
+//! next. A closest-hit walk keeps each child's entry distance and skips a child entered
+//! beyond the best hit so far; an any-hit (or every-hit) walk stops at the first hit. The
+//! box tests are conservative (see [`super::wide`]), so no object that holds the answer is
 //! ever skipped.
 
 use super::build::{MAX_SAH_DEPTH, PrimRef, build};
-use super::node::{Node, RaySlabs, stored_box};
+use super::node::stored_box;
+use super::wide::{F32_RANGE, F32Slots, F64Slots, Node4, SlotTest, WIDTH, collapse, unpack};
 use crate::math::Ray;
 use crate::scene::Object;
 use crate::shape::SurfaceHit;
 use rayon::prelude::*;
 
-/// Deepest possible tree: SAH splits up to `MAX_SAH_DEPTH`, then halving (`2^23 > MAX_OBJECTS`).
-const STACK: usize = MAX_SAH_DEPTH + 24;
-/// A traversal stack for trees at most this deep (most of them): a smaller array to
-/// initialise on every ray (the full one is 1.4 KB for a closest hit).
-const SHALLOW: usize = 24;
+/// Deepest possible binary tree: SAH splits up to `MAX_SAH_DEPTH`, then halving
+/// (`2^23 > MAX_OBJECTS`); the 4-wide tree is no deeper.
+const MAX_DEPTH: usize = MAX_SAH_DEPTH + 24;
+
+/// Most entries a walk's stack holds in a tree of `depth`: each level pushes at most four
+/// children and takes one of them.
+const fn stack_for(depth: usize) -> usize {
+    (WIDTH - 1) * depth + WIDTH
+}
+
+/// Stack sizes: the walk takes the smallest that holds its tree, so that shallow trees do
+/// not fill a large array on every ray.
+const SMALL: usize = 16;
+const MEDIUM: usize = 64;
+const FULL: usize = stack_for(MAX_DEPTH);
 
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Bvh {
-    /// Root at 0 (index 1 unused); children of an interior node at `first` and `first + 1`.
-    nodes: Vec<Node>,
+    /// The 4-wide nodes, root at 0.
+    nodes: Vec<Node4>,
     /// Object indices in leaf order: a leaf holds `prims[first..first + count]`.
     prims: Vec<u32>,
     /// Objects without bounds (planes), tested before the tree.
     unbounded: Vec<u32>,
-    /// Depth of the deepest node (the root at 0).
+    /// Depth of the deepest 4-wide node (the root at 0).
     depth: usize,
+    /// Whether every box lies within `F32_RANGE`, so rays can be tested in `f32`.
+    fits_f32: bool,
 }
 
 impl Bvh {
@@ -65,16 +80,21 @@ impl Bvh {
             unbounded.extend(next as u32..i as u32);
             next = i + 1;
         }
-        let (nodes, depth) = build(&mut refs);
+        let (binary, _) = build(&mut refs);
+        let fits_f32 = binary
+            .first()
+            .is_none_or(|root| (0..3).all(|a| root.min[a].abs().max(root.max[a].abs()) <= F32_RANGE));
+        let (nodes, depth) = collapse(&binary);
         Bvh {
             depth,
             nodes,
             prims: refs.par_iter().map(|r| r.index).collect(),
             unbounded,
+            fits_f32,
         }
     }
 
-    /// Number of nodes, including the unused slot 1 and alignment padding.
+    /// Number of (4-wide) nodes.
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
@@ -86,25 +106,39 @@ impl Bvh {
 
     /// Memory held by the structure: nodes, leaf order, unbounded list.
     pub fn bytes(&self) -> usize {
-        self.nodes.len() * size_of::<Node>() + (self.prims.len() + self.unbounded.len()) * size_of::<u32>()
+        self.nodes.len() * size_of::<Node4>() + (self.prims.len() + self.unbounded.len()) * size_of::<u32>()
+    }
+
+    /// The `f32` test for this ray when it and the tree fit it, else `None`.
+    #[inline(always)]
+    fn f32_slots(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<F32Slots> {
+        if !self.fits_f32 {
+            return None;
+        }
+        F32Slots::new(ray.origin.to_array(), ray.dir.to_array(), t_min, t_max)
     }
 
     /// Closest hit: see the module doc for why it equals the linear scan's.
     pub fn closest(&self, objects: &[Object], ray: &Ray, t_min: f64, t_max: f64) -> Option<(usize, SurfaceHit)> {
-        if self.depth < SHALLOW {
-            self.closest_with::<SHALLOW>(objects, ray, t_min, t_max)
-        } else {
-            self.closest_with::<STACK>(objects, ray, t_min, t_max)
+        match self.f32_slots(ray, t_min, t_max) {
+            Some(s) if stack_for(self.depth) <= SMALL => self.closest_with::<_, SMALL>(objects, ray, t_min, t_max, s),
+            Some(s) if stack_for(self.depth) <= MEDIUM => self.closest_with::<_, MEDIUM>(objects, ray, t_min, t_max, s),
+            Some(s) => self.closest_with::<_, FULL>(objects, ray, t_min, t_max, s),
+            None => {
+                let s = F64Slots::new(ray.origin.to_array(), ray.dir.to_array(), t_min, t_max);
+                self.closest_with::<_, FULL>(objects, ray, t_min, t_max, s)
+            }
         }
     }
 
-    /// [`Bvh::closest`] with a stack of `S` entries (more than the tree's depth).
-    fn closest_with<const S: usize>(
+    /// [`Bvh::closest`] with the test `slots` and a stack of `S` entries.
+    fn closest_with<T: SlotTest, const S: usize>(
         &self,
         objects: &[Object],
         ray: &Ray,
         t_min: f64,
         t_max: f64,
+        mut slots: T,
     ) -> Option<(usize, SurfaceHit)> {
         let mut best: Option<(usize, SurfaceHit)> = None;
         let consider = |j: usize, best: &mut Option<(usize, SurfaceHit)>| {
@@ -118,64 +152,61 @@ impl Bvh {
                 if wins {
                     *best = Some((j, h));
                 }
+                wins
+            } else {
+                false
             }
         };
         for &j in &self.unbounded {
             consider(j as usize, &mut best);
         }
-        let bound = |best: &Option<(usize, SurfaceHit)>| best.map_or(t_max, |(_, h)| h.t);
-        let Some(root) = self.nodes.first() else {
-            return best;
-        };
-        let slabs = RaySlabs::new(ray);
-        if slabs.enter(root, t_min, bound(&best)).is_none() {
+        if self.nodes.is_empty() {
             return best;
         }
-        let mut stack = [(0u32, 0.0f64); S];
+        let bound = |best: &Option<(usize, SurfaceHit)>| best.map_or(t_max, |(_, h)| h.t);
+        if best.is_some() {
+            slots.set_t_max(bound(&best));
+        }
+        let mut stack = [(0u32, 0.0f32); S];
         let mut depth = 0;
         let mut at = 0usize;
         loop {
             let n = &self.nodes[at];
-            if n.is_leaf() {
-                let first = n.first as usize;
-                for &j in &self.prims[first..first + n.count as usize] {
-                    consider(j as usize, &mut best);
-                }
-            } else if let (Some(near), far) = self.children(&slabs, n, t_min, bound(&best)) {
-                if let Some((far, t_far)) = far {
-                    stack[depth] = (far as u32, t_far);
+            let (entries, entered) = slots.enter(n);
+            let order = n.order[slots.octant()];
+            // Farthest first, so that the nearest is on top.
+            for k in (0..WIDTH).rev() {
+                let s = (order >> (2 * k)) as usize & 3;
+                if entered >> s & 1 == 1 {
+                    stack[depth] = (n.child[s], entries[s]);
                     depth += 1;
                 }
-                at = near;
-                continue;
             }
-            // Next waiting node that the best hit so far does not rule out (an entry equal
-            // to the best `t` may still hold a tie of lower index).
+            // The next waiting child that the best hit so far does not rule out (an entry
+            // equal to the best `t` may still hold a tie of lower index): leaves are tested
+            // as they come, an interior node is the next visit.
             loop {
                 if depth == 0 {
                     return best;
                 }
                 depth -= 1;
-                let (node, entry) = stack[depth];
-                if entry <= bound(&best) {
-                    at = node as usize;
+                let (child, entry) = stack[depth];
+                if entry as f64 > bound(&best) {
+                    continue;
+                }
+                let (first, count) = unpack(child);
+                if count == 0 {
+                    at = first;
                     break;
                 }
+                let mut closer = false;
+                for &j in &self.prims[first..first + count] {
+                    closer |= consider(j as usize, &mut best);
+                }
+                if closer {
+                    slots.set_t_max(bound(&best));
+                }
             }
-        }
-    }
-
-    /// The children of interior node `n` whose boxes the ray enters in `[t_min, t_max]`: the
-    /// nearer (or only) one, and the farther one with its entry distance.
-    #[inline(always)]
-    fn children(&self, slabs: &RaySlabs, n: &Node, t_min: f64, t_max: f64) -> (Option<usize>, Option<(usize, f64)>) {
-        let (a, b) = (n.first as usize, n.first as usize + 1);
-        match slabs.enter_pair([&self.nodes[a], &self.nodes[b]], t_min, t_max).into() {
-            (Some(ta), Some(tb)) if tb < ta => (Some(b), Some((a, ta))),
-            (Some(_), Some(tb)) => (Some(a), Some((b, tb))),
-            (Some(_), None) => (Some(a), None),
-            (None, Some(_)) => (Some(b), None),
-            (None, None) => (None, None),
         }
     }
 
@@ -184,30 +215,23 @@ impl Bvh {
     /// Generic over `hit`, so each caller's test is inlined into the walk (no call through
     /// a pointer per object).
     fn visit(&self, ray: &Ray, t_min: f64, t_max: f64, hit: impl FnMut(usize) -> bool) -> bool {
-        if self.depth < SHALLOW {
-            self.visit_with::<SHALLOW>(ray, t_min, t_max, hit)
-        } else {
-            self.visit_with::<STACK>(ray, t_min, t_max, hit)
+        match self.f32_slots(ray, t_min, t_max) {
+            Some(s) if stack_for(self.depth) <= SMALL => self.visit_with::<_, SMALL>(s, hit),
+            Some(s) if stack_for(self.depth) <= MEDIUM => self.visit_with::<_, MEDIUM>(s, hit),
+            Some(s) => self.visit_with::<_, FULL>(s, hit),
+            None => self.visit_with::<_, FULL>(
+                F64Slots::new(ray.origin.to_array(), ray.dir.to_array(), t_min, t_max),
+                hit,
+            ),
         }
     }
 
-    /// [`Bvh::visit`] with a stack of `S` entries (more than the tree's depth).
-    #[inline(always)]
-    fn visit_with<const S: usize>(
-        &self,
-        ray: &Ray,
-        t_min: f64,
-        t_max: f64,
-        mut hit: impl FnMut(usize) -> bool,
-    ) -> bool {
+    /// [`Bvh::visit`] with the test `slots` and a stack of `S` entries.
+    fn visit_with<T: SlotTest, const S: usize>(&self, slots: T, mut hit: impl FnMut(usize) -> bool) -> bool {
         if self.unbounded.iter().any(|&j| hit(j as usize)) {
             return true;
         }
-        let Some(root) = self.nodes.first() else {
-            return false;
-        };
-        let slabs = RaySlabs::new(ray);
-        if slabs.enter(root, t_min, t_max).is_none() {
+        if self.nodes.is_empty() {
             return false;
         }
         let mut stack = [0u32; S];
@@ -215,45 +239,29 @@ impl Bvh {
         let mut at = 0usize;
         loop {
             let n = &self.nodes[at];
-            if n.is_leaf() {
-                let first = n.first as usize;
-                if self.prims[first..first + n.count as usize]
-                    .iter()
-                    .any(|&j| hit(j as usize))
-                {
+            let (_, entered) = slots.enter(n);
+            let order = n.order[slots.octant()];
+            for k in (0..WIDTH).rev() {
+                let s = (order >> (2 * k)) as usize & 3;
+                if entered >> s & 1 == 1 {
+                    stack[depth] = n.child[s];
+                    depth += 1;
+                }
+            }
+            loop {
+                if depth == 0 {
+                    return false;
+                }
+                depth -= 1;
+                let (first, count) = unpack(stack[depth]);
+                if count == 0 {
+                    at = first;
+                    break;
+                }
+                if self.prims[first..first + count].iter().any(|&j| hit(j as usize)) {
                     return true;
                 }
-            } else {
-                // The children in stored order (the lower side of the split first), not the
-                // nearer first as for a closest hit: any hit ends the walk, and on the
-                // intersect bench's any-hit rows this order was 1 to 20 % faster than
-                // nearer-first, and faster than ordering by the ray's direction along the
-                // axis that separates the children (BENCHMARKS.md, "Eighth session: any-hit
-                // in stored order").
-                let (a, b) = (n.first as usize, n.first as usize + 1);
-                match slabs.enter_pair([&self.nodes[a], &self.nodes[b]], t_min, t_max) {
-                    [Some(_), Some(_)] => {
-                        stack[depth] = b as u32;
-                        depth += 1;
-                        at = a;
-                        continue;
-                    }
-                    [Some(_), None] => {
-                        at = a;
-                        continue;
-                    }
-                    [None, Some(_)] => {
-                        at = b;
-                        continue;
-                    }
-                    [None, None] => {}
-                }
             }
-            if depth == 0 {
-                return false;
-            }
-            depth -= 1;
-            at = stack[depth] as usize;
         }
     }
 
@@ -292,9 +300,9 @@ impl Bvh {
     }
 
     /// Checks the structure against `objects`: every bounded object in exactly one leaf and
-    /// every unbounded one in the separate list, each node's box containing its children's
-    /// (and a leaf's the stored boxes of its objects), sibling pairs on even indices, and
-    /// depth within the traversal stack and as recorded. For tests.
+    /// every unbounded one in the separate list, each slot's box containing its child's
+    /// slots (a leaf's, the stored boxes of its objects), the occupied slots first and each
+    /// octant's order a permutation of the slots, and the depth as recorded. For tests.
     pub fn check(&self, objects: &[Object]) -> Result<(), String> {
         let mut seen = vec![0u32; objects.len()];
         for &j in &self.unbounded {
@@ -303,36 +311,52 @@ impl Bvh {
             }
             seen[j as usize] += 1;
         }
-        let mut stack = vec![(0usize, 0usize)];
+        let contains = |outer: ([f32; 3], [f32; 3]), inner: ([f32; 3], [f32; 3])| {
+            (0..3).all(|a| outer.0[a] <= inner.0[a] && inner.1[a] <= outer.1[a])
+        };
+        let mut stack = vec![(0usize, 0usize, None)];
         let mut deepest = 0;
-        while let Some((at, depth)) = stack.pop() {
+        while let Some((at, depth, parent)) = stack.pop() {
             if self.nodes.is_empty() {
                 break;
             }
             deepest = deepest.max(depth);
-            if depth >= STACK {
+            if depth > MAX_DEPTH {
                 return Err(format!("node {at} at depth {depth} is beyond the stack"));
             }
             let n = &self.nodes[at];
-            if n.is_leaf() {
-                let first = n.first as usize;
-                for &j in &self.prims[first..first + n.count as usize] {
-                    let (min, max) = stored_box(&objects[j as usize].shape.bounds().ok_or("unbounded in a leaf")?);
-                    if !n.contains(min, max) {
-                        return Err(format!("leaf {at} does not contain object {j}"));
+            let used = (0..WIDTH).take_while(|&s| n.occupied(s)).count();
+            if used == 0 || (used..WIDTH).any(|s| n.occupied(s) || n.child[s] != 0) {
+                return Err(format!("node {at}: the occupied slots are not the first ones"));
+            }
+            for (octant, &order) in n.order.iter().enumerate() {
+                let mut slots: Vec<u8> = (0..WIDTH).map(|k| (order >> (2 * k)) & 3).collect();
+                slots.sort();
+                if slots != [0, 1, 2, 3] {
+                    return Err(format!("node {at}: order of octant {octant} is not a permutation"));
+                }
+            }
+            for s in 0..used {
+                let b = n.slot_box(s);
+                if let Some(p) = parent
+                    && !contains(p, b)
+                {
+                    return Err(format!("node {at}: slot {s} is outside its parent's box"));
+                }
+                let (first, count) = unpack(n.child[s]);
+                if count == 0 {
+                    if first >= self.nodes.len() {
+                        return Err(format!("node {at}: slot {s} points past the nodes"));
+                    }
+                    stack.push((first, depth + 1, Some(b)));
+                    continue;
+                }
+                for &j in &self.prims[first..first + count] {
+                    let o = stored_box(&objects[j as usize].shape.bounds().ok_or("unbounded in a leaf")?);
+                    if !contains(b, o) {
+                        return Err(format!("node {at}: slot {s} does not contain object {j}"));
                     }
                     seen[j as usize] += 1;
-                }
-            } else {
-                let c = n.first as usize;
-                if !c.is_multiple_of(2) || c + 1 >= self.nodes.len() {
-                    return Err(format!("node {at}: children at {c}"));
-                }
-                for k in [c, c + 1] {
-                    if !n.contains(self.nodes[k].min, self.nodes[k].max) {
-                        return Err(format!("node {at} does not contain its child {k}"));
-                    }
-                    stack.push((k, depth + 1));
                 }
             }
         }

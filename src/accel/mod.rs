@@ -8,6 +8,7 @@ mod build;
 mod bvh;
 mod linear;
 mod node;
+mod wide;
 
 pub use bvh::Bvh;
 pub use linear::Linear;
