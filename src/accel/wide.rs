@@ -100,9 +100,9 @@ pub fn collapse(binary: &[Node]) -> (Vec<Node4>, usize) {
     nodes.push(Node4::EMPTY);
     while let Some((from, to, depth)) = pending.pop() {
         deepest = deepest.max(depth);
-        let slots = gather(binary, from);
+        let (slots, used) = gather(binary, from);
         let mut node = Node4::EMPTY;
-        for (s, &b) in slots.iter().enumerate() {
+        for (s, &b) in slots[..used].iter().enumerate() {
             let n = &binary[b];
             for a in 0..3 {
                 node.bounds[a][s] = n.min[a];
@@ -121,32 +121,40 @@ pub fn collapse(binary: &[Node]) -> (Vec<Node4>, usize) {
                 index as u32
             };
         }
-        node.order = octant_orders(&node, slots.len());
+        node.order = octant_orders(&node, used);
         nodes[to] = node;
     }
     (nodes, deepest)
 }
 
-/// The binary nodes that become the slots of the wide node made from `from`: its children
-/// (itself when it is a leaf, the root of a tree of one leaf), opened largest first.
-fn gather(binary: &[Node], from: usize) -> Vec<usize> {
+/// The binary nodes that become the slots of the wide node made from `from` (the first
+/// `len` of the array): its children (itself when it is a leaf, the root of a tree of one
+/// leaf), opened largest first.
+fn gather(binary: &[Node], from: usize) -> ([usize; WIDTH], usize) {
     let root = &binary[from];
     if root.is_leaf() {
-        return vec![from];
+        return ([from, 0, 0, 0], 1);
     }
-    let mut slots = vec![root.first as usize, root.first as usize + 1];
-    while slots.len() < WIDTH {
-        let largest = slots
-            .iter()
-            .enumerate()
-            .filter(|&(_, &b)| !binary[b].is_leaf())
-            .max_by(|x, y| half_area(&binary[*x.1]).total_cmp(&half_area(&binary[*y.1])));
-        let Some((k, &b)) = largest else { break };
-        let first = binary[b].first as usize;
+    let mut slots = [root.first as usize, root.first as usize + 1, 0, 0];
+    let mut len = 2;
+    while len < WIDTH {
+        let mut largest = None;
+        let mut largest_area = f32::NEG_INFINITY;
+        for (k, &b) in slots[..len].iter().enumerate() {
+            let area = half_area(&binary[b]);
+            // The first of equal areas, as a stable sort would pick.
+            if !binary[b].is_leaf() && area > largest_area {
+                (largest, largest_area) = (Some(k), area);
+            }
+        }
+        let Some(k) = largest else { break };
+        let first = binary[slots[k]].first as usize;
+        slots.copy_within(k + 1..len, k + 2);
         slots[k] = first;
-        slots.insert(k + 1, first + 1);
+        slots[k + 1] = first + 1;
+        len += 1;
     }
-    slots
+    (slots, len)
 }
 
 fn half_area(n: &Node) -> f32 {
@@ -157,22 +165,27 @@ fn half_area(n: &Node) -> f32 {
 /// For each octant, the occupied slots (the first `used`) sorted by their centres'
 /// projection on the octant's diagonal (ties by slot), then the empty ones.
 fn octant_orders(node: &Node4, used: usize) -> [u8; 8] {
+    let centres: [[f32; 3]; WIDTH] = std::array::from_fn(|s| {
+        let (min, max) = node.slot_box(s);
+        [0, 1, 2].map(|a| 0.5 * (min[a] + max[a]))
+    });
     std::array::from_fn(|octant| {
         let key = |s: usize| -> f32 {
-            let (min, max) = node.slot_box(s);
             (0..3)
-                .map(|a| {
-                    let centre = 0.5 * (min[a] + max[a]);
-                    if octant >> a & 1 == 1 { -centre } else { centre }
-                })
+                .map(|a| if octant >> a & 1 == 1 { -centres[s][a] } else { centres[s][a] })
                 .sum()
         };
+        let keys: [f32; WIDTH] = std::array::from_fn(key);
         let mut slots = [0usize, 1, 2, 3];
-        slots[..used].sort_by(|&x, &y| key(x).total_cmp(&key(y)).then(x.cmp(&y)));
-        slots
-            .iter()
-            .enumerate()
-            .fold(0u8, |acc, (k, &s)| acc | (s as u8) << (2 * k))
+        // Insertion sort of at most four: stable, so ties keep the slot order.
+        for i in 1..used {
+            let mut k = i;
+            while k > 0 && keys[slots[k]] < keys[slots[k - 1]] {
+                slots.swap(k, k - 1);
+                k -= 1;
+            }
+        }
+        slots.iter().enumerate().fold(0u8, |acc, (k, &s)| acc | (s as u8) << (2 * k))
     })
 }
 
