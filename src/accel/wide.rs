@@ -17,6 +17,7 @@
 
 use super::build::MAX_LEAF;
 use super::node::{Node, down};
+use glam::Vec4;
 
 // A leaf's count must fit the three bits of a child reference.
 const _: () = assert!(MAX_LEAF < 8);
@@ -172,7 +173,13 @@ fn octant_orders(node: &Node4, used: usize) -> [u8; 8] {
     std::array::from_fn(|octant| {
         let key = |s: usize| -> f32 {
             (0..3)
-                .map(|a| if octant >> a & 1 == 1 { -centres[s][a] } else { centres[s][a] })
+                .map(|a| {
+                    if octant >> a & 1 == 1 {
+                        -centres[s][a]
+                    } else {
+                        centres[s][a]
+                    }
+                })
                 .sum()
         };
         let keys: [f32; WIDTH] = std::array::from_fn(key);
@@ -185,7 +192,10 @@ fn octant_orders(node: &Node4, used: usize) -> [u8; 8] {
                 k -= 1;
             }
         }
-        slots.iter().enumerate().fold(0u8, |acc, (k, &s)| acc | (s as u8) << (2 * k))
+        slots
+            .iter()
+            .enumerate()
+            .fold(0u8, |acc, (k, &s)| acc | (s as u8) << (2 * k))
     })
 }
 
@@ -214,18 +224,19 @@ fn octant_of(d: [f64; 3]) -> usize {
     d[0].is_sign_negative() as usize | (d[1].is_sign_negative() as usize) << 1 | (d[2].is_sign_negative() as usize) << 2
 }
 
-/// The `f32` test.
+/// The `f32` test. The per-ray values a node's test combines with its bounds are kept
+/// splat across the four lanes.
 pub struct F32Slots {
     /// Per axis, the row of `Node4::bounds` by which the ray enters the slab and the one by
     /// which it leaves.
     entry_row: [usize; 3],
     exit_row: [usize; 3],
     /// Per axis, the origin's `f32` bound that makes the entry earlier, and the exit later.
-    entry_origin: [f32; 3],
-    exit_origin: [f32; 3],
-    inv: [f32; 3],
-    t_min: f32,
-    t_max: f32,
+    entry_origin: [Vec4; 3],
+    exit_origin: [Vec4; 3],
+    inv: [Vec4; 3],
+    t_min: Vec4,
+    t_max: Vec4,
     octant: usize,
 }
 
@@ -250,13 +261,12 @@ impl F32Slots {
         let mut t = F32Slots {
             entry_row: [0; 3],
             exit_row: [0; 3],
-            entry_origin: [0.0; 3],
-            exit_origin: [0.0; 3],
-            // `1 / d` rounds twice (`d` to `f32`, the quotient); `d = -0` keeps its sign.
-            inv: [0.0; 3],
+            entry_origin: [Vec4::ZERO; 3],
+            exit_origin: [Vec4::ZERO; 3],
+            inv: [Vec4::ZERO; 3],
             // Rounded to nearest: the entry's and exit's widening covers it.
-            t_min: t_min as f32,
-            t_max: t_max as f32,
+            t_min: Vec4::splat(t_min as f32),
+            t_max: Vec4::splat(t_max as f32),
             octant: octant_of(dir),
         };
         // Plain loops: `array::map` with closures was left as calls here, and the copies
@@ -270,9 +280,10 @@ impl F32Slots {
             let negative = dir[a].is_sign_negative();
             t.entry_row[a] = if negative { 3 + a } else { a };
             t.exit_row[a] = if negative { a } else { 3 + a };
-            t.entry_origin[a] = if negative { lo } else { hi };
-            t.exit_origin[a] = if negative { hi } else { lo };
-            t.inv[a] = 1.0 / d[a];
+            t.entry_origin[a] = Vec4::splat(if negative { lo } else { hi });
+            t.exit_origin[a] = Vec4::splat(if negative { hi } else { lo });
+            // `1 / d` rounds twice (`d` to `f32`, the quotient); `d = -0` keeps its sign.
+            t.inv[a] = Vec4::splat(1.0 / d[a]);
         }
         Some(t)
     }
@@ -281,31 +292,27 @@ impl F32Slots {
 impl SlotTest for F32Slots {
     #[inline(always)]
     fn enter(&self, n: &Node4) -> ([f32; WIDTH], u32) {
-        let mut near = [self.t_min; WIDTH];
-        let mut far = [self.t_max; WIDTH];
+        let (mut near, mut far) = (self.t_min, self.t_max);
         for a in 0..3 {
-            let (entry, exit) = (&n.bounds[self.entry_row[a]], &n.bounds[self.exit_row[a]]);
-            for s in 0..WIDTH {
-                let t0 = (entry[s] - self.entry_origin[a]) * self.inv[a];
-                let t1 = (exit[s] - self.exit_origin[a]) * self.inv[a];
-                // A NaN (an origin on the plane of a slab the ray runs along) leaves the
-                // interval as it is: the ray counts as inside that slab.
-                near[s] = if t0 > near[s] { t0 } else { near[s] };
-                far[s] = if t1 < far[s] { t1 } else { far[s] };
-            }
+            let entry = Vec4::from_array(n.bounds[self.entry_row[a]]);
+            let exit = Vec4::from_array(n.bounds[self.exit_row[a]]);
+            let t0 = (entry - self.entry_origin[a]) * self.inv[a];
+            let t1 = (exit - self.exit_origin[a]) * self.inv[a];
+            // `0 * inf = NaN` only for a slab the ray runs along whose plane lies exactly
+            // at one of the origin's bounds, which are strictly outside the origin: the
+            // ray is outside that slab, so a miss or a hit there are both sound. (`maxps`
+            // and `minps` return their second operand, the interval so far.)
+            near = t0.max(near);
+            far = t1.min(far);
         }
-        let mut mask = 0;
-        for s in 0..WIDTH {
-            near[s] = near[s] - near[s].abs() * WIDEN32 - f32::MIN_POSITIVE;
-            let wide_far = far[s] + far[s].abs() * WIDEN32 + f32::MIN_POSITIVE;
-            mask |= ((near[s] <= wide_far) as u32) << s;
-        }
-        (near, mask)
+        let near = near - near.abs() * WIDEN32 - Vec4::splat(f32::MIN_POSITIVE);
+        let far = far + far.abs() * WIDEN32 + Vec4::splat(f32::MIN_POSITIVE);
+        (near.to_array(), near.cmple(far).bitmask())
     }
 
     #[inline(always)]
     fn set_t_max(&mut self, t_max: f64) {
-        self.t_max = t_max as f32;
+        self.t_max = Vec4::splat(t_max as f32);
     }
 
     #[inline(always)]
