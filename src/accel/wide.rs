@@ -17,7 +17,7 @@
 
 use super::build::MAX_LEAF;
 use super::node::{Node, down};
-use glam::Vec4;
+use glam::{BVec4A, Vec4};
 
 // A leaf's count must fit the three bits of a child reference.
 const _: () = assert!(MAX_LEAF < 8);
@@ -245,19 +245,24 @@ impl F32Slots {
     /// carry it (see the module doc).
     #[inline(always)]
     pub fn new(origin: [f64; 3], dir: [f64; 3], t_min: f64, t_max: f64) -> Option<Self> {
-        let (o, d) = (
-            [origin[0] as f32, origin[1] as f32, origin[2] as f32],
-            [dir[0] as f32, dir[1] as f32, dir[2] as f32],
-        );
-        let mut fits = !t_min.is_nan() && !t_max.is_nan();
-        for a in 0..3 {
-            // A tiny component may have become 0: the test is on the exact one.
-            let d_abs = d[a].abs();
-            fits &= o[a].abs() <= F32_RANGE && d_abs <= F32_RANGE && (d_abs >= 1.0 / F32_RANGE || dir[a] == 0.0);
-        }
-        if !fits {
+        // The three axes in the first three lanes (the fourth is a harmless 0 and 1).
+        let o = Vec4::new(origin[0] as f32, origin[1] as f32, origin[2] as f32, 0.0);
+        let d = Vec4::new(dir[0] as f32, dir[1] as f32, dir[2] as f32, 1.0);
+        let range = Vec4::splat(F32_RANGE);
+        // A tiny component may have become 0: the test is on the exact one.
+        let zero = BVec4A::new(dir[0] == 0.0, dir[1] == 0.0, dir[2] == 0.0, false);
+        let fits = o.abs().cmple(range) & d.abs().cmple(range) & (d.abs().cmpge(range.recip()) | zero);
+        if !fits.all() || t_min.is_nan() || t_max.is_nan() {
             return None;
         }
+        // Below and above the origin: `o` rounded to nearest is within half a step of it,
+        // `o -+ |o| 2^-23` one to two steps away (and the smallest normal number covers an
+        // origin that rounded to zero or to a subnormal).
+        let step = o.abs() * (1.0 / (1u32 << 23) as f32) + Vec4::splat(f32::MIN_POSITIVE);
+        let (lo, hi) = ((o - step).to_array(), (o + step).to_array());
+        // `1 / d` rounds twice (`d` to `f32`, the quotient); `d = -0` keeps its sign.
+        let inv = d.recip().to_array();
+        let octant = octant_of(dir);
         let mut t = F32Slots {
             entry_row: [0; 3],
             exit_row: [0; 3],
@@ -267,23 +272,17 @@ impl F32Slots {
             // Rounded to nearest: the entry's and exit's widening covers it.
             t_min: Vec4::splat(t_min as f32),
             t_max: Vec4::splat(t_max as f32),
-            octant: octant_of(dir),
+            octant,
         };
         // Plain loops: `array::map` with closures was left as calls here, and the copies
         // of their results stalled (a tenth of an any-hit walk).
         for a in 0..3 {
-            // Below and above the origin: `o` rounded to nearest is within half a step of
-            // it, `o -+ |o| 2^-23` one to two steps away (and the smallest normal number
-            // covers an origin that rounded to zero or to a subnormal).
-            let step = o[a].abs() * (1.0 / (1u32 << 23) as f32) + f32::MIN_POSITIVE;
-            let (lo, hi) = (o[a] - step, o[a] + step);
-            let negative = dir[a].is_sign_negative();
+            let negative = octant >> a & 1 == 1;
             t.entry_row[a] = if negative { 3 + a } else { a };
             t.exit_row[a] = if negative { a } else { 3 + a };
-            t.entry_origin[a] = Vec4::splat(if negative { lo } else { hi });
-            t.exit_origin[a] = Vec4::splat(if negative { hi } else { lo });
-            // `1 / d` rounds twice (`d` to `f32`, the quotient); `d = -0` keeps its sign.
-            t.inv[a] = Vec4::splat(1.0 / d[a]);
+            t.entry_origin[a] = Vec4::splat(if negative { lo[a] } else { hi[a] });
+            t.exit_origin[a] = Vec4::splat(if negative { hi[a] } else { lo[a] });
+            t.inv[a] = Vec4::splat(inv[a]);
         }
         Some(t)
     }
