@@ -4,7 +4,9 @@
 //! Each node bins its objects' centroids into up to [`BINS`] slots along the axis where they
 //! spread most (along all three axes, the cheapest kept, in trees of at most
 //! [`ALL_AXES_UP_TO`] objects, except the large nodes at the top binned by all threads),
-//! sweeps the bins for the split with the least SAH cost, and partitions in place.
+//! sweeps the bins for the split with the least SAH cost (a node visit costs
+//! [`FINE_TRAVERSE_COST`] object tests in trees of at most [`FINE_LEAVES_UP_TO`] objects,
+//! [`TRAVERSE_COST`] in larger ones), and partitions in place.
 //! Large ranges at the top are binned by all threads; below a size fixed by the object count
 //! alone, subtrees are built as independent tasks, one per thread at a time, and spliced
 //! into the array afterwards. Every reduction is exact (min, max and integer counts) and the
@@ -26,17 +28,52 @@ pub const MAX_SAH_DEPTH: usize = 64;
 /// cheapest split, but for the nodes above the task size (4096 objects up to 262 144), which
 /// all threads bin together along one axis; larger trees bin every node only along the axis
 /// where its centroids spread most.
-/// On the intersection bench all axes took the BVH's geometric mean throughput against
-/// obvhs from 0.918 to 0.948 over the 24 rows with N = 8 to 1000, and from 0.84 to 0.99
-/// over the 8 rows with N = 100 000 (a build of 51 ms); on 1 000 000 spheres they would
+/// On the intersection bench all axes took the binary BVH's geometric mean throughput
+/// against obvhs from 0.918 to 0.948 over the 24 rows with N = 8 to 1000, and from 0.84 to
+/// 0.99 over the 8 rows with N = 100 000 (a build of 51 ms); on 1 000 000 spheres they would
 /// cost a third more build time (third session: 0.37 s -> 0.47 s with all axes below 64
 /// objects alone), where the build has a budget of 0.3 s.
 const ALL_AXES_UP_TO: usize = 200_000;
-/// Cost of visiting an interior node (two box tests) relative to one object test. Measured
-/// on the intersect bench (BENCHMARKS.md, "Eighth session"): 3 against 2 gave +1 to +4 % on
-/// most N = 64 and 1000 rows, the same at 1 000 000, a tenth less build time and a third
-/// less memory (fuller leaves); 1 was 1 to 11 % slower.
+/// Cost of visiting an interior node relative to one object test, in trees over more than
+/// [`FINE_LEAVES_UP_TO`] objects. Measured on the intersect bench (BENCHMARKS.md, "Eighth
+/// session", binary tree): 3 against 2 gave +1 to +4 % on most N = 64 and 1000 rows, the
+/// same at 1 000 000, a tenth less build time and a third less memory (fuller leaves). With
+/// 4-wide nodes (ninth session), a cost of 1 at 1 000 000 spheres took 62.4 bytes per object
+/// instead of 26.3 and 276 ms to build instead of 155 ms, near the 64-byte and 0.3 s
+/// budgets.
 const TRAVERSE_COST: f32 = 3.0;
+/// The node cost in trees over at most [`FINE_LEAVES_UP_TO`] objects. With 4-wide nodes,
+/// whose four boxes are tested at once, smaller leaves cull more object tests: against a
+/// cost of 3, a cost of 1 gave +4 to +17 % on most rows at N = 8 to 1000 (BENCHMARKS.md,
+/// "Ninth session").
+const FINE_TRAVERSE_COST: f32 = 1.0;
+/// Trees over at most this many objects take [`FINE_TRAVERSE_COST`]. Their many small leaves
+/// leave nodes less full: 44 to 56 bytes per object at N = 64 to 4096 on the bench's scenes
+/// (spheres and mixed), but 61 to 63 at 10 000 and 65 to 67 at 100 000, at or beyond the
+/// 64-byte budget.
+const FINE_LEAVES_UP_TO: usize = 4096;
+
+/// How a tree of a given size is built (see [`ALL_AXES_UP_TO`], [`FINE_LEAVES_UP_TO`]).
+#[derive(Clone, Copy, Debug)]
+struct Policy {
+    /// Whether nodes are binned along all three axes.
+    all_axes: bool,
+    /// Cost of a node visit relative to one object test, in the SAH.
+    traverse_cost: f32,
+}
+
+impl Policy {
+    fn for_count(n: usize) -> Self {
+        Policy {
+            all_axes: n <= ALL_AXES_UP_TO,
+            traverse_cost: if n <= FINE_LEAVES_UP_TO {
+                FINE_TRAVERSE_COST
+            } else {
+                TRAVERSE_COST
+            },
+        }
+    }
+}
 
 /// An object's stored box and index, as the builder sorts them.
 #[derive(Clone, Copy, Debug)]
@@ -293,14 +330,15 @@ enum Decision {
 
 /// Decides a node: leaf, SAH split, or (no usable split, or too deep) a split in the
 /// middle of the range. `parallel` bins with every thread (large ranges at the top);
-/// `all_axes` bins along each axis (else only the widest); `scratch` holds the bins.
+/// `policy` says along which axes to bin and what a node visit costs; `scratch` holds the
+/// bins.
 fn decide(
     refs: &mut [PrimRef],
     boxes: &Bounds,
     centroids: &Bounds,
     depth: usize,
     parallel: bool,
-    all_axes: bool,
+    policy: Policy,
     scratch: &mut Bins,
 ) -> Decision {
     let n = refs.len();
@@ -324,7 +362,7 @@ fn decide(
     } else {
         // The cheapest split along the axes tried (the first axis on ties).
         let widest = widest_axis(centroids);
-        let axes = if all_axes { 0..3 } else { widest..widest + 1 };
+        let axes = if policy.all_axes { 0..3 } else { widest..widest + 1 };
         let mut best: Option<(Split, Binner)> = None;
         for axis in axes {
             let Some(binner) = Binner::on_axis(centroids, bin_count(n), axis) else {
@@ -343,7 +381,7 @@ fn decide(
     let leaf_cost = n as f32;
     match split {
         Some((s, binner)) => {
-            let split_cost = TRAVERSE_COST + s.cost / boxes.half_area().max(f32::MIN_POSITIVE);
+            let split_cost = policy.traverse_cost + s.cost / boxes.half_area().max(f32::MIN_POSITIVE);
             if n <= MAX_LEAF && leaf_cost <= split_cost {
                 return Decision::Leaf;
             }
@@ -398,8 +436,8 @@ pub fn build(refs: &mut [PrimRef]) -> (Vec<Node>, usize) {
         |a, b| (a.0.union(b.0), a.1.union(b.1)),
     );
     // Ranges up to this size are one task; it depends on the object count only.
-    let all_axes = refs.len() <= ALL_AXES_UP_TO;
-    let mut top = Builder::new(vec![Node::default(); 2], (refs.len() / 64).max(4096), all_axes);
+    let policy = Policy::for_count(refs.len());
+    let mut top = Builder::new(vec![Node::default(); 2], (refs.len() / 64).max(4096), policy);
     top.grow(refs, 0, boxes, centroids, 0, 0);
     let (mut nodes, tasks) = (top.nodes, top.tasks);
     // Build the tasks' subtrees in parallel, each in its own array with its root at 0.
@@ -417,7 +455,7 @@ pub fn build(refs: &mut [PrimRef]) -> (Vec<Node>, usize) {
             // About one node per object (leaves average two objects): no regrowth.
             let mut nodes = Vec::with_capacity(t.len + 1);
             nodes.push(Node::default());
-            let mut b = Builder::new(nodes, 0, all_axes);
+            let mut b = Builder::new(nodes, 0, policy);
             b.grow(s, t.start, t.boxes, t.centroids, t.depth, 0);
             (b.nodes, b.deepest)
         })
@@ -468,20 +506,19 @@ struct Builder {
     nodes: Vec<Node>,
     tasks: Vec<Task>,
     task_size: usize,
-    /// Whether nodes are binned along all three axes (see [`ALL_AXES_UP_TO`]).
-    all_axes: bool,
+    policy: Policy,
     scratch: Bins,
     /// Depth of the deepest node built so far.
     deepest: usize,
 }
 
 impl Builder {
-    fn new(nodes: Vec<Node>, task_size: usize, all_axes: bool) -> Self {
+    fn new(nodes: Vec<Node>, task_size: usize, policy: Policy) -> Self {
         Builder {
             nodes,
             tasks: Vec::new(),
             task_size,
-            all_axes,
+            policy,
             scratch: Bins::new(BINS),
             deepest: 0,
         }
@@ -516,7 +553,7 @@ impl Builder {
             &centroids,
             depth,
             parallel,
-            self.all_axes,
+            self.policy,
             &mut self.scratch,
         ) {
             Decision::Leaf => self.nodes[slot] = node(&boxes, start, refs.len()),
@@ -530,9 +567,9 @@ impl Builder {
                     // its own (its root at 0), appended as this one would have built them:
                     // the left subtree, then the right, so the tree and the tasks' order do
                     // not depend on the threads.
-                    let (task_size, all_axes) = (self.task_size, self.all_axes);
+                    let (task_size, policy) = (self.task_size, self.policy);
                     let child = |refs: &mut [PrimRef], start: usize, (boxes, centroids): (Bounds, Bounds)| {
-                        let mut b = Builder::new(vec![Node::default()], task_size, all_axes);
+                        let mut b = Builder::new(vec![Node::default()], task_size, policy);
                         b.grow(refs, start, boxes, centroids, depth + 1, 0);
                         b
                     };
