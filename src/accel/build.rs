@@ -44,8 +44,8 @@ const ALL_AXES_UP_TO: usize = 200_000;
 const TRAVERSE_COST: f32 = 3.0;
 /// The node cost in trees over at most [`FINE_LEAVES_UP_TO`] objects. With 4-wide nodes,
 /// whose four boxes are tested at once, smaller leaves cull more object tests: against a
-/// cost of 3, a cost of 1 gave +4 to +17 % on most rows at N = 8 to 1000 (BENCHMARKS.md,
-/// "Ninth session").
+/// cost of 3, a cost of 1 gave +4 to +15 % on 9 of the 12 incoherent rows at N = 8 to 1000
+/// and -5 to -7 % on two (BENCHMARKS.md, "Ninth session").
 const FINE_TRAVERSE_COST: f32 = 1.0;
 /// Trees over at most this many objects take [`FINE_TRAVERSE_COST`]. Their many small leaves
 /// leave nodes less full: 44 to 56 bytes per object at N = 64 to 4096 on the bench's scenes
