@@ -130,8 +130,7 @@ impl Bounds {
 
     /// Half the surface area (the SAH needs only ratios); 0 for the empty box.
     fn half_area(&self) -> f32 {
-        let d = (self.max - self.min).max(Vec3A::ZERO);
-        d.x * d.y + d.y * d.z + d.z * d.x
+        super::node::half_area((self.max - self.min).max(Vec3A::ZERO).to_array())
     }
 
     fn of(refs: &[PrimRef]) -> (Bounds, Bounds) {

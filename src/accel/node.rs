@@ -26,6 +26,17 @@ impl Node {
     pub fn is_leaf(&self) -> bool {
         self.count > 0
     }
+
+    /// Half the surface area of the node's box (see [`half_area`]).
+    pub fn half_area(&self) -> f32 {
+        half_area([0, 1, 2].map(|a| self.max[a] - self.min[a]))
+    }
+}
+
+/// Half the surface area of a box of sides `d` (the SAH needs only ratios).
+#[inline(always)]
+pub fn half_area(d: [f32; 3]) -> f32 {
+    d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
 }
 
 /// Relative padding of object boxes, as a fraction of their largest side.

@@ -142,7 +142,7 @@ fn gather(binary: &[Node], from: usize) -> ([usize; WIDTH], usize) {
         let mut largest = None;
         let mut largest_area = f32::NEG_INFINITY;
         for (k, &b) in slots[..len].iter().enumerate() {
-            let area = half_area(&binary[b]);
+            let area = binary[b].half_area();
             // The first of equal areas, as a stable sort would pick.
             if !binary[b].is_leaf() && area > largest_area {
                 (largest, largest_area) = (Some(k), area);
@@ -156,11 +156,6 @@ fn gather(binary: &[Node], from: usize) -> ([usize; WIDTH], usize) {
         len += 1;
     }
     (slots, len)
-}
-
-fn half_area(n: &Node) -> f32 {
-    let d = [0, 1, 2].map(|a| n.max[a] - n.min[a]);
-    d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
 }
 
 /// For each octant, the occupied slots (the first `used`) sorted by their centres'
@@ -216,6 +211,14 @@ pub const F32_RANGE: f32 = (1u64 << 50) as f32;
 
 /// Relative widening of the `f32` entry and exit (see the module doc).
 const WIDEN32: f32 = 1.0 / (1u32 << 20) as f32;
+
+/// The rows of `Node4::bounds` by which a ray enters and leaves the slab of `axis`: the
+/// minimum first, unless its direction component is `negative` (`-0` included, whose
+/// reciprocal `-inf` pairs with the maximum).
+#[inline(always)]
+fn slab_rows(axis: usize, negative: bool) -> (usize, usize) {
+    if negative { (3 + axis, axis) } else { (axis, 3 + axis) }
+}
 
 /// Which octant the direction `d` points into ([`Node4::order`]); `-0` counts as negative,
 /// as in the slab tests.
@@ -278,8 +281,7 @@ impl F32Slots {
         // of their results stalled (a tenth of an any-hit walk).
         for a in 0..3 {
             let negative = octant >> a & 1 == 1;
-            t.entry_row[a] = if negative { 3 + a } else { a };
-            t.exit_row[a] = if negative { a } else { 3 + a };
+            (t.entry_row[a], t.exit_row[a]) = slab_rows(a, negative);
             t.entry_origin[a] = Vec4::splat(if negative { lo[a] } else { hi[a] });
             t.exit_origin[a] = Vec4::splat(if negative { hi[a] } else { lo[a] });
             t.inv[a] = Vec4::splat(inv[a]);
@@ -336,12 +338,12 @@ pub struct F64Slots {
 
 impl F64Slots {
     pub fn new(origin: [f64; 3], dir: [f64; 3], t_min: f64, t_max: f64) -> Self {
-        let negative = dir.map(|x| x.is_sign_negative());
+        let rows: [(usize, usize); 3] = std::array::from_fn(|a| slab_rows(a, dir[a].is_sign_negative()));
         F64Slots {
             origin,
             inv: dir.map(|x| 1.0 / x),
-            entry_row: [0, 1, 2].map(|a| if negative[a] { 3 + a } else { a }),
-            exit_row: [0, 1, 2].map(|a| if negative[a] { a } else { 3 + a }),
+            entry_row: rows.map(|r| r.0),
+            exit_row: rows.map(|r| r.1),
             t_min,
             t_max,
             octant: octant_of(dir),
