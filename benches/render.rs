@@ -9,7 +9,8 @@
 use criterion::{Criterion, SamplingMode, criterion_group, criterion_main};
 use lumiere::figures::{registry, render_figure};
 use lumiere::render::render;
-use lumiere::scene::{World, load};
+use lumiere::scene::load;
+use lumiere::world::World;
 use std::path::Path;
 
 fn figures(c: &mut Criterion) {

@@ -12,8 +12,8 @@
 
 use lumiere::figures::{registry, scaled};
 use lumiere::render::render;
-use lumiere::scene::World;
 use lumiere::skips::Skips;
+use lumiere::world::World;
 use std::time::Instant;
 
 const AREA_SETS: [&str; 2] = ["soft-shadows", "light-shapes"];

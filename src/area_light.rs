@@ -5,9 +5,9 @@
 //! the whole image (the chapter's look: N distinct shadows); `per_sample` draws fresh points
 //! for every pixel sample from that sample's own stream (noise instead of banding).
 
-use crate::light::Attenuation;
 use crate::placement::{Placement, on_segment, on_sphere, on_square};
 use crate::sampling::{Purpose, Stream, sample_index};
+use crate::shading::Attenuation;
 use glam::DVec3;
 
 /// The shape the points are spread over.

@@ -4,7 +4,8 @@ use crate::accel::AccelChoice;
 use crate::film::write_atomic;
 use crate::limits;
 use crate::render::{RenderStats, render_rows};
-use crate::scene::{self, Scene, World};
+use crate::scene::{self, Scene};
+use crate::world::World;
 use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -483,9 +484,9 @@ pub struct AccelReport {
 impl AccelReport {
     pub fn of(world: &World) -> Self {
         AccelReport {
-            name: world.accel.name(),
+            name: world.accel().name(),
             objects: world.scene.objects.len(),
-            bytes: world.accel.bytes(),
+            bytes: world.accel().bytes(),
             seconds: world.accel_seconds,
         }
     }

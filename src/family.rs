@@ -21,8 +21,9 @@
 use crate::area_light::PointMode;
 use crate::light::Light;
 use crate::render::{RenderStats, render_rows_lanes};
-use crate::scene::{Scene, ShadingModel, Specular, World};
+use crate::scene::{Scene, ShadingModel, Specular};
 use crate::trace::Lane;
+use crate::world::World;
 use glam::DVec3;
 use std::sync::atomic::AtomicBool;
 

@@ -54,6 +54,7 @@ pub mod solve;
 pub mod stress;
 pub mod study;
 pub mod trace;
+pub mod world;
 
 /// The renderer version recorded in manifests.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

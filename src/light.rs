@@ -2,30 +2,9 @@
 //! point each light yields the direction and distance to test with a shadow ray and the
 //! light colour arriving there before shadowing (colour x attenuation x spot factor).
 
-use crate::shading::{attenuation, spot_factor};
+pub use crate::shading::Attenuation;
+use crate::shading::spot_factor;
 use glam::DVec3;
-
-/// Distance attenuation coefficients `C_const, C_lin, C_quad` (each >= 0, not all 0).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct Attenuation {
-    pub constant: f64,
-    pub linear: f64,
-    pub quadratic: f64,
-}
-
-impl Attenuation {
-    /// No attenuation: `A = 1` everywhere.
-    pub const NONE: Attenuation = Attenuation {
-        constant: 1.0,
-        linear: 0.0,
-        quadratic: 0.0,
-    };
-
-    /// `A` at distance `d` (see [`attenuation`]).
-    pub fn factor(&self, d: f64) -> f64 {
-        attenuation(self.constant, self.linear, self.quadratic, d)
-    }
-}
 
 /// A point light (also one point of an area light).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]

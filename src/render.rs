@@ -4,8 +4,8 @@
 
 use crate::film::Film;
 use crate::sampling::{Purpose, Stream};
-use crate::scene::World;
 use crate::trace::{Lane, NoRecord, RayCounts, Recorder, Tracer};
+use crate::world::World;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::ops::Range;

@@ -9,6 +9,28 @@ pub fn attenuation(c_const: f64, c_lin: f64, c_quad: f64, d: f64) -> f64 {
     1.0 / (c_const + c_lin * d + c_quad * d * d)
 }
 
+/// Distance attenuation coefficients `C_const, C_lin, C_quad` (each >= 0, not all 0).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Attenuation {
+    pub constant: f64,
+    pub linear: f64,
+    pub quadratic: f64,
+}
+
+impl Attenuation {
+    /// No attenuation: `A = 1` everywhere.
+    pub const NONE: Attenuation = Attenuation {
+        constant: 1.0,
+        linear: 0.0,
+        quadratic: 0.0,
+    };
+
+    /// `A` at distance `d` ([`attenuation`]).
+    pub fn factor(&self, d: f64) -> f64 {
+        attenuation(self.constant, self.linear, self.quadratic, d)
+    }
+}
+
 /// Spotlight angular factor (chapter 7.4b), with `o` the spot's unit orientation and `d`
 /// the unit direction from the light to the point:
 /// `t = (o.d - 1) / (cos(theta/2) - 1)`, `C_theta = (1 - t) C_max + t C_min` inside the cone

@@ -8,9 +8,10 @@
 use crate::light::{Incidence, Light};
 use crate::material::Material;
 use crate::math::{Ray, hit_point_error, offset_origin, reflect, refract};
-use crate::scene::{Candidate, ShadingModel, Specular, World};
+use crate::scene::{ShadingModel, Specular};
 use crate::shading::{ambient, blinn, direct, phong, specular_tint};
 use crate::skips::{Saved, Skip};
+use crate::world::{Candidate, World};
 use glam::DVec3;
 
 mod area;
@@ -328,7 +329,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     ) -> [DVec3; K] {
         rec.ray(kind, ray, level, weight);
         let scene = self.world.scene;
-        let Some((object, hit)) = self.world.accel.closest(&scene.objects, ray, 0.0, f64::INFINITY) else {
+        let Some((object, hit)) = self.world.closest(ray) else {
             rec.miss();
             rec.done(scene.settings.background);
             return [scene.settings.background; K];
@@ -700,13 +701,11 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         };
         let blocked = match candidates {
             Some(c) => c.iter().any(|c| opaque(c.object) && meets_candidate(c)),
-            None if skips.on(Skip::OpaqueOnly) => world.accel.any_hit(objects, &ray, 0.0, t_max, &opaque),
+            None if skips.on(Skip::OpaqueOnly) => world.any_hit(&ray, t_max, &opaque),
             None => {
                 // Without the any-hit shortcut: visit every opaque hit.
                 let mut any = false;
-                world
-                    .accel
-                    .each_hit(objects, &ray, 0.0, t_max, &opaque, &mut |_| any = true);
+                world.each_hit(&ray, t_max, &opaque, &mut |_| any = true);
                 any
             }
         };
@@ -724,9 +723,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                     .filter(|c| transparent(c.object) && meets_candidate(c))
                     .map(|c| c.object),
             ),
-            None => world
-                .accel
-                .each_hit(objects, &ray, 0.0, t_max, &transparent, &mut |i| crossed.push(i)),
+            None => world.each_hit(&ray, t_max, &transparent, &mut |i| crossed.push(i)),
         }
         self.counts.saved.count(Skip::BoundingSpheres, sphere_rejects.get());
         // Multiply in object order so the bits do not depend on the traversal order.

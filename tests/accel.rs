@@ -11,8 +11,9 @@ use lumiere::accel::{Accel, AccelChoice, Bvh};
 use lumiere::math::Ray;
 use lumiere::render::render;
 use lumiere::sampling::{Purpose, Stream};
-use lumiere::scene::{Object, World};
+use lumiere::scene::Object;
 use lumiere::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus};
+use lumiere::world::World;
 
 fn object(shape: Shape) -> Object {
     Object {
@@ -502,7 +503,7 @@ fn auto_keeps_the_course_scenes_on_the_linear_scan() {
         "soft-shadows.toml",
     ] {
         let s = scene(name);
-        assert_eq!(World::new(&s).accel.name(), "linear", "{name}");
+        assert_eq!(World::new(&s).accel().name(), "linear", "{name}");
     }
-    assert_eq!(World::new(&scene("spheres-1k.toml")).accel.name(), "bvh");
+    assert_eq!(World::new(&scene("spheres-1k.toml")).accel().name(), "bvh");
 }

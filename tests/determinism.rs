@@ -46,8 +46,8 @@ fn a_pixel_is_the_mean_of_its_replayable_samples() {
     // render_pixel reads the jitter stream in order; render_sample seeks to sample k (as
     // `probe --sample K` does). Both must see the same numbers, so the mean is bit-identical.
     use lumiere::render::{render_pixel, render_sample};
-    use lumiere::scene::World;
     use lumiere::trace::{NoRecord, Tracer};
+    use lumiere::world::World;
     let mut scene = scene("reference.toml");
     scene.settings.samples_per_pixel = 9;
     let world = World::new(&scene);

@@ -10,8 +10,9 @@ use lumiere::family;
 use lumiere::figures::{registry, scaled};
 use lumiere::light::Light;
 use lumiere::render::render;
-use lumiere::scene::{Scene, World};
+use lumiere::scene::Scene;
 use lumiere::trace::RayCounts;
+use lumiere::world::World;
 use std::sync::atomic::AtomicBool;
 
 /// The scenes of the figures `stems` of set `set`, at `scale`.

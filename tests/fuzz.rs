@@ -6,7 +6,8 @@
 //! `PROPTEST_CASES=50000 nice -n 10 cargo test --release --test fuzz` (see BENCHMARKS.md).
 
 use lumiere::render::render;
-use lumiere::scene::{self, World};
+use lumiere::scene::{self};
+use lumiere::world::World;
 use proptest::prelude::*;
 
 /// A scene using every section, shape and light kind: area lights of each shape, placement

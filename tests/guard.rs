@@ -5,7 +5,7 @@
 use glam::DVec3;
 use lumiere::light::Light;
 use lumiere::render::render;
-use lumiere::scene::World;
+use lumiere::world::World;
 
 #[test]
 #[cfg_attr(debug_assertions, should_panic(expected = "non-finite radiance"))]

@@ -10,9 +10,10 @@ use lumiere::material::Material;
 use lumiere::math::Ray;
 use lumiere::render::{render, render_sample};
 use lumiere::scene::transform::Similarity;
-use lumiere::scene::{Object, Scene, Specular, World};
+use lumiere::scene::{Object, Scene, Specular};
 use lumiere::shape::{Plane, Shape, Sphere};
 use lumiere::trace::{LightShare, RayKind, Recorder, Tracer};
+use lumiere::world::World;
 
 fn reference_small() -> Scene {
     let mut scene = lumiere::scene::load(std::path::Path::new("scenes/reference.toml")).unwrap();

@@ -8,8 +8,9 @@ use glam::DVec3;
 use lumiere::film::{Film, quantize};
 use lumiere::probe::{PixelProbe, RayNode, format_text, probe};
 use lumiere::render::render_sample;
-use lumiere::scene::{self, Scene, World};
+use lumiere::scene::{self, Scene};
 use lumiere::trace::{NoRecord, Tracer};
+use lumiere::world::World;
 
 const YELLOW: DVec3 = DVec3::new(1.0, 0.9, 0.1);
 const MAUVE: DVec3 = DVec3::new(0.6, 0.3, 0.8);

@@ -6,8 +6,9 @@ use common::*;
 use glam::DVec3;
 use lumiere::math::Ray;
 use lumiere::render::render;
-use lumiere::scene::{self, Scene, World};
+use lumiere::scene::{self, Scene};
 use lumiere::trace::{RayKind, Recorder, Tracer};
+use lumiere::world::World;
 
 /// Records every ray and every total internal reflection, in order.
 #[derive(Default)]

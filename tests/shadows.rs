@@ -5,8 +5,8 @@ mod common;
 use common::*;
 use glam::DVec3;
 use lumiere::light::Light;
-use lumiere::scene::World;
 use lumiere::trace::Tracer;
+use lumiere::world::World;
 
 const YELLOW: DVec3 = DVec3::new(1.0, 0.9, 0.1);
 const MAUVE: DVec3 = DVec3::new(0.6, 0.3, 0.8);

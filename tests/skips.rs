@@ -16,9 +16,10 @@ use lumiere::figures::{registry, scaled};
 use lumiere::film::Film;
 use lumiere::light::Light;
 use lumiere::render::render;
-use lumiere::scene::{Scene, World};
+use lumiere::scene::Scene;
 use lumiere::skips::{Skip, Skips};
 use lumiere::trace::RayCounts;
+use lumiere::world::World;
 
 /// Renders `scene` with `skips`.
 fn render_with(scene: &Scene, skips: Skips) -> (Film, RayCounts) {

@@ -18,8 +18,9 @@ use lumiere::light::{Attenuation, Light, PointLight, point_incidence};
 use lumiere::math::Ray;
 use lumiere::placement::{Placement, on_sphere};
 use lumiere::sampling::{Purpose, Stream};
-use lumiere::scene::{Scene, World, parse};
+use lumiere::scene::{Scene, parse};
 use lumiere::trace::{NoRecord, Tracer};
+use lumiere::world::World;
 use std::f64::consts::PI;
 
 /// The spherical light of FIGURES.md: centre (0, 0, 10), R = 2, C_const 1, C_quad 0.005.

@@ -3,8 +3,8 @@
 //! mirrors. Both read the renderer's own output (the recorder or the pixels).
 
 use crate::render::render_sample;
-use crate::scene::World;
 use crate::trace::{LightShare, RayKind, Recorder, Tracer};
+use crate::world::World;
 use glam::DVec3;
 use rayon::prelude::*;
 

@@ -9,7 +9,8 @@ pub mod sheet;
 
 use crate::film::{pixel_hash, write_atomic};
 use crate::render::render_rows;
-use crate::scene::{self, Scene, World};
+use crate::scene::{self, Scene};
+use crate::world::World;
 use rayon::prelude::*;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};

@@ -33,10 +33,11 @@ use crate::area_light::{AreaLight, PointMode, PointSet};
 use crate::light::{Attenuation, Incidence};
 use crate::material::Material;
 use crate::math::{Ray, offset_origin};
-use crate::scene::{Candidate, ShadingModel, Specular, cones_apart, direction_cone};
+use crate::scene::{ShadingModel, Specular};
 use crate::shading::{half_of_even, positive_part, pow_each, specular_tint};
 use crate::shape::{Fan, Shape, Verdict, fan_verdicts};
 use crate::skips::Skip;
+use crate::world::{Candidate, cones_apart, direction_cone};
 use glam::DVec3;
 use multiversion::multiversion;
 
@@ -1004,7 +1005,7 @@ mod tests {
     }
 
     /// When the light's cone of directions and a candidate's share none
-    /// ([`crate::scene::cones_apart`]), the cones' verdict on every light point is a miss:
+    /// ([`crate::world::cones_apart`]), the cones' verdict on every light point is a miss:
     /// skipping the candidate changes nothing.
     #[test]
     fn cones_apart_means_every_verdict_misses() {

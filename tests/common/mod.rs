@@ -3,7 +3,8 @@
 
 use lumiere::film::Film;
 use lumiere::render::render;
-use lumiere::scene::{self, Scene, World};
+use lumiere::scene::{self, Scene};
+use lumiere::world::World;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 

@@ -1,0 +1,321 @@
+//! A scene ready to render: the camera for the image's aspect, the intersection core, the
+//! points of fixed area lights, and the per-scene bounds the tracer needs at every hit. The
+//! tracer asks it for closest hits and shadow-ray hits ([`World::closest`],
+//! [`World::any_hit`], [`World::each_hit`]) rather than reaching into the core.
+
+use crate::accel::{Accel, AccelChoice};
+use crate::area_light::{PointMode, PointSet};
+use crate::camera::Camera;
+use crate::light::Light;
+use crate::material::Material;
+use crate::math::Ray;
+use crate::scene::{Object, Scene};
+use crate::shape::{Shape, SurfaceHit};
+use crate::skips::Skips;
+use glam::DVec3;
+
+/// An object that may block some shadow ray from one shading point (see
+/// [`World::shadow_candidates`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Candidate {
+    pub object: usize,
+    /// The cone of directions from the shading point that meet the object's bounding
+    /// sphere: unit axis and cosine of its half-angle (a ray whose direction `d` has
+    /// `d.axis < cos` misses the object). `None` for unbounded objects and when the point
+    /// is inside the sphere.
+    pub cone: Option<(DVec3, f64)>,
+    /// The cone of directions from the shading point that surely pass through a ball
+    /// inside the object, and the distance past which that ball is wholly behind the point:
+    /// unit axis, cosine of the half-angle (narrowed by a relative 1e-9), and reach. A ray
+    /// whose direction `d` has `d.axis > cos` and whose segment is longer than the reach
+    /// enters the object: it surely meets its surface. `None` when the object has no inner
+    /// ball or the point may be inside the object.
+    pub sure: Option<(DVec3, f64, f64)>,
+}
+
+/// The cone of directions from `p` meeting the ball (`centre`, `radius`), widened by a
+/// relative 1e-9 so rounding never excludes a direction that meets it; `None` if `p` is
+/// (nearly) inside the ball.
+pub(crate) fn direction_cone(p: DVec3, centre: DVec3, radius: f64) -> Option<(DVec3, f64)> {
+    let to_centre = centre - p;
+    let dist = to_centre.length();
+    let padded = radius * (1.0 + 1e-9) + 1e-9 * dist;
+    if padded >= dist {
+        return None;
+    }
+    let sin = padded / dist;
+    Some((to_centre / dist, (1.0 - sin * sin).sqrt() - 1e-12))
+}
+
+/// Whether two cones of directions (unit axis, cosine of the half-angle, as
+/// [`direction_cone`] gives them) share no direction: the angle between their axes exceeds
+/// the sum of their half-angles, `a.b < cos(alpha + beta) = cos a cos b - sin a sin b`, by
+/// a margin of 1e-9 far above the rounding of a unit direction's dot product. Only for
+/// half-angles below 90 degrees (else `false`).
+pub(crate) fn cones_apart((a, cos_a): (DVec3, f64), (b, cos_b): (DVec3, f64)) -> bool {
+    if cos_a <= 0.0 || cos_b <= 0.0 {
+        return false;
+    }
+    let (sin_a, sin_b) = (
+        (1.0 - cos_a * cos_a).max(0.0).sqrt(),
+        (1.0 - cos_b * cos_b).max(0.0).sqrt(),
+    );
+    a.dot(b) < cos_a * cos_b - sin_a * sin_b - 1e-9
+}
+
+/// The cone of directions from `p` that pass through the ball (`centre`, `radius`), shrunk
+/// by a relative 1e-9 (and `slack`) so rounding never includes a direction that misses it,
+/// with the reach `|centre - p| + radius`; `None` when nothing is left after shrinking.
+fn sure_cone(p: DVec3, centre: DVec3, radius: f64, slack: f64) -> Option<(DVec3, f64, f64)> {
+    let to_centre = centre - p;
+    let dist = to_centre.length();
+    let shrunk = radius * (1.0 - 1e-9) - 1e-9 * dist - slack;
+    if shrunk <= 0.0 || shrunk >= dist {
+        return None;
+    }
+    let sin = shrunk / dist;
+    let reach = (dist + radius) * (1.0 + 1e-9) + slack;
+    Some((to_centre / dist, (1.0 - sin * sin).sqrt() + 1e-12, reach))
+}
+
+/// A scene ready to render: the camera for the image's aspect, the acceleration structure,
+/// and per-scene constants the tracer needs at every hit.
+pub struct World<'s> {
+    pub scene: &'s Scene,
+    pub camera: Camera,
+    /// The intersection core; queried through [`World::closest`], [`World::any_hit`] and
+    /// [`World::each_hit`].
+    accel: Accel,
+    /// Wall time of building `accel`, in seconds.
+    pub accel_seconds: f64,
+    /// Sum of the ambient lights' colours `L_a`.
+    pub ambient: DVec3,
+    /// Whether any object is transparent (else shadow rays need no filtered walk).
+    pub has_transparent: bool,
+    /// `remaining_bound[level]`: the most (largest channel) a ray traced at `level` can
+    /// return, counting every level it may still recurse to; used by adaptive depth control.
+    pub remaining_bound: Vec<f64>,
+    /// For each light, the points of a `fixed` area light (empty for other lights).
+    pub light_points: Vec<PointSet>,
+    /// Bounding sphere (centre, radius) of each object; `None` for unbounded ones.
+    pub object_spheres: Vec<Option<(DVec3, f64)>>,
+    /// A ball inside each object's solid ([`Shape::inner_ball`]).
+    pub inner_balls: Vec<Option<(DVec3, f64)>>,
+    /// Whether an object's exact test costs more than a ray-sphere test (boxes, cylinders,
+    /// cones, tori), so a bounding-sphere test first pays off.
+    pub costly: Vec<bool>,
+    /// The shortcuts switched on (all by default; tests switch them off one at a time).
+    pub skips: Skips,
+}
+
+impl<'s> World<'s> {
+    /// The world with the acceleration structure `auto` picks.
+    pub fn new(scene: &'s Scene) -> Self {
+        World::with_accel(scene, AccelChoice::Auto)
+    }
+
+    /// The world with the chosen acceleration structure (the image does not depend on it).
+    pub fn with_accel(scene: &'s Scene, choice: AccelChoice) -> Self {
+        let s = &scene.settings;
+        let camera = Camera::new(
+            scene.camera.position,
+            scene.camera.look_at,
+            scene.camera.up,
+            scene.camera.vfov_deg,
+            s.width as f64 / s.height as f64,
+        );
+        let ambient = scene.ambient();
+        let has_transparent = scene
+            .objects
+            .iter()
+            .any(|o| scene.materials[o.material].is_transparent());
+        let start = std::time::Instant::now();
+        let accel = Accel::build_with(&scene.objects, choice);
+        let accel_seconds = start.elapsed().as_secs_f64();
+        World {
+            scene,
+            camera,
+            accel,
+            accel_seconds,
+            ambient,
+            has_transparent,
+            remaining_bound: remaining_bounds(scene, ambient),
+            light_points: scene
+                .lights
+                .iter()
+                .enumerate()
+                .map(|(i, l)| match l {
+                    Light::Area(a) if a.mode == PointMode::Fixed => PointSet::from_points(&a.fixed_points(s.seed, i)),
+                    _ => PointSet::default(),
+                })
+                .collect(),
+            object_spheres: scene.objects.iter().map(|o| o.shape.bounding_ball()).collect(),
+            inner_balls: scene.objects.iter().map(|o| o.shape.inner_ball()).collect(),
+            costly: scene
+                .objects
+                .iter()
+                .map(|o| {
+                    matches!(
+                        o.shape,
+                        Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_) | Shape::Torus(_)
+                    )
+                })
+                .collect(),
+            skips: Skips::all(),
+        }
+    }
+
+    /// Into `out` (ascending), the objects that may block a segment from `p` (give or take
+    /// `slack`) to any point of the ball of centre `c` and radius `r`. Every such segment lies
+    /// in the hull of `p` and the ball, whose points are `p + s (c - p) + w`, `|w| <= s r`,
+    /// `s` in [0, 1]: an object whose bounding sphere is farther than its radius plus `r`
+    /// from the segment `[p, c]` cannot block any. Unbounded objects are always kept.
+    pub fn shadow_candidates(&self, p: DVec3, c: DVec3, r: f64, slack: f64, out: &mut Vec<Candidate>) {
+        out.clear();
+        let axis = c - p;
+        let len2 = axis.length_squared();
+        for (object, sphere) in self.object_spheres.iter().enumerate() {
+            let Some((centre, radius)) = *sphere else {
+                out.push(Candidate {
+                    object,
+                    cone: None,
+                    sure: None,
+                });
+                continue;
+            };
+            let s = if len2 > 0.0 {
+                ((centre - p).dot(axis) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            // Padded by a relative 1e-9: a light point is rounded after it is placed, so
+            // it may lie a few ulps outside the light's ball.
+            let reach = (radius + r) * (1.0 + 1e-9) + slack;
+            if (p + s * axis - centre).length_squared() <= reach * reach {
+                // Outside the bounding sphere, the point is outside the object.
+                let outside = (centre - p).length() > radius * (1.0 + 1e-9) + slack;
+                out.push(Candidate {
+                    object,
+                    cone: direction_cone(p, centre, radius + slack),
+                    sure: self.inner_balls[object]
+                        .filter(|_| outside)
+                        .and_then(|(c, r)| sure_cone(p, c, r, slack)),
+                });
+            }
+        }
+    }
+
+    /// [`World::remaining_bound`] of `scene`, without building its world.
+    pub fn remaining_bounds_of(scene: &Scene) -> Vec<f64> {
+        remaining_bounds(scene, scene.ambient())
+    }
+
+    pub fn material_of(&self, object: usize) -> &Material {
+        &self.scene.materials[self.scene.objects[object].material]
+    }
+
+    /// The scene's objects, indexed as every query's answers.
+    pub fn objects(&self) -> &'s [Object] {
+        &self.scene.objects
+    }
+
+    /// The intersection core (its name, size and kind, for reports).
+    pub fn accel(&self) -> &Accel {
+        &self.accel
+    }
+
+    /// The closest hit along `ray` (`t > 0`): the object's index and the surface hit; on
+    /// equal `t`, the lowest index.
+    pub fn closest(&self, ray: &Ray) -> Option<(usize, SurfaceHit)> {
+        self.accel.closest(&self.scene.objects, ray, 0.0, f64::INFINITY)
+    }
+
+    /// Whether some object that `filter` accepts is hit along `ray` with `0 < t < t_max`.
+    pub fn any_hit(&self, ray: &Ray, t_max: f64, filter: &dyn Fn(usize) -> bool) -> bool {
+        self.accel.any_hit(&self.scene.objects, ray, 0.0, t_max, filter)
+    }
+
+    /// Calls `visit` once for every object that `filter` accepts and `ray` hits with
+    /// `0 < t < t_max`, in no particular order.
+    pub fn each_hit(&self, ray: &Ray, t_max: f64, filter: &dyn Fn(usize) -> bool, visit: &mut dyn FnMut(usize)) {
+        self.accel.each_hit(&self.scene.objects, ray, 0.0, t_max, filter, visit)
+    }
+}
+
+/// Upper bound of what a ray at each level (1-based, index 0 unused) can return: a local
+/// bound `B = max(L_a) max(k_a) + sum_i max(L_i) max(k_d + k_s)` (or the background if
+/// larger) plus `K = max(k_r + k_t)` times the bound one level deeper.
+fn remaining_bounds(scene: &Scene, ambient: DVec3) -> Vec<f64> {
+    let mats = &scene.materials;
+    let max_of = |f: &dyn Fn(&Material) -> f64| mats.iter().map(f).fold(0.0, f64::max);
+    let direct: f64 = scene
+        .lights
+        .iter()
+        .filter(|l| !matches!(l, Light::Ambient { .. }))
+        .map(Light::max_intensity)
+        .sum();
+    let local = (ambient.max_element() * max_of(&|m| m.ka) + direct * max_of(&|m| m.kd + m.ks))
+        .max(scene.settings.background.max_element());
+    let k = max_of(&|m| m.kr + m.kt);
+    let depth = scene.settings.depth as usize;
+    let mut bound = vec![0.0; depth + 2];
+    for level in (1..=depth).rev() {
+        bound[level] = local + k * bound[level + 1];
+    }
+    bound
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cones_apart_when_the_angle_exceeds_the_half_angles() {
+        // Two cones of half-angle 30 degrees: apart when their axes are more than 60
+        // degrees apart.
+        let half = 30f64.to_radians().cos();
+        let axis_at = |deg: f64| DVec3::new(deg.to_radians().sin(), 0.0, deg.to_radians().cos());
+        assert!(cones_apart((DVec3::Z, half), (axis_at(60.001), half)));
+        assert!(!cones_apart((DVec3::Z, half), (axis_at(59.999), half)));
+        assert!(!cones_apart((DVec3::Z, half), (axis_at(60.0), half)));
+        assert!(cones_apart((DVec3::Z, half), (-DVec3::Z, half)));
+        // Half-angles of 90 degrees or more are never apart.
+        assert!(!cones_apart((DVec3::Z, 0.0), (-DVec3::Z, 0.99)));
+        // Every direction of one ball's cone misses the other's: a ball of radius 1 at
+        // distance 2 (30 degrees) on +z and one on an axis 61 degrees away.
+        let p = DVec3::new(0.3, -0.2, 0.1);
+        let (a, b) = (p + 2.0 * DVec3::Z, p + 2.0 * axis_at(61.0));
+        let (ca, cb) = (direction_cone(p, a, 1.0).unwrap(), direction_cone(p, b, 1.0).unwrap());
+        assert!(cones_apart(ca, cb));
+        assert!(!cones_apart(
+            ca,
+            direction_cone(p, p + 2.0 * axis_at(59.0), 1.0).unwrap()
+        ));
+    }
+
+    #[test]
+    fn direction_cones_bracket_the_ball() {
+        // A ball of radius 1 seen from 2 away: half-angle 30 degrees.
+        let (p, c) = (DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0));
+        let (axis, cos) = direction_cone(p, c, 1.0).unwrap();
+        let (sure_axis, sure_cos, reach) = sure_cone(p, c, 1.0, 0.0).unwrap();
+        assert_eq!((axis, sure_axis), (DVec3::Z, DVec3::Z));
+        let half = 30f64.to_radians().cos();
+        assert!(cos < half && half - cos < 1e-8, "{cos}");
+        assert!(sure_cos > half && sure_cos - half < 1e-8, "{sure_cos}");
+        assert!((reach - 3.0).abs() < 1e-8);
+        // Directions just inside the sure cone meet the ball; just outside the outer cone
+        // they miss it (distance from the centre to the line > radius).
+        for (angle, meets) in [(29.999_99, true), (30.000_01, false)] {
+            let a = f64::to_radians(angle);
+            let d = DVec3::new(a.sin(), 0.0, a.cos());
+            let miss_distance = (c - d * c.dot(d)).length();
+            assert_eq!(miss_distance < 1.0, meets);
+            assert_eq!(d.dot(sure_axis) > sure_cos, meets);
+            assert_eq!(d.dot(axis) >= cos, meets);
+        }
+        // From inside the ball there is no cone.
+        assert_eq!(direction_cone(c, c, 1.0), None);
+        assert_eq!(sure_cone(c + DVec3::X * 0.5, c, 1.0, 0.0), None);
+    }
+}
