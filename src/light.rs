@@ -2,8 +2,9 @@
 //! point each light yields the direction and distance to test with a shadow ray and the
 //! light colour arriving there before shadowing (colour x attenuation x spot factor).
 
+use crate::math::length;
 pub use crate::shading::Attenuation;
-use crate::shading::spot_factor;
+use crate::shading::{Channels, spot_factor};
 use glam::DVec3;
 
 /// A point light (also one point of an area light).
@@ -149,23 +150,42 @@ impl Light {
     }
 }
 
-/// Incidence from a point at `light_pos`: `L = -d`, `d = (p - r_lum)/|p - r_lum|`, the
-/// division done as one reciprocal `1 / |p - r_lum|` and three products (three divisions
-/// cost an area light of N points three times N: the divider limits its lane loops).
+/// Incidence from a point at `light_pos` (chapter 7.4b's point light, `L = -d` with
+/// `d = (r_inter - r_lum) / |r_inter - r_lum|`): the direction and distance of
+/// [`direction_to`], the attenuation `A(d)` and the colour `A C_theta L` of
+/// [`arriving`]. `None` when `p` is at the light.
 pub fn point_incidence(light_pos: DVec3, color: DVec3, atten: &Attenuation, p: DVec3, spot: f64) -> Option<Incidence> {
-    let to_light = light_pos - p;
-    let distance = to_light.length();
+    let (to_light, distance) = direction_to(light_pos, p);
     if distance == 0.0 {
         return None;
     }
     let a = atten.factor(distance);
     Some(Incidence {
-        to_light: to_light * (1.0 / distance),
+        to_light,
         distance,
         attenuation: a,
         spot,
-        color: color * (a * spot),
+        color: arriving(color, a, spot),
     })
+}
+
+/// The unit direction `L = (q - p) / |q - p|` from `p` to the light point `q`, and the
+/// distance `|q - p|` (the shadow ray's `t_max`). The division is one reciprocal and three
+/// products: an area light of N points pays it N times per shading point. NaN directions
+/// when `q = p`.
+#[inline(always)]
+pub fn direction_to(q: DVec3, p: DVec3) -> (DVec3, f64) {
+    let to_light = q - p;
+    let distance = length(to_light);
+    (to_light * (1.0 / distance), distance)
+}
+
+/// The light arriving at a point before the shadow test (chapter 7.4b): `A C_theta L` for
+/// a light of colour `L`, attenuation `A` and spot factor `C_theta` (1 for lights that are
+/// not spots).
+#[inline(always)]
+pub fn arriving<C: Channels>(color: C, a: f64, spot: f64) -> C {
+    color * (a * spot)
 }
 
 #[cfg(test)]

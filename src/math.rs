@@ -65,20 +65,47 @@ impl Frame {
 /// `v` is the incident direction, `n` the unit normal on the incident side (`E.N >= 0`).
 pub fn reflect(v: DVec3, n: DVec3) -> DVec3 {
     let e = -v;
-    v + 2.0 * e.dot(n) * n
+    mirror(v, n, e.dot(n))
+}
+
+/// [`reflect`] with `E.N` already known: `R = v + 2 (E.N) N`. Phong's `R = 2 (N.L) N - L`
+/// is this law for `v = -L` (see [`crate::shading::phong_cosine`]).
+#[inline(always)]
+pub fn mirror(v: DVec3, n: DVec3, e_dot_n: f64) -> DVec3 {
+    v + 2.0 * e_dot_n * n
 }
 
 /// Law of refraction (chapter 7.4b):
 /// `T = n v + (n (E.N) - sqrt(1 - n^2 (1 - (E.N)^2))) N`, `E = -v`, `n = n1 / n2`,
-/// with `N` on the incident side. Returns `None` on total internal reflection, which is
-/// when the root's argument `1 - n^2 (1 - (E.N)^2)` is negative.
+/// with `N` on the incident side. `None` on total internal reflection
+/// ([`total_internal_reflection`]).
 pub fn refract(v: DVec3, n_normal: DVec3, eta: f64) -> Option<DVec3> {
     let cos_i = (-v).dot(n_normal);
-    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-    if k < 0.0 {
+    if total_internal_reflection(eta, cos_i) {
         return None;
     }
-    Some(eta * v + (eta * cos_i - k.sqrt()) * n_normal)
+    Some(eta * v + (eta * cos_i - refraction_radicand(eta, cos_i).sqrt()) * n_normal)
+}
+
+/// The root's argument of the law of refraction, `1 - n^2 (1 - (E.N)^2)`.
+fn refraction_radicand(eta: f64, e_dot_n: f64) -> f64 {
+    1.0 - eta * eta * (1.0 - e_dot_n * e_dot_n)
+}
+
+/// Criterion of total internal reflection (chapter 7.4b): the refracted ray does not exist
+/// when the law of refraction's root has a negative argument, `1 - n^2 (1 - (E.N)^2) < 0`,
+/// that is `(v.N)^2 + (n2 / n1)^2 < 1`. At equality (the critical angle itself) the ray is
+/// refracted, grazing the surface. `eta` is `n = n1 / n2`, `e_dot_n` is `E.N`.
+pub fn total_internal_reflection(eta: f64, e_dot_n: f64) -> bool {
+    refraction_radicand(eta, e_dot_n) < 0.0
+}
+
+/// The length `|v| = sqrt(v.v)`, as `DVec3::length` computes it (the same correctly rounded
+/// square root), through the square-root instruction rather than glam's `libm` call: a
+/// loop over many vectors then compiles to vector instructions.
+#[inline(always)]
+pub fn length(v: DVec3) -> f64 {
+    v.dot(v).sqrt()
 }
 
 /// Largest absolute component.
@@ -150,6 +177,12 @@ mod tests {
         let above = crit.to_degrees() + 1.0;
         assert!(refract(dir(below), DVec3::Y, 1.66).is_some());
         assert!(refract(dir(above), DVec3::Y, 1.66).is_none());
+        // The chapter's form of the criterion, (v.N)^2 + (n2 / n1)^2 < 1, on both sides.
+        for (deg, tir) in [(below, false), (above, true)] {
+            let v_dot_n = dir(deg).dot(DVec3::Y);
+            assert_eq!(v_dot_n * v_dot_n + (1.0 / 1.66f64).powi(2) < 1.0, tir);
+            assert_eq!(total_internal_reflection(1.66, -v_dot_n), tir, "{deg}");
+        }
     }
 
     #[test]

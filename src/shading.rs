@@ -1,10 +1,39 @@
 //! The formulas of the slides (IFT3355 "shading 1") and chapter 7.4b as small pure
-//! functions. Each function's doc gives the source's notation; the tests check each one
-//! against a value computed by hand.
+//! functions, each written once: the reference tracer, the fast tracer's vector lanes, the
+//! one-pass families and the probe all call these. Each function's doc gives the source's
+//! notation; the tests check each one against a value computed by hand.
+//!
+//! The colour terms are generic over [`Channels`]: a whole colour ([`DVec3`]) or one of its
+//! channels (`f64`). Every channel is computed by the same IEEE operations in the same
+//! order either way, so a lane loop over one channel of many light points gives the bits
+//! of the colour formula applied point by point.
 
+use crate::math::{length, mirror};
 use glam::DVec3;
+use std::ops::{Add, Mul};
+
+/// A colour or one channel of a colour: what the colour terms are computed on.
+pub trait Channels: Copy + Add<Output = Self> + Mul<Output = Self> + Mul<f64, Output = Self> {
+    /// Every channel `x`.
+    fn splat(x: f64) -> Self;
+}
+
+impl Channels for f64 {
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        x
+    }
+}
+
+impl Channels for DVec3 {
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        DVec3::splat(x)
+    }
+}
 
 /// Distance attenuation (chapter 7.4b): `A = 1 / (C_const + C_lin d + C_quad d^2)`.
+#[inline(always)]
 pub fn attenuation(c_const: f64, c_lin: f64, c_quad: f64, d: f64) -> f64 {
     1.0 / (c_const + c_lin * d + c_quad * d * d)
 }
@@ -26,6 +55,7 @@ impl Attenuation {
     };
 
     /// `A` at distance `d` ([`attenuation`]).
+    #[inline(always)]
     pub fn factor(&self, d: f64) -> f64 {
         attenuation(self.constant, self.linear, self.quadratic, d)
     }
@@ -44,37 +74,72 @@ pub fn spot_factor(o_dot_d: f64, cos_half: f64, c_min: f64, c_max: f64) -> f64 {
     (1.0 - t) * c_max + t * c_min
 }
 
-/// Lambert's cosine (slides): `max(N.L, 0)`.
-pub fn lambert(n: DVec3, l: DVec3) -> f64 {
-    positive_part(n.dot(l))
+/// Lambert's cosine (slides): `max(N.L, 0)`, from `N.L`.
+#[inline(always)]
+pub fn lambert(n_dot_l: f64) -> f64 {
+    positive_part(n_dot_l)
 }
 
 /// Phong's specular term (slides): `max(R.E, 0)^n` with `R = 2 (N.L) N - L`.
 pub fn phong(n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
-    let r = 2.0 * n.dot(l) * n - l;
-    pow(positive_part(r.dot(e)), exponent)
+    pow(phong_cosine(n, l, e, n.dot(l)), exponent)
 }
 
-/// Blinn's specular term (slides): `max(N.H, 0)^n` with `H = (L + E) / |L + E|`, computed
-/// as `N.H = N.(L + E) / |L + E|`: one division, not three (the divider limits an area
-/// light's lane loops). For an even exponent `n = 2m` (the usual 20, the slides' 2 ... 512),
-/// as `((N.(L + E))^2 / |L + E|^2)^m` where `N.(L + E) > 0`: no square root either. When
-/// `L = -E` the half vector is undefined and the term is 0.
+/// Phong's cosine `max(R.E, 0)`, with `R = 2 (N.L) N - L` the law of reflection applied
+/// to `-L` ([`mirror`]), from `N.L`.
+#[inline(always)]
+pub fn phong_cosine(n: DVec3, l: DVec3, e: DVec3, n_dot_l: f64) -> f64 {
+    positive_part(mirror(-l, n, n_dot_l).dot(e))
+}
+
+/// Blinn's specular term (slides): `max(N.H, 0)^n` with `H = (L + E) / |L + E|`. When
+/// `L = -E` the half vector is undefined and the term is 0. For an even exponent `n = 2m`
+/// (the usual 20, the slides' 2 ... 512) it is `(cos^2)^m` ([`blinn_cosine_squared`]): no
+/// square root; otherwise `max(N.H, 0)^n` ([`blinn_cosine`]).
 pub fn blinn(n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
     let sum = l + e;
     if let Some(m) = half_of_even(exponent) {
-        let (len2, along) = (sum.length_squared(), n.dot(sum));
-        if len2 == 0.0 {
-            return 0.0;
-        }
-        let cos2 = if along > 0.0 { along * along / len2 } else { 0.0 };
-        return powi_exact_order(cos2, m);
+        return powi_exact_order(blinn_cosine_squared(n, sum), m);
     }
-    let len = sum.length();
-    if len == 0.0 {
-        return 0.0;
+    let spec = pow(blinn_cosine(n, sum), exponent);
+    if half_vector_test_needed(exponent) {
+        blinn_defined(sum, spec)
+    } else {
+        spec
     }
-    pow(positive_part(n.dot(sum) / len), exponent)
+}
+
+/// Blinn's cosine `N.H = N.(L + E) / |L + E|` (one division, not three), clamped to
+/// `max(N.H, 0)`, and 0 when `|L + E| = 0`, from `sum = L + E`. Selects, not branches: the
+/// area lights' lane loops compile to vector instructions only so.
+#[inline(always)]
+pub fn blinn_cosine(n: DVec3, sum: DVec3) -> f64 {
+    let len = length(sum);
+    let n_dot_h = n.dot(sum) / len;
+    if (len != 0.0) & (n_dot_h > 0.0) { n_dot_h } else { 0.0 }
+}
+
+/// The square of Blinn's cosine, `(N.(L + E))^2 / |L + E|^2` where `N.(L + E) > 0`, else 0
+/// (and 0 when `|L + E| = 0`), from `sum = L + E`: `max(N.H, 0)^2` without a square root.
+#[inline(always)]
+pub fn blinn_cosine_squared(n: DVec3, sum: DVec3) -> f64 {
+    let (len2, along) = (sum.length_squared(), n.dot(sum));
+    let cos2 = along * along / len2;
+    if (len2 != 0.0) & (along > 0.0) { cos2 } else { 0.0 }
+}
+
+/// Blinn's term `spec` where the half vector exists, 0 where it does not (`L + E = 0`).
+#[inline(always)]
+pub fn blinn_defined(sum: DVec3, spec: f64) -> f64 {
+    if length(sum) == 0.0 { 0.0 } else { spec }
+}
+
+/// Whether a power `exponent` of [`blinn_cosine`] needs [`blinn_defined`]: the cosine is
+/// already 0 where the half vector is undefined, and so is its positive power; only an
+/// exponent `<= 0` (`0^0 = 1`) or NaN can make it nonzero there.
+#[inline(always)]
+pub fn half_vector_test_needed(exponent: f64) -> bool {
+    exponent <= 0.0 || exponent.is_nan()
 }
 
 /// `m` when `y = 2m` is an even integer exponent of 2 or more (Blinn's term then needs no
@@ -94,8 +159,9 @@ pub fn positive_part(x: f64) -> f64 {
 }
 
 /// Specular colour factor of the slides' metal/plastic model: `m S + (1 - m)`.
-pub fn specular_tint(metal: f64, color: DVec3) -> DVec3 {
-    metal * color + DVec3::splat(1.0 - metal)
+#[inline(always)]
+pub fn specular_tint<C: Channels>(metal: f64, color: C) -> C {
+    color * metal + C::splat(1.0 - metal)
 }
 
 /// Ambient term (slides): `L_a k_a S`.
@@ -103,19 +169,44 @@ pub fn ambient(la: DVec3, ka: f64, color: DVec3) -> DVec3 {
     la * ka * color
 }
 
-/// One light's share (slides, full model):
-/// `L_i [k_d S max(N.L_i, 0) + k_s [m S + (1 - m)] spec_i]`, where `light` is the light's
-/// colour already multiplied by attenuation, spot factor and shadow filter, and `spec` is
-/// the Phong or Blinn term (0 when N.L <= 0). Summed over lights, plus the ambient term
-/// once, this is `L = L_a k_a S + sum_i A_i L_i [...]`.
-pub fn direct(light: DVec3, kd: f64, color: DVec3, n_dot_l: f64, ks: f64, tint: DVec3, spec: f64) -> DVec3 {
-    light * (kd * color * positive_part(n_dot_l) + ks * tint * spec)
+/// One light's diffuse share (slides, Lambert): `L k_d S max(N.L, 0)`, where `L` is the
+/// light arriving at the point (`A C_theta L_lum`, times the shadow filter).
+#[inline(always)]
+pub fn diffuse<C: Channels>(light: C, kd: f64, color: C, n_dot_l: f64) -> C {
+    light * (color * kd * lambert(n_dot_l))
+}
+
+/// One light's specular share (slides): `L k_s [m S + (1 - m)] spec`, where `tint` is
+/// [`specular_tint`] and `spec` the Phong or Blinn term (0 where `N.L <= 0`: the slides
+/// count no highlight on a surface facing away). The full model sums, over lights, the
+/// diffuse and specular shares, plus the ambient term once:
+/// `L = L_a k_a S + sum_i A_i L_i [k_d S max(N.L_i, 0) + k_s [m S + (1 - m)] spec_i]`.
+#[inline(always)]
+pub fn specular<C: Channels>(light: C, ks: f64, tint: C, spec: f64) -> C {
+    light * (tint * ks * spec)
 }
 
 /// Shadow filter of chapter 7.4b: `L = L_lum prod_g S_g` over the transparent geometries
-/// the shadow ray crosses (each counted once); an empty product is 1.
-pub fn shadow_filter<'a>(colors: impl IntoIterator<Item = &'a DVec3>) -> DVec3 {
-    colors.into_iter().fold(DVec3::ONE, |acc, s| acc * *s)
+/// the shadow ray crosses (each counted once, in ascending object order so the bits do
+/// not depend on the order they are found in); an empty product is 1.
+pub fn shadow_filter(colors: impl IntoIterator<Item = DVec3>) -> DVec3 {
+    colors.into_iter().fold(DVec3::ONE, filter_through)
+}
+
+/// One factor of [`shadow_filter`]'s product: the filter so far, through one more
+/// transparent geometry of colour `S_g`.
+#[inline(always)]
+pub fn filter_through(filter: DVec3, s_g: DVec3) -> DVec3 {
+    filter * s_g
+}
+
+/// Adaptive depth control: whether a secondary ray of path weight `weight` (the product of
+/// the `k_r` and `k_t` along its path), whose radiance is at most `bound`, can add less
+/// than `threshold` 8-bit levels to its pixel (`weight bound 255 < threshold`), so that it
+/// is not traced. A threshold of 0 traces every ray.
+#[inline(always)]
+pub fn beneath_notice(weight: f64, bound: f64, threshold: f64) -> bool {
+    threshold > 0.0 && weight * bound * 255.0 < threshold
 }
 
 /// `x^y`, the same bits on every platform. Integer exponents (the usual shininess: 20, the
@@ -218,8 +309,8 @@ mod tests {
     fn lambert_cosine() {
         // N = z, L at 60 degrees from N: cos 60 = 0.5.
         let l = DVec3::new(libm::sin(60f64.to_radians()), 0.0, 0.5);
-        close(lambert(DVec3::Z, l), 0.5);
-        close(lambert(DVec3::Z, -l), 0.0);
+        close(lambert(DVec3::Z.dot(l)), 0.5);
+        close(lambert(DVec3::Z.dot(-l)), 0.0);
     }
 
     #[test]
@@ -233,8 +324,16 @@ mod tests {
         close(blinn(n, l, e, 2.0), 2.56 / 3.28);
         // Mirror direction: R = E gives 1 for any exponent.
         close(phong(n, l, DVec3::new(-0.6, 0.0, 0.8), 512.0), 1.0);
-        // Opposite L and E: H undefined, term 0.
-        close(blinn(n, l, -l, 20.0), 0.0);
+        // Opposite L and E: H undefined, term 0, for an even, an odd and a zero exponent
+        // (where a power of 0 would be 1).
+        for exponent in [20.0, 21.0, 0.0] {
+            assert_eq!(blinn(n, l, -l, exponent), 0.0, "{exponent}");
+        }
+        assert_eq!(blinn(n, l, e, 0.0), 1.0);
+        // Phong's R is the law of reflection of the ray arriving along -L.
+        let r = crate::math::reflect(-l, n);
+        assert_eq!(r, DVec3::new(-0.6, 0.0, 0.8));
+        assert_eq!(phong_cosine(n, l, e, n.dot(l)), r.dot(e));
     }
 
     #[test]
@@ -277,11 +376,39 @@ mod tests {
         // clamped only at output).
         let s = DVec3::splat(0.5);
         let tint = specular_tint(0.0, s);
-        let total = ambient(DVec3::ONE, 0.2, s)
-            + direct(DVec3::ONE, 0.8, s, 1.0, 0.5, tint, 1.0)
-            + direct(DVec3::splat(0.5), 0.8, s, 0.5, 0.5, tint, 0.25);
+        let share =
+            |light: DVec3, n_dot_l: f64, spec: f64| diffuse(light, 0.8, s, n_dot_l) + specular(light, 0.5, tint, spec);
+        let total = ambient(DVec3::ONE, 0.2, s) + share(DVec3::ONE, 1.0, 1.0) + share(DVec3::splat(0.5), 0.5, 0.25);
         close(total.x, 1.1625);
         assert_eq!(total.x, total.z);
+        // A surface facing away gets no diffuse share: max(N.L, 0) = 0.
+        assert_eq!(diffuse(DVec3::ONE, 0.8, s, -0.3), DVec3::ZERO);
+    }
+
+    #[test]
+    fn colour_terms_channel_by_channel_are_the_colour_terms() {
+        // The lane loops compute one channel at a time: the same bits as the colour.
+        let (light, s, m) = (DVec3::new(0.3, 0.7, 0.11), DVec3::new(0.85, 0.5, 0.2), 0.35);
+        let tint = specular_tint(m, s);
+        let (d, sp) = (diffuse(light, 0.8, s, 0.61), specular(light, 0.5, tint, 0.123));
+        for c in 0..3 {
+            assert_eq!(specular_tint(m, s[c]), tint[c]);
+            assert_eq!(diffuse(light[c], 0.8, s[c], 0.61), d[c]);
+            assert_eq!(specular(light[c], 0.5, tint[c], 0.123), sp[c]);
+        }
+        // By hand, channel 0: 0.3 * 0.85 * 0.8 * 0.61 = 0.124440; tint 0.35 * 0.85 + 0.65 =
+        // 0.9475, specular 0.3 * 0.9475 * 0.5 * 0.123 = 0.017481375.
+        close(d.x, 0.124_44);
+        close(sp.x, 0.017_481_375);
+    }
+
+    #[test]
+    fn adaptive_depth_control_threshold() {
+        // weight 0.01, bound 0.3: at most 0.01 * 0.3 * 255 = 0.765 levels.
+        assert!(beneath_notice(0.01, 0.3, 1.0));
+        assert!(!beneath_notice(0.01, 0.3, 0.5));
+        // Threshold 0 traces everything, even a zero weight.
+        assert!(!beneath_notice(0.0, 0.3, 0.0));
     }
 
     #[test]
@@ -315,8 +442,10 @@ mod tests {
     #[test]
     fn filtered_shadow_product() {
         // Yellow (1, 0.9, 0.1) then mauve (0.6, 0.3, 0.8): (0.6, 0.27, 0.08).
-        let f = shadow_filter(&[DVec3::new(1.0, 0.9, 0.1), DVec3::new(0.6, 0.3, 0.8)]);
+        let (yellow, mauve) = (DVec3::new(1.0, 0.9, 0.1), DVec3::new(0.6, 0.3, 0.8));
+        let f = shadow_filter([yellow, mauve]);
         assert!((f - DVec3::new(0.6, 0.27, 0.08)).length() < 1e-15);
-        assert_eq!(shadow_filter(&[]), DVec3::ONE);
+        assert_eq!(f, filter_through(filter_through(DVec3::ONE, yellow), mauve));
+        assert_eq!(shadow_filter([]), DVec3::ONE);
     }
 }

@@ -9,7 +9,7 @@ use crate::light::{Incidence, Light};
 use crate::material::Material;
 use crate::math::{Ray, hit_point_error, offset_origin, reflect, refract};
 use crate::scene::{ShadingModel, Specular};
-use crate::shading::{ambient, blinn, direct, phong, specular_tint};
+use crate::shading::{ambient, beneath_notice, blinn, diffuse, phong, shadow_filter, specular, specular_tint};
 use crate::skips::{Saved, Skip};
 use crate::world::{Candidate, World};
 use glam::DVec3;
@@ -432,9 +432,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     ) -> [DVec3; K] {
         let threshold = self.world.scene.settings.adaptive_threshold;
         let cut = lanes_of::<K>(mask)
-            .filter(|&j| {
-                threshold > 0.0 && weight * self.lanes[j].remaining_bound[level as usize + 1] * 255.0 < threshold
-            })
+            .filter(|&j| beneath_notice(weight, self.lanes[j].remaining_bound[level as usize + 1], threshold))
             .fold(0, |m, j| m | 1 << j);
         if cut != 0 {
             self.count_lanes(cut, |c| c.adaptive_cutoffs += 1);
@@ -629,8 +627,8 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         };
         let kd = if model.diffuse { mat.kd } else { 0.0 };
         let tint = specular_tint(mat.metal, mat.color);
-        let diffuse = direct(arriving, kd, mat.color, n_dot_l, 0.0, tint, 0.0);
-        let specular = direct(arriving, 0.0, mat.color, n_dot_l, mat.ks, tint, spec);
+        let diffuse = diffuse(arriving, kd, mat.color, n_dot_l);
+        let specular = specular(arriving, mat.ks, tint, spec);
         rec.light(&LightShare {
             light: index,
             incidence: *inc,
@@ -729,9 +727,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         // Multiply in object order so the bits do not depend on the traversal order.
         self.crossed.sort_unstable();
         rec.shadow_crossed(&self.crossed);
-        self.crossed
-            .iter()
-            .fold(DVec3::ONE, |acc, &i| acc * world.material_of(i).color)
+        shadow_filter(self.crossed.iter().map(|&i| world.material_of(i).color))
     }
 }
 

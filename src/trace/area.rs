@@ -16,25 +16,28 @@
 //! Passes 1 and 3 are straight loops over coordinate arrays that compile to vector
 //! instructions, in versions for AVX-512 and AVX2 chosen at run time (`multiversion`):
 //! the same IEEE operations on each lane whatever the vector width (Rust never fuses a
-//! multiply and an add), so the same bits on every machine. Each point's arithmetic is that of a lone point light — the same
-//! operations in the same order as [`point_incidence`], [`blinn`] or [`phong`], and
-//! [`direct`] (tests/soft_shadows.rs and the tests below check the bits) — each shadow ray
-//! meets the same objects in the same order as [`Tracer::shadow_filter`] would test them,
-//! and the sum runs in point order: the result and the counts are exactly those of N
-//! separate point lights.
+//! multiply and an add), so the same bits on every machine. Each point's arithmetic is that
+//! of a lone point light: the loops call, point by point or channel by channel, the
+//! formulas a point light is shaded with ([`point_incidence`]'s [`direction_to`] and
+//! [`arriving`], [`blinn`]'s or [`phong`]'s cosines, [`diffuse`], [`specular`]), and the
+//! tests below check the bits. Each shadow ray meets the same objects in the same order as
+//! [`Tracer::shadow_filter`] would test them, and the sum runs in point order: the result
+//! and the counts are exactly those of N separate point lights.
 //!
 //! [`point_incidence`]: crate::light::point_incidence
 //! [`blinn`]: crate::shading::blinn
 //! [`phong`]: crate::shading::phong
-//! [`direct`]: crate::shading::direct
 
 use super::{Facing, LightShare, Recorder, Surface, Tracer, below_horizon, lanes_of, segment_meets_sphere};
 use crate::area_light::{AreaLight, PointMode, PointSet};
-use crate::light::{Attenuation, Incidence};
+use crate::light::{Attenuation, Incidence, arriving, direction_to};
 use crate::material::Material;
 use crate::math::{Ray, offset_origin};
 use crate::scene::{ShadingModel, Specular};
-use crate::shading::{half_of_even, positive_part, pow_each, specular_tint};
+use crate::shading::{
+    blinn_cosine, blinn_cosine_squared, blinn_defined, diffuse, filter_through, half_of_even, half_vector_test_needed,
+    phong_cosine, pow_each, specular, specular_tint,
+};
 use crate::shape::{Fan, Shape, Verdict, fan_verdicts};
 use crate::skips::Skip;
 use crate::world::{Candidate, cones_apart, direction_cone};
@@ -143,15 +146,15 @@ impl Lanes {
             distance: self.dist[i],
             attenuation: a,
             spot: 1.0,
-            color: point_color * (a * 1.0),
+            color: arriving(point_color, a, 1.0),
         }
     }
 }
 
-/// Pass 1: for every light point `q_i`, the unit direction `L_i = (q_i - p) (1 / d_i)` with
-/// `d_i = |q_i - p|`, the attenuation `A = 1 / (C_const + C_lin d + C_quad d^2)` and `N.L_i`,
-/// each rounded exactly as [`crate::light::point_incidence`] and `DVec3::dot` round them.
-/// A point at distance 0 gets NaN directions (no light arrives from it; see [`Facing`]).
+/// Pass 1: for every light point `q_i`, the direction and distance of
+/// [`direction_to`], the attenuation `A(d_i)` and `N.L_i`: [`point_incidence`]'s formulas,
+/// point by point. A point at distance 0 gets NaN directions (no light arrives from it;
+/// see [`Facing`]).
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mut Lanes) {
     let len = points.len();
@@ -159,16 +162,13 @@ fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mu
     let (lx, ly, lz) = (&mut out.lx[..len], &mut out.ly[..len], &mut out.lz[..len]);
     let (dist, atten, ndl) = (&mut out.dist[..len], &mut out.atten[..len], &mut out.n_dot_l[..len]);
     for i in 0..len {
-        let (tx, ty, tz) = (xs[i] - p.x, ys[i] - p.y, zs[i] - p.z);
-        let d = (tx * tx + ty * ty + tz * tz).sqrt();
-        let r = 1.0 / d;
-        let (x, y, z) = (tx * r, ty * r, tz * r);
-        lx[i] = x;
-        ly[i] = y;
-        lz[i] = z;
+        let (l, d) = direction_to(DVec3::new(xs[i], ys[i], zs[i]), p);
+        lx[i] = l.x;
+        ly[i] = l.y;
+        lz[i] = l.z;
         dist[i] = d;
-        atten[i] = 1.0 / (att.constant + att.linear * d + att.quadratic * d * d);
-        ndl[i] = n.x * x + n.y * y + n.z * z;
+        atten[i] = att.factor(d);
+        ndl[i] = n.dot(l);
     }
 }
 
@@ -182,9 +182,9 @@ fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facin
     let (dist, atten, n_dot_l) = (&lanes.dist[..len], &lanes.atten[..len], &lanes.n_dot_l[..len]);
     let (mut towards, mut away, mut black) = (0u32, 0u32, 0u32);
     for i in 0..len {
-        // `point_color * (A * 1) == 0`, each channel compared, no branch.
-        let a = atten[i] * 1.0;
-        let zero = (point_color.x * a == 0.0) & (point_color.y * a == 0.0) & (point_color.z * a == 0.0);
+        // The colour arriving is zero: each channel compared, no branch.
+        let c = arriving(point_color, atten[i], 1.0);
+        let zero = (c.x == 0.0) & (c.y == 0.0) & (c.z == 0.0);
         let facing = Facing::of(dist[i] != 0.0, unlit_skip & zero, n_dot_l[i]);
         towards += u32::from(facing == Facing::Towards);
         away += u32::from(facing == Facing::Away);
@@ -194,10 +194,10 @@ fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facin
     [towards, away, black].map(u64::from)
 }
 
-/// Pass 3's first step: for every point, Blinn's `spec = max(N.H, 0)^n`,
-/// `N.H = N.(L + E) / |L + E|` (0 when `|L + E| = 0`) or Phong's `max(R.E, 0)^n`,
-/// `R = 2 (N.L) N - L`: the operations of [`crate::shading::blinn`] and
-/// [`crate::shading::phong`] in their order.
+/// Pass 3's first step: for every point, the specular term `spec_i`: Blinn's
+/// `max(N.H, 0)^n` or Phong's `max(R.E, 0)^n`, computed as [`crate::shading::blinn`] and
+/// [`crate::shading::phong`] compute them (their cosines point by point, then the power
+/// of every point at once).
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material, model: ShadingModel) {
     let Lanes {
@@ -210,88 +210,65 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
     } = lanes;
     let (lx, ly, lz, n_dot_l) = (&lx[..len], &ly[..len], &lz[..len], &n_dot_l[..len]);
     let spec = &mut spec[..len];
+    let to_light = |i: usize| DVec3::new(lx[i], ly[i], lz[i]);
     match model.specular {
         Specular::None => spec.fill(0.0),
         Specular::Blinn if let Some(m) = half_of_even(mat.shininess) => {
-            // `((N.(L + E))^2 / |L + E|^2)^m`, as `blinn` computes an even power.
-            for i in 0..len {
-                let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
-                let len2 = hx * hx + hy * hy + hz * hz;
-                let along = n.x * hx + n.y * hy + n.z * hz;
-                let cos2 = along * along / len2;
-                spec[i] = if (len2 != 0.0) & (along > 0.0) { cos2 } else { 0.0 };
+            for (i, spec) in spec.iter_mut().enumerate() {
+                *spec = blinn_cosine_squared(n, to_light(i) + eye);
             }
             pow_each(spec, f64::from(m));
         }
         Specular::Blinn => {
-            for i in 0..len {
-                let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
-                let h = (hx * hx + hy * hy + hz * hz).sqrt();
-                let n_dot_h = (n.x * hx + n.y * hy + n.z * hz) / h;
-                // `max(N.H, 0)` ([`positive_part`]), and 0 for a zero half vector (blinn's
-                // early return), as one select: a store under a condition compiles to a
-                // masked store (slow on AMD cores), a select of a division to a branch.
-                spec[i] = if (h != 0.0) & (n_dot_h > 0.0) { n_dot_h } else { 0.0 };
+            for (i, spec) in spec.iter_mut().enumerate() {
+                *spec = blinn_cosine(n, to_light(i) + eye);
             }
             pow_each(spec, mat.shininess);
-            if mat.shininess <= 0.0 || mat.shininess.is_nan() {
-                // `0^0 = 1`, where blinn returns 0 before the power.
-                for i in 0..len {
-                    let (hx, hy, hz) = (lx[i] + eye.x, ly[i] + eye.y, lz[i] + eye.z);
-                    // `|L + E| = 0` exactly when its square is.
-                    if hx * hx + hy * hy + hz * hz == 0.0 {
-                        spec[i] = 0.0;
-                    }
+            if half_vector_test_needed(mat.shininess) {
+                for (i, spec) in spec.iter_mut().enumerate() {
+                    *spec = blinn_defined(to_light(i) + eye, *spec);
                 }
             }
         }
         Specular::Phong => {
             for i in 0..len {
-                let twice = 2.0 * n_dot_l[i];
-                let (rx, ry, rz) = (twice * n.x - lx[i], twice * n.y - ly[i], twice * n.z - lz[i]);
-                spec[i] = positive_part(rx * eye.x + ry * eye.y + rz * eye.z);
+                spec[i] = phong_cosine(n, to_light(i), eye, n_dot_l[i]);
             }
             pow_each(spec, mat.shininess);
         }
     }
 }
 
-/// The per-channel factors of [`crate::shading::direct`]'s two calls for one material and
-/// shading model, `direct(arriving, k_d, S, N.L, 0, tint, 0)` and
-/// `direct(arriving, 0, S, N.L, k_s, tint, spec)`, with `arriving = L / N * (A * 1) * filter`.
+/// What the diffuse and specular shares of one material and shading model take, by
+/// channel: the point's colour `L / N`, `k_d` (0 without the diffuse term), `S`, `k_s` and
+/// the tint `m S + (1 - m)`.
 struct ShareFactors {
-    /// The point's colour `L / N`.
     point: [f64; 3],
-    /// `k_d S` and the diffuse call's `0 tint * 0`.
-    diffuse: [f64; 3],
-    diffuse_zero: [f64; 3],
-    /// The specular call's `0 S` and `k_s tint`.
-    specular_zero: [f64; 3],
-    specular: [f64; 3],
+    kd: f64,
+    color: [f64; 3],
+    ks: f64,
+    tint: [f64; 3],
 }
 
 impl ShareFactors {
     fn new(point_color: DVec3, mat: &Material, model: ShadingModel) -> Self {
-        let kd = if model.diffuse { mat.kd } else { 0.0 };
-        let tint = specular_tint(mat.metal, mat.color);
         ShareFactors {
             point: point_color.to_array(),
-            diffuse: (kd * mat.color).to_array(),
-            diffuse_zero: (0.0 * tint * 0.0).to_array(),
-            specular_zero: (0.0 * mat.color).to_array(),
-            specular: (mat.ks * tint).to_array(),
+            kd: if model.diffuse { mat.kd } else { 0.0 },
+            color: mat.color.to_array(),
+            ks: mat.ks,
+            tint: specular_tint(mat.metal, mat.color).to_array(),
         }
     }
 
-    /// Channel `c`'s diffuse and specular terms of a point with attenuation `atten`,
-    /// shadow filter `filter`, `cos = max(N.L, 0)` and specular term `spec`: the operations
-    /// of `direct` in its order.
+    /// Channel `c`'s [`diffuse`] and [`specular`] shares of a point with attenuation
+    /// `atten`, shadow filter `filter`, `N.L` and specular term `spec`.
     #[inline(always)]
-    fn terms(&self, c: usize, atten: f64, filter: f64, cos: f64, spec: f64) -> (f64, f64) {
-        let arriving = self.point[c] * (atten * 1.0) * filter;
+    fn terms(&self, c: usize, atten: f64, filter: f64, n_dot_l: f64, spec: f64) -> (f64, f64) {
+        let light = arriving(self.point[c], atten, 1.0) * filter;
         (
-            arriving * (self.diffuse[c] * cos + self.diffuse_zero[c]),
-            arriving * (self.specular_zero[c] * cos + self.specular[c] * spec),
+            diffuse(light, self.kd, self.color[c], n_dot_l),
+            specular(light, self.ks, self.tint[c], spec),
         )
     }
 }
@@ -311,9 +288,8 @@ fn shares(lanes: &mut Lanes, len: usize, point_color: DVec3, filter: &[DVec3], m
     } = lanes;
     let factors = ShareFactors::new(point_color, mat, model);
     for i in 0..len {
-        let cos = positive_part(n_dot_l[i]);
         for c in 0..3 {
-            (diffuse[c][i], specular[c][i]) = factors.terms(c, atten[i], filter[i][c], cos, spec[i]);
+            (diffuse[c][i], specular[c][i]) = factors.terms(c, atten[i], filter[i][c], n_dot_l[i], spec[i]);
         }
     }
 }
@@ -740,7 +716,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 s.tinted |= hits > 0;
                 for &i in met {
                     let i = i as usize;
-                    s.filter[i] *= color;
+                    s.filter[i] = filter_through(s.filter[i], color);
                     s.zero_product |= s.filter[i] == DVec3::ZERO;
                     if let Some(list) = s.crossed.get_mut(i) {
                         list.push(c.object);
@@ -786,8 +762,9 @@ impl SumTerms<'_> {
         // The terms, a loop over the points that vectorizes...
         for (c, total) in total.iter_mut().enumerate() {
             for l in 0..len {
-                let cos = positive_part(n_dot_l[l]);
-                let (d, s) = self.factors.terms(c, atten[l], filter(start + l, c), cos, spec[l]);
+                let (d, s) = self
+                    .factors
+                    .terms(c, atten[l], filter(start + l, c), n_dot_l[l], spec[l]);
                 // A point that does not add adds `+0`: all bits cleared, not a product with
                 // 0 (NaN for an infinite term), and no branch on a random pattern. Adding
                 // `+0` leaves every sum but `-0` unchanged, and these sums start at `+0`
@@ -887,7 +864,7 @@ fn shadow_ray(at: &Surface, inc: &Incidence) -> Ray {
 mod tests {
     use super::*;
     use crate::light::point_incidence;
-    use crate::shading::{blinn, direct, phong};
+    use crate::shading::{blinn, phong};
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
 
@@ -913,7 +890,12 @@ mod tests {
         let filter: Vec<DVec3> = (0..points.len())
             .map(|i| [DVec3::ONE, DVec3::ZERO, DVec3::new(0.6, 0.27, 0.08)][i % 3])
             .collect();
-        for (specular, metal, shininess) in [(Specular::Blinn, 0.0, 20.0), (Specular::Phong, 0.5, 7.5)] {
+        for (model_specular, metal, shininess) in [
+            (Specular::Blinn, 0.0, 20.0),
+            (Specular::Blinn, 1.0, 21.0),
+            (Specular::Blinn, 0.0, 0.0),
+            (Specular::Phong, 0.5, 7.5),
+        ] {
             let mat = Material {
                 color: DVec3::new(0.85, 0.5, 0.2),
                 metal,
@@ -923,7 +905,7 @@ mod tests {
             let model = ShadingModel {
                 ambient: true,
                 diffuse: true,
-                specular,
+                specular: model_specular,
             };
             let mut lanes = Lanes::default();
             lanes.resize(points.len());
@@ -935,14 +917,14 @@ mod tests {
                 assert_eq!(lanes.incidence(i, point_color), inc, "point {i}");
                 let n_dot_l = n.dot(inc.to_light);
                 assert_eq!(lanes.n_dot_l[i], n_dot_l);
-                let spec = match specular {
+                let spec = match model_specular {
                     Specular::Blinn => blinn(n, inc.to_light, eye, shininess),
                     _ => phong(n, inc.to_light, eye, shininess),
                 };
-                let arriving = inc.color * filter[i];
+                let light = inc.color * filter[i];
                 let tint = specular_tint(mat.metal, mat.color);
-                let diffuse = direct(arriving, mat.kd, mat.color, n_dot_l, 0.0, tint, 0.0);
-                let spec_term = direct(arriving, 0.0, mat.color, n_dot_l, mat.ks, tint, spec);
+                let diffuse = diffuse(light, mat.kd, mat.color, n_dot_l);
+                let spec_term = specular(light, mat.ks, tint, spec);
                 let [dr, dg, db] = &lanes.diffuse;
                 let [sr, sg, sb] = &lanes.specular;
                 assert_eq!(DVec3::new(dr[i], dg[i], db[i]), diffuse, "point {i}");
