@@ -1,8 +1,9 @@
 //! Hostile input, as a proptest harness: mutated scene files (of a scene with every shape,
 //! every light kind including area lights, and a `[[generate]]` table) and random text must
-//! give a located error or a scene, never a panic; random valid scenes (with random area
-//! lights) must render without a panic and with no NaN or infinity in any pixel. The suite
-//! runs 256 cases per property; the long run, 50 000 cases per property in about 10 s:
+//! give a scene, a located error, or (a required table deleted or cut off) an error naming
+//! each missing table, never a panic; random valid scenes (with random area lights) must
+//! render without a panic and with no NaN or infinity in any pixel. The suite runs 256
+//! cases per property; the long run, 50 000 cases per property in about 10 s:
 //! `PROPTEST_CASES=50000 nice -n 10 cargo test --release --test fuzz` (see BENCHMARKS.md).
 
 use lumiere::render::render;
@@ -338,6 +339,16 @@ proptest! {
         let text = apply(VALID, &m);
         match scene::parse(&text, "fuzz.toml") {
             Ok(s) => render_tiny(s),
+            Err(scene::SceneError::MissingTables { file, tables }) => {
+                // Exactly the required tables that the TOML lacks at its top level, where every
+                // top-level key is one of the format's (an unknown one is a located error).
+                let root = text.parse::<toml::Table>().map_err(|e| TestCaseError::fail(e.to_string()))?;
+                let known = ["image", "camera", "render", "materials", "shapes", "lights", "generate"];
+                prop_assert!(root.keys().all(|k| known.contains(&k.as_str())), "{:?}", root.keys().collect::<Vec<_>>());
+                let lacked: Vec<&str> = ["image", "camera"].into_iter().filter(|t| !root.contains_key(*t)).collect();
+                prop_assert_eq!(file, "fuzz.toml");
+                prop_assert_eq!(tables, lacked);
+            }
             Err(e) => {
                 let msg = e.to_string();
                 // file:line:column: field: message, at a place inside the text.

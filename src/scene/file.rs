@@ -1,6 +1,8 @@
 //! The TOML scene format: deserialisation (unknown fields are errors, so a typo cannot
 //! silently change a figure) and validation of every value against its allowed range.
-//! Every error names the file, line and column, the field, and what is allowed.
+//! Every error names the file, line and column, the field, and what is allowed; a missing
+//! required top-level table (`[image]`, `[camera]`) has no place in the file and is named
+//! with the file alone.
 //! The format is documented in `scenes/README.md`.
 
 use super::generate::{Generate, GenerateKind};
@@ -38,6 +40,24 @@ pub enum SceneError {
         field: String,
         message: String,
     },
+    /// Required top-level tables that the file does not have (`[camera]`): there is no
+    /// place in the file to point at.
+    #[error("{file}: the file has {}", absent(.tables))]
+    MissingTables { file: String, tables: Vec<&'static str> },
+}
+
+/// The top-level keys of the format: the fields of [`FileScene`].
+const TOP_LEVEL: [&str; 7] = ["image", "camera", "render", "materials", "shapes", "lights", "generate"];
+/// The top-level tables every scene file must have, in the order of the format's docs.
+const REQUIRED_TABLES: [&str; 2] = ["image", "camera"];
+
+/// `no [image] table and no [camera] table`.
+fn absent(tables: &[&str]) -> String {
+    tables
+        .iter()
+        .map(|t| format!("no [{t}] table"))
+        .collect::<Vec<_>>()
+        .join(" and ")
 }
 
 /// Reads and validates a scene file.
@@ -69,6 +89,17 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
             e.message().trim().to_string(),
         )
     })?;
+    // A missing required table has no place in the file to point at: it is named instead. A
+    // file with an unknown top-level key (`[kamera]`) gets the located unknown-field error
+    // below, which points at the likely misspelling.
+    let top = root.get_ref();
+    let missing: Vec<&'static str> = REQUIRED_TABLES.into_iter().filter(|t| !top.contains_key(*t)).collect();
+    if !missing.is_empty() && top.keys().all(|k| TOP_LEVEL.contains(&k.get_ref().as_ref())) {
+        return Err(SceneError::MissingTables {
+            file: file.to_string(),
+            tables: missing,
+        });
+    }
     tag::lift(root.get_mut(), "shapes", SHAPE_TYPES).map_err(located)?;
     tag::lift(root.get_mut(), "lights", LIGHT_TYPES).map_err(located)?;
     let raw = FileScene::deserialize(toml::de::Deserializer::from(root)).map_err(|e| {
@@ -1188,6 +1219,22 @@ mod tests {
                     assert!(!e.to_string().contains("variant"), "{t}: {e}");
                 }
             }
+        }
+    }
+
+    /// `TOP_LEVEL` lists the keys serde knows at the top level, in its order: with a key
+    /// left out, a file that has that key and no `[camera]` would get serde's missing-field
+    /// error, pointed at the wrong place, instead of the missing table named.
+    #[test]
+    fn the_top_level_list_matches_the_file_scene() {
+        let e = parse("[image]\nwidth = 1\nheight = 1\n[kamera]\n", "t.toml").unwrap_err();
+        let listed = TOP_LEVEL.map(|k| format!("`{k}`")).join(", ");
+        assert_eq!(
+            e.to_string(),
+            format!("t.toml:4:2: kamera: unknown field `kamera`, expected one of {listed}")
+        );
+        for required in REQUIRED_TABLES {
+            assert!(TOP_LEVEL.contains(&required));
         }
     }
 }
