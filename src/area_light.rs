@@ -56,6 +56,11 @@ impl PointSet {
     pub fn is_empty(&self) -> bool {
         self.x.is_empty()
     }
+
+    /// The points, in order.
+    pub fn iter(&self) -> impl Iterator<Item = DVec3> + '_ {
+        (0..self.len()).map(|i| DVec3::new(self.x[i], self.y[i], self.z[i]))
+    }
 }
 
 /// When the points are drawn.

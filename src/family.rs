@@ -2,7 +2,7 @@
 //! number `N` of points of one fixed area light (whose `N` points are the first `N` of one
 //! sequence), in their shading (the model, and each material's `k_a`, `k_d`, `k_s`,
 //! exponent and metal factor), or, without area lights, in their lights, rendered together. Each ray of the deepest, largest image is
-//! traced once, and each shadow ray; each image (a lane of the tracer) keeps its own
+//! traced once, and each shadow ray; each image (a member of the tracer) keeps its own
 //! radiance, computed with exactly the operations a render of its scene alone performs, and
 //! its own ray counts, so its bytes and counts are those of that render (tests/family.rs).
 //! Depth 1 to 10 costs about what depth 10 alone costs; N = 1 ... 1000 shares the
@@ -11,26 +11,26 @@
 //!
 //! Scenes without an area light may also differ in their lights (the lighting, directional,
 //! attenuation and spotlight sets, and soft-shadows' hard shadows, are the reference scene
-//! under eleven lightings): the family's world has the union of their lights, each lane
+//! under eleven lightings): the family's world has the union of their lights, each member
 //! shades with its own, in its own order, and counts only its own lights' shadow rays.
 //!
-//! Lanes are what differs; everything that shapes a ray (geometry, camera, image, seed,
+//! Members are what differs; everything that shapes a ray (geometry, camera, image, seed,
 //! colours, `k_r`, `k_t`, `n`, the area lights but for that one count) must be equal, or the
 //! scenes are not grouped ([`group`]).
 
 use crate::area_light::PointMode;
 use crate::light::Light;
-use crate::render::{RenderStats, render_rows_lanes};
+use crate::render::{RenderStats, render_rows_members};
 use crate::scene::{Scene, ShadingModel, Specular};
-use crate::trace::Lane;
+use crate::trace::Member;
 use crate::world::World;
 use glam::DVec3;
 use std::sync::atomic::AtomicBool;
 
 /// The most images traced together in one pass (longer families are rendered in passes of
-/// this many). A pass has 8 or 16 lanes, a short family's padded with copies of its last
-/// member (which cost nothing: a lane whose sum so far and count equal another's reuses it).
-pub const LANES: usize = 16;
+/// this many). A pass has 8 or 16 members, a short family's padded with copies of its last
+/// member (which cost nothing: a member whose sum so far and count equal another's reuses it).
+pub const MEMBERS_PER_PASS: usize = 16;
 
 /// The scene with what may vary within a family set to zero: the depth, every fixed area
 /// light's count, the shading (model; each material's `k_a`, `k_d`, `k_s`, exponent and
@@ -48,7 +48,7 @@ fn key(scene: &Scene) -> Scene {
         (m.ka, m.kd, m.ks, m.shininess, m.metal) = (0.0, 0.0, 0.0, 0.0, 0.0);
     }
     if !has_area_light(scene) {
-        // Each lane shades with its own lights ([`light_union`]).
+        // Each member shades with its own lights ([`light_union`]).
         key.lights.clear();
     }
     for light in &mut key.lights {
@@ -66,10 +66,10 @@ fn has_area_light(scene: &Scene) -> bool {
 }
 
 /// The lights of one world for `members` without area lights, and the lights of each member
-/// in it (as [`Lane::lights`] bits): each member's lights but the ambient ones, in its
+/// in it (as [`Member::lights`] bits): each member's lights but the ambient ones, in its
 /// order, each matched to the first equal light of the union after the one its previous
 /// light matched, or added at the end. So every member's lights keep their order (and each
-/// lane sums its lights' shares as a render of its scene alone does). `None` past 64 lights.
+/// member sums its lights' shares as a render of its scene alone does). `None` past 64 lights.
 fn light_union(members: &[&Scene]) -> Option<(Vec<Light>, Vec<u64>)> {
     let mut union: Vec<Light> = Vec::new();
     let mut uses = Vec::with_capacity(members.len());
@@ -95,7 +95,7 @@ fn light_union(members: &[&Scene]) -> Option<(Vec<Light>, Vec<u64>)> {
 }
 
 /// How one pass renders a family: its world's scene, the area light whose count varies
-/// (if any), and the lights each member has ([`Lane::lights`]).
+/// (if any), and the lights each member has ([`Member::lights`]).
 struct Plan {
     scene: Scene,
     light: Option<usize>,
@@ -191,22 +191,25 @@ fn largest_scene(members: &[&Scene], light: Option<usize>) -> Scene {
     scene
 }
 
-/// Renders the members of one family (at most [`LANES`], as [`group`] formed them) in one
+/// Renders the members of one family (at most [`MEMBERS_PER_PASS`], as [`group`] formed them) in one
 /// pass: each member's 8-bit RGB pixels and stats, or `None` when cancelled, when the
-/// lanes diverged, or when one pass cannot hold them (a slice of a longer family may need
+/// members diverged, or when one pass cannot hold them (a slice of a longer family may need
 /// more than 64 lights where the whole did not, or one scene have more than 64): then render
 /// them one by one.
 pub fn render(members: &[&Scene], cancel: &AtomicBool) -> Option<Vec<(Vec<u8>, RenderStats)>> {
-    assert!(!members.is_empty() && members.len() <= LANES, "1 to {LANES} members");
+    assert!(
+        !members.is_empty() && members.len() <= MEMBERS_PER_PASS,
+        "1 to {MEMBERS_PER_PASS} members"
+    );
     if members.len() <= 8 {
-        render_lanes::<8>(members, cancel)
+        render_pass::<8>(members, cancel)
     } else {
-        render_lanes::<LANES>(members, cancel)
+        render_pass::<MEMBERS_PER_PASS>(members, cancel)
     }
 }
 
-/// [`render`] with `K` lanes.
-fn render_lanes<const K: usize>(members: &[&Scene], cancel: &AtomicBool) -> Option<Vec<(Vec<u8>, RenderStats)>> {
+/// [`render`] with `K` members.
+fn render_pass<const K: usize>(members: &[&Scene], cancel: &AtomicBool) -> Option<Vec<(Vec<u8>, RenderStats)>> {
     let Ok(Plan {
         scene: largest,
         light,
@@ -217,9 +220,9 @@ fn render_lanes<const K: usize>(members: &[&Scene], cancel: &AtomicBool) -> Opti
     };
     let world = World::new(&largest);
     let bounds: Vec<Vec<f64>> = members.iter().map(|m| World::remaining_bounds_of(m)).collect();
-    let lanes: [Lane; K] = std::array::from_fn(|j| {
+    let views: [Member; K] = std::array::from_fn(|j| {
         let m = j.min(members.len() - 1);
-        Lane {
+        Member {
             depth: members[m].settings.depth,
             remaining_bound: &bounds[m],
             area_count: light.and_then(|index| count_of(members[m], index).map(|n| (index, n))),
@@ -231,7 +234,7 @@ fn render_lanes<const K: usize>(members: &[&Scene], cancel: &AtomicBool) -> Opti
     });
     let h = largest.settings.height;
     let quantise = |c: [DVec3; K]| c.map(|c| [c.x, c.y, c.z].map(crate::film::quantize));
-    let (pixels, stats) = render_rows_lanes(&world, lanes, 0..h, &|| {}, Some(cancel), quantise);
+    let (pixels, stats) = render_rows_members(&world, views, 0..h, &|| {}, Some(cancel), quantise);
     if cancel.load(std::sync::atomic::Ordering::Relaxed) || stats[0].diverged {
         return None;
     }

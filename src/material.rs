@@ -27,6 +27,14 @@ pub struct Material {
     pub ior: f64,
 }
 
+impl Material {
+    /// The ratio `n = n1 / n2` of the law of refraction at this material's surface: `1 / n`
+    /// for a ray entering from the air, `n` for one leaving into it.
+    pub fn eta(&self, entering: bool) -> f64 {
+        if entering { 1.0 / self.ior } else { self.ior }
+    }
+}
+
 impl Default for Material {
     /// The default material of FIGURES.md: ka 0.2, kd 0.8, ks 0.5, shininess 20, plastic,
     /// no reflection or transmission, n 1, white.

@@ -3,8 +3,9 @@
 //! depend on the thread count or the order rows finish in.
 
 use crate::film::Film;
+use crate::math::Ray;
 use crate::sampling::{Purpose, Stream};
-use crate::trace::{Lane, NoRecord, RayCounts, Recorder, Tracer};
+use crate::trace::{Member, NoRecord, RayCounts, Recorder, Reference, SampleKey, Tracer};
 use crate::world::World;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -17,16 +18,24 @@ use std::time::{Duration, Instant};
 pub struct RenderStats {
     pub counts: RayCounts,
     pub elapsed: Duration,
-    /// A family's lanes could not all be traced exactly together (see
-    /// [`Tracer::diverged`]): the images must be rendered one by one. Never for one lane.
+    /// A family's members could not all be traced exactly together (see
+    /// [`Tracer::diverged`]): the images must be rendered one by one. Never for one member.
     pub diverged: bool,
+}
+
+/// The row-major index of pixel `(x, y)`, which keys its random streams.
+fn pixel_index(world: &World, x: u32, y: u32) -> u64 {
+    y as u64 * world.scene.settings.width as u64 + x as u64
 }
 
 /// The jitter stream of pixel `(x, y)`: sample `k` reads its two numbers from words
 /// `4k .. 4k + 4`, so reading samples in order and seeking to one sample agree.
 fn jitter_stream(world: &World, x: u32, y: u32) -> Stream {
-    let s = &world.scene.settings;
-    Stream::new(s.seed, Purpose::PixelJitter, y as u64 * s.width as u64 + x as u64)
+    Stream::new(
+        world.scene.settings.seed,
+        Purpose::PixelJitter,
+        pixel_index(world, x, y),
+    )
 }
 
 /// Image position of sample `k` of pixel `(x, y)` with the stream at sample `k`: cell
@@ -43,30 +52,68 @@ pub fn sample_position(world: &World, x: u32, y: u32, k: u32) -> (f64, f64) {
     jittered(&mut rng, world.scene.settings.grid_side(), x, y, k)
 }
 
+/// The camera ray through image position `(px, py)`.
+fn camera_ray(world: &World, (px, py): (f64, f64)) -> Ray {
+    let s = &world.scene.settings;
+    world.camera.ray(px, py, s.width, s.height)
+}
+
+/// A pixel's radiance (the box filter): the mean of its samples, each traced by
+/// `trace(position, sample key)` at its jittered position, read in sample order from one
+/// jitter stream (the same numbers as [`sample_position`] for each sample).
+fn pixel_mean<const K: usize>(
+    world: &World,
+    x: u32,
+    y: u32,
+    mut trace: impl FnMut((f64, f64), SampleKey) -> [DVec3; K],
+) -> [DVec3; K] {
+    let s = &world.scene.settings;
+    let (spp, n) = (s.samples_per_pixel, s.grid_side());
+    let mut rng = jitter_stream(world, x, y);
+    let mut sum = [DVec3::ZERO; K];
+    for k in 0..spp {
+        let key = SampleKey {
+            pixel: pixel_index(world, x, y),
+            sample: k,
+        };
+        let c = trace(jittered(&mut rng, n, x, y, k), key);
+        for j in 0..K {
+            sum[j] += c[j];
+        }
+    }
+    sum.map(|s| s / spp as f64)
+}
+
 /// Radiance of one sample of one pixel, recorded by `rec`.
 pub fn render_sample<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, k: u32, rec: &mut R) -> DVec3 {
     let position = sample_position(tracer.world, x, y, k);
-    trace_at(tracer, position, x, y, k, rec)[0]
+    let key = SampleKey {
+        pixel: pixel_index(tracer.world, x, y),
+        sample: k,
+    };
+    trace_at(tracer, position, key, rec)[0]
 }
 
-/// Radiance of every lane along the camera ray through image position `(px, py)`; a NaN or
-/// infinity is counted and replaced by black (and is a bug: debug builds stop on it).
+/// Radiance of every member along the camera ray through image position `(px, py)`; a NaN
+/// or infinity is counted and replaced by black (and is a bug: debug builds stop on it).
 fn trace_at<R: Recorder, const K: usize>(
     tracer: &mut Tracer<K>,
     (px, py): (f64, f64),
-    x: u32,
-    y: u32,
-    k: u32,
+    key: SampleKey,
     rec: &mut R,
 ) -> [DVec3; K] {
-    rec.sample(k, px, py);
-    let s = &tracer.world.scene.settings;
-    tracer.sample_key = (y as u64 * s.width as u64 + x as u64, k);
-    let ray = tracer.world.camera.ray(px, py, s.width, s.height);
-    let mut c = tracer.trace_camera_lanes(&ray, rec);
+    rec.sample(key.sample, px, py);
+    tracer.sample_key = key;
+    let ray = camera_ray(tracer.world, (px, py));
+    let mut c = tracer.trace_camera_members(&ray, rec);
     for (j, c) in c.iter_mut().enumerate() {
-        debug_assert!(c.is_finite(), "non-finite radiance {c} at pixel ({x}, {y}) sample {k}");
-        *c = finite_or_black(*c, tracer.lane_counts_mut(j));
+        debug_assert!(
+            c.is_finite(),
+            "non-finite radiance {c} at pixel {} sample {}",
+            key.pixel,
+            key.sample
+        );
+        *c = finite_or_black(*c, tracer.member_counts_mut(j));
     }
     rec.sample_done(c[0]);
     c
@@ -89,27 +136,47 @@ pub fn render_pixel(tracer: &mut Tracer, x: u32, y: u32) -> DVec3 {
     render_pixel_recorded(tracer, x, y, &mut NoRecord)
 }
 
-/// [`render_pixel`] with every sample recorded by `rec` (what `lumiere probe` uses): the
-/// mean of the samples in sample order, one jitter stream read sequentially (the same
-/// numbers as [`render_sample`] for each `k`).
+/// [`render_pixel`] with every sample recorded by `rec` (what `lumiere probe` uses).
 pub fn render_pixel_recorded<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, rec: &mut R) -> DVec3 {
-    render_pixel_lanes(tracer, x, y, rec)[0]
+    render_pixel_members(tracer, x, y, rec)[0]
 }
 
-/// [`render_pixel_recorded`] for every lane of a family.
-fn render_pixel_lanes<R: Recorder, const K: usize>(tracer: &mut Tracer<K>, x: u32, y: u32, rec: &mut R) -> [DVec3; K] {
-    let s = &tracer.world.scene.settings;
-    let (spp, n) = (s.samples_per_pixel, s.grid_side());
-    let mut rng = jitter_stream(tracer.world, x, y);
-    let mut sum = [DVec3::ZERO; K];
-    for k in 0..spp {
-        let position = jittered(&mut rng, n, x, y, k);
-        let c = trace_at(tracer, position, x, y, k, rec);
-        for j in 0..K {
-            sum[j] += c[j];
-        }
+/// [`render_pixel_recorded`] for every member of a family.
+fn render_pixel_members<R: Recorder, const K: usize>(
+    tracer: &mut Tracer<K>,
+    x: u32,
+    y: u32,
+    rec: &mut R,
+) -> [DVec3; K] {
+    let world = tracer.world;
+    pixel_mean(world, x, y, |position, key| trace_at(tracer, position, key, rec))
+}
+
+/// Renders the whole image with the reference tracer ([`Reference`]): the image
+/// [`render`] makes, to the bit, computed as the chapter reads, with no shortcut (slow:
+/// for checking the fast tracer, and for reading).
+pub fn render_reference(world: &World) -> Film {
+    let s = &world.scene.settings;
+    let tracer = Reference::new(world);
+    let pixels = (0..s.height)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            let tracer = &tracer;
+            (0..s.width).map(move |x| {
+                let mut counts = RayCounts::default();
+                let [c] = pixel_mean(world, x, y, |position, key| {
+                    let radiance = tracer.camera(&camera_ray(world, position), key);
+                    [finite_or_black(radiance, &mut counts)]
+                });
+                c
+            })
+        })
+        .collect();
+    Film {
+        width: s.width,
+        height: s.height,
+        pixels,
     }
-    sum.map(|s| s / spp as f64)
 }
 
 /// Renders the whole image on the current rayon pool. `progress` is called once per
@@ -133,17 +200,17 @@ pub fn render_rows(
     progress: &(dyn Fn() + Sync),
     cancel: Option<&AtomicBool>,
 ) -> (Vec<DVec3>, RenderStats) {
-    let (pixels, [stats]) = render_rows_lanes(world, [Lane::of(world)], rows, progress, cancel, |[c]| c);
+    let (pixels, [stats]) = render_rows_members(world, [Member::of(world)], rows, progress, cancel, |[c]| c);
     (pixels, stats)
 }
 
-/// [`render_rows`] for the lanes of a one-pass family (see [`crate::family`]) over the
-/// world of its deepest, largest lane: each pixel's lane radiances go through `keep` (an
-/// 8-bit quantisation, say, so K images cost no more memory than one), with each lane's
+/// [`render_rows`] for the members of a one-pass family (see [`crate::family`]) over the
+/// world of its deepest, largest member: each pixel's member radiances go through `keep` (an
+/// 8-bit quantisation, say, so K images cost no more memory than one), with each member's
 /// stats. The wall time is the family's.
-pub fn render_rows_lanes<T: Send + Clone, const K: usize>(
+pub fn render_rows_members<T: Send + Clone, const K: usize>(
     world: &World,
-    lanes: [Lane; K],
+    members: [Member; K],
     rows: Range<u32>,
     progress: &(dyn Fn() + Sync),
     cancel: Option<&AtomicBool>,
@@ -162,16 +229,16 @@ pub fn render_rows_lanes<T: Send + Clone, const K: usize>(
         .with_max_len(1)
         .enumerate()
         .map(|(i, row)| {
-            let mut tracer = Tracer::with_lanes(world, lanes);
+            let mut tracer = Tracer::with_members(world, members);
             if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
-                return (tracer.lane_totals(), false);
+                return (tracer.member_totals(), false);
             }
             let y = rows.start + i as u32;
             for (x, px) in row.iter_mut().enumerate() {
-                *px = keep(render_pixel_lanes(&mut tracer, x as u32, y, &mut NoRecord));
+                *px = keep(render_pixel_members(&mut tracer, x as u32, y, &mut NoRecord));
             }
             progress();
-            (tracer.lane_totals(), tracer.diverged)
+            (tracer.member_totals(), tracer.diverged)
         })
         .reduce(
             || ([RayCounts::default(); K], false),

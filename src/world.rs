@@ -13,6 +13,7 @@ use crate::scene::{Object, Scene};
 use crate::shape::{Shape, SurfaceHit};
 use crate::skips::Skips;
 use glam::DVec3;
+use std::borrow::Cow;
 
 /// An object that may block some shadow ray from one shading point (see
 /// [`World::shadow_candidates`]).
@@ -212,6 +213,18 @@ impl<'s> World<'s> {
 
     pub fn material_of(&self, object: usize) -> &Material {
         &self.scene.materials[self.scene.objects[object].material]
+    }
+
+    /// The points of area light `index` (an [`AreaLight`](crate::area_light::AreaLight))
+    /// for sample `sample` of pixel `pixel`: the scene's one set for a `fixed` light, a
+    /// set drawn for the sample for a `per_sample` one.
+    pub fn area_points(&self, index: usize, pixel: u64, sample: u32) -> Cow<'_, PointSet> {
+        match &self.scene.lights[index] {
+            Light::Area(area) if area.mode == PointMode::PerSample => Cow::Owned(PointSet::from_points(
+                &area.sample_points(self.scene.settings.seed, index, pixel, sample),
+            )),
+            _ => Cow::Borrowed(&self.light_points[index]),
+        }
     }
 
     /// The scene's objects, indexed as every query's answers.

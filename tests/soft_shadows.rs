@@ -19,7 +19,7 @@ use lumiere::math::Ray;
 use lumiere::placement::{Placement, on_sphere};
 use lumiere::sampling::{Purpose, Stream};
 use lumiere::scene::{Scene, parse};
-use lumiere::trace::{NoRecord, Tracer};
+use lumiere::trace::{NoRecord, SampleKey, Tracer};
 use lumiere::world::World;
 use std::f64::consts::PI;
 
@@ -139,7 +139,10 @@ attenuation = {{ quadratic = 0.005 }}
 /// 5 above it (`t = 5` lands exactly on `p`), for sample key `key` (per-sample points).
 fn floor_radiance(world: &World, p: DVec3, key: (u64, u32)) -> f64 {
     let mut tracer = Tracer::new(world);
-    tracer.sample_key = key;
+    tracer.sample_key = SampleKey {
+        pixel: key.0,
+        sample: key.1,
+    };
     let ray = Ray::new(p + DVec3::new(0.0, 0.0, 5.0), -DVec3::Z);
     let c = tracer.trace_camera(&ray, &mut NoRecord);
     assert!(c.x == c.y && c.y == c.z, "white light on a white floor: {c}");

@@ -34,7 +34,7 @@ pub fn attenuation_range(world: &World) -> Option<(f64, f64)> {
     let s = &world.scene.settings;
     let (min, max) = (0..s.height)
         .into_par_iter()
-        .with_max_len(1) // one row per task, as `render_rows_lanes` does
+        .with_max_len(1) // one row per task, as `render_rows_members` does
         .map(|y| {
             let mut tracer = Tracer::new(world);
             let mut rec = LitAttenuation {

@@ -124,7 +124,7 @@ pub fn render_figure_until(figure: Figure, scale: f64, cancel: &AtomicBool) -> O
 }
 
 /// Renders the figures of one family (see [`crate::family`]) at `scale` in passes of
-/// [`crate::family::LANES`], or one by one if their lanes diverge; `None` if cancelled.
+/// [`crate::family::MEMBERS_PER_PASS`], or one by one if their members diverge; `None` if cancelled.
 /// Each manifest records the images of its pass (`one_pass_with`: each figure's `label`,
 /// its file name, or `set/file` when the family spans sets) and an equal share of the
 /// pass's time.
@@ -132,7 +132,7 @@ fn render_family_until(figures: Vec<(Figure, String)>, scale: f64, cancel: &Atom
     let mut done = Vec::new();
     let mut figures = figures.into_iter().peekable();
     while figures.peek().is_some() {
-        let (pass, labels): (Vec<Figure>, Vec<String>) = figures.by_ref().take(crate::family::LANES).unzip();
+        let (pass, labels): (Vec<Figure>, Vec<String>) = figures.by_ref().take(crate::family::MEMBERS_PER_PASS).unzip();
         let scenes: Vec<Scene> = pass.iter().map(|f| scaled(f.scene.clone(), scale)).collect();
         let start = Instant::now();
         let images = crate::family::render(&scenes.iter().collect::<Vec<_>>(), cancel);

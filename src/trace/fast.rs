@@ -1,130 +1,34 @@
-//! Whitted recursion (chapter 7.4b): local illumination with filtered shadow rays at every
-//! hit, then a reflected ray (weight `k_r`) and a refracted ray (weight `k_t`), total
-//! internal reflection sending the refracted weight to the reflection, up to the scene's
-//! recursion depth, with adaptive depth control. Every step can be reported to a
-//! [`Recorder`]; the renderer passes [`NoRecord`], which compiles to nothing, and `probe`
-//! passes a recorder that keeps the whole ray tree, so both see the same numbers.
+//! The tracer that renders: the recursion of [`super::reference`], computed to the same bits
+//! with three kinds of speed-up, each beside the reference function it must equal.
+//!
+//! - **One-pass families.** With `K > 1` [`Member`]s it traces the images of a family
+//!   ([`crate::family`]) together: each ray once, each member's radiance with exactly the
+//!   operations a render of that member's scene alone does ([`Tracer::radiance`] is
+//!   [`Reference`]'s `radiance` per member, [`Tracer::local`] its `local`). Every function
+//!   takes the bit mask of the members it works for and returns `[DVec3; K]`.
+//! - **Area lights in vector lanes** ([`area`]): an area light's N points taken together in
+//!   arrays, their shadow rays tested candidate by candidate; they equal [`Reference`]'s
+//!   `local` summing N point lights.
+//! - **Skips** ([`crate::skips`]): the shadow rays, object tests and secondary rays whose
+//!   result is known without them (a surface facing away, a light that is black, a zero
+//!   weight, an object that cannot be in the way). Each can be switched off, and none
+//!   changes a pixel (tests/skips.rs).
+//!
+//! Every step can be reported to a [`Recorder`] (what `lumiere probe` shows).
+//!
+//! [`Reference`]: super::Reference
 
+use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface};
 use crate::light::{Incidence, Light};
 use crate::material::Material;
-use crate::math::{Ray, hit_point_error, offset_origin, reflect, refract};
+use crate::math::{Ray, offset_origin, reflect, refract};
 use crate::scene::{ShadingModel, Specular};
 use crate::shading::{ambient, beneath_notice, blinn, diffuse, phong, shadow_filter, specular, specular_tint};
-use crate::skips::{Saved, Skip};
+use crate::skips::Skip;
 use crate::world::{Candidate, World};
 use glam::DVec3;
 
-mod area;
-
-/// What a ray is for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RayKind {
-    Camera,
-    Shadow,
-    Reflection,
-    Refraction,
-}
-
-/// Rays traced, by kind, and work skipped, by reason.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct RayCounts {
-    pub camera: u64,
-    pub shadow: u64,
-    pub reflection: u64,
-    pub refraction: u64,
-    /// Refractions turned into reflections by total internal reflection.
-    pub total_internal_reflections: u64,
-    /// Secondary rays not traced because their weight could not change the 8-bit result.
-    pub adaptive_cutoffs: u64,
-    /// Samples whose radiance was NaN or infinite (replaced by black).
-    pub non_finite: u64,
-    /// Work left out, by shortcut (see [`crate::skips`]).
-    pub saved: Saved,
-}
-
-impl RayCounts {
-    pub fn add(&mut self, o: &RayCounts) {
-        self.camera += o.camera;
-        self.shadow += o.shadow;
-        self.reflection += o.reflection;
-        self.refraction += o.refraction;
-        self.total_internal_reflections += o.total_internal_reflections;
-        self.adaptive_cutoffs += o.adaptive_cutoffs;
-        self.non_finite += o.non_finite;
-        self.saved.add(&o.saved);
-    }
-
-    pub fn total_rays(&self) -> u64 {
-        self.camera + self.shadow + self.reflection + self.refraction
-    }
-}
-
-/// One light's share at a hit, as the tracer computed it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LightShare {
-    /// Index of the light in the scene's list.
-    pub light: usize,
-    pub incidence: Incidence,
-    /// `N.L` with the normal facing the incoming ray.
-    pub n_dot_l: f64,
-    /// Whether a shadow ray was cast (not when N.L <= 0 or shadows are off).
-    pub shadow_ray: bool,
-    /// Product of the transparent objects' colours crossed (0 if an opaque one blocks).
-    pub filter: DVec3,
-    pub diffuse: DVec3,
-    pub specular: DVec3,
-}
-
-/// Observer of the tracer's steps; every method does nothing by default.
-pub trait Recorder {
-    /// False for a recorder that ignores every event, so the tracer can skip gathering
-    /// what only the events need.
-    const RECORDS: bool = true;
-    fn ray(&mut self, _kind: RayKind, _ray: &Ray, _level: u32, _weight: f64) {}
-    fn hit(&mut self, _object: usize, _t: f64, _point: DVec3, _normal: DVec3, _entering: bool) {}
-    fn miss(&mut self) {}
-    fn ambient(&mut self, _color: DVec3) {}
-    fn light(&mut self, _share: &LightShare) {}
-    /// A light that adds nothing at this hit and casts no shadow ray: `n_dot_l` is `None`
-    /// when no light arrives at all (outside a spot's cone, or exactly at the light), else
-    /// the `N.L <= 0` of a surface facing away from it.
-    fn unlit(&mut self, _light: usize, _n_dot_l: Option<f64>) {}
-    /// An area light wholly below the surface's horizon: none of its points is looked at.
-    fn below_horizon(&mut self, _light: usize) {}
-    /// A shadow ray towards a light, tested up to `t_max` (infinite for directional
-    /// lights), before the [`Recorder::light`] event of the same light.
-    fn shadow_ray(&mut self, _ray: &Ray, _t_max: f64) {}
-    /// The transparent objects (indices, ascending) whose colours filter the last shadow
-    /// ray; not reported when an opaque object blocks it or nothing is transparent.
-    fn shadow_crossed(&mut self, _objects: &[usize]) {}
-    /// The local illumination of the current hit (ambient + every light's share).
-    fn local(&mut self, _color: DVec3) {}
-    fn cutoff(&mut self, _kind: RayKind, _weight: f64) {}
-    fn total_internal_reflection(&mut self) {}
-    /// The radiance the ray at the innermost open level returned.
-    fn done(&mut self, _color: DVec3) {}
-    /// Sample `k` of a pixel starts, at image position `(px, py)` (before its camera ray).
-    fn sample(&mut self, _k: u32, _px: f64, _py: f64) {}
-    /// The sample's radiance as it enters the pixel mean (non-finite replaced by black).
-    fn sample_done(&mut self, _radiance: DVec3) {}
-}
-
-/// The recorder that records nothing.
-pub struct NoRecord;
-impl Recorder for NoRecord {
-    const RECORDS: bool = false;
-}
-
-/// A shaded surface point: position, shading normal `n` (facing the incoming ray), outward
-/// normal and rounding-error bound (for shadow-ray origins), direction to the eye, object.
-struct Surface {
-    point: DVec3,
-    n: DVec3,
-    outward: DVec3,
-    err: f64,
-    eye: DVec3,
-    object: usize,
-}
+pub mod area;
 
 /// How one light (or light point) stands towards a surface point, before any shadow ray.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -157,29 +61,29 @@ impl Facing {
 /// What sets one image of a one-pass family apart (see [`crate::family`]): its recursion
 /// depth, its adaptive-depth bounds, the number of points it takes of the family's area
 /// light, its shading (model, and materials whose colours, `k_r`, `k_t` and `n` are the
-/// world's), and which of the world's lights it has. A plain render has one lane, the
+/// world's), and which of the world's lights it has. A plain render has one member, the
 /// world's own.
 #[derive(Clone, Copy, Debug)]
-pub struct Lane<'w> {
+pub struct Member<'w> {
     pub depth: u32,
-    /// `remaining_bound` of this lane's scene (see [`World::remaining_bound`]).
+    /// `remaining_bound` of this member's scene (see [`World::remaining_bound`]).
     pub remaining_bound: &'w [f64],
-    /// The family's area light (index) and this lane's count `N`: its first `N` points.
+    /// The family's area light (index) and this member's count `N`: its first `N` points.
     pub area_count: Option<(usize, u32)>,
     pub shading: ShadingModel,
-    /// The lane's materials, indexed as the world's.
+    /// The member's materials, indexed as the world's.
     pub materials: &'w [Material],
-    /// The world's lights this lane's scene has, one bit per light index (ambient lights
-    /// aside: see `ambient`); a light of index 64 or more belongs to every lane.
+    /// The world's lights this member's scene has, one bit per light index (ambient lights
+    /// aside: see `ambient`); a light of index 64 or more belongs to every member.
     pub lights: u64,
-    /// The sum of this lane's ambient lights' colours, `L_a`.
+    /// The sum of this member's ambient lights' colours, `L_a`.
     pub ambient: DVec3,
 }
 
-impl<'w> Lane<'w> {
-    /// The lane of a plain render of `world`.
+impl<'w> Member<'w> {
+    /// The member of a plain render of `world`.
     pub fn of(world: &'w World) -> Self {
-        Lane {
+        Member {
             depth: world.scene.settings.depth,
             remaining_bound: &world.remaining_bound,
             area_count: None,
@@ -190,47 +94,47 @@ impl<'w> Lane<'w> {
         }
     }
 
-    /// Whether this lane's scene has the world's light `index`.
+    /// Whether this member's scene has the world's light `index`.
     fn has_light(&self, index: usize) -> bool {
         index >= 64 || self.lights >> index & 1 == 1
     }
 
-    /// Whether this lane shades every surface as `other` does.
-    fn shades_as(&self, other: &Lane) -> bool {
+    /// Whether this member shades every surface as `other` does.
+    fn shades_as(&self, other: &Member) -> bool {
         self.shading == other.shading && self.materials == other.materials
     }
 }
 
-/// The lanes of a bit mask of `K` lanes, in order.
-fn lanes_of<const K: usize>(mask: u32) -> impl Iterator<Item = usize> {
+/// The members of a bit mask of `K` members, in order.
+fn members_of<const K: usize>(mask: u32) -> impl Iterator<Item = usize> {
     (0..K).filter(move |&j| mask >> j & 1 == 1)
 }
 
 /// Traces rays in a world; one per thread (it keeps counters and scratch space). With
-/// `K > 1` lanes it traces the images of a one-pass family together: each ray once, each
-/// lane's radiance with exactly the operations a render of that lane's scene alone does.
+/// `K > 1` members it traces the images of a one-pass family together: each ray once, each
+/// member's radiance with exactly the operations a render of that member's scene alone does.
 pub struct Tracer<'w, 's, const K: usize = 1> {
     pub world: &'w World<'s>,
-    /// Rays and skipped work. With `K > 1`, only what the lanes share at a hit (shadow rays,
-    /// skips); the rest is in `lane_counts`.
+    /// Rays and skipped work. With `K > 1`, only what the members share at a hit (shadow rays,
+    /// skips); the rest is in `member_counts`.
     pub counts: RayCounts,
-    /// With `K > 1`, each lane's counts (its image's manifest).
-    pub lane_counts: [RayCounts; K],
-    pub lanes: [Lane<'w>; K],
-    /// Per lane, the shadow rays counted in `counts` that the lane's own scene does not
+    /// With `K > 1`, each member's counts (its image's manifest).
+    pub member_counts: [RayCounts; K],
+    pub members: [Member<'w>; K],
+    /// Per member, the shadow rays counted in `counts` that the member's own scene does not
     /// cast (rays towards its area light's points beyond `N`, or towards lights it does not
     /// have), for the current hit.
     shadow_excess: [u64; K],
-    /// For each of the world's lights, the lanes that have it, as bits.
-    light_lanes: Vec<u32>,
-    /// For each lane, the first lane of the family that shades as it does: the lanes of a
+    /// For each of the world's lights, the members that have it, as bits.
+    light_members: Vec<u32>,
+    /// For each member, the first member of the family that shades as it does: the members of a
     /// hit with the same twin share their light shares (copied from the first of them).
     shading_twin: [usize; K],
-    /// Set when a lane could not be traced exactly with the others (a light point black for
-    /// one lane's `L / N` and not another's): the family must be rendered image by image.
+    /// Set when a member could not be traced exactly with the others (a light point black for
+    /// one member's `L / N` and not another's): the family must be rendered image by image.
     pub diverged: bool,
     /// The pixel index and sample being traced (keys the points of `per_sample` lights).
-    pub sample_key: (u64, u32),
+    pub sample_key: SampleKey,
     /// Scratch list of transparent objects crossed by a shadow ray.
     crossed: Vec<usize>,
     /// Scratch space of the current area light's points.
@@ -239,85 +143,92 @@ pub struct Tracer<'w, 's, const K: usize = 1> {
 
 impl<'w, 's> Tracer<'w, 's> {
     pub fn new(world: &'w World<'s>) -> Self {
-        Tracer::with_lanes(world, [Lane::of(world)])
+        Tracer::with_members(world, [Member::of(world)])
     }
 
     /// Radiance along a camera ray.
     pub fn trace_camera<R: Recorder>(&mut self, ray: &Ray, rec: &mut R) -> DVec3 {
-        self.trace_camera_lanes(ray, rec)[0]
+        self.trace_camera_members(ray, rec)[0]
     }
 }
 
 impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
-    /// A tracer of the family `lanes` over `world`, the world of the family's deepest lane
+    /// A tracer of the family `members` over `world`, the world of the family's deepest member
     /// with its largest area light count.
-    pub fn with_lanes(world: &'w World<'s>, lanes: [Lane<'w>; K]) -> Self {
-        assert!(K >= 1 && K <= u32::BITS as usize, "1 to 32 lanes");
+    pub fn with_members(world: &'w World<'s>, members: [Member<'w>; K]) -> Self {
+        assert!(K >= 1 && K <= u32::BITS as usize, "1 to 32 members");
         Tracer {
             world,
             counts: RayCounts::default(),
-            lane_counts: [RayCounts::default(); K],
-            shading_twin: std::array::from_fn(|j| (0..=j).find(|&i| lanes[i].shades_as(&lanes[j])).unwrap_or(j)),
-            light_lanes: (0..world.scene.lights.len())
-                .map(|index| (0..K).filter(|&j| lanes[j].has_light(index)).fold(0, |m, j| m | 1 << j))
+            member_counts: [RayCounts::default(); K],
+            shading_twin: std::array::from_fn(|j| (0..=j).find(|&i| members[i].shades_as(&members[j])).unwrap_or(j)),
+            light_members: (0..world.scene.lights.len())
+                .map(|index| {
+                    (0..K)
+                        .filter(|&j| members[j].has_light(index))
+                        .fold(0, |m, j| m | 1 << j)
+                })
                 .collect(),
-            lanes,
+            members,
             shadow_excess: [0; K],
             diverged: false,
-            sample_key: (0, 0),
+            sample_key: SampleKey::default(),
             crossed: Vec::new(),
             area: area::AreaScratch::default(),
         }
     }
 
-    /// Lane `j`'s shading model and its material of `object`.
-    fn lane_shading(&self, j: usize, object: usize) -> (ShadingModel, &'w Material) {
-        let lane = &self.lanes[j];
-        (lane.shading, &lane.materials[self.world.scene.objects[object].material])
+    /// Member `j`'s shading model and its material of `object`.
+    fn member_shading(&self, j: usize, object: usize) -> (ShadingModel, &'w Material) {
+        let member = &self.members[j];
+        (
+            member.shading,
+            &member.materials[self.world.scene.objects[object].material],
+        )
     }
 
-    /// Every lane.
+    /// Every member.
     const ALL: u32 = if K == 32 { u32::MAX } else { (1 << K) - 1 };
 
-    /// Counts `f` for every lane of `mask` (in `counts` itself with one lane).
-    fn count_lanes(&mut self, mask: u32, f: impl Fn(&mut RayCounts)) {
+    /// Counts `f` for every member of `mask` (in `counts` itself with one member).
+    fn count_members(&mut self, mask: u32, f: impl Fn(&mut RayCounts)) {
         if K == 1 {
             f(&mut self.counts);
         } else {
-            lanes_of::<K>(mask).for_each(|j| f(&mut self.lane_counts[j]));
+            members_of::<K>(mask).for_each(|j| f(&mut self.member_counts[j]));
         }
     }
 
-    /// Each lane's counts: with one lane, `counts`; else the lane's rays, with the skipped
+    /// Each member's counts: with one member, `counts`; else the member's rays, with the skipped
     /// work of the whole family.
-    pub fn lane_totals(&self) -> [RayCounts; K] {
+    pub fn member_totals(&self) -> [RayCounts; K] {
         if K == 1 {
             return [self.counts; K];
         }
-        self.lane_counts.map(|mut c| {
+        self.member_counts.map(|mut c| {
             c.saved = self.counts.saved;
             c
         })
     }
 
-    /// The counts where a lane's non-finite samples go.
-    pub fn lane_counts_mut(&mut self, j: usize) -> &mut RayCounts {
+    /// The counts where a member's non-finite samples go.
+    pub fn member_counts_mut(&mut self, j: usize) -> &mut RayCounts {
         if K == 1 {
             &mut self.counts
         } else {
-            &mut self.lane_counts[j]
+            &mut self.member_counts[j]
         }
     }
 
-    /// Radiance of every lane along a camera ray.
-    pub fn trace_camera_lanes<R: Recorder>(&mut self, ray: &Ray, rec: &mut R) -> [DVec3; K] {
-        self.count_lanes(Self::ALL, |c| c.camera += 1);
+    /// Radiance of every member along a camera ray.
+    pub fn trace_camera_members<R: Recorder>(&mut self, ray: &Ray, rec: &mut R) -> [DVec3; K] {
+        self.count_members(Self::ALL, |c| c.camera += 1);
         self.radiance(RayKind::Camera, ray, 1, 1.0, Self::ALL, rec)
     }
 
     /// Radiance along `ray` at recursion `level` (1 = camera ray), whose contribution to the
     /// pixel is scaled by `weight` (product of the k_r and k_t along the path), for the
-    /// lanes of `mask` (the others' entries are meaningless).
+    /// members of `mask` (the others' entries are meaningless).
     fn radiance<R: Recorder>(
         &mut self,
         kind: RayKind,
@@ -335,41 +246,27 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             return [scene.settings.background; K];
         };
         let mat = self.world.material_of(object);
-        let point = ray.at(hit.t);
-        let err = hit_point_error(ray, hit.t) + scene.objects[object].shape.surface_error(point);
-        let entering = ray.dir.dot(hit.normal) < 0.0;
-        // Shading normal on the side the ray comes from.
-        let n = if entering { hit.normal } else { -hit.normal };
-        rec.hit(object, hit.t, point, hit.normal, entering);
-
-        let surface = Surface {
-            point,
-            n,
-            outward: hit.normal,
-            err,
-            eye: -ray.dir,
-            object,
-        };
+        let surface = Surface::hit(self.world, ray, object, &hit);
+        rec.hit(object, hit.t, surface.point, hit.normal, surface.entering);
         let mut color = self.local_counted(&surface, mask, rec);
         rec.local(color[0]);
 
         // Without the zero-weight skip, rays of weight 0 are traced (and add 0).
         let all = !self.world.skips.on(Skip::ZeroWeight);
-        // The lanes whose depth lets this hit spawn secondary rays.
-        let deeper = lanes_of::<K>(mask)
-            .filter(|&j| level < self.lanes[j].depth)
+        // The members whose depth lets this hit spawn secondary rays.
+        let deeper = members_of::<K>(mask)
+            .filter(|&j| level < self.members[j].depth)
             .fold(0, |m, j| m | 1 << j);
         if deeper != 0 {
             let mut kr = mat.kr;
             let mut refracted = None;
             if mat.kt > 0.0 || all {
-                let eta = if entering { 1.0 / mat.ior } else { mat.ior };
-                match refract(ray.dir, n, eta) {
+                match refract(ray.dir, surface.n, mat.eta(surface.entering)) {
                     Some(t) => refracted = Some(t.normalize()),
                     None => {
                         // Total internal reflection: the transmitted energy is reflected.
                         kr += mat.kt;
-                        self.count_lanes(deeper, |c| c.total_internal_reflections += 1);
+                        self.count_members(deeper, |c| c.total_internal_reflections += 1);
                         rec.total_internal_reflection();
                     }
                 }
@@ -381,49 +278,28 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                 self.counts.saved.count(Skip::ZeroWeight, 1);
             }
             if kr > 0.0 || all {
-                let dir = reflect(ray.dir, n).normalize();
-                let reflected = self.secondary(
-                    RayKind::Reflection,
-                    point,
-                    hit.normal,
-                    err,
-                    dir,
-                    level,
-                    weight * kr,
-                    deeper,
-                    rec,
-                );
-                lanes_of::<K>(deeper).for_each(|j| color[j] += kr * reflected[j]);
+                let dir = reflect(ray.dir, surface.n).normalize();
+                let reflected = self.secondary(RayKind::Reflection, &surface, dir, level, weight * kr, deeper, rec);
+                members_of::<K>(deeper).for_each(|j| color[j] += kr * reflected[j]);
             }
             if let Some(dir) = refracted {
-                let transmitted = self.secondary(
-                    RayKind::Refraction,
-                    point,
-                    hit.normal,
-                    err,
-                    dir,
-                    level,
-                    weight * mat.kt,
-                    deeper,
-                    rec,
-                );
-                lanes_of::<K>(deeper).for_each(|j| color[j] += mat.kt * transmitted[j]);
+                let transmitted =
+                    self.secondary(RayKind::Refraction, &surface, dir, level, weight * mat.kt, deeper, rec);
+                members_of::<K>(deeper).for_each(|j| color[j] += mat.kt * transmitted[j]);
             }
         }
         rec.done(color[0]);
         color
     }
 
-    /// Traces a reflected or refracted ray from `point` for the lanes of `mask` where
+    /// Traces a reflected or refracted ray from `from` for the members of `mask` where
     /// adaptive depth control does not find that, with `weight`, it cannot change the 8-bit
-    /// result; the lanes where it is cut off get 0.
+    /// result; the members where it is cut off get 0 ([`super::Reference`]'s `secondary`).
     #[allow(clippy::too_many_arguments)]
     fn secondary<R: Recorder>(
         &mut self,
         kind: RayKind,
-        point: DVec3,
-        normal: DVec3,
-        err: f64,
+        from: &Surface,
         dir: DVec3,
         level: u32,
         weight: f64,
@@ -431,11 +307,11 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         rec: &mut R,
     ) -> [DVec3; K] {
         let threshold = self.world.scene.settings.adaptive_threshold;
-        let cut = lanes_of::<K>(mask)
-            .filter(|&j| beneath_notice(weight, self.lanes[j].remaining_bound[level as usize + 1], threshold))
+        let cut = members_of::<K>(mask)
+            .filter(|&j| beneath_notice(weight, self.members[j].remaining_bound[level as usize + 1], threshold))
             .fold(0, |m, j| m | 1 << j);
         if cut != 0 {
-            self.count_lanes(cut, |c| c.adaptive_cutoffs += 1);
+            self.count_members(cut, |c| c.adaptive_cutoffs += 1);
             rec.cutoff(kind, weight);
         }
         let traced = mask & !cut;
@@ -443,16 +319,15 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             return [DVec3::ZERO; K];
         }
         match kind {
-            RayKind::Reflection => self.count_lanes(traced, |c| c.reflection += 1),
-            _ => self.count_lanes(traced, |c| c.refraction += 1),
+            RayKind::Reflection => self.count_members(traced, |c| c.reflection += 1),
+            _ => self.count_members(traced, |c| c.refraction += 1),
         }
-        let ray = Ray::new(offset_origin(point, normal, err, dir), dir);
-        let mut radiance = self.radiance(kind, &ray, level + 1, weight, traced, rec);
-        lanes_of::<K>(cut).for_each(|j| radiance[j] = DVec3::ZERO);
+        let mut radiance = self.radiance(kind, &from.ray_along(dir), level + 1, weight, traced, rec);
+        members_of::<K>(cut).for_each(|j| radiance[j] = DVec3::ZERO);
         radiance
     }
 
-    /// [`Tracer::local`] for the lanes of `mask`, with what it counts added to each lane's
+    /// [`Tracer::local`] for the members of `mask`, with what it counts added to each member's
     /// counts, less the shadow rays its own scene does not cast (`shadow_excess`: towards
     /// area light points beyond its count, or towards lights it does not have).
     fn local_counted<R: Recorder>(&mut self, at: &Surface, mask: u32, rec: &mut R) -> [DVec3; K] {
@@ -462,8 +337,8 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         let shadow_before = self.counts.shadow;
         let color = self.local(at, mask, rec);
         let shadow = self.counts.shadow - shadow_before;
-        for j in lanes_of::<K>(mask) {
-            self.lane_counts[j].shadow += shadow - self.shadow_excess[j];
+        for j in members_of::<K>(mask) {
+            self.member_counts[j].shadow += shadow - self.shadow_excess[j];
         }
         self.shadow_excess = [0; K];
         color
@@ -471,22 +346,22 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
 
     /// Local illumination at a hit (slides' full model), with shadow rays:
     /// `L = L_a k_a S + sum_i A_i L_i [k_d S max(N.L_i, 0) + k_s [m S + (1 - m)] spec_i]`,
-    /// where an area light counts as its N points of colour `L / N`; for every lane of
+    /// where an area light counts as its N points of colour `L / N`; for every member of
     /// `mask`, each summing in the same order.
     fn local<R: Recorder>(&mut self, at: &Surface, mask: u32, rec: &mut R) -> [DVec3; K] {
         let scene = self.world.scene;
         let mut color = [DVec3::ZERO; K];
-        for j in lanes_of::<K>(mask) {
-            let (model, mat) = self.lane_shading(j, at.object);
+        for j in members_of::<K>(mask) {
+            let (model, mat) = self.member_shading(j, at.object);
             if model.ambient {
-                let a = ambient(self.lanes[j].ambient, mat.ka, mat.color);
+                let a = ambient(self.members[j].ambient, mat.ka, mat.color);
                 rec.ambient(a);
                 color[j] += a;
             }
         }
         for (index, light) in scene.lights.iter().enumerate() {
-            // The lanes whose scene has this light; the others do not see its shadow rays.
-            let lit = mask & self.light_lanes[index];
+            // The members whose scene has this light; the others do not see its shadow rays.
+            let lit = mask & self.light_members[index];
             if lit == 0 {
                 continue;
             }
@@ -496,12 +371,12 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                 Light::Area(area) => self.add_area_light(&mut color, lit, index, area, at, rec),
                 _ => {
                     let share = self.light_share(index, light.incidence(at.point), at, None, lit, rec);
-                    lanes_of::<K>(lit).for_each(|j| color[j] += share[j]);
+                    members_of::<K>(lit).for_each(|j| color[j] += share[j]);
                 }
             }
             if lit != mask {
                 let cast = self.counts.shadow - shadow_before;
-                lanes_of::<K>(mask & !lit).for_each(|j| self.shadow_excess[j] += cast);
+                members_of::<K>(mask & !lit).for_each(|j| self.shadow_excess[j] += cast);
             }
         }
         color
@@ -511,7 +386,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     /// times the shadow filter. Nothing (and no shadow ray) when no light arrives or when
     /// N.L <= 0, where neither the diffuse nor (slides) the specular term counts.
     /// `candidates`, when given, are the only objects that can block the shadow ray. For
-    /// every lane of `mask`: one shadow ray, each lane's shading.
+    /// every member of `mask`: one shadow ray, each member's shading.
     fn light_share<R: Recorder>(
         &mut self,
         index: usize,
@@ -530,11 +405,11 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                 } else {
                     DVec3::ONE
                 };
-                // The first lane of `mask` of each shading computes its share; the others
+                // The first member of `mask` of each shading computes its share; the others
                 // that shade as it does copy it (the first of all, `shading_twin`, may not
-                // be in `mask`: a shallower lane past its depth).
+                // be in `mask`: a shallower member past its depth).
                 let mut first_of = [usize::MAX; K];
-                for j in lanes_of::<K>(mask) {
+                for j in members_of::<K>(mask) {
                     let twin = self.shading_twin[j];
                     shares[j] = match first_of[twin] {
                         usize::MAX => {
@@ -590,12 +465,12 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     }
 
     /// The share of a light that reaches a surface point facing it (`N.L > 0`), through the
-    /// shadow filter `filter`: `A L filter [k_d S N.L + k_s [m S + (1 - m)] spec]`, with lane
-    /// `lane`'s shading.
+    /// shadow filter `filter`: `A L filter [k_d S N.L + k_s [m S + (1 - m)] spec]`, with member
+    /// `member`'s shading.
     #[allow(clippy::too_many_arguments)]
     fn shade<R: Recorder>(
         &mut self,
-        lane: usize,
+        member: usize,
         index: usize,
         inc: &Incidence,
         n_dot_l: f64,
@@ -618,7 +493,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             });
             return DVec3::ZERO;
         }
-        let (model, mat) = self.lane_shading(lane, at.object);
+        let (model, mat) = self.member_shading(member, at.object);
         let arriving = inc.color * filter;
         let spec = match model.specular {
             Specular::None => 0.0,

@@ -28,8 +28,8 @@
 //! [`blinn`]: crate::shading::blinn
 //! [`phong`]: crate::shading::phong
 
-use super::{Facing, LightShare, Recorder, Surface, Tracer, below_horizon, lanes_of, segment_meets_sphere};
-use crate::area_light::{AreaLight, PointMode, PointSet};
+use super::{Facing, LightShare, Recorder, Surface, Tracer, below_horizon, members_of, segment_meets_sphere};
+use crate::area_light::{AreaLight, PointSet};
 use crate::light::{Attenuation, Incidence, arriving, direction_to};
 use crate::material::Material;
 use crate::math::{Ray, offset_origin};
@@ -66,8 +66,8 @@ pub(super) struct AreaScratch {
     tests: Vec<u32>,
     /// Whether each point adds to the sum (facing, not blocked).
     adds: Vec<bool>,
-    /// How each point would face the surface with a lane's own colour `L / N`.
-    lane_facing: Vec<Facing>,
+    /// How each point would face the surface with a member's own colour `L / N`.
+    member_facing: Vec<Facing>,
     /// Whether some point's transparent colours multiplied to exactly 0 (so `blocked` does
     /// not tell all the points whose filter is 0).
     zero_product: bool,
@@ -338,7 +338,7 @@ fn lane_sum(
 }
 
 impl<const K: usize> Tracer<'_, '_, K> {
-    /// Adds to `color` (each lane of `mask`), point after point, the share of area light
+    /// Adds to `color` (each member of `mask`), point after point, the share of area light
     /// `index` at the surface `at`, after the horizon test and the search for the objects
     /// that can block any of its shadow rays.
     pub(super) fn add_area_light<R: Recorder>(
@@ -353,15 +353,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
         let world = self.world;
         let skips = world.skips;
         let mut s = std::mem::take(&mut self.area);
-        let fresh;
-        let points = match area.mode {
-            PointMode::Fixed => &world.light_points[index],
-            PointMode::PerSample => {
-                let (pixel, k) = self.sample_key;
-                fresh = PointSet::from_points(&area.sample_points(world.scene.settings.seed, index, pixel, k));
-                &fresh
-            }
-        };
+        let points = world.area_points(index, self.sample_key.pixel, self.sample_key.sample);
+        let points = &*points;
         let (centre, radius) = area.bounding_sphere();
         if skips.on(Skip::Horizon) && below_horizon(at.point, at.n, centre, radius) {
             self.counts.saved.count(Skip::Horizon, points.len() as u64);
@@ -384,8 +377,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
     /// Passes 1 to 4 of the module doc for the light points `points` of `area`.
     /// `candidates`, when given, are the only objects that can block their shadow rays;
     /// without them each shadow ray goes through the acceleration structure on its own.
-    /// A lane whose area light count `N` is set for this light takes the first `N` points,
-    /// each of colour `L / N`: passes 1 and 2 are shared, passes 3 and 4 are the lane's.
+    /// A member whose area light count `N` is set for this light takes the first `N` points,
+    /// each of colour `L / N`: passes 1 and 2 are shared, passes 3 and 4 are the member's.
     #[allow(clippy::too_many_arguments)]
     fn add_area_points<R: Recorder>(
         &mut self,
@@ -440,7 +433,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         let blocked_shading = self.world.skips.on(Skip::BlockedShading);
         if !R::RECORDS && grouped && self.world.skips.on(Skip::BackFacing) {
             // The same sums and counts as below, without the events (what `not_facing`
-            // counts, counted in bulk), lane by lane: the same terms summed in the same
+            // counts, counted in bulk), member by member: the same terms summed in the same
             // order. The points that add to the sum marked, and everything counted, in loops
             // without a branch per point (their pattern is random) that vectorize. A facing
             // point's filter is 0 where an opaque object blocks it, or (rarely: see
@@ -468,15 +461,15 @@ impl<const K: usize> Tracer<'_, '_, K> {
             // Lanes with the same count, the same shading and the same sum so far end with
             // the same sum; the specular terms are computed again only for another exponent.
             let bits = |c: DVec3| c.to_array().map(f64::to_bits);
-            // (count, shading twin, sum before as bits) and the sum after, per lane done.
-            let mut done: [Option<(LaneKey, DVec3)>; K] = [None; K];
+            // (count, shading twin, sum before as bits) and the sum after, per member done.
+            let mut done: [Option<(MemberKey, DVec3)>; K] = [None; K];
             let mut speculars_for = None;
             // Every point that adds has filter 1 unless a transparent object tinted one, or
             // blocked points add their 0.
             let filter = (s.filter_ready && (s.tinted || !blocked_shading)).then_some(&s.filter[..]);
-            for j in lanes_of::<K>(mask) {
-                let (count, lane_color) = self.lane_points(j, index, area, len);
-                let (model, mat) = self.lane_shading(j, at.object);
+            for j in members_of::<K>(mask) {
+                let (count, member_color) = self.member_points(j, index, area, len);
+                let (model, mat) = self.member_shading(j, at.object);
                 let key = (count, self.shading_twin[j], bits(color[j]));
                 if let Some(d) = done.iter().flatten().find(|d| d.0 == key) {
                     color[j] = d.1;
@@ -486,18 +479,18 @@ impl<const K: usize> Tracer<'_, '_, K> {
                         speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
                         speculars_for = Some(exponent);
                     }
-                    color[j] = lane_sum(color[j], &s.lanes, lane_color, filter, &s.adds[..count], mat, model);
+                    color[j] = lane_sum(color[j], &s.lanes, member_color, filter, &s.adds[..count], mat, model);
                 }
                 done[j] = Some((key, color[j]));
                 if K > 1 && count < len {
                     if black > 0 {
-                        // A lane with fewer points sees each brighter (`L / N`) than the
+                        // A member with fewer points sees each brighter (`L / N`) than the
                         // dimmest colour the shared facings used; they can differ only where
                         // that made black points (so the unlit skip is on). If they do, the
                         // family is rendered image by image.
-                        s.lane_facing.resize(count, Facing::NoLight);
-                        facings(&s.lanes, lane_color, true, &mut s.lane_facing[..count]);
-                        self.diverged |= s.lane_facing[..count] != s.facing[..count];
+                        s.member_facing.resize(count, Facing::NoLight);
+                        facings(&s.lanes, member_color, true, &mut s.member_facing[..count]);
+                        self.diverged |= s.member_facing[..count] != s.facing[..count];
                     }
                     let own = s.facing[..count].iter().filter(|&&f| f == Facing::Towards).count() as u64;
                     self.shadow_excess[j] += towards - own;
@@ -507,7 +500,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         }
         debug_assert!(K == 1, "a family is traced without a recorder, with every skip on");
         let color = &mut color[0];
-        let (model, mat) = self.lane_shading(0, at.object);
+        let (model, mat) = self.member_shading(0, at.object);
         s.ensure_filter(len);
         speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
         shares(&mut s.lanes, len, point_color, &s.filter, mat, model);
@@ -556,10 +549,10 @@ impl<const K: usize> Tracer<'_, '_, K> {
         }
     }
 
-    /// How many of area light `index`'s `len` points lane `j` takes, and the colour `L / N`
-    /// each of them carries for it: all of them, unless the lane sets its own count.
-    fn lane_points(&self, j: usize, index: usize, area: &AreaLight, len: usize) -> (usize, DVec3) {
-        match self.lanes[j].area_count {
+    /// How many of area light `index`'s `len` points member `j` takes, and the colour `L / N`
+    /// each of them carries for it: all of them, unless the member sets its own count.
+    fn member_points(&self, j: usize, index: usize, area: &AreaLight, len: usize) -> (usize, DVec3) {
+        match self.members[j].area_count {
             Some((light, count)) if light == index && (count as usize) < len => {
                 (count as usize, area.color / count as f64)
             }
@@ -824,9 +817,9 @@ fn sort_by_verdict(open: &[u32], verdict: &[Verdict], hits: &mut [u32], tests: &
     (hit_count, test_count)
 }
 
-/// What makes two lanes' sums of one area light equal: their point count, their shading
-/// (its first lane) and the bits of their sums before it.
-type LaneKey = (usize, usize, [u64; 3]);
+/// What makes two members' sums of one area light equal: their point count, their shading
+/// (its first member) and the bits of their sums before it.
+type MemberKey = (usize, usize, [u64; 3]);
 
 /// The verdict of a candidate's cones (`cone`: axis and cosine of the bounding cone;
 /// `sure`: axis, cosine and reach of the cone through the inner ball, see

@@ -1,0 +1,149 @@
+//! The reference tracer: chapter 7.4b's Whitted recursion as the chapter tells it, one ray
+//! and one light point at a time, with no shortcut. It is the specification of every pixel
+//! ([`super::fast`] computes the same bits faster; tests/reference.rs compares them):
+//!
+//! 1. find the closest hit of the ray (a ray that hits nothing sees the background);
+//! 2. light the hit point locally: the ambient term once, then for each light (an area
+//!    light as its N point lights of colour `L / N`) the diffuse and specular shares of the
+//!    light that reaches the point through a shadow ray, filtered by the colours of the
+//!    transparent objects it crosses;
+//! 3. below the scene's recursion depth, add `k_r` times the radiance of the reflected ray
+//!    and `k_t` times that of the refracted ray, whose energy goes to the reflection on
+//!    total internal reflection; adaptive depth control leaves out a secondary ray that
+//!    cannot change its pixel's 8-bit value.
+
+use super::{SampleKey, Surface};
+use crate::light::{Incidence, Light, point_incidence};
+use crate::math::{Ray, reflect, refract};
+use crate::scene::Specular;
+use crate::shading::{ambient, beneath_notice, blinn, diffuse, phong, shadow_filter, specular, specular_tint};
+use crate::world::World;
+use glam::DVec3;
+
+/// Traces rays through a world, as the chapter does.
+pub struct Reference<'w, 's> {
+    world: &'w World<'s>,
+}
+
+impl<'w, 's> Reference<'w, 's> {
+    pub fn new(world: &'w World<'s>) -> Self {
+        Reference { world }
+    }
+
+    /// Radiance along the camera ray of sample `key`.
+    pub fn camera(&self, ray: &Ray, key: SampleKey) -> DVec3 {
+        self.radiance(ray, 1, 1.0, key)
+    }
+
+    /// Radiance along `ray` at recursion `level` (1 = camera ray), whose contribution to the
+    /// pixel is scaled by `weight`, the product of the `k_r` and `k_t` along its path.
+    fn radiance(&self, ray: &Ray, level: u32, weight: f64, key: SampleKey) -> DVec3 {
+        let settings = &self.world.scene.settings;
+        let Some((object, hit)) = self.world.closest(ray) else {
+            return settings.background;
+        };
+        let at = Surface::hit(self.world, ray, object, &hit);
+        let mut color = self.local(&at, key);
+        if level < settings.depth {
+            let mat = self.world.material_of(object);
+            let mut kr = mat.kr;
+            let mut refracted = None;
+            if mat.kt > 0.0 {
+                match refract(ray.dir, at.n, mat.eta(at.entering)) {
+                    Some(t) => refracted = Some(t.normalize()),
+                    // Total internal reflection: the transmitted energy is reflected.
+                    None => kr += mat.kt,
+                }
+            }
+            if kr > 0.0 {
+                let dir = reflect(ray.dir, at.n).normalize();
+                color += kr * self.secondary(&at, dir, level, weight * kr, key);
+            }
+            if let Some(dir) = refracted {
+                color += mat.kt * self.secondary(&at, dir, level, weight * mat.kt, key);
+            }
+        }
+        color
+    }
+
+    /// The radiance of the reflected or refracted ray leaving `from` along `dir`, or 0 when
+    /// adaptive depth control finds it cannot change its pixel.
+    fn secondary(&self, from: &Surface, dir: DVec3, level: u32, weight: f64, key: SampleKey) -> DVec3 {
+        let bound = self.world.remaining_bound[level as usize + 1];
+        if beneath_notice(weight, bound, self.world.scene.settings.adaptive_threshold) {
+            return DVec3::ZERO;
+        }
+        self.radiance(&from.ray_along(dir), level + 1, weight, key)
+    }
+
+    /// Local illumination at a hit (slides' full model):
+    /// `L = L_a k_a S + sum_i A_i L_i [k_d S max(N.L_i, 0) + k_s [m S + (1 - m)] spec_i]`,
+    /// an area light counting as its N points of colour `L / N`, summed in light order and
+    /// an area light's points in their order.
+    fn local(&self, at: &Surface, key: SampleKey) -> DVec3 {
+        let world = self.world;
+        let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
+        let mut color = DVec3::ZERO;
+        if model.ambient {
+            color += ambient(world.ambient, mat.ka, mat.color);
+        }
+        for (index, light) in world.scene.lights.iter().enumerate() {
+            match light {
+                Light::Ambient { .. } => {}
+                Light::Area(area) => {
+                    for q in world.area_points(index, key.pixel, key.sample).iter() {
+                        let incidence = point_incidence(q, area.point_color(), &area.attenuation, at.point, 1.0);
+                        color += self.light_share(incidence, at);
+                    }
+                }
+                _ => color += self.light_share(light.incidence(at.point), at),
+            }
+        }
+        color
+    }
+
+    /// One point light's share, `A L filter [k_d S max(N.L, 0) + k_s [m S + (1 - m)] spec]`:
+    /// nothing when no light arrives (the point is at the light) or the surface faces away
+    /// (`N.L <= 0`: the slides count neither term there); otherwise the light that the
+    /// shadow ray lets through.
+    fn light_share(&self, incidence: Option<Incidence>, at: &Surface) -> DVec3 {
+        let world = self.world;
+        let Some(inc) = incidence else {
+            return DVec3::ZERO;
+        };
+        let n_dot_l = at.n.dot(inc.to_light);
+        if n_dot_l <= 0.0 {
+            return DVec3::ZERO;
+        }
+        let filter = if world.scene.settings.shadows {
+            self.shadow_filter(at, &inc)
+        } else {
+            DVec3::ONE
+        };
+        let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
+        let light = inc.color * filter;
+        let spec = match model.specular {
+            Specular::None => 0.0,
+            Specular::Phong => phong(at.n, inc.to_light, at.eye, mat.shininess),
+            Specular::Blinn => blinn(at.n, inc.to_light, at.eye, mat.shininess),
+        };
+        let kd = if model.diffuse { mat.kd } else { 0.0 };
+        diffuse(light, kd, mat.color, n_dot_l) + specular(light, mat.ks, specular_tint(mat.metal, mat.color), spec)
+    }
+
+    /// Chapter 7.4b's shadow ray towards the light of incidence `inc`, up to the light
+    /// (`t_max` = its distance): 0 if it meets an opaque object, else the product of the
+    /// colours of the transparent objects it crosses, each counted once, in object order.
+    fn shadow_filter(&self, at: &Surface, inc: &Incidence) -> DVec3 {
+        let world = self.world;
+        let ray = at.ray_along(inc.to_light);
+        let transparent = |i: usize| world.material_of(i).is_transparent();
+        if world.any_hit(&ray, inc.distance, &|i| !transparent(i)) {
+            return DVec3::ZERO;
+        }
+        let mut crossed = Vec::new();
+        world.each_hit(&ray, inc.distance, &transparent, &mut |i| crossed.push(i));
+        crossed.sort_unstable();
+        shadow_filter(crossed.into_iter().map(|i| world.material_of(i).color))
+    }
+}

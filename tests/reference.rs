@@ -1,0 +1,111 @@
+//! The fast tracer against the reference tracer: the same radiance to the bit (each
+//! pixel's f64 channels, not only its 8-bit value) on every course figure's scene, on the
+//! scene files, and on scenes that exercise what the fast tracer groups or skips: per-sample
+//! area light points, adaptive depth control, transparent filters, the BVH.
+
+mod common;
+
+use common::scene;
+use glam::DVec3;
+use lumiere::figures::{registry, scaled};
+use lumiere::film::Film;
+use lumiere::render::{render, render_reference};
+use lumiere::scene::Scene;
+use lumiere::world::World;
+
+/// `scene` at `width x height`, `spp` samples.
+fn sized(mut scene: Scene, width: u32, height: u32, spp: u32) -> Scene {
+    scene.settings.width = width;
+    scene.settings.height = height;
+    scene.settings.samples_per_pixel = spp;
+    scene
+}
+
+/// Renders `scene` with both tracers and asserts every pixel's radiance bits are equal;
+/// returns how many pixels are lit (not black), so a caller can check the scene is not
+/// trivially dark.
+fn assert_tracers_agree(scene: &Scene, name: &str) -> usize {
+    let world = World::new(scene);
+    let (fast, _) = render(&world, &|| {});
+    let reference = render_reference(&world);
+    assert_same_bits(&fast, &reference, name);
+    fast.pixels.iter().filter(|p| **p != DVec3::ZERO).count()
+}
+
+fn assert_same_bits(fast: &Film, reference: &Film, name: &str) {
+    assert_eq!((fast.width, fast.height), (reference.width, reference.height));
+    for (i, (a, b)) in fast.pixels.iter().zip(&reference.pixels).enumerate() {
+        let bits = |c: &DVec3| c.to_array().map(f64::to_bits);
+        assert_eq!(
+            bits(a),
+            bits(b),
+            "{name}: pixel ({}, {}): fast {a} against reference {b}",
+            i as u32 % fast.width,
+            i as u32 / fast.width
+        );
+    }
+}
+
+#[test]
+fn every_course_figure_is_the_reference_image() {
+    let mut scenes = 0;
+    for set in registry() {
+        let mut done: Vec<Scene> = Vec::new();
+        for figure in (set.figures)() {
+            if done.contains(&figure.scene) {
+                continue;
+            }
+            let s = scaled(figure.scene.clone(), 0.1);
+            let (w, h) = (s.settings.width.min(64), s.settings.height.min(48));
+            let lit = assert_tracers_agree(&sized(s, w, h, 1), &format!("{}/{}", set.name, figure.stem));
+            assert!(lit > 0, "{}/{}: a black image compares nothing", set.name, figure.stem);
+            done.push(figure.scene);
+            scenes += 1;
+        }
+    }
+    // 81 figures, some sharing a scene.
+    assert!(scenes >= 70, "{scenes} scenes compared");
+}
+
+#[test]
+fn the_scene_files_are_the_reference_images() {
+    for name in [
+        "reference.toml",
+        "mirrors.toml",
+        "prism.toml",
+        "soft-shadows.toml",
+        "spheres-1k.toml",
+    ] {
+        let s = sized(scene(name), 48, 36, 4);
+        assert!(assert_tracers_agree(&s, name) > 100, "{name}");
+    }
+}
+
+#[test]
+fn per_sample_points_adaptive_depth_and_filters_agree() {
+    use lumiere::area_light::PointMode;
+    use lumiere::light::Light;
+    // Soft shadows with points drawn afresh for every sample (each sample its own set).
+    let mut soft = sized(scene("soft-shadows.toml"), 40, 30, 4);
+    for light in &mut soft.lights {
+        if let Light::Area(a) = light {
+            a.mode = PointMode::PerSample;
+            a.count = 16;
+        }
+    }
+    assert!(assert_tracers_agree(&soft, "per-sample soft shadows") > 100);
+    // The prism deep, with adaptive depth control cutting rays off, and without it.
+    for threshold in [0.0, 1.0, 8.0] {
+        let mut prism = sized(scene("prism.toml"), 40, 30, 1);
+        prism.settings.depth = 12;
+        prism.settings.adaptive_threshold = threshold;
+        assert!(assert_tracers_agree(&prism, &format!("prism, threshold {threshold}")) > 100);
+    }
+    // The reference scene without shadows, and with Phong highlights.
+    let mut flat = sized(scene("reference.toml"), 40, 30, 1);
+    flat.settings.shadows = false;
+    assert_tracers_agree(&flat, "no shadows");
+    let mut phong = sized(scene("reference.toml"), 40, 30, 1);
+    phong.settings.shading.specular = lumiere::scene::Specular::Phong;
+    assert_tracers_agree(&phong, "phong");
+}
