@@ -1,5 +1,8 @@
 //! The `lumiere` binary: parse the command line, run, print errors on stderr, exit with
-//! the documented code (0 ok, 1 render or comparison failed, 2 bad input).
+//! the documented code (0 ok, 1 render or comparison failed, 2 bad input). The command line
+//! lives here and in `cli/`; the library (`src/lib.rs`) holds the work.
+
+mod cli;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -12,11 +15,16 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    let cli = lumiere::cli::Cli::parse();
-    match lumiere::cli::run(cli) {
+    let args = cli::Cli::parse();
+    match cli::run(args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("lumiere: error: {e}");
+            let mut source = std::error::Error::source(&e);
+            while let Some(cause) = source {
+                eprintln!("  caused by: {cause}");
+                source = cause.source();
+            }
             ExitCode::from(e.exit_code())
         }
     }

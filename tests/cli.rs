@@ -504,3 +504,55 @@ fn verbose_notes_go_to_stderr_and_json_stats_to_stdout() {
         Some(2)
     );
 }
+
+/// Every `.rs` file under `dir`, recursively.
+fn rust_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+#[test]
+fn the_library_holds_no_command_line() {
+    // Option parsing, printing, progress bars and signal handling belong to the binary
+    // (src/main.rs and src/cli/); the library's modules return data.
+    let mut files = Vec::new();
+    rust_files(&repo("src"), &mut files);
+    let library: Vec<_> = files
+        .iter()
+        .filter(|p| !p.starts_with(repo("src/cli")) && **p != repo("src/main.rs"))
+        .collect();
+    assert!(library.len() > 40, "{library:?}");
+    for path in library {
+        let text = fs::read_to_string(path).unwrap();
+        for (i, line) in text.lines().enumerate() {
+            let code = line.trim_start();
+            if code.starts_with("//") {
+                continue;
+            }
+            for word in [
+                "clap::",
+                "use clap",
+                "indicatif",
+                "ctrlc",
+                "signal_hook",
+                "println!",
+                "print!(",
+            ] {
+                assert!(!code.contains(word), "{}:{}: {line}", path.display(), i + 1);
+            }
+        }
+    }
+    let lib = fs::read_to_string(repo("src/lib.rs")).unwrap();
+    assert!(!lib.contains("mod cli"), "src/lib.rs declares the command line");
+    assert!(
+        fs::read_to_string(repo("src/main.rs"))
+            .unwrap()
+            .contains("\nmod cli;\n")
+    );
+}
