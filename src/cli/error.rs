@@ -1,7 +1,10 @@
 //! The command line's errors and their exit codes.
 
+use super::signals::Signal;
+
 /// Exit codes: 0 success, 1 the work failed (render, write, comparison), 2 bad input,
-/// 130 interrupted by Ctrl-C.
+/// 128 + the signal's number when a signal stopped the work (130 for Ctrl-C, 143 for
+/// SIGTERM, 129 for SIGHUP).
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
     /// The input was wrong: scene file, option value, paths.
@@ -10,12 +13,12 @@ pub enum CliError {
     /// The input was fine but the work failed (e.g. the output could not be written).
     #[error("{0}")]
     Failed(String),
-    /// Ctrl-C: nothing was written (exit 130, the shell's convention for SIGINT).
-    #[error("interrupted; no output was written")]
-    Interrupted,
-    /// Ctrl-C during a command that writes several outputs: what was and was not written.
-    #[error("interrupted; {0}")]
-    InterruptedAt(String),
+    /// A signal stopped the work: nothing was written.
+    #[error("{}; no output was written", .0.interrupted())]
+    Interrupted(Signal),
+    /// A signal stopped a command that writes several outputs: what was and was not written.
+    #[error("{how}; {1}", how = .0.interrupted())]
+    InterruptedAt(Signal, String),
 }
 
 impl CliError {
@@ -23,7 +26,7 @@ impl CliError {
         match self {
             CliError::BadInput(_) => 2,
             CliError::Failed(_) => 1,
-            CliError::Interrupted | CliError::InterruptedAt(_) => 130,
+            CliError::Interrupted(s) | CliError::InterruptedAt(s, _) => s.exit_code(),
         }
     }
 }

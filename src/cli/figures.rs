@@ -1,7 +1,8 @@
 //! `lumiere figures`: the course's figure sets regenerated (or listed, or checked against
-//! their manifests), one line per set written, Ctrl-C leaving each set wholly old or new.
+//! their manifests), one line per set written, a signal (Ctrl-C, SIGTERM, SIGHUP) leaving
+//! each set wholly old or wholly new.
 
-use super::{CliError, Verbosity, catch_interrupt, interrupted, with_threads};
+use super::{CliError, Verbosity, signals, with_threads};
 use clap::Args;
 use lumiere::figures::{FigureSet, Reuse, generate_until, registry, write_index};
 use std::path::PathBuf;
@@ -68,11 +69,11 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
         ))
     })?;
     let start = std::time::Instant::now();
-    // Ctrl-C stops the set being rendered and leaves its folder as it was; the sets before
-    // it are complete (see `generate_until`). If the handler cannot be installed, Ctrl-C
-    // kills the process, which also leaves every set whole unless it lands in the
+    // A signal stops the set being rendered and leaves its folder as it was; the sets before
+    // it are complete (see `generate_until`). If the handler cannot be installed, the signal
+    // ends the process, which also leaves every set whole unless it lands in the
     // milliseconds a set's files take to write.
-    let cancel = catch_interrupt();
+    let cancel = signals::catch();
     let mut written = Vec::new();
     let mut reuse = Reuse::for_sets(&chosen);
     for set in chosen {
@@ -80,13 +81,17 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
             generate_until(set, &args.out, args.scale, cancel, &mut reuse)
         })?
         .map_err(CliError::Failed)?;
-        let stopped = interrupted();
+        let stopped = signals::received();
         let Some(report) = report else {
-            return Err(CliError::InterruptedAt(format!(
-                "figure set {:?} and the sets after it were left as they were; complete: [{}]",
-                set.name,
-                written.join(", ")
-            )));
+            let signal = stopped.unwrap_or(signals::Signal::INT);
+            return Err(CliError::InterruptedAt(
+                signal,
+                format!(
+                    "figure set {:?} and the sets after it were left as they were; complete: [{}]",
+                    set.name,
+                    written.join(", ")
+                ),
+            ));
         };
         written.push(set.name);
         if v != Verbosity::Quiet {
@@ -98,11 +103,14 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
                 report.dir.display()
             );
         }
-        if stopped {
-            return Err(CliError::InterruptedAt(format!(
-                "figure sets written: [{}]; the sets after them were left as they were",
-                written.join(", ")
-            )));
+        if let Some(signal) = stopped {
+            return Err(CliError::InterruptedAt(
+                signal,
+                format!(
+                    "figure sets written: [{}]; the sets after them were left as they were",
+                    written.join(", ")
+                ),
+            ));
         }
     }
     write_index(&args.out).map_err(CliError::Failed)?;

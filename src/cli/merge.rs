@@ -1,7 +1,7 @@
 //! `lumiere merge`: the shard files of a split render assembled into the one image a single
 //! machine would have written.
 
-use super::{CliError, Verbosity, check_output};
+use super::{CliError, Verbosity, check_output, signals};
 use clap::Args;
 use lumiere::film::write_atomic;
 use std::path::PathBuf;
@@ -20,6 +20,7 @@ pub struct MergeArgs {
 }
 
 pub fn run(args: &MergeArgs, v: Verbosity) -> Result<(), CliError> {
+    signals::catch();
     let format = check_output(&args.output, &args.shards[0])?;
     let mut shards = Vec::new();
     for path in &args.shards {
@@ -39,6 +40,10 @@ pub fn run(args: &MergeArgs, v: Verbosity) -> Result<(), CliError> {
     });
     let bytes = lumiere::output::encode(&film, format, args.srgb)
         .map_err(|e| CliError::Failed(format!("cannot encode the image: {e}")))?;
+    // A signal during the reading or the merge: the image is not written.
+    if let Some(signal) = signals::received() {
+        return Err(CliError::Interrupted(signal));
+    }
     write_atomic(&args.output, &bytes)
         .map_err(|e| CliError::Failed(format!("{}: cannot write the image: {e}", args.output.display())))
 }

@@ -1,6 +1,6 @@
 //! The `lumiere` command line: clap's types of the top level, dispatch to one module per
-//! command, and what the commands share (verbosity, worker threads, Ctrl-C, scene loading,
-//! output paths, and the library's named choices as clap values). The library's work
+//! command, and what the commands share (verbosity, worker threads, scene loading, output
+//! paths, and the library's named choices as clap values; signals in [`signals`]). The library's work
 //! functions return data; these modules parse, print and choose exit codes.
 
 mod compare;
@@ -10,6 +10,7 @@ mod merge;
 mod probe;
 mod render;
 mod review;
+mod signals;
 mod stress;
 mod study;
 
@@ -22,7 +23,6 @@ use lumiere::scene::{self, Scene};
 use lumiere::skips::Skip;
 use std::path::Path;
 use std::str::FromStr;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -70,7 +70,7 @@ impl Verbosity {
 pub enum Command {
     /// Render a scene file to an image (PNG, or PFM / EXR float radiance).
     #[command(
-        after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1 --stats\n  lumiere render scenes/prism.toml -o prism.exr --depth 20          # float radiance\n  lumiere render scenes/reference.toml -o part0.shard --shard 0/4    # a quarter, for merge\n\nExit codes: 0 ok, 1 render failed, 2 bad input, 130 interrupted (nothing written)."
+        after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1 --stats\n  lumiere render scenes/prism.toml -o prism.exr --depth 20          # float radiance\n  lumiere render scenes/reference.toml -o part0.shard --shard 0/4    # a quarter, for merge\n\nExit codes: 0 ok, 1 render failed, 2 bad input, 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP (nothing written)."
     )]
     Render(render::RenderArgs),
     /// Compare two images: max and RMS difference, PSNR, differing pixels, heat-map.
@@ -80,13 +80,13 @@ pub enum Command {
     Compare(compare::CompareArgs),
     /// Regenerate the course's figures (all sets when none is named).
     #[command(
-        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nCtrl-C leaves each set wholly old or wholly new.\nExit codes: 0 ok, 1 a figure could not be written, 2 bad input, 130 interrupted."
+        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nCtrl-C, SIGTERM or SIGHUP leaves each set wholly old or wholly new.\nExit codes: 0 ok, 1 a figure could not be written, 2 bad input, 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP."
     )]
     Figures(figures::FiguresArgs),
     /// Assemble the shard files of a split render (`render --shard K/N`) into one image,
     /// bit-identical to a one-machine render.
     #[command(
-        after_help = "Example:\n  for k in 0 1 2; do lumiere render scenes/reference.toml --shard $k/3 -o part$k.shard; done\n  lumiere merge part0.shard part1.shard part2.shard -o reference.png\n\nExit codes: 0 ok, 1 write failed, 2 bad or incomplete shards."
+        after_help = "Example:\n  for k in 0 1 2; do lumiere render scenes/reference.toml --shard $k/3 -o part$k.shard; done\n  lumiere merge part0.shard part1.shard part2.shard -o reference.png\n\nExit codes: 0 ok, 1 write failed, 2 bad or incomplete shards, 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP (nothing written)."
     )]
     Merge(merge::MergeArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
@@ -257,20 +257,4 @@ fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -
         .build()
         .map_err(|e| CliError::Failed(format!("cannot start worker threads: {e}")))?;
     Ok(pool.install(f))
-}
-
-/// Set by Ctrl-C; renders stop at the next row and write nothing.
-static INTERRUPTED: AtomicBool = AtomicBool::new(false);
-
-/// Lets Ctrl-C set [`INTERRUPTED`] instead of killing the process, and returns the flag. If
-/// the handler cannot be installed (one already is), Ctrl-C keeps its default behaviour,
-/// which also leaves no partial output: every file is written whole or not at all.
-fn catch_interrupt() -> &'static AtomicBool {
-    let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, Ordering::Relaxed));
-    &INTERRUPTED
-}
-
-/// Whether Ctrl-C was pressed.
-fn interrupted() -> bool {
-    INTERRUPTED.load(Ordering::Relaxed)
 }

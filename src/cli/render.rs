@@ -1,7 +1,7 @@
 //! `lumiere render`: a scene file to an image or a shard file, with a progress bar on a
 //! terminal, and ray counts, skipped work and time by phase with `--stats` / `--json`.
 
-use super::{CliError, Overrides, Verbosity, catch_interrupt, check_output, check_output_path, interrupted};
+use super::{CliError, Overrides, Verbosity, check_output, check_output_path, signals};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::film::write_atomic;
@@ -54,6 +54,8 @@ fn progress_bar(rows: u64, quiet: bool) -> ProgressBar {
 }
 
 pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
+    // From here on a signal stops the render at the next row, and nothing is written.
+    let cancel = signals::catch();
     let start = std::time::Instant::now();
     let scene = super::load_scene(&args.scene, &args.overrides)?;
     let loaded = start.elapsed();
@@ -87,12 +89,11 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
         )
     });
     let bar = progress_bar(rows.len() as u64, v == Verbosity::Quiet);
-    let cancel = catch_interrupt();
     let (pixels, stats) =
         super::with_threads(args.threads, || render_rows(&world, rows, &|| bar.inc(1), Some(cancel)))?;
     bar.finish_and_clear();
-    if interrupted() {
-        return Err(CliError::Interrupted);
+    if let Some(signal) = signals::received() {
+        return Err(CliError::Interrupted(signal));
     }
     let bytes = match (args.shard, format) {
         (Some(spec), _) => lumiere::shard::encode(&scene, spec, &pixels),
