@@ -1,7 +1,8 @@
 //! `lumiere figures`: the course's figure sets regenerated (or listed, or checked against
 //! their manifests), one line per set written, a signal (Ctrl-C, SIGTERM, SIGHUP) leaving
-//! each set wholly old or wholly new.
+//! each set wholly old or wholly new, one run at a time in an output folder.
 
+use super::lock::FolderLock;
 use super::{CliError, Verbosity, signals, with_threads};
 use clap::Args;
 use lumiere::figures::{FigureSet, Reuse, generate_until, registry, write_index};
@@ -68,6 +69,8 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
             args.out.display()
         ))
     })?;
+    // Held until the run ends, however it ends: a second run on this folder is refused.
+    let _lock = FolderLock::take(&args.out)?;
     let start = std::time::Instant::now();
     // A signal stops the set being rendered and leaves its folder as it was; the sets before
     // it are complete (see `generate_until`). If the handler cannot be installed, the signal

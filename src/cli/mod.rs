@@ -6,6 +6,7 @@
 mod compare;
 mod error;
 mod figures;
+mod lock;
 mod merge;
 mod probe;
 mod render;
@@ -80,7 +81,7 @@ pub enum Command {
     Compare(compare::CompareArgs),
     /// Regenerate the course's figures (all sets when none is named).
     #[command(
-        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nCtrl-C, SIGTERM or SIGHUP leaves each set wholly old or wholly new.\nExit codes: 0 ok, 1 a figure could not be written, 2 bad input, 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP."
+        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nCtrl-C, SIGTERM or SIGHUP leaves each set wholly old or wholly new. One run at a time writes into an output folder.\nExit codes: 0 ok, 1 a figure could not be written, 2 bad input (or another run is writing into the folder), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP."
     )]
     Figures(figures::FiguresArgs),
     /// Assemble the shard files of a split render (`render --shard K/N`) into one image,
