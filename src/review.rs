@@ -9,7 +9,7 @@
 //! ground. A new snapshot with no accepted one gets a sheet with the new image alone.
 
 use crate::compare::{Comparison, compare_rgb8, heat_map, load_rgb8};
-use crate::film::{encode_png, write_atomic};
+use crate::film::{WriteError, encode_png, write_atomic};
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -19,9 +19,12 @@ pub enum ReviewError {
     /// The snapshot folder or one of its images cannot be read.
     #[error("{0}")]
     Read(String),
-    /// A sheet cannot be encoded or written, or the sheets' folder cannot be made.
+    /// A sheet cannot be encoded.
     #[error("{0}")]
-    Write(String),
+    Encode(String),
+    /// A sheet cannot be written, or the sheets' folder cannot be made.
+    #[error(transparent)]
+    Write(#[from] WriteError),
 }
 
 /// Margin around and between the panels of a sheet, in pixels.
@@ -146,9 +149,8 @@ pub fn review_one(dir: &Path, name: &str, out: &Path) -> Result<Reviewed, Review
     };
     let sheet_path = out.join(format!("{name}.png"));
     let png = encode_png(image.width, image.height, &image.data)
-        .map_err(|e| ReviewError::Write(format!("cannot encode the sheet of {name}: {e}")))?;
-    write_atomic(&sheet_path, &png)
-        .map_err(|e| ReviewError::Write(format!("{}: cannot write the sheet: {e}", sheet_path.display())))?;
+        .map_err(|e| ReviewError::Encode(format!("cannot encode the sheet of {name}: {e}")))?;
+    write_atomic(&sheet_path, &png).map_err(|e| WriteError::new(&sheet_path, "cannot write the sheet", e))?;
     Ok(Reviewed {
         name: name.to_owned(),
         change,
@@ -160,8 +162,7 @@ pub fn review_one(dir: &Path, name: &str, out: &Path) -> Result<Reviewed, Review
 pub fn review(dir: &Path, out: &Path) -> Result<Vec<Reviewed>, ReviewError> {
     let names = pending_names(dir).map_err(ReviewError::Read)?;
     if !names.is_empty() {
-        fs::create_dir_all(out)
-            .map_err(|e| ReviewError::Write(format!("{}: cannot create the folder: {e}", out.display())))?;
+        fs::create_dir_all(out).map_err(|e| WriteError::new(out, "cannot create the folder", e))?;
     }
     names.iter().map(|n| review_one(dir, n, out)).collect()
 }

@@ -1,6 +1,6 @@
 //! The command line as a user meets it: bad scene files and bad paths give a clear error
 //! naming the file, line, column and field, exit code 2 (bad input) or 1 (work failed), never
-//! a panic, and never a half-written output.
+//! a panic, and never a half-written output. Every exit code case: tests/exit_codes.rs.
 
 mod common;
 use common::*;
@@ -364,12 +364,13 @@ fn bad_output_paths_leave_nothing() {
     // Missing directory: refused before rendering.
     let o = lumiere(&["render", s, "-o", dir.join("nope/out.png").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
-    // The output path is an existing directory: the write fails (exit 1), nothing left behind.
+    // The output path is an existing directory: refused before rendering (exit 2), nothing
+    // left behind.
     let blocked = dir.join("taken.png");
     fs::create_dir(&blocked).unwrap();
     let o = lumiere(&["render", s, "-o", blocked.to_str().unwrap(), "--quiet"]);
-    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot write the image"));
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("taken.png: the output is a directory"));
     let names: Vec<_> = fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(names.len(), 2, "{names:?}");
     // Not a PNG name, or the input itself: refused.

@@ -4,7 +4,7 @@
 use super::{CliError, check_output};
 use clap::Args;
 use lumiere::compare::{compare_rgb8, heat_map, load_rgb8};
-use lumiere::film::write_atomic;
+use lumiere::film::{WriteError, write_atomic};
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -44,7 +44,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         }
         let png = lumiere::film::encode_png(wa, ha, &heat_map(&a, &b, 16))
             .map_err(|e| CliError::Failed(format!("cannot encode the heat-map: {e}")))?;
-        write_atomic(path, &png).map_err(|e| CliError::Failed(format!("{}: cannot write: {e}", path.display())))?;
+        write_atomic(path, &png).map_err(|e| WriteError::new(path, "cannot write", e))?;
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&c).unwrap_or_default());

@@ -5,7 +5,8 @@
 use super::lock::FolderLock;
 use super::{CliError, Verbosity, signals, with_threads};
 use clap::Args;
-use lumiere::figures::{FigureSet, Reuse, generate_until, registry, write_index};
+use lumiere::figures::{FigureSet, FiguresError, Reuse, generate_until, registry, write_index};
+use lumiere::film::WriteError;
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -63,12 +64,8 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     if args.check {
         return check(&chosen, args, v);
     }
-    std::fs::create_dir_all(&args.out).map_err(|e| {
-        CliError::BadInput(format!(
-            "{}: cannot create the output directory: {e}",
-            args.out.display()
-        ))
-    })?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| WriteError::new(&args.out, "cannot create the output directory", e))?;
     // Held until the run ends, however it ends: a second run on this folder is refused.
     let _lock = FolderLock::take(&args.out)?;
     let start = std::time::Instant::now();
@@ -83,7 +80,10 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
         let report = with_threads(args.threads, || {
             generate_until(set, &args.out, args.scale, cancel, &mut reuse)
         })?
-        .map_err(CliError::Failed)?;
+        .map_err(|e| match e {
+            FiguresError::Encode(m) => CliError::Failed(m),
+            FiguresError::Write(w) => CliError::from(w),
+        })?;
         let stopped = signals::received();
         let Some(report) = report else {
             let signal = stopped.unwrap_or(signals::Signal::INT);
@@ -116,7 +116,7 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
             ));
         }
     }
-    write_index(&args.out).map_err(CliError::Failed)?;
+    write_index(&args.out)?;
     if v != Verbosity::Quiet {
         println!(
             "total                     {:>7.2} s  {}",

@@ -5,6 +5,7 @@
 //! the holder releases it.
 
 use super::CliError;
+use lumiere::film::WriteError;
 use std::fs::{self, File, OpenOptions, TryLockError};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -32,7 +33,7 @@ impl FolderLock {
                 .create(true)
                 .truncate(false)
                 .open(&path)
-                .map_err(|e| CliError::BadInput(format!("{}: cannot create the lock file: {e}", path.display())))?;
+                .map_err(|e| WriteError::new(&path, "cannot create the lock file", e))?;
             match file.try_lock() {
                 Ok(()) => {}
                 Err(TryLockError::WouldBlock) => {

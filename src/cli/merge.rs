@@ -3,7 +3,7 @@
 
 use super::{CliError, Verbosity, check_output, signals};
 use clap::Args;
-use lumiere::film::write_atomic;
+use lumiere::film::{WriteError, write_atomic};
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -44,6 +44,6 @@ pub fn run(args: &MergeArgs, v: Verbosity) -> Result<(), CliError> {
     if let Some(signal) = signals::received() {
         return Err(CliError::Interrupted(signal));
     }
-    write_atomic(&args.output, &bytes)
-        .map_err(|e| CliError::Failed(format!("{}: cannot write the image: {e}", args.output.display())))
+    write_atomic(&args.output, &bytes).map_err(|e| WriteError::new(&args.output, "cannot write the image", e))?;
+    Ok(())
 }

@@ -71,23 +71,23 @@ impl Verbosity {
 pub enum Command {
     /// Render a scene file to an image (PNG, or PFM / EXR float radiance).
     #[command(
-        after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1 --stats\n  lumiere render scenes/prism.toml -o prism.exr --depth 20          # float radiance\n  lumiere render scenes/reference.toml -o part0.shard --shard 0/4    # a quarter, for merge\n\nExit codes: 0 ok, 1 render failed, 2 bad input, 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP (nothing written)."
+        after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1 --stats\n  lumiere render scenes/prism.toml -o prism.exr --depth 20          # float radiance\n  lumiere render scenes/reference.toml -o part0.shard --shard 0/4    # a quarter, for merge\n\nExit codes: 0 ok, 1 the image could not be written (disk full), 2 bad input (scene, option, output path), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP (nothing written)."
     )]
     Render(render::RenderArgs),
     /// Compare two images: max and RMS difference, PSNR, differing pixels, heat-map.
     #[command(
-        after_help = "Examples:\n  lumiere compare mine.png figures/lighting/01-ambient.png\n  lumiere compare mine.png ref.png --tolerance 1 --heatmap diff.png --json\n\nExit codes: 0 within tolerance, 1 some pixel differs by more than the tolerance, 2 bad input."
+        after_help = "Examples:\n  lumiere compare mine.png figures/lighting/01-ambient.png\n  lumiere compare mine.png ref.png --tolerance 1 --heatmap diff.png --json\n\nExit codes: 0 within tolerance, 1 some pixel differs by more than the tolerance, 2 bad input (images, heat-map path)."
     )]
     Compare(compare::CompareArgs),
     /// Regenerate the course's figures (all sets when none is named).
     #[command(
-        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nCtrl-C, SIGTERM or SIGHUP leaves each set wholly old or wholly new. One run at a time writes into an output folder.\nExit codes: 0 ok, 1 a figure could not be written, 2 bad input (or another run is writing into the folder), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP."
+        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nCtrl-C, SIGTERM or SIGHUP leaves each set wholly old or wholly new. One run at a time writes into an output folder.\nExit codes: 0 ok, 1 a figure could not be written (disk full) or differs (--check), 2 bad input (option, output folder, or another run writing into it), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP."
     )]
     Figures(figures::FiguresArgs),
     /// Assemble the shard files of a split render (`render --shard K/N`) into one image,
     /// bit-identical to a one-machine render.
     #[command(
-        after_help = "Example:\n  for k in 0 1 2; do lumiere render scenes/reference.toml --shard $k/3 -o part$k.shard; done\n  lumiere merge part0.shard part1.shard part2.shard -o reference.png\n\nExit codes: 0 ok, 1 write failed, 2 bad or incomplete shards, 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP (nothing written)."
+        after_help = "Example:\n  for k in 0 1 2; do lumiere render scenes/reference.toml --shard $k/3 -o part$k.shard; done\n  lumiere merge part0.shard part1.shard part2.shard -o reference.png\n\nExit codes: 0 ok, 1 write failed (disk full), 2 bad or incomplete shards or output path, 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP (nothing written)."
     )]
     Merge(merge::MergeArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
@@ -100,7 +100,7 @@ pub enum Command {
     Probe(probe::ProbeArgs),
     /// Write old | new | difference sheets for pending insta image snapshots.
     #[command(
-        after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/snapshot-review\n\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written, 2 bad input."
+        after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/snapshot-review\n\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written (disk full), 2 bad input (folders, images)."
     )]
     ReviewSnapshots(review::ReviewArgs),
     /// Numerical stress campaign: hard rays against every shape, checked against double-double references.
@@ -221,26 +221,28 @@ fn check_output(output: &Path, input: &Path) -> Result<lumiere::output::Format, 
     Ok(format)
 }
 
-/// Checks that `output` is not `input` and that its directory exists.
+/// Checks, before any work, that `output` is not `input`, is not a directory, and that its
+/// directory exists. Whether the directory can be written is known only by writing: a
+/// write refused there is bad input too (see [`CliError::from`]).
 fn check_output_path(output: &Path, input: &Path) -> Result<(), CliError> {
+    let bad = |m: String| Err(CliError::BadInput(format!("{}: {m}", output.display())));
     if let (Ok(a), Ok(b)) = (output.canonicalize(), input.canonicalize())
         && a == b
     {
-        return Err(CliError::BadInput(format!(
-            "{}: the output would overwrite the input",
-            output.display()
-        )));
+        return bad("the output would overwrite the input".into());
+    }
+    if output.is_dir() {
+        return bad("the output is a directory; name a file in it".into());
     }
     let parent = output
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
+    if parent.exists() && !parent.is_dir() {
+        return bad(format!("{} is not a directory", parent.display()));
+    }
     if !parent.is_dir() {
-        return Err(CliError::BadInput(format!(
-            "{}: the output directory {} does not exist",
-            output.display(),
-            parent.display()
-        )));
+        return bad(format!("the output directory {} does not exist", parent.display()));
     }
     Ok(())
 }

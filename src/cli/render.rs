@@ -4,7 +4,7 @@
 use super::{CliError, Overrides, Verbosity, check_output, check_output_path, signals};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use lumiere::film::write_atomic;
+use lumiere::film::{WriteError, write_atomic};
 use lumiere::render::{RenderStats, render_rows};
 use lumiere::scene::World;
 use lumiere::skips::Skip;
@@ -108,8 +108,7 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
         }
         (None, None) => unreachable!("format is checked when there is no shard"),
     };
-    write_atomic(&args.output, &bytes)
-        .map_err(|e| CliError::Failed(format!("{}: cannot write the image: {e}", args.output.display())))?;
+    write_atomic(&args.output, &bytes).map_err(|e| WriteError::new(&args.output, "cannot write the image", e))?;
     let phases = Phases {
         load: loaded.as_secs_f64(),
         build: (built - loaded).as_secs_f64(),

@@ -19,7 +19,8 @@ pub struct ReviewArgs {
 pub fn run(args: &ReviewArgs) -> Result<(), CliError> {
     let reviewed = review(&args.dir, &args.out).map_err(|e| match e {
         ReviewError::Read(m) => CliError::BadInput(m),
-        ReviewError::Write(m) => CliError::Failed(m),
+        ReviewError::Encode(m) => CliError::Failed(m),
+        ReviewError::Write(w) => CliError::from(w),
     })?;
     if reviewed.is_empty() {
         println!("no pending snapshots (*.snap.new) in {}", args.dir.display());

@@ -3,7 +3,7 @@
 
 use super::{CliError, Verbosity, with_threads};
 use clap::{Args, Subcommand};
-use lumiere::film::write_atomic;
+use lumiere::film::{WriteError, write_atomic};
 use lumiere::limits;
 use lumiere::placement::Placement;
 use lumiere::scene;
@@ -22,7 +22,7 @@ pub struct StudyArgs {
 pub enum StudyKind {
     /// Time against error of an area light for N points x placements x modes.
     #[command(
-        after_help = "Examples:\n  lumiere study soft-shadows                       # scenes/soft-shadows.toml, 200 x 150, into study/\n  lumiere study soft-shadows --points 1,16,256 --placements uniform,fibonacci --modes per_sample\n  lumiere study soft-shadows scenes/soft-shadows.toml --width 400 --height 300 --repeats 3 --check-reference --out /tmp/study\n\nWrites <out>/study.csv, study.png (log-log RMSE against time), study.md (tables), reference.png.\nExit codes: 0 ok, 1 an output could not be written, 2 bad input (no area light, bad list)."
+        after_help = "Examples:\n  lumiere study soft-shadows                       # scenes/soft-shadows.toml, 200 x 150, into study/\n  lumiere study soft-shadows --points 1,16,256 --placements uniform,fibonacci --modes per_sample\n  lumiere study soft-shadows scenes/soft-shadows.toml --width 400 --height 300 --repeats 3 --check-reference --out /tmp/study\n\nWrites <out>/study.csv, study.png (log-log RMSE against time), study.md (tables), reference.png.\nExit codes: 0 ok, 1 an output could not be written (disk full), 2 bad input (no area light, bad list, output folder)."
     )]
     SoftShadows(SoftShadowArgs),
 }
@@ -131,12 +131,8 @@ fn soft_shadows(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {
         ..scene::Overrides::default()
     };
     size.apply(&mut scene).map_err(bad)?;
-    std::fs::create_dir_all(&args.out).map_err(|e| {
-        bad(format!(
-            "{}: cannot create the output directory: {e}",
-            args.out.display()
-        ))
-    })?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| WriteError::new(&args.out, "cannot create the output directory", e))?;
     let plan = Plan {
         points,
         placements,
@@ -155,7 +151,7 @@ fn soft_shadows(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {
     })?;
     for (name, bytes) in outputs(&study, &reference_film).map_err(CliError::Failed)? {
         let path = args.out.join(name);
-        write_atomic(&path, &bytes).map_err(|e| CliError::Failed(format!("{}: cannot write: {e}", path.display())))?;
+        write_atomic(&path, &bytes).map_err(|e| WriteError::new(&path, "cannot write", e))?;
     }
     print!("{}", lumiere::study::report(&study));
     Ok(())
