@@ -1,6 +1,7 @@
 //! The `lumiere` binary: parse the command line, run, print errors on stderr, exit with
-//! the documented code (0 ok, 1 render or comparison failed, 2 bad input). The command line
-//! lives here and in `cli/`; the library (`src/lib.rs`) holds the work.
+//! the documented code (0 ok, 1 the work failed, 2 bad input, 128 + N stopped by signal N;
+//! README.md's table). The command line lives here and in `cli/`; the library
+//! (`src/lib.rs`) holds the work.
 
 mod cli;
 

@@ -450,11 +450,11 @@ pub fn generate(set: &FigureSet, out: &Path, scale: f64) -> Result<SetReport, Fi
     generate_until(set, out, scale, &AtomicBool::new(false), &mut Reuse::default()).map(|r| r.expect("never cancelled"))
 }
 
-/// [`generate`], abandoned as soon as `cancel` is true (Ctrl-C): then it returns `Ok(None)`
-/// and the set's folder is as it was. Every image is rendered, and every file encoded, in
-/// memory before the first file is written, so a set on disk is wholly old or wholly new:
-/// the writes take milliseconds, and Ctrl-C only sets `cancel` (the caller's handler), which
-/// is looked at again after the set is written. Each file is written atomically, the
+/// [`generate`], abandoned as soon as `cancel` is true (Ctrl-C or another signal): then it
+/// returns `Ok(None)` and the set's folder is as it was. Every image is rendered, and every
+/// file encoded, in memory before the first file is written, so a set on disk is wholly old
+/// or wholly new: the writes take milliseconds, and a signal only sets `cancel` (the
+/// caller's handler), which is looked at again after the set is written. Each file is written atomically, the
 /// manifest last.
 pub fn generate_until(
     set: &FigureSet,
