@@ -69,6 +69,27 @@ pub fn encode_png(width: u32, height: u32, rgb: &[u8]) -> Result<Vec<u8>, image:
     Ok(out)
 }
 
+/// A file or folder that could not be written: which, what was being done (`cannot write`,
+/// `cannot create the folder`, ...) and the system's error, whose kind tells a bad path
+/// (missing folder, permission, read-only file system) from a failed write (disk full).
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {action}: {io}", path.display())]
+pub struct WriteError {
+    pub path: PathBuf,
+    pub action: &'static str,
+    pub io: std::io::Error,
+}
+
+impl WriteError {
+    pub fn new(path: &Path, action: &'static str, io: std::io::Error) -> Self {
+        WriteError {
+            path: path.to_path_buf(),
+            action,
+            io,
+        }
+    }
+}
+
 /// Writes `bytes` to `path` atomically: a temporary file in the same directory, flushed,
 /// then renamed over the target. On any error the temporary file is removed, so the target
 /// is either the old file or the complete new one, never half-written.

@@ -1,5 +1,9 @@
 //! The `lumiere` binary: parse the command line, run, print errors on stderr, exit with
-//! the documented code (0 ok, 1 render or comparison failed, 2 bad input).
+//! the documented code (0 ok, 1 the work failed, 2 bad input, 128 + N stopped by signal N;
+//! README.md's table). The command line lives here and in `cli/`; the library
+//! (`src/lib.rs`) holds the work.
+
+mod cli;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -12,11 +16,16 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    let cli = lumiere::cli::Cli::parse();
-    match lumiere::cli::run(cli) {
+    let args = cli::Cli::parse();
+    match cli::run(args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("lumiere: error: {e}");
+            let mut source = std::error::Error::source(&e);
+            while let Some(cause) = source {
+                eprintln!("  caused by: {cause}");
+                source = cause.source();
+            }
             ExitCode::from(e.exit_code())
         }
     }

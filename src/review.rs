@@ -8,21 +8,23 @@
 //! ([`crate::compare::heat_map`]: black equal, blue small, red, white >= 16 levels), on a grey
 //! ground. A new snapshot with no accepted one gets a sheet with the new image alone.
 
-use crate::cli::CliError;
 use crate::compare::{Comparison, compare_rgb8, heat_map, load_rgb8};
-use crate::film::{encode_png, write_atomic};
-use clap::Args;
+use crate::film::{WriteError, encode_png, write_atomic};
 use std::fs;
 use std::path::{Path, PathBuf};
 
-#[derive(Args, Debug)]
-pub struct ReviewArgs {
-    /// Folder of the insta snapshots.
-    #[arg(long, default_value = "snapshots")]
-    pub dir: PathBuf,
-    /// Folder for the sheets (created if missing).
-    #[arg(long, default_value = "target/snapshot-review")]
-    pub out: PathBuf,
+/// Why a review stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum ReviewError {
+    /// The snapshot folder or one of its images cannot be read.
+    #[error("{0}")]
+    Read(String),
+    /// A sheet cannot be encoded.
+    #[error("{0}")]
+    Encode(String),
+    /// A sheet cannot be written, or the sheets' folder cannot be made.
+    #[error(transparent)]
+    Write(#[from] WriteError),
 }
 
 /// Margin around and between the panels of a sheet, in pixels.
@@ -102,7 +104,7 @@ fn load(path: &Path) -> Result<Rgb8, String> {
 }
 
 /// Reviews the pending snapshot `name` of `dir`, writing its sheet into `out`.
-pub fn review_one(dir: &Path, name: &str, out: &Path) -> Result<Reviewed, CliError> {
+pub fn review_one(dir: &Path, name: &str, out: &Path) -> Result<Reviewed, ReviewError> {
     let new_path = dir.join(format!("{name}.snap.new.png"));
     if !new_path.exists() {
         return Ok(Reviewed {
@@ -111,10 +113,10 @@ pub fn review_one(dir: &Path, name: &str, out: &Path) -> Result<Reviewed, CliErr
             sheet: None,
         });
     }
-    let new = load(&new_path).map_err(CliError::BadInput)?;
+    let new = load(&new_path).map_err(ReviewError::Read)?;
     let old_path = dir.join(format!("{name}.snap.png"));
     let old = if old_path.exists() {
-        Some(load(&old_path).map_err(CliError::BadInput)?)
+        Some(load(&old_path).map_err(ReviewError::Read)?)
     } else {
         None
     };
@@ -147,9 +149,8 @@ pub fn review_one(dir: &Path, name: &str, out: &Path) -> Result<Reviewed, CliErr
     };
     let sheet_path = out.join(format!("{name}.png"));
     let png = encode_png(image.width, image.height, &image.data)
-        .map_err(|e| CliError::Failed(format!("cannot encode the sheet of {name}: {e}")))?;
-    write_atomic(&sheet_path, &png)
-        .map_err(|e| CliError::Failed(format!("{}: cannot write the sheet: {e}", sheet_path.display())))?;
+        .map_err(|e| ReviewError::Encode(format!("cannot encode the sheet of {name}: {e}")))?;
+    write_atomic(&sheet_path, &png).map_err(|e| WriteError::new(&sheet_path, "cannot write the sheet", e))?;
     Ok(Reviewed {
         name: name.to_owned(),
         change,
@@ -158,11 +159,10 @@ pub fn review_one(dir: &Path, name: &str, out: &Path) -> Result<Reviewed, CliErr
 }
 
 /// Reviews every pending snapshot of `dir`.
-pub fn review(dir: &Path, out: &Path) -> Result<Vec<Reviewed>, CliError> {
-    let names = pending_names(dir).map_err(CliError::BadInput)?;
+pub fn review(dir: &Path, out: &Path) -> Result<Vec<Reviewed>, ReviewError> {
+    let names = pending_names(dir).map_err(ReviewError::Read)?;
     if !names.is_empty() {
-        fs::create_dir_all(out)
-            .map_err(|e| CliError::Failed(format!("{}: cannot create the folder: {e}", out.display())))?;
+        fs::create_dir_all(out).map_err(|e| WriteError::new(out, "cannot create the folder", e))?;
     }
     names.iter().map(|n| review_one(dir, n, out)).collect()
 }
@@ -194,18 +194,6 @@ pub fn summary(r: &Reviewed) -> String {
             r.name
         ),
     }
-}
-
-/// `lumiere review-snapshots`.
-pub fn review_command(args: &ReviewArgs) -> Result<(), CliError> {
-    let reviewed = review(&args.dir, &args.out)?;
-    if reviewed.is_empty() {
-        println!("no pending snapshots (*.snap.new) in {}", args.dir.display());
-    }
-    for r in &reviewed {
-        println!("{}", summary(r));
-    }
-    Ok(())
 }
 
 #[cfg(test)]

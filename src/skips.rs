@@ -5,36 +5,25 @@
 //! measured error bound. `lumiere render --no-skip NAME` switches one off; `--stats` counts
 //! the work each one saved.
 
-use clap::ValueEnum;
-
-/// One shortcut.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, ValueEnum, serde::Serialize)]
+/// One shortcut; [`Skip::help`] says what it leaves out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Skip {
-    /// No shadow ray (and no shading) for a light whose direction makes N.L <= 0: neither
-    /// the diffuse nor, per the slides, the specular term counts there.
+    /// Lights behind the surface.
     BackFacing,
-    /// No shadow ray for a light that brings nothing: outside a spot's cone, or black.
+    /// Lights that bring nothing.
     Unlit,
-    /// Shadow rays stop at the first opaque hit (any-hit), and the filtered walk over
-    /// transparent objects happens only when the scene has some.
+    /// Any-hit shadow rays.
     OpaqueOnly,
-    /// No reflected or refracted ray when k_r or k_t is 0.
+    /// Secondary rays of weight 0.
     ZeroWeight,
-    /// Area lights: the objects that can block any of a shading point's N shadow rays are
-    /// found once (those near the hull of the point and the light's bounding sphere).
+    /// Area lights: the blockers found once per shading point.
     ShadowCandidates,
-    /// Area lights: a light wholly below the surface's horizon (its bounding sphere behind
-    /// the tangent plane) is passed over without looking at its N points.
+    /// Area lights below the horizon.
     Horizon,
-    /// Shadow rays meet an object's bounding sphere before its exact (costly) test; for
-    /// area lights, the cones of directions from the shading point decide most rays at once:
-    /// outside the cone of the bounding sphere a ray misses, inside the cone through a ball
-    /// within the solid it hits, a plane none of the segments to the light can cross is not
-    /// tested, and neither is a convex shading object's own surface (rays leaving it outward
-    /// miss it; rays leaving a solid's inside wall towards a light outside it hit it).
+    /// Bounding spheres and cones of directions before exact tests.
     BoundingSpheres,
-    /// Shading terms (specular power, tints) are not evaluated for a fully blocked light.
+    /// Shading of blocked lights.
     BlockedShading,
 }
 
@@ -64,6 +53,39 @@ impl Skip {
         }
     }
 
+    /// What the shortcut leaves out, in one paragraph (the command line's help of `--no-skip`).
+    pub fn help(self) -> &'static str {
+        match self {
+            Skip::BackFacing => {
+                "No shadow ray (and no shading) for a light whose direction makes N.L <= 0: neither the diffuse nor, \
+                 per the slides, the specular term counts there"
+            }
+            Skip::Unlit => "No shadow ray for a light that brings nothing: outside a spot's cone, or black",
+            Skip::OpaqueOnly => {
+                "Shadow rays stop at the first opaque hit (any-hit), and the filtered walk over transparent objects \
+                 happens only when the scene has some"
+            }
+            Skip::ZeroWeight => "No reflected or refracted ray when k_r or k_t is 0",
+            Skip::ShadowCandidates => {
+                "Area lights: the objects that can block any of a shading point's N shadow rays are found once \
+                 (those near the hull of the point and the light's bounding sphere)"
+            }
+            Skip::Horizon => {
+                "Area lights: a light wholly below the surface's horizon (its bounding sphere behind the tangent \
+                 plane) is passed over without looking at its N points"
+            }
+            Skip::BoundingSpheres => {
+                "Shadow rays meet an object's bounding sphere before its exact (costly) test; for area lights, the \
+                 cones of directions from the shading point decide most rays at once: outside the cone of the \
+                 bounding sphere a ray misses, inside the cone through a ball within the solid it hits, a plane none \
+                 of the segments to the light can cross is not tested, and neither is a convex shading object's own \
+                 surface (rays leaving it outward miss it; rays leaving a solid's inside wall towards a light outside \
+                 it hit it)"
+            }
+            Skip::BlockedShading => "Shading terms (specular power, tints) are not evaluated for a fully blocked light",
+        }
+    }
+
     /// What the `--stats` count of this skip counts.
     pub fn unit(self) -> &'static str {
         match self {
@@ -75,6 +97,18 @@ impl Skip {
             Skip::BoundingSpheres => "exact shape tests not done",
             Skip::BlockedShading => "shading terms not evaluated",
         }
+    }
+}
+
+impl std::str::FromStr for Skip {
+    type Err = String;
+
+    /// Parses a [`name`](Skip::name).
+    fn from_str(s: &str) -> Result<Self, String> {
+        Skip::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
+            let names: Vec<&str> = Skip::ALL.iter().map(|k| k.name()).collect();
+            format!("unknown shortcut {s:?}; the shortcuts are: {}", names.join(", "))
+        })
     }
 }
 
@@ -139,9 +173,16 @@ mod tests {
         assert!(!some.on(Skip::Horizon));
         assert_eq!(Skip::ALL.iter().filter(|&&s| some.on(s)).count(), Skip::ALL.len() - 1);
         assert!(Skip::ALL.iter().all(|&s| !Skips::none().on(s)));
-        // Names are the clap names, so `--no-skip NAME` and `--stats` agree.
+        // `--no-skip NAME` and `--stats` use one name, and JSON the same.
         for s in Skip::ALL {
-            assert_eq!(s.to_possible_value().unwrap().get_name(), s.name());
+            assert_eq!(s.name().parse::<Skip>(), Ok(s));
+            assert_eq!(serde_json::to_string(&s).unwrap(), format!("\"{}\"", s.name()));
         }
+        assert!(
+            "Horizon"
+                .parse::<Skip>()
+                .unwrap_err()
+                .starts_with("unknown shortcut \"Horizon\"; the shortcuts are: back-facing, unlit,")
+        );
     }
 }

@@ -18,85 +18,18 @@
 //! solid = fixed, dashed = per_sample.
 
 use crate::area_light::PointMode;
-use crate::cli::{CliError, Verbosity, with_threads};
 use crate::compare::compare_rgb8;
 use crate::figures::sheet::draw_text;
-use crate::film::{Film, clamp_unit, encode_png, write_atomic};
+use crate::film::{Film, clamp_unit, encode_png};
 use crate::light::Light;
 use crate::limits;
 use crate::placement::Placement;
 use crate::render::render;
 use crate::scene::Scene;
 use crate::world::World;
-use clap::{Args, Subcommand};
 use glam::DVec3;
 use image::{Rgb, RgbImage};
-use std::path::PathBuf;
 use std::time::Instant;
-
-#[derive(Args, Debug)]
-pub struct StudyArgs {
-    #[command(subcommand)]
-    pub kind: StudyKind,
-}
-
-#[derive(Subcommand, Debug)]
-pub enum StudyKind {
-    /// Time against error of an area light for N points x placements x modes.
-    #[command(
-        after_help = "Examples:\n  lumiere study soft-shadows                       # scenes/soft-shadows.toml, 200 x 150, into study/\n  lumiere study soft-shadows --points 1,16,256 --placements uniform,fibonacci --modes per_sample\n  lumiere study soft-shadows scenes/soft-shadows.toml --width 400 --height 300 --repeats 3 --check-reference --out /tmp/study\n\nWrites <out>/study.csv, study.png (log-log RMSE against time), study.md (tables), reference.png.\nExit codes: 0 ok, 1 an output could not be written, 2 bad input (no area light, bad list)."
-    )]
-    SoftShadows(SoftShadowArgs),
-}
-
-#[derive(Args, Debug)]
-pub struct SoftShadowArgs {
-    /// The scene file; its first area light is studied.
-    #[arg(default_value = "scenes/soft-shadows.toml")]
-    pub scene: PathBuf,
-    /// Numbers of points N, comma-separated, each in [1, 100000].
-    #[arg(long, default_value = "1,4,16,64,256,1024")]
-    pub points: String,
-    /// Placements, comma-separated: chapter, uniform, stratified, fibonacci.
-    #[arg(long, default_value = "chapter,uniform,stratified,fibonacci")]
-    pub placements: String,
-    /// Modes, comma-separated: fixed, per_sample.
-    #[arg(long, default_value = "fixed,per_sample")]
-    pub modes: String,
-    /// Image width in pixels.
-    #[arg(long, default_value_t = 200)]
-    pub width: u32,
-    /// Image height in pixels.
-    #[arg(long, default_value_t = 150)]
-    pub height: u32,
-    /// Samples per pixel (a perfect square); default: the scene's.
-    #[arg(long)]
-    pub spp: Option<u32>,
-    /// Seed (default: the scene's).
-    #[arg(long)]
-    pub seed: Option<u64>,
-    /// Renders per configuration; the median time is reported (the images are identical).
-    #[arg(long, default_value_t = 1)]
-    pub repeats: u32,
-    /// Points of the reference.
-    #[arg(long, default_value_t = 4096)]
-    pub reference_points: u32,
-    /// Placement of the reference's points.
-    #[arg(long, default_value = "stratified")]
-    pub reference_placement: String,
-    /// Mode of the reference's points.
-    #[arg(long, default_value = "per_sample")]
-    pub reference_mode: String,
-    /// Also render a reference with twice the points and report how much the two differ.
-    #[arg(long)]
-    pub check_reference: bool,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
-    pub threads: Option<usize>,
-    /// Output directory (created if missing).
-    #[arg(long, default_value = "study")]
-    pub out: PathBuf,
-}
 
 /// One way of drawing the light's points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -124,7 +57,8 @@ pub fn mode_name(m: PointMode) -> &'static str {
     }
 }
 
-fn parse_mode(name: &str) -> Option<PointMode> {
+/// The mode of a scene-file name (`fixed`, `per_sample`).
+pub fn parse_mode(name: &str) -> Option<PointMode> {
     match name {
         "fixed" => Some(PointMode::Fixed),
         "per_sample" => Some(PointMode::PerSample),
@@ -150,6 +84,21 @@ pub fn parse_points(text: &str) -> Result<Vec<u32>, String> {
     out.sort_unstable();
     out.dedup();
     Ok(out)
+}
+
+/// Parses a comma-separated list of placements (in the order given, duplicates removed).
+pub fn parse_placements(text: &str) -> Result<Vec<Placement>, String> {
+    parse_list(
+        "placements",
+        text,
+        Placement::parse,
+        "chapter, uniform, stratified, fibonacci",
+    )
+}
+
+/// Parses a comma-separated list of modes (in the order given, duplicates removed).
+pub fn parse_modes(text: &str) -> Result<Vec<PointMode>, String> {
+    parse_list("modes", text, parse_mode, "fixed, per_sample")
 }
 
 fn parse_list<T: PartialEq>(
@@ -763,122 +712,88 @@ pub fn plot(study: &Study) -> RgbImage {
     img
 }
 
-// ---------------------------------------------------------------------------------------
-// The command.
-// ---------------------------------------------------------------------------------------
-
-pub fn study_command(args: &StudyArgs, v: Verbosity) -> Result<(), CliError> {
-    match &args.kind {
-        StudyKind::SoftShadows(a) => soft_shadows_command(a, v),
-    }
-}
-
-fn soft_shadows_command(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {
-    let bad = CliError::BadInput;
-    let mut scene = crate::scene::load(&args.scene).map_err(|e| bad(e.to_string()))?;
-    let light = first_area_light(&scene).ok_or_else(|| {
-        bad(format!(
-            "{}: the scene has no area light ([[lights]] type = \"area\") to study",
-            args.scene.display()
-        ))
-    })?;
-    let points = parse_points(&args.points).map_err(bad)?;
-    let placements = parse_list(
-        "placements",
-        &args.placements,
-        Placement::parse,
-        "chapter, uniform, stratified, fibonacci",
-    )
-    .map_err(bad)?;
-    let modes = parse_list("modes", &args.modes, parse_mode, "fixed, per_sample").map_err(bad)?;
-    let reference = Config {
-        placement: Placement::parse(&args.reference_placement).ok_or_else(|| {
-            bad(format!(
-                "--reference-placement: unknown {:?}; expected chapter, uniform, stratified or fibonacci",
-                args.reference_placement
-            ))
-        })?,
-        mode: parse_mode(&args.reference_mode).ok_or_else(|| {
-            bad(format!(
-                "--reference-mode: unknown {:?}; expected fixed or per_sample",
-                args.reference_mode
-            ))
-        })?,
-        points: args.reference_points,
-    };
-    let max_ref = if args.check_reference {
-        limits::MAX_LIGHT_POINTS / 2
-    } else {
-        limits::MAX_LIGHT_POINTS
-    };
-    if reference.points == 0 || reference.points > max_ref {
-        return Err(bad(format!(
-            "--reference-points: must be in [1, {max_ref}], got {}",
-            reference.points
-        )));
-    }
-    if args.repeats == 0 || args.repeats > 100 {
-        return Err(bad(format!("--repeats: must be in [1, 100], got {}", args.repeats)));
-    }
-    let flag = |f: &'static str| move |m: String| bad(format!("--{f}: {m}"));
-    limits::check_dimension(args.width).map_err(flag("width"))?;
-    limits::check_dimension(args.height).map_err(flag("height"))?;
-    limits::check_pixel_count(args.width, args.height).map_err(flag("width/--height"))?;
-    let s = &mut scene.settings;
-    s.width = args.width;
-    s.height = args.height;
-    if let Some(n) = args.spp {
-        limits::check_samples(n).map_err(flag("spp"))?;
-        s.samples_per_pixel = n;
-    }
-    if let Some(seed) = args.seed {
-        s.seed = seed;
-    }
-    std::fs::create_dir_all(&args.out).map_err(|e| {
-        bad(format!(
-            "{}: cannot create the output directory: {e}",
-            args.out.display()
-        ))
-    })?;
-    let plan = Plan {
-        points,
-        placements,
-        modes,
-        repeats: args.repeats,
-        reference,
-        check_reference: args.check_reference,
-    };
-    let quiet = v == Verbosity::Quiet;
-    let (study, reference_film) = with_threads(args.threads, || {
-        run(&scene, light, &plan, &mut |line| {
-            if !quiet {
-                eprintln!("lumiere: {line}");
-            }
-        })
-    })?;
-    let write = |name: &str, bytes: &[u8]| {
-        let path = args.out.join(name);
-        write_atomic(&path, bytes).map_err(|e| CliError::Failed(format!("{}: cannot write: {e}", path.display())))
-    };
-    let encode = |img: &RgbImage| {
-        encode_png(img.width(), img.height(), img.as_raw())
-            .map_err(|e| CliError::Failed(format!("cannot encode the plot: {e}")))
-    };
-    let report = report(&study);
-    write("study.csv", csv(&study).as_bytes())?;
-    write("study.png", &encode(&plot(&study))?)?;
-    write("study.md", report.as_bytes())?;
-    let ref_png = reference_film
+/// The files of a study, in the order they are written: `study.csv`, `study.png` (the
+/// plot), `study.md` (the report) and `reference.png`, each with its bytes.
+pub fn outputs(study: &Study, reference: &Film) -> Result<Vec<(&'static str, Vec<u8>)>, String> {
+    let img = plot(study);
+    let plot_png =
+        encode_png(img.width(), img.height(), img.as_raw()).map_err(|e| format!("cannot encode the plot: {e}"))?;
+    let reference_png = reference
         .encode_png()
-        .map_err(|e| CliError::Failed(format!("cannot encode the reference: {e}")))?;
-    write("reference.png", &ref_png)?;
-    print!("{report}");
-    Ok(())
+        .map_err(|e| format!("cannot encode the reference: {e}"))?;
+    Ok(vec![
+        ("study.csv", csv(study).into_bytes()),
+        ("study.png", plot_png),
+        ("study.md", report(study).into_bytes()),
+        ("reference.png", reference_png),
+    ])
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn placement_and_mode_lists() {
+        assert_eq!(
+            parse_placements("fibonacci, chapter,fibonacci"),
+            Ok(vec![Placement::Fibonacci, Placement::Chapter])
+        );
+        assert_eq!(
+            parse_placements("uniform,grid"),
+            Err("--placements: unknown \"grid\"; expected some of chapter, uniform, stratified, fibonacci".into())
+        );
+        assert_eq!(parse_modes("per_sample"), Ok(vec![PointMode::PerSample]));
+        assert_eq!(
+            parse_modes("fixed,"),
+            Err("--modes: unknown \"\"; expected some of fixed, per_sample".into())
+        );
+    }
+
+    #[test]
+    fn outputs_are_the_four_files_in_order() {
+        let config = Config {
+            placement: Placement::Uniform,
+            mode: PointMode::Fixed,
+            points: 4,
+        };
+        let error = Error {
+            rmse: 2.0,
+            rmse_unrounded: 1.9,
+            max_diff: 9,
+            within_one: 0.5,
+        };
+        let study = Study {
+            width: 3,
+            height: 2,
+            spp: 1,
+            seed: 7,
+            repeats: 1,
+            reference: Reference {
+                config,
+                seconds: 0.5,
+                check: None,
+            },
+            rows: vec![Row {
+                config,
+                seconds: 0.25,
+                shadow_rays: 24,
+                error,
+            }],
+        };
+        let mut film = Film::new(3, 2);
+        film.pixels[4] = DVec3::new(1.0, 0.5, 0.0);
+        let files = outputs(&study, &film).unwrap();
+        let names: Vec<&str> = files.iter().map(|f| f.0).collect();
+        assert_eq!(names, ["study.csv", "study.png", "study.md", "reference.png"]);
+        assert_eq!(files[0].1, csv(&study).into_bytes());
+        assert_eq!(files[2].1, report(&study).into_bytes());
+        let decoded = |bytes: &[u8]| image::load_from_memory(bytes).unwrap().to_rgb8();
+        assert_eq!(decoded(&files[1].1).dimensions(), (960, 600));
+        let reference = decoded(&files[3].1);
+        assert_eq!(reference.dimensions(), (3, 2));
+        assert_eq!(reference.get_pixel(1, 1).0, [255, 128, 0]);
+    }
 
     #[test]
     fn points_lists() {

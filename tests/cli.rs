@@ -1,6 +1,6 @@
 //! The command line as a user meets it: bad scene files and bad paths give a clear error
 //! naming the file, line, column and field, exit code 2 (bad input) or 1 (work failed), never
-//! a panic, and never a half-written output.
+//! a panic, and never a half-written output. Every exit code case: tests/exit_codes.rs.
 
 mod common;
 use common::*;
@@ -364,12 +364,13 @@ fn bad_output_paths_leave_nothing() {
     // Missing directory: refused before rendering.
     let o = lumiere(&["render", s, "-o", dir.join("nope/out.png").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
-    // The output path is an existing directory: the write fails (exit 1), nothing left behind.
+    // The output path is an existing directory: refused before rendering (exit 2), nothing
+    // left behind.
     let blocked = dir.join("taken.png");
     fs::create_dir(&blocked).unwrap();
     let o = lumiere(&["render", s, "-o", blocked.to_str().unwrap(), "--quiet"]);
-    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot write the image"));
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("taken.png: the output is a directory"));
     let names: Vec<_> = fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(names.len(), 2, "{names:?}");
     // Not a PNG name, or the input itself: refused.
@@ -502,5 +503,57 @@ fn verbose_notes_go_to_stderr_and_json_stats_to_stdout() {
     assert_eq!(
         lumiere(&["-q", "-v", "render", "x.toml", "-o", "y.png"]).status.code(),
         Some(2)
+    );
+}
+
+/// Every `.rs` file under `dir`, recursively.
+fn rust_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+#[test]
+fn the_library_holds_no_command_line() {
+    // Option parsing, printing, progress bars and signal handling belong to the binary
+    // (src/main.rs and src/cli/); the library's modules return data.
+    let mut files = Vec::new();
+    rust_files(&repo("src"), &mut files);
+    let library: Vec<_> = files
+        .iter()
+        .filter(|p| !p.starts_with(repo("src/cli")) && **p != repo("src/main.rs"))
+        .collect();
+    assert!(library.len() > 40, "{library:?}");
+    for path in library {
+        let text = fs::read_to_string(path).unwrap();
+        for (i, line) in text.lines().enumerate() {
+            let code = line.trim_start();
+            if code.starts_with("//") {
+                continue;
+            }
+            for word in [
+                "clap::",
+                "use clap",
+                "indicatif",
+                "ctrlc",
+                "signal_hook",
+                "println!",
+                "print!(",
+            ] {
+                assert!(!code.contains(word), "{}:{}: {line}", path.display(), i + 1);
+            }
+        }
+    }
+    let lib = fs::read_to_string(repo("src/lib.rs")).unwrap();
+    assert!(!lib.contains("mod cli"), "src/lib.rs declares the command line");
+    assert!(
+        fs::read_to_string(repo("src/main.rs"))
+            .unwrap()
+            .contains("\nmod cli;\n")
     );
 }

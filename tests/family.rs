@@ -71,7 +71,7 @@ fn area_light_counts_in_one_pass_are_separate_renders() {
     ];
     let scenes = figure_scenes("soft-shadows", &stems, 0.08);
     family_equals_separate_renders(&scenes);
-    // The lanes differ: five distinct images.
+    // The members differ: five distinct images.
     let refs: Vec<&Scene> = scenes.iter().collect();
     let images = family::render(&refs, &AtomicBool::new(false)).unwrap();
     for i in 0..images.len() {

@@ -22,16 +22,50 @@ use crate::shape::SurfaceHit;
 pub const CROSSOVER: usize = 16;
 
 /// Which core to use (`--accel`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum AccelChoice {
-    /// Test every object for every ray.
+    /// The linear scan, [`Linear`].
     Linear,
-    /// Bounding volume hierarchy (binned SAH, f32 boxes).
+    /// The BVH, [`Bvh`].
     Bvh,
-    /// The BVH from `CROSSOVER` bounded objects on, else the linear scan.
+    /// The BVH for scenes of at least [`CROSSOVER`] bounded objects, else the linear scan.
     #[default]
     Auto,
+}
+
+impl AccelChoice {
+    pub const ALL: [AccelChoice; 3] = [AccelChoice::Linear, AccelChoice::Bvh, AccelChoice::Auto];
+
+    /// The name on the command line (`--accel NAME`) and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            AccelChoice::Linear => "linear",
+            AccelChoice::Bvh => "bvh",
+            AccelChoice::Auto => "auto",
+        }
+    }
+
+    /// What the choice does, in one line of the command line's help.
+    pub fn help(self) -> &'static str {
+        match self {
+            AccelChoice::Linear => "Test every object for every ray",
+            AccelChoice::Bvh => "Bounding volume hierarchy (binned SAH, f32 boxes)",
+            AccelChoice::Auto => "The BVH from `CROSSOVER` bounded objects on, else the linear scan",
+        }
+    }
+}
+
+impl std::str::FromStr for AccelChoice {
+    type Err = String;
+
+    /// Parses a [`name`](AccelChoice::name).
+    fn from_str(s: &str) -> Result<Self, String> {
+        AccelChoice::ALL
+            .into_iter()
+            .find(|c| c.name() == s)
+            .ok_or_else(|| format!("unknown intersection core {s:?}; expected linear, bvh or auto"))
+    }
 }
 
 /// The acceleration structure chosen for a scene.
@@ -115,5 +149,21 @@ impl Accel {
             Accel::Linear(l) => l.each_hit(objects, ray, t_min, t_max, filter, visit),
             Accel::Bvh(b) => b.each_hit(objects, ray, t_min, t_max, filter, visit),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn choices_parse_from_their_names() {
+        for c in AccelChoice::ALL {
+            assert_eq!(c.name().parse::<AccelChoice>(), Ok(c));
+            // The JSON name (manifests, `--json`) is the command-line name.
+            assert_eq!(serde_json::to_string(&c).unwrap(), format!("\"{}\"", c.name()));
+        }
+        let err = "BVH".parse::<AccelChoice>().unwrap_err();
+        assert_eq!(err, "unknown intersection core \"BVH\"; expected linear, bvh or auto");
     }
 }

@@ -7,7 +7,7 @@ pub mod measure;
 pub mod sets;
 pub mod sheet;
 
-use crate::film::{pixel_hash, write_atomic};
+use crate::film::{WriteError, pixel_hash, write_atomic};
 use crate::render::render_rows;
 use crate::scene::{self, Scene};
 use crate::world::World;
@@ -423,6 +423,17 @@ pub fn render_set(set: &FigureSet, scale: f64, cancel: &AtomicBool, reuse: &mut 
     Some(out)
 }
 
+/// Why a set could not be generated.
+#[derive(Debug, thiserror::Error)]
+pub enum FiguresError {
+    /// An image, contact sheet or manifest could not be encoded.
+    #[error("{0}")]
+    Encode(String),
+    /// The set's folder or one of its files could not be written.
+    #[error(transparent)]
+    Write(#[from] WriteError),
+}
+
 /// What generating a set wrote.
 pub struct SetReport {
     pub name: &'static str,
@@ -436,15 +447,15 @@ fn png_bytes(img: &image::RgbImage) -> Result<Vec<u8>, String> {
 }
 
 /// Renders every figure of `set` into `out/<set>/`, with its manifest and contact sheet.
-pub fn generate(set: &FigureSet, out: &Path, scale: f64) -> Result<SetReport, String> {
+pub fn generate(set: &FigureSet, out: &Path, scale: f64) -> Result<SetReport, FiguresError> {
     generate_until(set, out, scale, &AtomicBool::new(false), &mut Reuse::default()).map(|r| r.expect("never cancelled"))
 }
 
-/// [`generate`], abandoned as soon as `cancel` is true (Ctrl-C): then it returns `Ok(None)`
-/// and the set's folder is as it was. Every image is rendered, and every file encoded, in
-/// memory before the first file is written, so a set on disk is wholly old or wholly new:
-/// the writes take milliseconds, and Ctrl-C only sets `cancel` (the caller's handler), which
-/// is looked at again after the set is written. Each file is written atomically, the
+/// [`generate`], abandoned as soon as `cancel` is true (Ctrl-C or another signal): then it
+/// returns `Ok(None)` and the set's folder is as it was. Every image is rendered, and every
+/// file encoded, in memory before the first file is written, so a set on disk is wholly old
+/// or wholly new: the writes take milliseconds, and a signal only sets `cancel` (the
+/// caller's handler), which is looked at again after the set is written. Each file is written atomically, the
 /// manifest last.
 pub fn generate_until(
     set: &FigureSet,
@@ -452,7 +463,7 @@ pub fn generate_until(
     scale: f64,
     cancel: &AtomicBool,
     reuse: &mut Reuse,
-) -> Result<Option<SetReport>, String> {
+) -> Result<Option<SetReport>, FiguresError> {
     let start = Instant::now();
     let dir = out.join(set.name);
     let Some(rendered) = render_set(set, scale, cancel, reuse) else {
@@ -471,8 +482,8 @@ pub fn generate_until(
         },
         || png_bytes(&sheet::contact_sheet(set.title, &sheet_items)),
     );
-    let mut files = files?;
-    files.push(("contact-sheet.png".to_string(), sheet?));
+    let mut files = files.map_err(FiguresError::Encode)?;
+    files.push(("contact-sheet.png".to_string(), sheet.map_err(FiguresError::Encode)?));
     let manifest = json!({
         "set": set.name,
         "title": set.title,
@@ -481,15 +492,15 @@ pub fn generate_until(
         "pixel_hash": "FNV-1a 64 over the 8-bit RGB pixels, row 0 at the top",
         "images": rendered.iter().map(|r| r.manifest.clone()).collect::<Vec<_>>(),
     });
-    let text = serde_json::to_string_pretty(&manifest).map_err(|e| e.to_string())? + "\n";
+    let text = serde_json::to_string_pretty(&manifest).map_err(|e| FiguresError::Encode(e.to_string()))? + "\n";
     files.push(("manifest.json".to_string(), text.into_bytes()));
     if cancel.load(Ordering::Relaxed) {
         return Ok(None);
     }
-    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
+    std::fs::create_dir_all(&dir).map_err(|e| WriteError::new(&dir, "cannot create", e))?;
     for (name, bytes) in &files {
         let path = dir.join(name);
-        write_atomic(&path, bytes).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        write_atomic(&path, bytes).map_err(|e| WriteError::new(&path, "cannot write", e))?;
     }
     Ok(Some(SetReport {
         name: set.name,
@@ -507,7 +518,7 @@ fn html_escape(s: &str) -> String {
 }
 
 /// `out/index.html`: every set of the registry with its contact sheet and captioned images.
-pub fn write_index(out: &Path) -> Result<(), String> {
+pub fn write_index(out: &Path) -> Result<(), WriteError> {
     let mut html = String::from(
         "<!doctype html>\n<html lang=\"fr\">\n<head>\n<meta charset=\"utf-8\">\n<title>lumiere: figures du cours</title>\n\
          <style>body{font-family:sans-serif;background:#202024;color:#eee;margin:2em}\
@@ -532,7 +543,8 @@ pub fn write_index(out: &Path) -> Result<(), String> {
         }
     }
     html += "</body>\n</html>\n";
-    write_atomic(&out.join("index.html"), html.as_bytes()).map_err(|e| format!("{}: cannot write: {e}", out.display()))
+    let path = out.join("index.html");
+    write_atomic(&path, html.as_bytes()).map_err(|e| WriteError::new(&path, "cannot write", e))
 }
 
 /// A figure whose regenerated pixels differ from its committed manifest.

@@ -4,10 +4,12 @@
 mod file;
 pub mod generate;
 mod locate;
+mod overrides;
 mod tag;
 pub mod transform;
 
 pub use file::{SceneError, load, parse};
+pub use overrides::Overrides;
 
 use crate::light::Light;
 use crate::material::Material;

@@ -14,28 +14,12 @@
 pub mod dd;
 pub mod reference;
 
-use crate::cli::CliError;
 use crate::math::{Frame, Ray};
 use crate::sampling::{Purpose, Stream};
 use crate::shape::{QuarticMethod, Shape};
-use clap::Args;
 use dd::{Dd, Dd3};
 use glam::DVec3;
 use reference::Spec;
-
-/// Options of `lumiere stress`.
-#[derive(Args, Debug, Clone)]
-pub struct StressArgs {
-    /// Rays per (shape, family) cell.
-    #[arg(long, default_value_t = 2000)]
-    pub rays: usize,
-    /// Seed of the campaign's random streams.
-    #[arg(long, default_value_t = 7)]
-    pub seed: u64,
-    /// Print the table as JSON instead of text.
-    #[arg(long)]
-    pub json: bool,
-}
 
 /// The shapes, in table order.
 pub const SHAPES: [&str; 8] = [
@@ -516,41 +500,9 @@ pub fn table(rows: &[Row]) -> String {
     s
 }
 
-/// `lumiere stress`.
-pub fn run(args: &StressArgs) -> Result<(), CliError> {
-    if args.rays == 0 || args.rays > 10_000_000 {
-        return Err(CliError::BadInput(format!(
-            "--rays: must be in [1, 10000000], got {}",
-            args.rays
-        )));
-    }
-    let rows = campaign(args.rays, args.seed);
-    if args.json {
-        let text = serde_json::to_string_pretty(&rows).map_err(|e| CliError::Failed(e.to_string()))?;
-        println!("{text}");
-    } else {
-        print!("{}", table(&rows));
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn bad_ray_counts_are_rejected() {
-        for rays in [0, 10_000_001] {
-            let err = run(&StressArgs {
-                rays,
-                seed: 1,
-                json: false,
-            })
-            .unwrap_err();
-            assert_eq!(err.exit_code(), 2);
-            assert!(err.to_string().contains("--rays"), "{err}");
-        }
-    }
 
     #[test]
     fn table_lists_every_cell() {

@@ -1,0 +1,263 @@
+//! The `lumiere` command line: clap's types of the top level, dispatch to one module per
+//! command, and what the commands share (verbosity, worker threads, scene loading, output
+//! paths, and the library's named choices as clap values; signals in [`signals`]). The library's work
+//! functions return data; these modules parse, print and choose exit codes.
+
+mod compare;
+mod error;
+mod figures;
+mod lock;
+mod merge;
+mod probe;
+mod render;
+mod review;
+mod signals;
+mod stress;
+mod study;
+
+pub use error::CliError;
+
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use clap::{Args, Parser, Subcommand};
+use lumiere::accel::AccelChoice;
+use lumiere::scene::{self, Scene};
+use lumiere::skips::Skip;
+use std::path::Path;
+use std::str::FromStr;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "lumiere",
+    version,
+    about = "A seeded, deterministic Whitted ray tracer for the course on ray-traced illumination"
+)]
+pub struct Cli {
+    /// Print nothing but results and errors (no progress bar, no summaries).
+    #[arg(short, long, global = true)]
+    pub quiet: bool,
+    /// Also print what is being done (scene summary, threads, files written) on stderr.
+    #[arg(short, long, global = true, conflicts_with = "quiet")]
+    pub verbose: bool,
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// How much the commands print besides their results.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Verbosity {
+    Quiet,
+    Normal,
+    Verbose,
+}
+
+impl Verbosity {
+    fn of(cli: &Cli) -> Self {
+        match (cli.quiet, cli.verbose) {
+            (true, _) => Verbosity::Quiet,
+            (_, true) => Verbosity::Verbose,
+            _ => Verbosity::Normal,
+        }
+    }
+
+    /// Prints a progress note on stderr in verbose mode.
+    fn note(self, text: impl FnOnce() -> String) {
+        if self == Verbosity::Verbose {
+            eprintln!("lumiere: {}", text());
+        }
+    }
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render a scene file to an image (PNG, or PFM / EXR float radiance).
+    #[command(
+        after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1 --stats\n  lumiere render scenes/prism.toml -o prism.exr --depth 20          # float radiance\n  lumiere render scenes/reference.toml -o part0.shard --shard 0/4    # a quarter, for merge\n\nExit codes: 0 ok, 1 the image could not be written (disk full), 2 bad input (scene, option, output path), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP (nothing written)."
+    )]
+    Render(render::RenderArgs),
+    /// Compare two images: max and RMS difference, PSNR, differing pixels, heat-map.
+    #[command(
+        after_help = "Examples:\n  lumiere compare mine.png figures/lighting/01-ambient.png\n  lumiere compare mine.png ref.png --tolerance 1 --heatmap diff.png --json\n\nExit codes: 0 within tolerance, 1 some pixel differs by more than the tolerance, 2 bad input (images, heat-map path)."
+    )]
+    Compare(compare::CompareArgs),
+    /// Regenerate the course's figures (all sets when none is named).
+    #[command(
+        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nCtrl-C, SIGTERM or SIGHUP leaves each set wholly old or wholly new. One run at a time writes into an output folder.\nExit codes: 0 ok, 1 a figure could not be written (disk full) or differs (--check), 2 bad input (option, output folder, or another run writing into it), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP."
+    )]
+    Figures(figures::FiguresArgs),
+    /// Assemble the shard files of a split render (`render --shard K/N`) into one image,
+    /// bit-identical to a one-machine render.
+    #[command(
+        after_help = "Example:\n  for k in 0 1 2; do lumiere render scenes/reference.toml --shard $k/3 -o part$k.shard; done\n  lumiere merge part0.shard part1.shard part2.shard -o reference.png\n\nExit codes: 0 ok, 1 write failed (disk full), 2 bad or incomplete shards or output path, 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP (nothing written)."
+    )]
+    Merge(merge::MergeArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    #[command(after_help = "Example:\n  lumiere completions bash > ~/.local/share/bash-completion/completions/lumiere")]
+    Completions(CompletionsArgs),
+    /// Why is this pixel this colour? Print the whole ray tree of one pixel.
+    #[command(
+        after_help = "Examples:\n  lumiere probe scenes/reference.toml --pixel 400,300\n  lumiere probe scenes/prism.toml --pixel 80,60 --width 160 --height 120 --sample 0 --json\n\nExit codes: 0 ok, 2 bad input (scene, pixel outside the image, sample index)."
+    )]
+    Probe(probe::ProbeArgs),
+    /// Write old | new | difference sheets for pending insta image snapshots.
+    #[command(
+        after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/snapshot-review\n\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written (disk full), 2 bad input (folders, images)."
+    )]
+    ReviewSnapshots(review::ReviewArgs),
+    /// Numerical stress campaign: hard rays against every shape, checked against double-double references.
+    #[command(after_help = "Example:\n  lumiere stress --rays 2000 --seed 7")]
+    Stress(stress::StressArgs),
+    /// Measurement studies: soft shadows' render time against error (N, placement, mode).
+    #[command(
+        after_help = "Example:\n  lumiere study soft-shadows --width 200 --height 150 --out /tmp/study\n\nSee `lumiere study soft-shadows --help`."
+    )]
+    Study(study::StudyArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct CompletionsArgs {
+    /// The shell.
+    pub shell: clap_complete::Shell,
+}
+
+/// Values that replace the scene file's own.
+#[derive(Args, Debug, Default, Clone)]
+pub struct Overrides {
+    /// Image width in pixels.
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels.
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Samples per pixel: a perfect square (1, 4, 9, ...), an n x n stratified grid.
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Seed of every random stream.
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Recursion depth (1 = no secondary rays).
+    #[arg(long)]
+    pub depth: Option<u32>,
+    /// Adaptive depth control threshold in 8-bit levels (0 = off).
+    #[arg(long)]
+    pub adaptive_threshold: Option<f64>,
+    /// Intersection core: the linear scan, the BVH, or auto (the BVH from a measured number
+    /// of objects on). The image does not depend on it, only the time.
+    #[arg(long, value_parser = accel_values(), default_value = "auto")]
+    pub accel: AccelChoice,
+}
+
+impl Overrides {
+    /// The scene settings these options replace.
+    fn settings(&self) -> scene::Overrides {
+        scene::Overrides {
+            width: self.width,
+            height: self.height,
+            spp: self.spp,
+            seed: self.seed,
+            depth: self.depth,
+            adaptive_threshold: self.adaptive_threshold,
+        }
+    }
+}
+
+/// A clap value parser for a library choice known by name: `values` are its names with
+/// their help lines, and the chosen name is parsed back with `FromStr`.
+fn named<T>(values: impl IntoIterator<Item = (&'static str, &'static str)>) -> impl TypedValueParser<Value = T>
+where
+    T: FromStr<Err = String> + Clone + Send + Sync + 'static,
+{
+    PossibleValuesParser::new(
+        values
+            .into_iter()
+            .map(|(name, help)| PossibleValue::new(name).help(help)),
+    )
+    .try_map(|name| name.parse::<T>())
+}
+
+/// `--accel`'s values.
+fn accel_values() -> impl TypedValueParser<Value = AccelChoice> {
+    named(AccelChoice::ALL.map(|c| (c.name(), c.help())))
+}
+
+/// `--no-skip`'s values.
+fn skip_values() -> impl TypedValueParser<Value = Skip> {
+    named(Skip::ALL.map(|s| (s.name(), s.help())))
+}
+
+pub fn run(cli: Cli) -> Result<(), CliError> {
+    let v = Verbosity::of(&cli);
+    match cli.command {
+        Command::Render(args) => render::run(&args, v),
+        Command::Compare(args) => compare::run(&args),
+        Command::Figures(args) => figures::run(&args, v),
+        Command::Merge(args) => merge::run(&args, v),
+        Command::Completions(args) => {
+            clap_complete::generate(
+                args.shell,
+                &mut <Cli as clap::CommandFactory>::command(),
+                "lumiere",
+                &mut std::io::stdout(),
+            );
+            Ok(())
+        }
+        Command::Probe(args) => probe::run(&args),
+        Command::ReviewSnapshots(args) => review::run(&args),
+        Command::Stress(args) => stress::run(&args),
+        Command::Study(args) => study::run(&args, v),
+    }
+}
+
+/// Loads a scene file and applies overrides; errors are bad input.
+fn load_scene(path: &Path, overrides: &Overrides) -> Result<Scene, CliError> {
+    let mut scene = scene::load(path).map_err(|e| CliError::BadInput(e.to_string()))?;
+    overrides.settings().apply(&mut scene).map_err(CliError::BadInput)?;
+    Ok(scene)
+}
+
+/// Checks that `output` can be written in a known format without touching `input`.
+fn check_output(output: &Path, input: &Path) -> Result<lumiere::output::Format, CliError> {
+    let format = lumiere::output::Format::of(output).map_err(CliError::BadInput)?;
+    check_output_path(output, input)?;
+    Ok(format)
+}
+
+/// Checks, before any work, that `output` is not `input`, is not a directory, and that its
+/// directory exists. Whether the directory can be written is known only by writing: a
+/// write refused there is bad input too (see [`CliError::from`]).
+fn check_output_path(output: &Path, input: &Path) -> Result<(), CliError> {
+    let bad = |m: String| Err(CliError::BadInput(format!("{}: {m}", output.display())));
+    if let (Ok(a), Ok(b)) = (output.canonicalize(), input.canonicalize())
+        && a == b
+    {
+        return bad("the output would overwrite the input".into());
+    }
+    if output.is_dir() {
+        return bad("the output is a directory; name a file in it".into());
+    }
+    let parent = output
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if parent.exists() && !parent.is_dir() {
+        return bad(format!("{} is not a directory", parent.display()));
+    }
+    if !parent.is_dir() {
+        return bad(format!("the output directory {} does not exist", parent.display()));
+    }
+    Ok(())
+}
+
+/// Runs `f` on a rayon pool of `threads` workers (all cores when `None`).
+fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> Result<T, CliError> {
+    let mut builder = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = threads {
+        if n == 0 || n > 1024 {
+            return Err(CliError::BadInput(format!("--threads: must be in [1, 1024], got {n}")));
+        }
+        builder = builder.num_threads(n);
+    }
+    let pool = builder
+        .build()
+        .map_err(|e| CliError::Failed(format!("cannot start worker threads: {e}")))?;
+    Ok(pool.install(f))
+}

@@ -1,0 +1,245 @@
+//! `lumiere render`: a scene file to an image or a shard file, with a progress bar on a
+//! terminal, and ray counts, skipped work and time by phase with `--stats` / `--json`.
+
+use super::{CliError, Overrides, Verbosity, check_output, check_output_path, signals};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use lumiere::film::{WriteError, write_atomic};
+use lumiere::render::{RenderStats, render_rows};
+use lumiere::skips::Skip;
+use lumiere::world::World;
+use std::io::IsTerminal;
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// The scene file (TOML; see scenes/README.md).
+    pub scene: PathBuf,
+    /// Output image: .png (8-bit, clamped), .pfm or .exr (32-bit float radiance, unclamped).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Encode PNG output with the sRGB transfer function (default: linear, as the course).
+    #[arg(long)]
+    pub srgb: bool,
+    #[command(flatten)]
+    pub overrides: Overrides,
+    /// Worker threads (default: all cores). The image does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Print ray counts, work skipped by reason and time by phase after rendering.
+    #[arg(long)]
+    pub stats: bool,
+    /// Switch a shortcut off (repeatable or comma-separated), to measure what it saves: the
+    /// image does not change, only ray counts and time.
+    #[arg(long, value_name = "NAME", value_delimiter = ',', value_parser = super::skip_values())]
+    pub no_skip: Vec<Skip>,
+    /// Print the statistics as JSON on stdout (implies --stats).
+    #[arg(long)]
+    pub json: bool,
+    /// Render only shard K of N (0-based rows [K H / N, (K + 1) H / N)) into a shard file
+    /// for `lumiere merge`.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<lumiere::shard::ShardSpec>,
+}
+
+fn progress_bar(rows: u64, quiet: bool) -> ProgressBar {
+    if quiet || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(rows);
+    if let Ok(style) = ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} rows") {
+        bar.set_style(style);
+    }
+    bar
+}
+
+pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
+    // From here on a signal stops the render at the next row, and nothing is written.
+    let cancel = signals::catch();
+    let start = std::time::Instant::now();
+    let scene = super::load_scene(&args.scene, &args.overrides)?;
+    let loaded = start.elapsed();
+    let format = match args.shard {
+        None => Some(check_output(&args.output, &args.scene)?),
+        Some(_) => {
+            lumiere::shard::check_path(&args.output).map_err(CliError::BadInput)?;
+            check_output_path(&args.output, &args.scene)?;
+            None
+        }
+    };
+    let mut world = World::with_accel(&scene, args.overrides.accel);
+    world.skips = args.no_skip.iter().fold(world.skips, |s, &k| s.without(k));
+    let built = start.elapsed();
+    let rows = args
+        .shard
+        .map_or(0..scene.settings.height, |s| s.rows(scene.settings.height));
+    let s = &scene.settings;
+    v.note(|| {
+        format!(
+            "{}: {} objects, {} lights; {} x {} pixels, {} samples, depth {}, seed {}; rows {:?}",
+            args.scene.display(),
+            scene.objects.len(),
+            scene.lights.len(),
+            s.width,
+            s.height,
+            s.samples_per_pixel,
+            s.depth,
+            s.seed,
+            rows
+        )
+    });
+    let bar = progress_bar(rows.len() as u64, v == Verbosity::Quiet);
+    let (pixels, stats) =
+        super::with_threads(args.threads, || render_rows(&world, rows, &|| bar.inc(1), Some(cancel)))?;
+    bar.finish_and_clear();
+    if let Some(signal) = signals::received() {
+        return Err(CliError::Interrupted(signal));
+    }
+    let bytes = match (args.shard, format) {
+        (Some(spec), _) => lumiere::shard::encode(&scene, spec, &pixels),
+        (None, Some(format)) => {
+            let film = lumiere::film::Film {
+                width: scene.settings.width,
+                height: scene.settings.height,
+                pixels,
+            };
+            lumiere::output::encode(&film, format, args.srgb)
+                .map_err(|e| CliError::Failed(format!("cannot encode the image: {e}")))?
+        }
+        (None, None) => unreachable!("format is checked when there is no shard"),
+    };
+    write_atomic(&args.output, &bytes).map_err(|e| WriteError::new(&args.output, "cannot write the image", e))?;
+    let phases = Phases {
+        load: loaded.as_secs_f64(),
+        build: (built - loaded).as_secs_f64(),
+        accel: AccelReport::of(&world),
+        render: stats.elapsed.as_secs_f64(),
+        write: (start.elapsed() - built - stats.elapsed).as_secs_f64(),
+    };
+    v.note(|| {
+        format!(
+            "wrote {} ({} bytes) in {:.3} s",
+            args.output.display(),
+            bytes.len(),
+            stats.elapsed.as_secs_f64()
+        )
+    });
+    if args.json {
+        println!("{}", stats_json(&stats, &phases));
+    } else if args.stats {
+        print!("{}", stats_report(&stats, &phases));
+    }
+    if stats.counts.non_finite > 0 {
+        eprintln!(
+            "warning: {} samples were NaN or infinite and were written as black",
+            stats.counts.non_finite
+        );
+    }
+    Ok(())
+}
+
+/// Wall time of each phase of a render command, in seconds.
+struct Phases {
+    /// Reading and validating the scene file.
+    load: f64,
+    /// Building the world (acceleration structure, light points, bounds).
+    build: f64,
+    /// The acceleration structure, part of `build`.
+    accel: AccelReport,
+    /// Tracing every pixel.
+    render: f64,
+    /// Encoding and writing the output.
+    write: f64,
+}
+
+/// The intersection core a render used: its name, size and build time.
+struct AccelReport {
+    name: &'static str,
+    objects: usize,
+    bytes: usize,
+    seconds: f64,
+}
+
+impl AccelReport {
+    fn of(world: &World) -> Self {
+        AccelReport {
+            name: world.accel().name(),
+            objects: world.scene.objects.len(),
+            bytes: world.accel().bytes(),
+            seconds: world.accel_seconds,
+        }
+    }
+}
+
+/// Work each shortcut saved, by name, as JSON.
+fn skipped_json(c: &lumiere::trace::RayCounts) -> serde_json::Value {
+    Skip::ALL
+        .iter()
+        .map(|&s| (s.name().to_string(), serde_json::json!(c.saved.get(s))))
+        .collect::<serde_json::Map<_, _>>()
+        .into()
+}
+
+/// The statistics as JSON, for programs.
+fn stats_json(stats: &RenderStats, phases: &Phases) -> String {
+    let c = &stats.counts;
+    serde_json::json!({
+        "seconds": stats.elapsed.as_secs_f64(),
+        "phases": { "load": phases.load, "build": phases.build, "render": phases.render, "write": phases.write },
+        "accel": {
+            "core": phases.accel.name,
+            "objects": phases.accel.objects,
+            "bytes": phases.accel.bytes,
+            "build_seconds": phases.accel.seconds,
+        },
+        "skipped": skipped_json(c),
+        "rays": {
+            "camera": c.camera,
+            "shadow": c.shadow,
+            "reflection": c.reflection,
+            "refraction": c.refraction,
+            "total": c.total_rays(),
+        },
+        "total_internal_reflections": c.total_internal_reflections,
+        "adaptive_cutoffs": c.adaptive_cutoffs,
+        "non_finite_samples": c.non_finite,
+    })
+    .to_string()
+}
+
+/// Human-readable ray counts, skipped work and time by phase.
+fn stats_report(stats: &RenderStats, phases: &Phases) -> String {
+    let c = &stats.counts;
+    let mut skipped = String::from("skipped (switch off with --no-skip NAME):\n");
+    for s in Skip::ALL {
+        skipped += &format!("  {:<18} {:>14}  {}\n", s.name(), c.saved.get(s), s.unit());
+    }
+    let a = &phases.accel;
+    let phases = format!(
+        "time by phase: load {:.3} s, build {:.3} s, render {:.3} s, write {:.3} s\n\
+         intersection core: {} over {} objects, {} bytes ({:.1} bytes/object), built in {:.3} s\n",
+        phases.load,
+        phases.build,
+        phases.render,
+        phases.write,
+        a.name,
+        a.objects,
+        a.bytes,
+        a.bytes as f64 / a.objects.max(1) as f64,
+        a.seconds
+    );
+    phases
+        + &skipped
+        + &format!(
+            "time          {:.3} s\ncamera rays   {}\nshadow rays   {}\nreflection    {}\nrefraction    {}\ntotal rays    {}\ntotal internal reflections {}\nadaptive cutoffs {}\nnon-finite samples {}\n",
+            stats.elapsed.as_secs_f64(),
+            c.camera,
+            c.shadow,
+            c.reflection,
+            c.refraction,
+            c.total_rays(),
+            c.total_internal_reflections,
+            c.adaptive_cutoffs,
+            c.non_finite
+        )
+}

@@ -1,0 +1,32 @@
+//! `lumiere review-snapshots`: one summary line per pending snapshot, its sheet written by
+//! the library.
+
+use super::CliError;
+use clap::Args;
+use lumiere::review::{ReviewError, review, summary};
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct ReviewArgs {
+    /// Folder of the insta snapshots.
+    #[arg(long, default_value = "snapshots")]
+    pub dir: PathBuf,
+    /// Folder for the sheets (created if missing).
+    #[arg(long, default_value = "target/snapshot-review")]
+    pub out: PathBuf,
+}
+
+pub fn run(args: &ReviewArgs) -> Result<(), CliError> {
+    let reviewed = review(&args.dir, &args.out).map_err(|e| match e {
+        ReviewError::Read(m) => CliError::BadInput(m),
+        ReviewError::Encode(m) => CliError::Failed(m),
+        ReviewError::Write(w) => CliError::from(w),
+    })?;
+    if reviewed.is_empty() {
+        println!("no pending snapshots (*.snap.new) in {}", args.dir.display());
+    }
+    for r in &reviewed {
+        println!("{}", summary(r));
+    }
+    Ok(())
+}

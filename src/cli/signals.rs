@@ -1,0 +1,99 @@
+//! Termination signals as a request to stop: SIGINT (Ctrl-C), SIGTERM and SIGHUP. Once
+//! [`catch`] has run, each only sets a flag (and records which signal it was); the commands
+//! that write images poll the flag, stop rendering, leave every file old or whole, and exit
+//! with 128 + the signal's number, the shell's convention for a process a signal ended.
+
+use std::sync::Once;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+/// The signals caught.
+#[cfg(unix)]
+const CAUGHT: [i32; 3] = [
+    signal_hook::consts::SIGINT,
+    signal_hook::consts::SIGTERM,
+    signal_hook::consts::SIGHUP,
+];
+#[cfg(not(unix))]
+const CAUGHT: [i32; 2] = [signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM];
+
+/// Set by any caught signal.
+static STOP: AtomicBool = AtomicBool::new(false);
+/// The number of the last caught signal (0: none yet).
+static LAST: AtomicUsize = AtomicUsize::new(0);
+
+/// A signal that asked the program to stop.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Signal(pub i32);
+
+impl Signal {
+    pub const INT: Signal = Signal(signal_hook::consts::SIGINT);
+
+    /// `SIGINT`, `SIGTERM`, `SIGHUP`, or `signal N` for any other.
+    pub fn name(self) -> String {
+        match self.0 {
+            signal_hook::consts::SIGINT => "SIGINT".into(),
+            signal_hook::consts::SIGTERM => "SIGTERM".into(),
+            #[cfg(unix)]
+            signal_hook::consts::SIGHUP => "SIGHUP".into(),
+            n => format!("signal {n}"),
+        }
+    }
+
+    /// 128 + the signal's number: 130 for SIGINT, 143 for SIGTERM, 129 for SIGHUP.
+    pub fn exit_code(self) -> u8 {
+        u8::try_from(128 + self.0).unwrap_or(u8::MAX)
+    }
+
+    /// How an error message says the program was stopped: Ctrl-C is a plain "interrupted",
+    /// any other signal is named.
+    pub fn interrupted(self) -> String {
+        if self == Signal::INT {
+            "interrupted".into()
+        } else {
+            format!("interrupted by {}", self.name())
+        }
+    }
+}
+
+/// Makes the caught signals set the returned flag instead of ending the process (once per
+/// process). A signal for which no handler can be installed keeps its default action, which
+/// ends the process: every file is then old or whole, only a temporary file may be left if
+/// it lands while one is written.
+pub fn catch() -> &'static AtomicBool {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        for signal in CAUGHT {
+            // The number first: whoever sees the flag set finds it recorded.
+            let _ = signal_hook::flag::register_usize(signal, &LAST, signal as usize);
+            let _ = signal_hook::flag::register(signal, &STOP);
+        }
+    });
+    &STOP
+}
+
+/// The signal that asked the program to stop, if one did.
+pub fn received() -> Option<Signal> {
+    if !STOP.load(Ordering::SeqCst) {
+        return None;
+    }
+    match LAST.load(Ordering::SeqCst) {
+        0 => Some(Signal::INT),
+        n => Some(Signal(n as i32)),
+    }
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exit_codes_and_names() {
+        assert_eq!(Signal(libc::SIGINT).exit_code(), 130);
+        assert_eq!(Signal(libc::SIGHUP).exit_code(), 129);
+        assert_eq!(Signal(libc::SIGTERM).exit_code(), 143);
+        assert_eq!(Signal(libc::SIGINT).interrupted(), "interrupted");
+        assert_eq!(Signal(libc::SIGTERM).interrupted(), "interrupted by SIGTERM");
+        assert_eq!(Signal(libc::SIGHUP).interrupted(), "interrupted by SIGHUP");
+        assert_eq!(Signal(200).exit_code(), 255);
+    }
+}
