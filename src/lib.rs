@@ -4,28 +4,28 @@
 //! ray-traced illumination (chapter 7.4b "L'illumination avancée dans un ray tracer" and
 //! the IFT3355 slides "shading 1"). For a scene and a seed it produces one exact answer.
 //!
-//! Module map, from the maths up:
-//! - [`math`]: rays, frames, reflection and refraction laws, ray-origin offsets.
-//! - [`solve`]: the stable quadratic and the quartic root isolator.
-//! - [`shape`]: plane, rectangle, disk, sphere, box, cylinder, cone, torus.
-//! - [`accel`]: closest-hit / any-hit queries over a scene's objects.
-//! - [`material`], [`light`], [`shading`]: the course's parameters and formulas.
-//! - [`area_light`], [`placement`]: N-point area lights and where their points go.
-//! - [`camera`], [`sampling`]: pinhole camera, seeded random streams.
-//! - [`scene`]: the scene model and its TOML file format with located errors.
-//! - [`trace`]: Whitted recursion with filtered shadow rays and a step recorder.
-//! - [`render`], [`film`], [`output`]: parallel deterministic rendering, quantisation,
-//!   atomic PNG / PFM / EXR output.
-//! - [`compare`]: image differences (max, RMS, PSNR, heat-map) for `lumiere compare`.
-//! - [`family`]: images that differ only in depth, an area light's count or shading,
-//!   rendered in one pass (each image's bytes those of its own render).
-//! - [`figures`]: the course's figure sets, manifests, contact sheets and gallery.
-//! - [`shard`]: split renders (`--shard K/N`) and their bit-identical merge.
-//! - [`probe`]: the recorded ray tree of one pixel (`lumiere probe`).
-//! - [`review`]: old | new | difference sheets of pending snapshots (`lumiere review-snapshots`).
-//! - [`stress`]: the numerical stress campaign against double-double references.
-//! - [`study`]: render time against error of area lights (`lumiere study soft-shadows`).
-//! - [`skips`], [`limits`]: the renderer's named shortcuts; what a scene or option may ask for.
+//! Module map, in layers from the maths up; a module imports only from its own layer or
+//! the ones below:
+//! 1. [`math`] (rays, frames, the laws of reflection and refraction, ray-origin offsets),
+//!    [`solve`] (the stable quadratic, the quartic root isolator), [`shading`] (the formulas
+//!    of the slides and the chapter, each once), [`material`], [`sampling`] (seeded random
+//!    streams), [`skips`] (the renderer's named shortcuts), [`limits`], [`film`],
+//!    [`compare`].
+//! 2. [`shape`] (plane, rectangle, disk, sphere, box, cylinder, cone, torus), [`camera`],
+//!    [`placement`], [`output`], [`review`].
+//! 3. [`area_light`] (N-point area lights), [`stress`] (the numerical stress campaign).
+//! 4. [`light`] (ambient, directional, point, spot and area lights; what reaches a point).
+//! 5. [`scene`]: the scene model and its TOML file format with located errors.
+//! 6. [`accel`] (closest-hit and any-hit queries over a scene's objects: the linear scan or
+//!    a BVH), [`shard`] (split renders and their bit-identical merge).
+//! 7. [`world`]: a scene ready to render (camera, intersection core, light points, bounds).
+//! 8. [`trace`]: the Whitted recursion, as the chapter reads ([`trace::reference`]) and as
+//!    it renders ([`trace::fast`]), to the same bits.
+//! 9. [`render`]: pixels in parallel, deterministic for any thread count.
+//! 10. [`family`] (images that differ only in depth, lights, an area light's count or
+//!     shading, rendered in one pass), [`probe`] (the recorded ray tree of one pixel).
+//! 11. [`figures`]: the course's figure sets, manifests, contact sheets and gallery.
+//! 12. [`study`]: render time against error of area lights.
 //!
 //! The command line (clap's options, printing, progress bars, exit codes, Ctrl-C) lives in
 //! the binary, `src/main.rs` and `src/cli/`: the library's functions return data and errors,
@@ -35,7 +35,8 @@
 //!
 //! ```
 //! use lumiere::render::render;
-//! use lumiere::scene::{self, Overrides, World};
+//! use lumiere::scene::{self, Overrides};
+//! use lumiere::world::World;
 //! use std::path::Path;
 //!
 //! let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/reference.toml");

@@ -3,10 +3,10 @@
 //!
 //! - **One-pass families.** With `K > 1` [`Member`]s it traces the images of a family
 //!   ([`crate::family`]) together: each ray once, each member's radiance with exactly the
-//!   operations a render of that member's scene alone does ([`Tracer::radiance`] is
-//!   [`Reference`]'s `radiance` per member, [`Tracer::local`] its `local`). Every function
+//!   operations a render of that member's scene alone does (`Tracer::radiance` is
+//!   [`Reference`]'s `radiance` per member, `Tracer::local` its `local`). Every function
 //!   takes the bit mask of the members it works for and returns `[DVec3; K]`.
-//! - **Area lights in vector lanes** ([`area`]): an area light's N points taken together in
+//! - **Area lights in vector lanes** (`area`, src/trace/fast/area.rs): an area light's N points taken together in
 //!   arrays, their shadow rays tested candidate by candidate; they equal [`Reference`]'s
 //!   `local` summing N point lights.
 //! - **Skips** ([`crate::skips`]): the shadow rays, object tests and secondary rays whose
@@ -28,7 +28,7 @@ use crate::skips::Skip;
 use crate::world::{Candidate, World};
 use glam::DVec3;
 
-pub mod area;
+mod area;
 
 /// How one light (or light point) stands towards a surface point, before any shadow ray.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

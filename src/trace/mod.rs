@@ -4,11 +4,11 @@
 //! recursion depth, with adaptive depth control.
 //!
 //! Two tracers compute it, to the same bits:
-//! - [`reference`]: the chapter as it reads, one ray and one light point at a time, with no
+//! - [`reference`](mod@reference): the chapter as it reads, one ray and one light point at a time, with no
 //!   shortcut. Read it first: it is the specification of every pixel.
 //! - [`fast`]: what renders. It traces the images of a one-pass family together
 //!   ([`crate::family`]), takes an area light's points together in vector lanes and groups
-//!   their shadow tests ([`fast::area`]), and skips the work that cannot change a pixel
+//!   their shadow tests (src/trace/fast/area.rs), and skips the work that cannot change a pixel
 //!   ([`crate::skips`]). Each of its parts names the reference function it equals, and
 //!   tests/reference.rs holds the two tracers to the same image bytes on every course scene.
 //!
