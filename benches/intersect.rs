@@ -9,7 +9,7 @@
 //! `cargo run --release --example intersect_table` prints the BENCHMARKS.md tables from
 //! `target/criterion`.
 //!
-//! The scenes are the slab of scenes/spheres-1k.toml: centres in [-10, 10]^2 x [0, 1],
+//! The scenes are the slab of scenes/spheres-1k.toml: centers in [-10, 10]^2 x [0, 1],
 //! radii scaled by sqrt(1000 / N) so that a ray crosses about as many objects at every N.
 //! The linear scan at large N traces fewer rays (its throughput is still per ray).
 

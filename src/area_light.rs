@@ -1,7 +1,7 @@
 //! Area lights made of N point lights (chapter 7.4b, "multiple shadow rays"):
 //! `L_multi = (1/N) sum_i L_point_i`, each point with its own attenuation, shadow ray,
-//! filtered shadow and specular highlight. Shapes: sphere (centre, radius), tube (segment)
-//! and window (rectangle: centre and two edges). `fixed` mode uses one set of points for
+//! filtered shadow and specular highlight. Shapes: sphere (center, radius), tube (segment)
+//! and window (rectangle: center and two edges). `fixed` mode uses one set of points for
 //! the whole image (the chapter's look: N distinct shadows); `per_sample` draws fresh points
 //! for every pixel sample from that sample's own stream (noise instead of banding).
 
@@ -118,7 +118,7 @@ impl AreaLight {
         self.points(&mut Stream::new(seed, Purpose::LightPoints, index))
     }
 
-    /// A sphere (centre, radius) containing every point the light can place.
+    /// A sphere (center, radius) containing every point the light can place.
     pub fn bounding_sphere(&self) -> (DVec3, f64) {
         match &self.shape {
             AreaShape::Sphere { center, radius } => (*center, *radius),
@@ -166,7 +166,7 @@ mod tests {
         }
     }
 
-    /// FIGURES.md's window: centre (0, 0, 10), edges (4, 0, 0) and (0, 3, 0).
+    /// FIGURES.md's window: center (0, 0, 10), edges (4, 0, 0) and (0, 3, 0).
     fn figure_window(n: u32, placement: Placement) -> AreaLight {
         AreaLight {
             shape: AreaShape::Window {
@@ -193,7 +193,7 @@ mod tests {
 
     #[test]
     fn bounding_spheres_reach_the_farthest_point() {
-        // FIGURES.md's window: corners 2.5 from the centre.
+        // FIGURES.md's window: corners 2.5 from the center.
         let window = figure_window(400, Placement::Stratified);
         assert_eq!(window.bounding_sphere(), (DVec3::new(0.0, 0.0, 10.0), 2.5));
         // A sheared window: its long diagonal, |(4, 0, 0) + (2, 3, 0)| / 2.

@@ -50,11 +50,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn centre_and_corner_rays() {
+    fn center_and_corner_rays() {
         // Looking along +y, vfov 90: half height 1; square image so half width 1.
         let c = Camera::new(DVec3::ZERO, DVec3::Y, DVec3::Z, 90.0, 1.0);
-        let centre = c.ray(50.0, 50.0, 100, 100);
-        assert!((centre.dir - DVec3::Y).length() < 1e-15);
+        let center = c.ray(50.0, 50.0, 100, 100);
+        assert!((center.dir - DVec3::Y).length() < 1e-15);
         // Top-left corner: direction (-1, 1, 1)/sqrt3.
         let corner = c.ray(0.0, 0.0, 100, 100);
         assert!((corner.dir - DVec3::new(-1., 1., 1.).normalize()).length() < 1e-15);

@@ -211,9 +211,9 @@ pub fn beneath_notice(weight: f64, bound: f64, threshold: f64) -> bool {
 
 /// `x^y`, the same bits on every platform. Integer exponents (the usual shininess: 20, the
 /// slides' 2 ... 512) use binary exponentiation, a fixed sequence of about `2 log2(y)`
-/// correctly rounded multiplications: 3x faster than libm's `pow` in a whole render, with a
-/// relative error of at most about `y * 2^-53` (5.7e-14 at y = 512: invisible in 8 bits).
-/// Other exponents go through libm.
+/// correctly rounded multiplications, cheaper than libm's `pow`, with a relative error of
+/// at most about `y * 2^-53` (5.7e-14 at y = 512: invisible in 8 bits). Other exponents go
+/// through libm.
 pub fn pow(x: f64, y: f64) -> f64 {
     match integer_exponent(y) {
         Some(n) => powi_exact_order(x, n),
@@ -290,7 +290,7 @@ mod tests {
     }
 
     #[test]
-    fn spot_factor_centre_edge_and_outside() {
+    fn spot_factor_center_edge_and_outside() {
         // theta = 120: cos 60 = 0.5. On the axis (o.d = 1): t = 0, C = C_max = 1.
         close(spot_factor(1.0, 0.5, 0.0, 1.0), 1.0);
         // o.d = 0.75: t = (0.75 - 1)/(0.5 - 1) = 0.5, C = 0.5 * 1 + 0.5 * 0 = 0.5.

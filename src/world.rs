@@ -34,18 +34,18 @@ pub struct Candidate {
     pub sure: Option<(DVec3, f64, f64)>,
 }
 
-/// The cone of directions from `p` meeting the ball (`centre`, `radius`), widened by a
+/// The cone of directions from `p` meeting the ball (`center`, `radius`), widened by a
 /// relative 1e-9 so rounding never excludes a direction that meets it; `None` if `p` is
 /// (nearly) inside the ball.
-pub(crate) fn direction_cone(p: DVec3, centre: DVec3, radius: f64) -> Option<(DVec3, f64)> {
-    let to_centre = centre - p;
-    let dist = to_centre.length();
+pub(crate) fn direction_cone(p: DVec3, center: DVec3, radius: f64) -> Option<(DVec3, f64)> {
+    let to_center = center - p;
+    let dist = to_center.length();
     let padded = radius * (1.0 + 1e-9) + 1e-9 * dist;
     if padded >= dist {
         return None;
     }
     let sin = padded / dist;
-    Some((to_centre / dist, (1.0 - sin * sin).sqrt() - 1e-12))
+    Some((to_center / dist, (1.0 - sin * sin).sqrt() - 1e-12))
 }
 
 /// Whether two cones of directions (unit axis, cosine of the half-angle, as
@@ -64,19 +64,19 @@ pub(crate) fn cones_apart((a, cos_a): (DVec3, f64), (b, cos_b): (DVec3, f64)) ->
     a.dot(b) < cos_a * cos_b - sin_a * sin_b - 1e-9
 }
 
-/// The cone of directions from `p` that pass through the ball (`centre`, `radius`), shrunk
+/// The cone of directions from `p` that pass through the ball (`center`, `radius`), shrunk
 /// by a relative 1e-9 (and `slack`) so rounding never includes a direction that misses it,
-/// with the reach `|centre - p| + radius`; `None` when nothing is left after shrinking.
-fn sure_cone(p: DVec3, centre: DVec3, radius: f64, slack: f64) -> Option<(DVec3, f64, f64)> {
-    let to_centre = centre - p;
-    let dist = to_centre.length();
+/// with the reach `|center - p| + radius`; `None` when nothing is left after shrinking.
+fn sure_cone(p: DVec3, center: DVec3, radius: f64, slack: f64) -> Option<(DVec3, f64, f64)> {
+    let to_center = center - p;
+    let dist = to_center.length();
     let shrunk = radius * (1.0 - 1e-9) - 1e-9 * dist - slack;
     if shrunk <= 0.0 || shrunk >= dist {
         return None;
     }
     let sin = shrunk / dist;
     let reach = (dist + radius) * (1.0 + 1e-9) + slack;
-    Some((to_centre / dist, (1.0 - sin * sin).sqrt() + 1e-12, reach))
+    Some((to_center / dist, (1.0 - sin * sin).sqrt() + 1e-12, reach))
 }
 
 /// A scene ready to render: the camera for the image's aspect, the acceleration structure,
@@ -98,8 +98,8 @@ pub struct World<'s> {
     pub remaining_bound: Vec<f64>,
     /// For each light, the points of a `fixed` area light (empty for other lights).
     pub light_points: Vec<PointSet>,
-    /// Bounding sphere (centre, radius) of each object; `None` for unbounded ones.
-    pub object_spheres: Vec<Option<(DVec3, f64)>>,
+    /// Bounding sphere (center, radius) of each object; `None` for unbounded ones.
+    pub bounding_spheres: Vec<Option<(DVec3, f64)>>,
     /// A ball inside each object's solid ([`Shape::inner_ball`]).
     pub inner_balls: Vec<Option<(DVec3, f64)>>,
     /// Whether an object's exact test costs more than a ray-sphere test (boxes, cylinders,
@@ -150,7 +150,7 @@ impl<'s> World<'s> {
                     _ => PointSet::default(),
                 })
                 .collect(),
-            object_spheres: scene.objects.iter().map(|o| o.shape.bounding_ball()).collect(),
+            bounding_spheres: scene.objects.iter().map(|o| o.shape.bounding_ball()).collect(),
             inner_balls: scene.objects.iter().map(|o| o.shape.inner_ball()).collect(),
             costly: scene
                 .objects
@@ -167,7 +167,7 @@ impl<'s> World<'s> {
     }
 
     /// Into `out` (ascending), the objects that may block a segment from `p` (give or take
-    /// `slack`) to any point of the ball of centre `c` and radius `r`. Every such segment lies
+    /// `slack`) to any point of the ball of center `c` and radius `r`. Every such segment lies
     /// in the hull of `p` and the ball, whose points are `p + s (c - p) + w`, `|w| <= s r`,
     /// `s` in [0, 1]: an object whose bounding sphere is farther than its radius plus `r`
     /// from the segment `[p, c]` cannot block any. Unbounded objects are always kept.
@@ -175,8 +175,8 @@ impl<'s> World<'s> {
         out.clear();
         let axis = c - p;
         let len2 = axis.length_squared();
-        for (object, sphere) in self.object_spheres.iter().enumerate() {
-            let Some((centre, radius)) = *sphere else {
+        for (object, sphere) in self.bounding_spheres.iter().enumerate() {
+            let Some((center, radius)) = *sphere else {
                 out.push(Candidate {
                     object,
                     cone: None,
@@ -185,19 +185,19 @@ impl<'s> World<'s> {
                 continue;
             };
             let s = if len2 > 0.0 {
-                ((centre - p).dot(axis) / len2).clamp(0.0, 1.0)
+                ((center - p).dot(axis) / len2).clamp(0.0, 1.0)
             } else {
                 0.0
             };
             // Padded by a relative 1e-9: a light point is rounded after it is placed, so
             // it may lie a few ulps outside the light's ball.
             let reach = (radius + r) * (1.0 + 1e-9) + slack;
-            if (p + s * axis - centre).length_squared() <= reach * reach {
+            if (p + s * axis - center).length_squared() <= reach * reach {
                 // Outside the bounding sphere, the point is outside the object.
-                let outside = (centre - p).length() > radius * (1.0 + 1e-9) + slack;
+                let outside = (center - p).length() > radius * (1.0 + 1e-9) + slack;
                 out.push(Candidate {
                     object,
-                    cone: direction_cone(p, centre, radius + slack),
+                    cone: direction_cone(p, center, radius + slack),
                     sure: self.inner_balls[object]
                         .filter(|_| outside)
                         .and_then(|(c, r)| sure_cone(p, c, r, slack)),
@@ -318,7 +318,7 @@ mod tests {
         assert!(sure_cos > half && sure_cos - half < 1e-8, "{sure_cos}");
         assert!((reach - 3.0).abs() < 1e-8);
         // Directions just inside the sure cone meet the ball; just outside the outer cone
-        // they miss it (distance from the centre to the line > radius).
+        // they miss it (distance from the center to the line > radius).
         for (angle, meets) in [(29.999_99, true), (30.000_01, false)] {
             let a = f64::to_radians(angle);
             let d = DVec3::new(a.sin(), 0.0, a.cos());

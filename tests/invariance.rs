@@ -71,7 +71,7 @@ fn reference_scene_is_invariant_under_translation_and_scaling() {
 type LevelHit = (usize, DVec3, bool);
 
 struct Acne {
-    /// The sphere (object 1): centre and radius in the transformed scene.
+    /// The sphere (object 1): center and radius in the transformed scene.
     center: DVec3,
     radius: f64,
     /// Per open level: the ray's kind and its hit.

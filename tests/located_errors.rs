@@ -1,8 +1,8 @@
 //! Errors inside entries of `[[shapes]]`, `[[lights]]`, `[[generate]]` and `[materials.*]`
 //! point at the offending key or value of the right entry and name its field path: unknown
 //! fields list the valid ones for the entry's type, wrong types say what was expected, a
-//! misspelt `type` lists the allowed types. (Serde's internally tagged enums used to report
-//! every such error at the first entry of the array, with no field.)
+//! misspelt `type` lists the allowed types (serde's internally tagged enums would report
+//! every such error at the first entry of the array, with no field: see src/scene/tag.rs).
 
 use lumiere::scene::parse;
 

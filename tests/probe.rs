@@ -173,11 +173,11 @@ fn spot_by_hand(p: DVec3) -> f64 {
 }
 
 #[test]
-fn spot_centre_edge_and_outside() {
+fn spot_center_edge_and_outside() {
     let s = small("spot", None);
-    // Centre: on the axis, C_theta close to 1.
-    let centre = probe(&s, 80, 60, None).unwrap();
-    let share = camera_ray(&centre).lights[0].share.clone().unwrap();
+    // Center: on the axis, C_theta close to 1.
+    let center = probe(&s, 80, 60, None).unwrap();
+    let share = camera_ray(&center).lights[0].share.clone().unwrap();
     assert!(share.spot > 0.99, "{}", share.spot);
     // Near the edge of the cone (x = 2.8 of 2.887): C_theta just above c_min = 0.2.
     let edge = snap("spot_edge", &s, 113, 60);

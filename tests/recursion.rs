@@ -28,7 +28,7 @@ impl Recorder for Rays {
     }
 }
 
-/// A scene with one glass box of index `n`, centred at the origin, of size `size`, no lights
+/// A scene with one glass box of index `n`, centerd at the origin, of size `size`, no lights
 /// (only the rays matter here).
 fn glass_box(size: [f64; 3], n: f64, kr: f64, kt: f64, depth: u32) -> Scene {
     let text = format!(

@@ -31,14 +31,14 @@ fn open_floor_receives_the_whole_light() {
 
 #[test]
 fn shadow_of_the_yellow_sphere_alone() {
-    // (4, -2, 0) is the yellow centre (1, -5, 3) moved 3 along d. Its shadow ray passes
-    // 0.816 from the mauve centre (> 0.75): only yellow filters. L = 1 * S_yellow.
+    // (4, -2, 0) is the yellow center (1, -5, 3) moved 3 along d. Its shadow ray passes
+    // 0.816 from the mauve center (> 0.75): only yellow filters. L = 1 * S_yellow.
     assert_eq!(filter_at(DVec3::new(4.0, -2.0, 0.0)), YELLOW);
 }
 
 #[test]
 fn overlap_of_both_spheres_shadows() {
-    // (4.5, -1.5, 0): the ray passes 0.408 from both centres: L = S_yellow * S_mauve
+    // (4.5, -1.5, 0): the ray passes 0.408 from both centers: L = S_yellow * S_mauve
     // = (0.6, 0.27, 0.08), each sphere counted once although the ray crosses two surfaces of each.
     let f = filter_at(DVec3::new(4.5, -1.5, 0.0));
     assert!((f - DVec3::new(0.6, 0.27, 0.08)).length() < 1e-15, "{f}");
@@ -47,6 +47,6 @@ fn overlap_of_both_spheres_shadows() {
 
 #[test]
 fn behind_the_opaque_cube_is_dark() {
-    // (3, 3, 0): the shadow ray passes through the cube's centre (0, 0, 3).
+    // (3, 3, 0): the shadow ray passes through the cube's center (0, 0, 3).
     assert_eq!(filter_at(DVec3::new(3.0, 3.0, 0.0)), DVec3::ZERO);
 }

@@ -4,10 +4,10 @@
 //! A binary node tests two boxes per visit; a 4-wide one tests four in one pass of `f32`
 //! vector code and visits about half as many levels (the `obvhs` peer is 8-wide). Each
 //! node keeps, for each of the eight octants of a ray's direction, its children in
-//! front-to-back order (by their centres' projection on the octant's diagonal), so the
+//! front-to-back order (by their centers' projection on the octant's diagonal), so the
 //! walk takes them nearest-first without sorting them per ray.
 //!
-//! The `f32` test stays conservative, as the binary one was (see [`super::node`]): the ray's
+//! The `f32` test is conservative (see [`super::node`]): the ray's
 //! origin is rounded outward (the entry plane measured from the bound that makes the entry
 //! earlier, the exit plane from the one that makes the exit later), and the computed entry
 //! and exit are widened by a relative `2^-20` (the subtraction, the reciprocal and the
@@ -158,10 +158,10 @@ fn gather(binary: &[Node], from: usize) -> ([usize; WIDTH], usize) {
     (slots, len)
 }
 
-/// For each octant, the occupied slots (the first `used`) sorted by their centres'
+/// For each octant, the occupied slots (the first `used`) sorted by their centers'
 /// projection on the octant's diagonal (ties by slot), then the empty ones.
 fn octant_orders(node: &Node4, used: usize) -> [u8; 8] {
-    let centres: [[f32; 3]; WIDTH] = std::array::from_fn(|s| {
+    let centers: [[f32; 3]; WIDTH] = std::array::from_fn(|s| {
         let (min, max) = node.slot_box(s);
         [0, 1, 2].map(|a| 0.5 * (min[a] + max[a]))
     });
@@ -170,9 +170,9 @@ fn octant_orders(node: &Node4, used: usize) -> [u8; 8] {
             (0..3)
                 .map(|a| {
                     if octant >> a & 1 == 1 {
-                        -centres[s][a]
+                        -centers[s][a]
                     } else {
-                        centres[s][a]
+                        centers[s][a]
                     }
                 })
                 .sum()
@@ -277,8 +277,8 @@ impl F32Slots {
             t_max: Vec4::splat(t_max as f32),
             octant,
         };
-        // Plain loops: `array::map` with closures was left as calls here, and the copies
-        // of their results stalled (a tenth of an any-hit walk).
+        // Plain loops: `array::map` with closures is not inlined here, and the copies of
+        // its results stall the walk.
         for a in 0..3 {
             let negative = octant >> a & 1 == 1;
             (t.entry_row[a], t.exit_row[a]) = slab_rows(a, negative);

@@ -40,7 +40,7 @@ pub struct Generate {
     pub kind: GenerateKind,
     pub count: usize,
     pub seed: u64,
-    /// Centres are uniform in the box `[min, max]`.
+    /// Centers are uniform in the box `[min, max]`.
     pub min: DVec3,
     pub max: DVec3,
     /// Radii (of the ball holding each object) uniform in `[radius.0, radius.1]`.
@@ -50,7 +50,7 @@ pub struct Generate {
 }
 
 impl Generate {
-    /// The objects of table number `table`, in Z-order of their centres (names
+    /// The objects of table number `table`, in Z-order of their centers (names
     /// `generate[table]#i`, `i` their place in that order).
     ///
     /// Objects near in space are then near in memory, as in scenes made by modelling tools
@@ -96,8 +96,8 @@ impl Generate {
         spread(q[0]) | spread(q[1]) << 1 | spread(q[2]) << 2
     }
 
-    /// One object: centre, radius, material, then for `mixed` the kind and an axis; with
-    /// the Z-order code of its centre.
+    /// One object: center, radius, material, then for `mixed` the kind and an axis; with
+    /// the Z-order code of its center.
     fn draw(&self, s: &mut Stream) -> (u64, Shape, usize) {
         let mut u = || s.next_f64();
         let c = DVec3::new(u(), u(), u());
@@ -117,10 +117,10 @@ impl Generate {
                 if which < 1.0 / 3.0 {
                     Shape::Sphere(Sphere::new(center, r))
                 } else if which < 2.0 / 3.0 {
-                    // Tube centre circle at 0.7 r, tube 0.3 r: within the ball of radius r.
+                    // Tube center circle at 0.7 r, tube 0.3 r: within the ball of radius r.
                     Shape::Torus(Box::new(Torus::new(center, axis, 0.7 * r, 0.3 * r)))
                 } else {
-                    // Height 1.2 r, base radius 0.8 r, centred: within the ball of radius r.
+                    // Height 1.2 r, base radius 0.8 r, centerd: within the ball of radius r.
                     Shape::Cone(Box::new(Cone::new(center - axis * (0.6 * r), axis, 1.2 * r, 0.8 * r)))
                 }
             }

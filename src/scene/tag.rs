@@ -2,8 +2,8 @@
 //! deserialisation: `{ type = "sphere", radius = 1 }` becomes `{ sphere = { radius = 1 } }`.
 //!
 //! Why: serde's internally tagged enums (`#[serde(tag = "type")]`) buffer the whole entry
-//! before choosing the variant, and the buffer keeps no positions, so every error inside an
-//! entry used to point at the first entry of the array and name no field. An externally
+//! before choosing the variant, and the buffer keeps no positions: every error inside an
+//! entry would point at the first entry of the array and name no field. An externally
 //! tagged enum is deserialised straight from the parsed document, so each unknown key,
 //! wrong type or wrong length keeps its own span. The lifted key carries the span of the
 //! `type` value, the lifted table the span of the entry.

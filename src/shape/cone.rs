@@ -1,4 +1,4 @@
-//! A capped cone: base centre, unit axis towards the apex, height, base radius.
+//! A capped cone: base center, unit axis towards the apex, height, base radius.
 
 use super::{Aabb, SurfaceHit, cap_root, cylinder::disk_bounds, first_root};
 use super::{gamma, l1};
@@ -33,7 +33,7 @@ impl Cone {
     }
 
     /// The smallest ball through the base rim and the apex (or around the base when the
-    /// cone is flatter than that ball), centred on the axis at `z0` above the base.
+    /// cone is flatter than that ball), centerd on the axis at `z0` above the base.
     fn smallest_ball(base: DVec3, axis: DVec3, h: f64, r: f64) -> (DVec3, f64) {
         if h > r {
             let z0 = (h * h - r * r) / (2.0 * h);
@@ -55,7 +55,7 @@ impl Cone {
         }
     }
 
-    /// A ball around the whole cone (centre, radius).
+    /// A ball around the whole cone (center, radius).
     pub fn ball(&self) -> (DVec3, f64) {
         self.ball
     }
@@ -94,12 +94,12 @@ impl Cone {
     }
 
     /// The ray in the local frame, its origin moved by `shift` along it: far origins are
-    /// solved from the point of the ray nearest the shape (see `recentre`).
+    /// solved from the point of the ray nearest the shape (see `recenter`).
     #[inline(always)]
     fn local_ray(&self, ray: &Ray) -> (DVec3, DVec3, f64) {
         let o = self.frame.to_local(ray.origin - self.base);
         let d = self.frame.to_local(ray.dir);
-        let shift = super::recentre(o, d, DVec3::new(0.0, 0.0, 0.5 * self.height), self.height + self.radius);
+        let shift = super::recenter(o, d, DVec3::new(0.0, 0.0, 0.5 * self.height), self.height + self.radius);
         (o + d * shift, d, shift)
     }
 

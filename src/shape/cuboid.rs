@@ -1,4 +1,4 @@
-//! A box: centre, full size along its three axes, optional rotation (the reference cube).
+//! A box: center, full size along its three axes, optional rotation (the reference cube).
 
 use super::{Aabb, SurfaceHit};
 use super::{gamma, l1};
@@ -21,7 +21,7 @@ pub struct Cuboid {
 }
 
 impl Cuboid {
-    /// `rotation_deg` rotates about x, then y, then z (degrees), around the centre.
+    /// `rotation_deg` rotates about x, then y, then z (degrees), around the center.
     pub fn new(center: DVec3, size: DVec3, rotation_deg: DVec3) -> Self {
         let r = rotation_deg * (std::f64::consts::PI / 180.0);
         let axes = DMat3::from_rotation_z(r.z) * DMat3::from_rotation_y(r.y) * DMat3::from_rotation_x(r.x);
@@ -34,7 +34,7 @@ impl Cuboid {
         }
     }
 
-    /// The same box (axes and frame to the bit) with another centre and half size: what a
+    /// The same box (axes and frame to the bit) with another center and half size: what a
     /// similarity transform makes of it.
     pub fn resized(&self, center: DVec3, half_size: DVec3) -> Cuboid {
         Cuboid {
@@ -45,7 +45,7 @@ impl Cuboid {
         }
     }
 
-    /// A ball around the whole box: its centre and half-diagonal.
+    /// A ball around the whole box: its center and half-diagonal.
     pub fn ball(&self) -> (DVec3, f64) {
         self.ball
     }
@@ -176,7 +176,7 @@ mod tests {
 
     #[test]
     fn axis_aligned_cube_from_outside_and_inside() {
-        // The reference cube: centre (0, 0, 3), side 2.
+        // The reference cube: center (0, 0, 3), side 2.
         let c = Cuboid::new(DVec3::new(0., 0., 3.), DVec3::splat(2.), DVec3::ZERO);
         assert_hit(c.intersect(&ray([0., -8., 3.], [0., 1., 0.]), 0.0, 1e9), 7.0, -DVec3::Y);
         assert_hit(c.intersect(&ray([0., 0., 3.], [0., 0., 1.]), 0.0, 1e9), 1.0, DVec3::Z);
@@ -191,7 +191,7 @@ mod tests {
 
     #[test]
     fn grazing_an_edge_and_a_face() {
-        // The reference cube: centre (0, 0, 3), side 2, so x, y in [-1, 1] and z in [2, 4].
+        // The reference cube: center (0, 0, 3), side 2, so x, y in [-1, 1] and z in [2, 4].
         let c = Cuboid::new(DVec3::new(0., 0., 3.), DVec3::splat(2.), DVec3::ZERO);
         // Along the top edge x = 1, z = 4 (parallel to y): the slabs of x and z hold the ray
         // on their boundary (closed slabs), so it enters at the corner (1, -1, 4) through the
@@ -250,7 +250,7 @@ mod tests {
         // unturned box would be hit at z = 3.
         let b = Cuboid::new(DVec3::ZERO, DVec3::new(2., 4., 6.), DVec3::new(90., 0., 0.));
         assert_hit(b.intersect(&ray([0., 0., 10.], [0., 0., -1.]), 0.0, 1e9), 8.0, DVec3::Z);
-        // Along +y from y = -10 at the height of the centre: the face at y = -3, t = 7,
+        // Along +y from y = -10 at the height of the center: the face at y = -3, t = 7,
         // normal -y.
         assert_hit(
             b.intersect(&ray([0., -10., 0.], [0., 1., 0.]), 0.0, 1e9),

@@ -1,4 +1,4 @@
-//! A capped cylinder: base centre, unit axis, height, radius.
+//! A capped cylinder: base center, unit axis, height, radius.
 
 use super::{Aabb, SurfaceHit, first_root_in, local_cap, nearer};
 use super::{gamma, l1};
@@ -44,7 +44,7 @@ impl Cylinder {
         }
     }
 
-    /// A ball around the whole cylinder: centred half-way up the axis, through the rims.
+    /// A ball around the whole cylinder: centerd half-way up the axis, through the rims.
     pub fn ball(&self) -> (DVec3, f64) {
         self.ball
     }
@@ -61,8 +61,8 @@ impl Cylinder {
         }
         let o = self.frame.to_local(ray.origin - self.base);
         let d = self.frame.to_local(ray.dir);
-        // Far origins: solve from the point of the ray nearest the shape (see `recentre`).
-        let shift = super::recentre(o, d, DVec3::new(0.0, 0.0, 0.5 * self.height), self.height + self.radius);
+        // Far origins: solve from the point of the ray nearest the shape (see `recenter`).
+        let shift = super::recenter(o, d, DVec3::new(0.0, 0.0, 0.5 * self.height), self.height + self.radius);
         // Solved without `t_max`, which only filters the world-space `t`: the answer must
         // not depend on how far the caller looks (see `Shape::intersect`).
         self.intersect_local(o + d * shift, d, t_min - shift, f64::INFINITY)

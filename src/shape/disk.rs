@@ -1,4 +1,4 @@
-//! A flat disk: centre, unit normal, radius.
+//! A flat disk: center, unit normal, radius.
 
 use super::{Aabb, SurfaceHit};
 use super::{gamma, l1};
@@ -64,7 +64,7 @@ mod tests {
 
     #[test]
     fn edge_on_rays_never_hit() {
-        // A ray in the disk's plane crosses its interior (here through the centre) without
+        // A ray in the disk's plane crosses its interior (here through the center) without
         // crossing the plane: d.n = 0, no hit, rather than a division by zero.
         let d = Disk::new(DVec3::new(0., 0., 1.), DVec3::Z, 2.0);
         assert!(d.intersect(&ray([-5., 0., 1.], [1., 0., 0.]), 0.0, 1e9).is_none());
@@ -72,7 +72,7 @@ mod tests {
         // sqrt(2): both normalised by one rounded factor, so d.n = s^2 - s^2 = 0 exactly.
         let tilted = Disk::new(DVec3::new(1., 2., 3.), DVec3::new(1., 1., 0.), 2.0);
         assert!(tilted.intersect(&ray([0., 3., 3.], [1., -1., 0.]), 0.0, 1e9).is_none());
-        // Control: from (0, 3, 3) moved 1e-3 off the plane along n, a ray aimed at the centre
+        // Control: from (0, 3, 3) moved 1e-3 off the plane along n, a ray aimed at the center
         // crosses the plane there, at t = sqrt(|(0, 3, 3) - c|^2 + 1e-6) = sqrt(2 + 1e-6)
         // ((0, 3, 3) - c = (-1, 1, 0) is perpendicular to n).
         let n = DVec3::new(1., 1., 0.).normalize();
@@ -85,7 +85,7 @@ mod tests {
 
     #[test]
     fn the_rim_belongs_to_the_disk() {
-        // Centre (0, 0, 1), radius 2: a vertical ray through the rim point (2, 0, 1) hits it
+        // Center (0, 0, 1), radius 2: a vertical ray through the rim point (2, 0, 1) hits it
         // (|p - c|^2 = 4 <= 4, every number exact), at t = 3 - 1 = 2 from above and from
         // below alike: the normal is the disk's, whichever side the ray comes from.
         let d = Disk::new(DVec3::new(0., 0., 1.), DVec3::Z, 2.0);

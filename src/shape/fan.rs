@@ -130,12 +130,12 @@ mod tests {
     /// near it and along the axes (zero components), reaches short and long, rays listed
     /// out of order and more than a chunk at a time. Every decided verdict is `occludes`'s
     /// answer, and the oracle's where it has one.
-    fn check_fans(shape: &Shape, centre: DVec3, size: f64, seed: u64, oracle: Oracle) -> Counts {
+    fn check_fans(shape: &Shape, center: DVec3, size: f64, seed: u64, oracle: Oracle) -> Counts {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut u = move || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53) * 2.0 - 1.0;
         let mut counts = Counts::default();
         for f in 0..120 {
-            let mut point = |half: f64| centre + half * DVec3::new(u(), u(), u());
+            let mut point = |half: f64| center + half * DVec3::new(u(), u(), u());
             let origin = match f % 4 {
                 0 | 1 => point(2.0 * size),
                 // on the surface: the first hit of a ray from outside
@@ -144,7 +144,7 @@ mod tests {
                     let ray = Ray::new(from, (point(0.5 * size) - from).normalize());
                     shape.intersect(&ray, 0.0, f64::INFINITY).map_or(from, |h| ray.at(h.t))
                 }
-                _ => centre + DVec3::new(1e4, -3e3, 2e3) * size,
+                _ => center + DVec3::new(1e4, -3e3, 2e3) * size,
             };
             let mut dirs = Vec::new();
             let mut reach = Vec::new();
@@ -196,12 +196,12 @@ mod tests {
 
     #[test]
     fn fan_verdicts_are_the_answers_of_occludes() {
-        let centre = DVec3::new(4.0, 3.0, 2.0);
+        let center = DVec3::new(4.0, 3.0, 2.0);
         let none: Oracle = &|_, _| None;
         // The axis-aligned box, also against `Aabb`'s own slab test (reciprocals, not
         // quotients): occluded where the ray enters or leaves the box inside `(0, reach)`.
         let half = DVec3::new(1.0, 0.5, 1.5);
-        let aabb = Aabb::new(centre - half, centre + half);
+        let aabb = Aabb::new(center - half, center + half);
         let slab_oracle = |ray: &Ray, reach: f64| {
             // Along a face's plane the two tests may disagree (a face grazed end to end).
             let along_face = (0..3).any(|a| {
@@ -219,23 +219,23 @@ mod tests {
             let clear = |t: f64| t.abs() > 1e-9 && (t - reach).abs() > 1e-9;
             (clear(near) && clear(far)).then_some((near > 0.0 && near < reach) || (far > 0.0 && far < reach))
         };
-        let upright = Shape::Cuboid(Box::new(Cuboid::new(centre, 2.0 * half, DVec3::ZERO)));
-        let turned = Shape::Cuboid(Box::new(Cuboid::new(centre, 2.0 * half, DVec3::new(20.0, -35.0, 70.0))));
+        let upright = Shape::Cuboid(Box::new(Cuboid::new(center, 2.0 * half, DVec3::ZERO)));
+        let turned = Shape::Cuboid(Box::new(Cuboid::new(center, 2.0 * half, DVec3::new(20.0, -35.0, 70.0))));
         let cones =
-            [DVec3::Z, DVec3::new(0.3, -0.5, 1.0)].map(|axis| Shape::Cone(Box::new(Cone::new(centre, axis, 2.5, 1.0))));
+            [DVec3::Z, DVec3::new(0.3, -0.5, 1.0)].map(|axis| Shape::Cone(Box::new(Cone::new(center, axis, 2.5, 1.0))));
         let tori = [DVec3::Z, DVec3::new(0.2, -0.1, 1.0)]
-            .map(|axis| Shape::Torus(Box::new(Torus::new(centre, axis, 1.5, 0.5))));
-        let counts = check_fans(&upright, centre, 2.0, 0, &slab_oracle);
+            .map(|axis| Shape::Torus(Box::new(Torus::new(center, axis, 1.5, 0.5))));
+        let counts = check_fans(&upright, center, 2.0, 0, &slab_oracle);
         assert!(
             counts.hits > 2000 && counts.misses > 2000 && counts.by_oracle > 10_000,
             "{counts:?}"
         );
         for (k, shape) in [&turned, &cones[0], &cones[1]].into_iter().enumerate() {
-            let counts = check_fans(shape, centre, 2.0, 1 + k as u64, none);
+            let counts = check_fans(shape, center, 2.0, 1 + k as u64, none);
             assert!(counts.hits > 2000 && counts.misses > 2000, "shape {k}: {counts:?}");
         }
         for (k, torus) in tori.iter().enumerate() {
-            let counts = check_fans(torus, centre, 2.0, 10 + k as u64, none);
+            let counts = check_fans(torus, center, 2.0, 10 + k as u64, none);
             assert!(
                 counts.hits > 1000 && counts.misses > 1000 && counts.undecided > 100,
                 "torus {k}: {counts:?}"

@@ -148,7 +148,7 @@ impl Shape {
         dispatch!(self, s => s.bounds())
     }
 
-    /// A ball containing the whole shape (centre, radius), as small as is simple to say;
+    /// A ball containing the whole shape (center, radius), as small as is simple to say;
     /// `None` for unbounded shapes. Shadow rays that miss it miss the shape.
     pub fn bounding_ball(&self) -> Option<(DVec3, f64)> {
         let half_diagonal = |a: DVec3, b: DVec3| 0.5 * (a + b).length().max((a - b).length());
@@ -164,9 +164,9 @@ impl Shape {
         })
     }
 
-    /// A ball inside the solid (centre, radius): a segment that starts outside the shape and
+    /// A ball inside the solid (center, radius): a segment that starts outside the shape and
     /// passes through it crosses the surface. `None` for surfaces that bound no solid
-    /// (plane, rectangle, disk) and for the torus (its centre is in the hole).
+    /// (plane, rectangle, disk) and for the torus (its center is in the hole).
     pub fn inner_ball(&self) -> Option<(DVec3, f64)> {
         match self {
             Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Torus(_) => None,
@@ -246,14 +246,14 @@ pub(crate) fn first_root((t0, t1): (f64, f64), t_min: f64, t_max: f64) -> f64 {
     if (t0 > t_min) & (t0 < t_max) { t0 } else { later }
 }
 
-/// Whether the ray misses the ball (`centre`, `radius`) within `(t_min, t_max)` by a clear
+/// Whether the ray misses the ball (`center`, `radius`) within `(t_min, t_max)` by a clear
 /// margin (relative 1e-9 of the radius and of the distance): then it misses every shape
 /// inside the ball, whatever that shape's own routine would compute, so the routine need not
 /// run. The perpendicular distance uses `|f - (f.d) d|` (Ray Tracing Gems, ch. 7), accurate
 /// for far origins.
 #[inline(always)]
-pub(crate) fn misses_ball(ray: &Ray, t_min: f64, t_max: f64, (centre, radius): (DVec3, f64)) -> bool {
-    let f = ray.origin - centre;
+pub(crate) fn misses_ball(ray: &Ray, t_min: f64, t_max: f64, (center, radius): (DVec3, f64)) -> bool {
+    let f = ray.origin - center;
     let b = f.dot(ray.dir);
     let reach = radius * (1.0 + 1e-9) + 1e-9 * l1(f);
     let perp = f - b * ray.dir;
@@ -268,7 +268,7 @@ pub(crate) fn misses_ball(ray: &Ray, t_min: f64, t_max: f64, (centre, radius): (
 /// shifted origin the coefficients are of the shape's own size. The shifted origin itself is
 /// exact to one rounding of `|o|`, which the hit point error bound covers.
 #[inline(always)]
-pub(crate) fn recentre(o: DVec3, d: DVec3, mid: DVec3, size: f64) -> f64 {
+pub(crate) fn recenter(o: DVec3, d: DVec3, mid: DVec3, size: f64) -> f64 {
     let to_mid = mid - o;
     // A select, not a branch (see [`fan`]).
     let along = to_mid.dot(d);
@@ -317,15 +317,15 @@ pub(crate) mod test_util {
         Ray::new(DVec3::from(o), DVec3::from(d).normalize())
     }
 
-    /// `count` seeded rays from points of the cube of half-side `2 size` around `centre`
+    /// `count` seeded rays from points of the cube of half-side `2 size` around `center`
     /// (some inside the shape) towards points of the cube of half-side `1.2 size`.
-    pub fn random_rays(seed: u64, centre: DVec3, size: f64, count: usize) -> Vec<Ray> {
+    pub fn random_rays(seed: u64, center: DVec3, size: f64, count: usize) -> Vec<Ray> {
         use rand_chacha::ChaCha8Rng;
         use rand_core::{Rng, SeedableRng};
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut point = |half: f64| {
             let mut u = || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53) * 2.0 - 1.0;
-            centre + half * DVec3::new(u(), u(), u())
+            center + half * DVec3::new(u(), u(), u())
         };
         (0..count)
             .map(|_| {
@@ -401,7 +401,7 @@ mod tests {
     #[test]
     fn balls_by_hand() {
         // Cone of height 2.5 and radius 1: the ball through the rim and the apex has its
-        // centre at z0 = (6.25 - 1) / 5 = 1.05 and radius 2.5 - 1.05 = 1.45; the inscribed
+        // center at z0 = (6.25 - 1) / 5 = 1.05 and radius 2.5 - 1.05 = 1.45; the inscribed
         // ball has radius 2.5 / (1 + sqrt(7.25)) = 0.6771...
         let cone = Shape::Cone(Box::new(Cone::new(DVec3::ZERO, DVec3::Z, 2.5, 1.0)));
         let (c, r) = cone.bounding_ball().unwrap();
@@ -428,7 +428,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         let mut unit = move || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
         for shape in shapes() {
-            let (centre, radius) = shape.bounding_ball().unwrap();
+            let (center, radius) = shape.bounding_ball().unwrap();
             let mut direction = || {
                 let (z, phi) = (2.0 * unit() - 1.0, std::f64::consts::TAU * unit());
                 let s = (1.0 - z * z).sqrt();
@@ -439,14 +439,14 @@ mod tests {
                 // Rays from a sphere around the shape towards points near it.
                 let (d0, _) = direction();
                 let (d1, u) = direction();
-                let from = centre + 3.0 * radius * d0;
-                let to = centre + 1.2 * radius * u * d1;
+                let from = center + 3.0 * radius * d0;
+                let to = center + 1.2 * radius * u * d1;
                 let ray = Ray::new(from, (to - from).normalize());
                 if let Some(h) = shape.intersect(&ray, 0.0, f64::INFINITY) {
                     hits += 1;
                     let p = ray.at(h.t);
                     assert!(
-                        (p - centre).length() <= radius * (1.0 + 1e-12),
+                        (p - center).length() <= radius * (1.0 + 1e-12),
                         "{} hit outside its ball",
                         shape.kind()
                     );

@@ -30,17 +30,17 @@ impl Plane {
         (t > t_min && t < t_max).then_some(SurfaceHit { t, normal: self.normal })
     }
 
-    /// Whether no segment from `origin` to a point of the ball (`centre`, `radius`) can hit
+    /// Whether no segment from `origin` to a point of the ball (`center`, `radius`) can hit
     /// the plane as [`Plane::intersect`] computes it: `origin` is strictly on one side (the
     /// computed numerator `(p0 - o).N` is not zero) and the ball on the same side with a
     /// margin. A direction away from the plane then gives `t < 0` exactly (numerator and
     /// denominator of opposite signs); a direction towards it gives a `t` beyond the ball,
     /// so beyond the segment's end, by far more than the rounding of `t` and of the
     /// segment's length.
-    pub fn misses_segments_to(&self, origin: DVec3, centre: DVec3, radius: f64) -> bool {
+    pub fn misses_segments_to(&self, origin: DVec3, center: DVec3, radius: f64) -> bool {
         let numerator = (self.point - origin).dot(self.normal);
-        let ball = (centre - self.point).dot(self.normal);
-        let margin = 1e-9 * (radius + (centre - origin).length() + ball.abs());
+        let ball = (center - self.point).dot(self.normal);
+        let margin = 1e-9 * (radius + (center - origin).length() + ball.abs());
         if numerator < 0.0 {
             ball - radius > margin
         } else if numerator > 0.0 {

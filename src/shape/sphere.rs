@@ -74,7 +74,7 @@ mod tests {
         let s = Sphere::new(DVec3::new(0., 0., 3.), 1.0);
         // From z = 10 down the axis: hit the top at t = 6, normal +z.
         assert_hit(s.intersect(&ray([0., 0., 10.], [0., 0., -1.]), 0.0, 1e9), 6.0, DVec3::Z);
-        // From the centre: the exit hit at t = 1.
+        // From the center: the exit hit at t = 1.
         assert_hit(s.intersect(&ray([0., 0., 3.], [1., 0., 0.]), 0.0, 1e9), 1.0, DVec3::X);
         // Tangent at x = 1: double root t = 5, normal +x.
         assert_hit(s.intersect(&ray([1., -5., 3.], [0., 1., 0.]), 0.0, 1e9), 5.0, DVec3::X);

@@ -1,4 +1,4 @@
-//! The torus: centre, unit axis, major radius `R` (centre to tube centre) and minor
+//! The torus: center, unit axis, major radius `R` (center to tube center) and minor
 //! radius `r` (tube). In its local frame (axis +z) it is the quartic surface
 //! `f(p) = (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2) = 0`.
 //!
@@ -455,7 +455,7 @@ mod tests {
     use super::*;
 
     fn reference() -> Torus {
-        // The reference torus: centre (4, 3, 2), R = 1.5, r = 0.5, axis +z.
+        // The reference torus: center (4, 3, 2), R = 1.5, r = 0.5, axis +z.
         Torus::new(DVec3::new(4., 3., 2.), DVec3::Z, 1.5, 0.5)
     }
 
@@ -535,14 +535,14 @@ mod tests {
 
     #[test]
     fn from_outside_through_the_tube() {
-        // Along +x through the centre plane: the outer wall at x = 4 - 2 = 2, from x = -6.
+        // Along +x through the center plane: the outer wall at x = 4 - 2 = 2, from x = -6.
         let t = reference();
         assert_hit(t.intersect(&ray([-6., 3., 2.], [1., 0., 0.]), 0.0, 1e9), 8.0, -DVec3::X);
     }
 
     #[test]
     fn from_the_hole() {
-        // Starting at the centre (in the hole), along +y: the inner wall at y = 3 + 1 = 4,
+        // Starting at the center (in the hole), along +y: the inner wall at y = 3 + 1 = 4,
         // where the outward normal of the tube points back towards the axis (-y).
         let t = reference();
         assert_hit(t.intersect(&ray([4., 3., 2.], [0., 1., 0.]), 0.0, 1e9), 1.0, -DVec3::Y);
@@ -552,7 +552,7 @@ mod tests {
 
     #[test]
     fn from_inside_the_tube() {
-        // Inside the tube at its centre circle (x = 5.5), going up: exits at z = 2.5.
+        // Inside the tube at its center circle (x = 5.5), going up: exits at z = 2.5.
         let t = reference();
         assert_hit(t.intersect(&ray([5.5, 3., 2.], [0., 0., 1.]), 0.0, 1e9), 0.5, DVec3::Z);
     }
@@ -572,7 +572,7 @@ mod tests {
 
     #[test]
     fn exact_tangent_on_top() {
-        // The reference torus (centre (4, 3, 2), R = 3/2, r = 1/2) and a ray along +x on its
+        // The reference torus (center (4, 3, 2), R = 3/2, r = 1/2) and a ray along +x on its
         // top plane z = 2.5, from (2.25, 3, 2.5): local o = (-7/4, 0, 1/2). With y = 0 and
         // z = r, f = (x^2 + R^2)^2 - 4 R^2 x^2 = (x^2 - R^2)^2: double roots at x = -3/2
         // (t = 1/4) and x = 3/2 (t = 13/4), where the ray touches the tops of the tube.
@@ -608,7 +608,7 @@ mod tests {
         );
     }
 
-    /// A torus with a tilted axis: centre c = (1, 2, 3), axis a = (1, 0, 1) / sqrt(2),
+    /// A torus with a tilted axis: center c = (1, 2, 3), axis a = (1, 0, 1) / sqrt(2),
     /// R = 2, r = 1/2, and two unit vectors of its equatorial plane, u = (0, 1, 0) and
     /// v = a x u = (-1, 0, 1) / sqrt(2). In the frame (u, v, a) a point is
     /// (rho cos phi, rho sin phi, z) and the tube is (rho - 2)^2 + z^2 = 1/4.
@@ -639,7 +639,7 @@ mod tests {
         // normal (1/4 u + sqrt(3)/4 a) / (1/2) = u / 2 + (sqrt(3)/2) a.
         let n = 0.5 * u + 3f64.sqrt() / 2.0 * a;
         assert_hit(hit_of(&t, c + 2.25 * u + 5.0 * a, -a, 0.0), 5.0 - 3f64.sqrt() / 4.0, n);
-        // Obliquely along -(u + a) / sqrt(2) towards the tube's centre circle from 5 away:
+        // Obliquely along -(u + a) / sqrt(2) towards the tube's center circle from 5 away:
         // the surface at distance 5 - r, normal (u + a) / sqrt(2).
         let w = (u + a).normalize();
         assert_hit(hit_of(&t, c + 2.0 * u + 5.0 * w, -w, 0.0), 4.5, w);
@@ -648,9 +648,9 @@ mod tests {
     #[test]
     fn tilted_torus_from_the_hole() {
         let (t, c, a, u, v) = tilted();
-        // From the centre along v: the inner wall at rho = 3/2, normal -v.
+        // From the center along v: the inner wall at rho = 3/2, normal -v.
         assert_hit(hit_of(&t, c, v, 0.0), 1.5, -v);
-        // From c + u/2 (in the hole, off-centre) along +u: rho = 3/2 at t = 1, normal -u.
+        // From c + u/2 (in the hole, off-center) along +u: rho = 3/2 at t = 1, normal -u.
         assert_hit(hit_of(&t, c + 0.5 * u, u, 0.0), 1.0, -u);
         // Along the axis through the hole, from either side: no hit.
         assert!(hit_of(&t, c + 10.0 * a, -a, 0.0).is_none());
@@ -660,7 +660,7 @@ mod tests {
     #[test]
     fn tilted_torus_from_inside_the_tube() {
         let (t, c, a, u, v) = tilted();
-        // From the tube's centre circle at c + 2u (or c + 2v), every direction of the tube's
+        // From the tube's center circle at c + 2u (or c + 2v), every direction of the tube's
         // cross-section plane leaves at distance r = 1/2 with the direction as normal.
         let w = (u + a).normalize();
         for (from, dir) in [(c + 2.0 * u, a), (c + 2.0 * u, -u), (c + 2.0 * u, w), (c + 2.0 * v, -a)] {
@@ -690,7 +690,7 @@ mod tests {
 
     #[test]
     fn four_roots_along_a_diameter() {
-        // Along x through the centre: walls at x = -2, -1, 1, 2; the second hit after
+        // Along x through the center: walls at x = -2, -1, 1, 2; the second hit after
         // t_min just past the first is at -1.
         let t = Torus::new(DVec3::ZERO, DVec3::Z, 1.5, 0.5);
         let r = ray([-5., 0., 0.], [1., 0., 0.]);

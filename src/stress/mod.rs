@@ -133,7 +133,7 @@ impl Gen {
     }
 }
 
-/// A random shape of kind `shape` with size about `s`, centred within `spread` of the origin.
+/// A random shape of kind `shape` with size about `s`, centerd within `spread` of the origin.
 fn random_spec(shape: &str, s: f64, spread: f64, g: &mut Gen) -> Spec {
     let c = DVec3::new(g.uniform(-1., 1.), g.uniform(-1., 1.), g.uniform(-1., 1.)) * spread;
     match shape {

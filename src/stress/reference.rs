@@ -217,7 +217,7 @@ fn quadratic_dd(a: Dd, b: Dd, c: Dd) -> Vec<Dd> {
     vec![q / a, c / q]
 }
 
-/// Torus reference in its local frame (`o` relative to the centre): clip to the bounding
+/// Torus reference in its local frame (`o` relative to the center): clip to the bounding
 /// sphere, shift the origin there, bracket the roots of the quartic by the critical points
 /// of its derivatives, and bisect each bracket on the implicit equation.
 fn torus_reference(o: Dd3, d: Dd3, big: f64, small: f64, t_min: Dd) -> Option<Dd> {
@@ -359,7 +359,7 @@ mod tests {
         };
         let (o, d) = ray_dd([-5., 0., 1.], [1., 0., 0.]);
         assert_eq!(c.reference(o, d, Dd::ZERO).unwrap().to_f64(), 4.5);
-        // Box half (1, 2, 3) from inside at the centre along +y: exit at t = 2.
+        // Box half (1, 2, 3) from inside at the center along +y: exit at t = 2.
         let b = Spec::Box {
             c: DVec3::ZERO,
             half: DVec3::new(1., 2., 3.),

@@ -6,9 +6,10 @@
 //!   operations a render of that member's scene alone does (`Tracer::radiance` is
 //!   [`Reference`]'s `radiance` per member, `Tracer::local` its `local`). Every function
 //!   takes the bit mask of the members it works for and returns `[DVec3; K]`.
-//! - **Area lights in vector lanes** (`area`, src/trace/fast/area.rs): an area light's N points taken together in
-//!   arrays, their shadow rays tested candidate by candidate; they equal [`Reference`]'s
-//!   `local` summing N point lights.
+//! - **Area lights in vector lanes** (`area`, src/trace/fast/area.rs): an area light's N
+//!   points taken together in arrays, their shadow rays tested candidate by candidate
+//!   (src/trace/fast/area/grouped.rs); they equal [`Reference`]'s `local` summing N point
+//!   lights.
 //! - **Skips** ([`crate::skips`]): the shadow rays, object tests and secondary rays whose
 //!   result is known without them (a surface facing away, a light that is black, a zero
 //!   weight, an object that cannot be in the way). Each can be switched off, and none
@@ -551,8 +552,8 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         // the candidate's cone of directions, or a ray-sphere test for costly shapes.
         let sphere_rejects = std::cell::Cell::new(0);
         let cones = skips.on(Skip::BoundingSpheres);
-        let meets_sphere = |i: usize| match world.object_spheres[i] {
-            Some((centre, radius)) if cones && world.costly[i] => segment_meets_sphere(&ray, t_max, centre, radius),
+        let meets_sphere = |i: usize| match world.bounding_spheres[i] {
+            Some((center, radius)) if cones && world.costly[i] => segment_meets_sphere(&ray, t_max, center, radius),
             _ => true,
         };
         let meets = |i: usize| {
@@ -606,21 +607,21 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     }
 }
 
-/// Whether the whole ball (`centre`, `radius`) lies below the tangent plane at `point` with
+/// Whether the whole ball (`center`, `radius`) lies below the tangent plane at `point` with
 /// normal `n`, so that N.L < 0 for every light point in it: `n.(c - p) + r < 0`, with a
 /// relative margin far above the rounding of N.L (a few ulps of |L|).
-fn below_horizon(point: DVec3, n: DVec3, centre: DVec3, radius: f64) -> bool {
-    let to_centre = centre - point;
-    let margin = 1e-9 * (to_centre.length() + radius);
-    n.dot(to_centre) + radius < -margin
+fn below_horizon(point: DVec3, n: DVec3, center: DVec3, radius: f64) -> bool {
+    let to_center = center - point;
+    let margin = 1e-9 * (to_center.length() + radius);
+    n.dot(to_center) + radius < -margin
 }
 
-/// Whether the segment `o + t d`, `t` in [0, t_max], passes within `radius` of `centre`
+/// Whether the segment `o + t d`, `t` in [0, t_max], passes within `radius` of `center`
 /// (padded by a relative 1e-9 so rounding never rejects a real hit). `d` is unit length.
-fn segment_meets_sphere(ray: &Ray, t_max: f64, centre: DVec3, radius: f64) -> bool {
-    let to_centre = centre - ray.origin;
-    let t = to_centre.dot(ray.dir).clamp(0.0, t_max);
+fn segment_meets_sphere(ray: &Ray, t_max: f64, center: DVec3, radius: f64) -> bool {
+    let to_center = center - ray.origin;
+    let t = to_center.dot(ray.dir).clamp(0.0, t_max);
     // 1e-9 of the 1-norm (>= the length) pads without a square root.
-    let reach = radius * (1.0 + 1e-9) + 1e-9 * to_centre.abs().element_sum();
-    (ray.origin + t * ray.dir - centre).length_squared() <= reach * reach
+    let reach = radius * (1.0 + 1e-9) + 1e-9 * to_center.abs().element_sum();
+    (ray.origin + t * ray.dir - center).length_squared() <= reach * reach
 }

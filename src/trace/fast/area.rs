@@ -88,8 +88,8 @@ pub(super) struct AreaScratch {
 }
 
 impl AreaScratch {
-    /// Fills the `len` filters with 1, unless this shading point's are already there: a
-    /// fill per shading point (24 bytes a point) was a cost where no shadow ray is blocked.
+    /// Fills the `len` filters with 1, unless this shading point's are already there: where
+    /// no shadow ray is blocked, nothing writes the 24 bytes a point of a fill.
     fn ensure_filter(&mut self, len: usize) {
         if !self.filter_ready {
             self.filter.clear();
@@ -305,8 +305,8 @@ fn shares(lanes: &mut Lanes, len: usize, point_color: DVec3, filter: &[DVec3], m
 ///
 /// The sum's additions must run in point order, one after the other (3 cycles each). The
 /// terms are computed [`SUM_BLOCK`] points at a time, four per vector, into a block that
-/// stays in the L1 cache, then summed from it: a pass writing six arrays of terms and a
-/// second one reading them back took 16 % of a soft N = 1000 render, this one 11 %.
+/// stays in the L1 cache, then summed from it, rather than written to six arrays of terms
+/// in memory and read back.
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn lane_sum(
     color: DVec3,
@@ -358,8 +358,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
         let mut s = std::mem::take(&mut self.area);
         let points = world.area_points(index, self.sample_key.pixel, self.sample_key.sample);
         let points = &*points;
-        let (centre, radius) = area.bounding_sphere();
-        if skips.on(Skip::Horizon) && below_horizon(at.point, at.n, centre, radius) {
+        let (center, radius) = area.bounding_sphere();
+        if skips.on(Skip::Horizon) && below_horizon(at.point, at.n, center, radius) {
             self.counts.saved.count(Skip::Horizon, points.len() as u64);
             rec.below_horizon(index);
         } else {
@@ -368,7 +368,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
             let mut candidates = std::mem::take(&mut s.candidates);
             let culled = skips.on(Skip::ShadowCandidates);
             if culled {
-                world.shadow_candidates(at.point, centre, radius, 4.0 * at.err, &mut candidates);
+                world.shadow_candidates(at.point, center, radius, 4.0 * at.err, &mut candidates);
             }
             let shadowing = culled.then_some(candidates.as_slice());
             self.add_area_points(color, mask, index, points, area, at, shadowing, &mut s, rec);
@@ -521,7 +521,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                     rec.shadow_crossed(&s.crossed[i]);
                 }
             } else if shadows && R::RECORDS {
-                // Traced only now, for the events' order; pass 3 had no filter for it.
+                // Traced here, for the events' order; pass 3 has no filter for it.
                 let filter = self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, None, rec);
                 *color += self.shade(0, index, &inc, n_dot_l, filter, at, rec);
                 continue;
@@ -624,8 +624,8 @@ impl SumTerms<'_> {
 }
 
 /// Lists in `open` the `towards` points facing the surface, without a branch per point
-/// (their pattern is random). A function of its own: inside the caller, the list's pointer
-/// was loaded from the stack at every point.
+/// (their pattern is random). A function of its own: inlined into its caller, the list's
+/// pointer is reloaded from the stack at every point.
 #[inline(never)]
 fn list_facing(facing: &[Facing], towards: usize, open: &mut Vec<u32>) {
     if towards == facing.len() {

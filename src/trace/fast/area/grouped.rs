@@ -48,9 +48,9 @@ impl<const K: usize> Tracer<'_, '_, K> {
         // Every open point faces the surface, so every shadow ray leaves from the same
         // offset origin (the offset's side is the side of the light: see `offset_origin`).
         let origin = at.ray_along(s.lanes.to_light(first as usize)).origin;
-        let (centre, radius) = light;
+        let (center, radius) = light;
         // The directions from the shading point (as in `incidences`) to every light point.
-        let light_cone = direction_cone(at.point, centre, radius);
+        let light_cone = direction_cone(at.point, center, radius);
         let mut rejects = 0;
         let len = s.lanes.dist.len();
         // Opaque candidates, then transparent ones, each in ascending order.
@@ -61,7 +61,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         for c in opaque.chain(see_through) {
             let shape = &objects[c.object].shape;
             if let (true, Shape::Plane(plane)) = (cones, shape)
-                && plane.misses_segments_to(origin, centre, radius)
+                && plane.misses_segments_to(origin, center, radius)
             {
                 // A plane that none of the segments to the light's ball can cross.
                 rejects += s.open.len() as u64;
@@ -86,8 +86,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
             match c.cone {
                 Some(cone) if cones => verdicts(&s.lanes, cone, c.sure, &mut s.verdict),
                 _ if cones && c.object == at.object && at.n == -at.outward && shape.is_convex_solid() && {
-                    let (o_centre, o_radius) = world.object_spheres[c.object].expect("solids are bounded");
-                    (centre - o_centre).length() > (radius + o_radius) * (1.0 + 1e-9)
+                    let (o_center, o_radius) = world.bounding_spheres[c.object].expect("solids are bounded");
+                    (center - o_center).length() > (radius + o_radius) * (1.0 + 1e-9)
                 } =>
                 {
                     // From the inside of a convex solid's surface, towards a light wholly
@@ -98,7 +98,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 }
                 _ => s.verdict.fill(Verdict::Test),
             }
-            let sphere = world.object_spheres[c.object].filter(|_| cones && c.cone.is_none() && world.costly[c.object]);
+            let sphere =
+                world.bounding_spheres[c.object].filter(|_| cones && c.cone.is_none() && world.costly[c.object]);
             // The open points the cones say meet the candidate, and those they leave
             // undecided, listed without a branch per point (the pattern is random).
             let open = s.open.len();
@@ -106,7 +107,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
             s.tests.resize(open + 1, 0);
             let (mut hits, mut tests) = sort_by_verdict(&s.open, &s.verdict, &mut s.hits, &mut s.tests);
             rejects += (open - tests) as u64;
-            if let Some((centre, radius)) = sphere {
+            if let Some((center, radius)) = sphere {
                 // The undecided rays that meet the candidate's bounding sphere.
                 let mut kept = 0;
                 for k in 0..tests {
@@ -114,7 +115,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                     let ray = Ray::new(origin, s.lanes.to_light(i as usize));
                     // `kept <= k`: in bounds.
                     s.tests[kept] = i;
-                    kept += usize::from(segment_meets_sphere(&ray, s.lanes.dist[i as usize], centre, radius));
+                    kept += usize::from(segment_meets_sphere(&ray, s.lanes.dist[i as usize], center, radius));
                 }
                 rejects += (tests - kept) as u64;
                 tests = kept;
@@ -242,7 +243,7 @@ mod tests {
         let (mut apart, mut near) = (0, 0);
         for _ in 0..2000 {
             let p = DVec3::new(uniform(-6.0, 6.0), uniform(-6.0, 6.0), uniform(0.0, 4.0));
-            let (centre, radius) = (
+            let (center, radius) = (
                 DVec3::new(uniform(-1.0, 1.0), uniform(-1.0, 1.0), 10.0),
                 uniform(0.5, 3.0),
             );
@@ -250,14 +251,14 @@ mod tests {
             let points: Vec<DVec3> = (0..64)
                 .map(|_| {
                     let (theta, phi) = (uniform(0.0, std::f64::consts::PI), uniform(0.0, std::f64::consts::TAU));
-                    centre + radius * DVec3::new(phi.cos() * theta.sin(), phi.sin() * theta.sin(), theta.cos())
+                    center + radius * DVec3::new(phi.cos() * theta.sin(), phi.sin() * theta.sin(), theta.cos())
                 })
                 .collect();
             let object = (
                 DVec3::new(uniform(-6.0, 6.0), uniform(-6.0, 6.0), uniform(0.0, 9.0)),
                 uniform(0.1, 2.0),
             );
-            let (Some(light), Some(cone)) = (direction_cone(p, centre, radius), direction_cone(p, object.0, object.1))
+            let (Some(light), Some(cone)) = (direction_cone(p, center, radius), direction_cone(p, object.0, object.1))
             else {
                 continue;
             };
