@@ -152,33 +152,6 @@ fn render_pixel_members<R: Recorder, const K: usize>(
     pixel_mean(world, x, y, |position, key| trace_at(tracer, position, key, rec))
 }
 
-/// Renders the whole image with the reference tracer ([`Reference`]): the image
-/// [`render`] makes, to the bit, computed as the chapter reads, with no shortcut (slow:
-/// for checking the fast tracer, and for reading).
-pub fn render_reference(world: &World) -> Film {
-    let s = &world.scene.settings;
-    let tracer = Reference::new(world);
-    let pixels = (0..s.height)
-        .into_par_iter()
-        .flat_map_iter(|y| {
-            let tracer = &tracer;
-            (0..s.width).map(move |x| {
-                let mut counts = RayCounts::default();
-                let [c] = pixel_mean(world, x, y, |position, key| {
-                    let radiance = tracer.camera(&camera_ray(world, position), key);
-                    [finite_or_black(radiance, &mut counts)]
-                });
-                c
-            })
-        })
-        .collect();
-    Film {
-        width: s.width,
-        height: s.height,
-        pixels,
-    }
-}
-
 /// Renders the whole image on the current rayon pool. `progress` is called once per
 /// finished row (from any thread).
 pub fn render(world: &World, progress: &(dyn Fn() + Sync)) -> (Film, RenderStats) {
@@ -216,6 +189,100 @@ pub fn render_rows_members<T: Send + Clone, const K: usize>(
     cancel: Option<&AtomicBool>,
     keep: impl Fn([DVec3; K]) -> T + Sync,
 ) -> (Vec<T>, [RenderStats; K]) {
+    render_rows_with(
+        world,
+        rows,
+        progress,
+        cancel,
+        || Tracer::with_members(world, members),
+        keep,
+    )
+}
+
+/// Renders the whole image with the reference tracer ([`Reference`]): the image
+/// [`render`] makes, to the radiance bits, computed as the chapter reads with no shortcut
+/// (slower; for checking the fast tracer, and for reading). Only camera rays and
+/// non-finite samples are counted.
+pub fn render_reference(world: &World, progress: &(dyn Fn() + Sync)) -> (Film, RenderStats) {
+    let s = &world.scene.settings;
+    let (pixels, stats) = render_rows_reference(world, 0..s.height, progress, None);
+    let film = Film {
+        width: s.width,
+        height: s.height,
+        pixels,
+    };
+    (film, stats)
+}
+
+/// [`render_rows`] with the reference tracer (see [`render_reference`]).
+pub fn render_rows_reference(
+    world: &World,
+    rows: Range<u32>,
+    progress: &(dyn Fn() + Sync),
+    cancel: Option<&AtomicBool>,
+) -> (Vec<DVec3>, RenderStats) {
+    let new = || ReferencePixels {
+        tracer: Reference::new(world),
+        counts: RayCounts::default(),
+    };
+    let (pixels, [stats]) = render_rows_with(world, rows, progress, cancel, new, |[c]| c);
+    (pixels, stats)
+}
+
+/// What renders the pixels of a row: the fast tracer's members, or the reference tracer.
+trait PixelTracer<const K: usize> {
+    /// Every member's radiance of pixel `(x, y)`.
+    fn pixel(&mut self, x: u32, y: u32) -> [DVec3; K];
+    /// Each member's counts so far, and whether the members diverged.
+    fn totals(&self) -> ([RayCounts; K], bool);
+}
+
+impl<const K: usize> PixelTracer<K> for Tracer<'_, '_, K> {
+    fn pixel(&mut self, x: u32, y: u32) -> [DVec3; K] {
+        render_pixel_members(self, x, y, &mut NoRecord)
+    }
+
+    fn totals(&self) -> ([RayCounts; K], bool) {
+        (self.member_totals(), self.diverged)
+    }
+}
+
+/// The reference tracer with the counts it keeps: camera rays and non-finite samples.
+struct ReferencePixels<'w, 's> {
+    tracer: Reference<'w, 's>,
+    counts: RayCounts,
+}
+
+impl PixelTracer<1> for ReferencePixels<'_, '_> {
+    fn pixel(&mut self, x: u32, y: u32) -> [DVec3; 1] {
+        let world = self.tracer.world();
+        let counts = &mut self.counts;
+        let tracer = &self.tracer;
+        pixel_mean(world, x, y, |position, key| {
+            counts.camera += 1;
+            [finite_or_black(
+                tracer.camera(&camera_ray(world, position), key),
+                counts,
+            )]
+        })
+    }
+
+    fn totals(&self) -> ([RayCounts; 1], bool) {
+        ([self.counts], false)
+    }
+}
+
+/// The rows `rows` rendered in parallel, one row per task, each by a [`PixelTracer`] made
+/// by `new`; each pixel's radiances through `keep`, with each member's stats. A row left
+/// when `cancel` becomes true stays black. The wall time is the whole render's.
+fn render_rows_with<T: Send + Clone, const K: usize, P: PixelTracer<K>>(
+    world: &World,
+    rows: Range<u32>,
+    progress: &(dyn Fn() + Sync),
+    cancel: Option<&AtomicBool>,
+    new: impl Fn() -> P + Sync,
+    keep: impl Fn([DVec3; K]) -> T + Sync,
+) -> (Vec<T>, [RenderStats; K]) {
     let start = Instant::now();
     let width = world.scene.settings.width as usize;
     // What a cancelled row is left as: black.
@@ -229,16 +296,16 @@ pub fn render_rows_members<T: Send + Clone, const K: usize>(
         .with_max_len(1)
         .enumerate()
         .map(|(i, row)| {
-            let mut tracer = Tracer::with_members(world, members);
+            let mut tracer = new();
             if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
-                return (tracer.member_totals(), false);
+                return (tracer.totals().0, false);
             }
             let y = rows.start + i as u32;
             for (x, px) in row.iter_mut().enumerate() {
-                *px = keep(render_pixel_members(&mut tracer, x as u32, y, &mut NoRecord));
+                *px = keep(tracer.pixel(x as u32, y));
             }
             progress();
-            (tracer.member_totals(), tracer.diverged)
+            tracer.totals()
         })
         .reduce(
             || ([RayCounts::default(); K], false),

@@ -27,7 +27,12 @@ fn sized(mut scene: Scene, width: u32, height: u32, spp: u32) -> Scene {
 fn assert_tracers_agree(scene: &Scene, name: &str) -> usize {
     let world = World::new(scene);
     let (fast, _) = render(&world, &|| {});
-    let reference = render_reference(&world);
+    let (reference, stats) = render_reference(&world, &|| {});
+    let s = &scene.settings;
+    assert_eq!(
+        stats.counts.camera,
+        s.width as u64 * s.height as u64 * s.samples_per_pixel as u64
+    );
     assert_same_bits(&fast, &reference, name);
     fast.pixels.iter().filter(|p| **p != DVec3::ZERO).count()
 }
@@ -108,4 +113,31 @@ fn per_sample_points_adaptive_depth_and_filters_agree() {
     let mut phong = sized(scene("reference.toml"), 40, 30, 1);
     phong.settings.shading.specular = lumiere::scene::Specular::Phong;
     assert_tracers_agree(&phong, "phong");
+}
+
+#[test]
+fn render_reference_writes_the_same_bytes() {
+    let dir = common::temp_dir("reference-cli");
+    let (fast, reference) = (dir.join("fast.png"), dir.join("reference.png"));
+    let scene = common::repo("scenes/soft-shadows.toml");
+    for (out, extra) in [(&fast, None), (&reference, Some("--reference"))] {
+        let mut args = vec!["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap()];
+        args.extend(["--width", "64", "--height", "48", "-q"]);
+        args.extend(extra);
+        let run = common::lumiere(&args);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    }
+    let (a, b) = (std::fs::read(&fast).unwrap(), std::fs::read(&reference).unwrap());
+    assert!(a.len() > 1000);
+    assert_eq!(a, b, "render --reference must write the bytes of render");
+    // The reference counts nothing but camera rays, so it takes no --stats.
+    let run = common::lumiere(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        "x.png",
+        "--reference",
+        "--stats",
+    ]);
+    assert_eq!(run.status.code(), Some(2));
 }

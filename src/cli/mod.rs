@@ -71,7 +71,7 @@ impl Verbosity {
 pub enum Command {
     /// Render a scene file to an image (PNG, or PFM / EXR float radiance).
     #[command(
-        after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1 --stats\n  lumiere render scenes/prism.toml -o prism.exr --depth 20          # float radiance\n  lumiere render scenes/reference.toml -o part0.shard --shard 0/4    # a quarter, for merge\n\nExit codes: 0 ok, 1 the image could not be written (disk full), 2 bad input (scene, option, output path), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP (nothing written)."
+        after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1 --stats\n  lumiere render scenes/prism.toml -o prism.exr --depth 20          # float radiance\n  lumiere render scenes/reference.toml -o part0.shard --shard 0/4    # a quarter, for merge\n  lumiere render scenes/reference.toml -o chapter.png --reference   # the chapter's tracer: same bytes\n\nExit codes: 0 ok, 1 the image could not be written (disk full), 2 bad input (scene, option, output path), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP (nothing written)."
     )]
     Render(render::RenderArgs),
     /// Compare two images: max and RMS difference, PSNR, differing pixels, heat-map.

@@ -5,7 +5,7 @@ use super::{CliError, Overrides, Verbosity, check_output, check_output_path, sig
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::film::{WriteError, write_atomic};
-use lumiere::render::{RenderStats, render_rows};
+use lumiere::render::{RenderStats, render_rows, render_rows_reference};
 use lumiere::skips::Skip;
 use lumiere::world::World;
 use std::io::IsTerminal;
@@ -40,6 +40,10 @@ pub struct RenderArgs {
     /// for `lumiere merge`.
     #[arg(long, value_name = "K/N")]
     pub shard: Option<lumiere::shard::ShardSpec>,
+    /// Render with the reference tracer (src/trace/reference.rs: the chapter as code, no
+    /// shortcut): the same image, bit for bit, more slowly. It counts only camera rays.
+    #[arg(long, conflicts_with_all = ["stats", "json", "no_skip"])]
+    pub reference: bool,
 }
 
 fn progress_bar(rows: u64, quiet: bool) -> ProgressBar {
@@ -89,8 +93,14 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
         )
     });
     let bar = progress_bar(rows.len() as u64, v == Verbosity::Quiet);
-    let (pixels, stats) =
-        super::with_threads(args.threads, || render_rows(&world, rows, &|| bar.inc(1), Some(cancel)))?;
+    let (pixels, stats) = super::with_threads(args.threads, || {
+        let progress = || bar.inc(1);
+        if args.reference {
+            render_rows_reference(&world, rows, &progress, Some(cancel))
+        } else {
+            render_rows(&world, rows, &progress, Some(cancel))
+        }
+    })?;
     bar.finish_and_clear();
     if let Some(signal) = signals::received() {
         return Err(CliError::Interrupted(signal));

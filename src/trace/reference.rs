@@ -30,6 +30,11 @@ impl<'w, 's> Reference<'w, 's> {
         Reference { world }
     }
 
+    /// The world it traces.
+    pub fn world(&self) -> &'w World<'s> {
+        self.world
+    }
+
     /// Radiance along the camera ray of sample `key`.
     pub fn camera(&self, ray: &Ray, key: SampleKey) -> DVec3 {
         self.radiance(ray, 1, 1.0, key)
