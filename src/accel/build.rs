@@ -27,25 +27,17 @@ pub const MAX_SAH_DEPTH: usize = 64;
 /// Trees over at most this many objects bin each node along all three axes and keep the
 /// cheapest split, but for the nodes above the task size (4096 objects up to 262 144), which
 /// all threads bin together along one axis; larger trees bin every node only along the axis
-/// where its centroids spread most.
-/// On the intersection bench all axes took the binary BVH's geometric mean throughput
-/// against obvhs from 0.918 to 0.948 over the 24 rows with N = 8 to 1000, and from 0.84 to
-/// 0.99 over the 8 rows with N = 100 000 (a build of 51 ms); on 1 000 000 spheres they would
-/// cost a third more build time (third session: 0.37 s -> 0.47 s with all axes below 64
-/// objects alone), where the build has a budget of 0.3 s.
+/// where its centroids spread most, which keeps the build of 1 000 000 objects within its
+/// budget of 0.3 s.
 const ALL_AXES_UP_TO: usize = 200_000;
 /// Cost of visiting an interior node relative to one object test, in trees over more than
-/// [`FINE_LEAVES_UP_TO`] objects. Measured on the intersect bench (BENCHMARKS.md, "Eighth
-/// session", binary tree): 3 against 2 gave +1 to +4 % on most N = 64 and 1000 rows, the
-/// same at 1 000 000, a tenth less build time and a third less memory (fuller leaves). With
-/// 4-wide nodes (ninth session), a cost of 1 at 1 000 000 spheres took 62.4 bytes per object
-/// instead of 26.3 and 276 ms to build instead of 155 ms, near the 64-byte and 0.3 s
-/// budgets.
+/// [`FINE_LEAVES_UP_TO`] objects: fuller leaves, 26 to 27 bytes per object (BENCHMARKS.md,
+/// "Memory and node cost", where a cost of 1 takes 62.4 bytes and a build of 276 ms at
+/// 1 000 000 spheres, near the 64-byte and 0.3 s budgets).
 const TRAVERSE_COST: f32 = 3.0;
 /// The node cost in trees over at most [`FINE_LEAVES_UP_TO`] objects. With 4-wide nodes,
-/// whose four boxes are tested at once, smaller leaves cull more object tests: against a
-/// cost of 3, a cost of 1 gave +4 to +15 % on 9 of the 12 incoherent rows at N = 8 to 1000
-/// and -5 to -7 % on two (BENCHMARKS.md, "Ninth session").
+/// whose four boxes are tested at once, smaller leaves cull more object tests (BENCHMARKS.md,
+/// "Memory and node cost").
 const FINE_TRAVERSE_COST: f32 = 1.0;
 /// Trees over at most this many objects take [`FINE_TRAVERSE_COST`]. Their many small leaves
 /// leave nodes less full: 44 to 56 bytes per object at N = 64 to 4096 on the bench's scenes

@@ -18,7 +18,7 @@ use crate::scene::Object;
 use crate::shape::SurfaceHit;
 
 /// Fewest bounded objects for which `auto` picks the BVH: below it the linear scan is as
-/// fast or faster (BENCHMARKS.md, "Intersection cores").
+/// fast or faster (BENCHMARKS.md, "Crossover: when `auto` picks the BVH").
 pub const CROSSOVER: usize = 16;
 
 /// Which core to use (`--accel`).
