@@ -7,7 +7,8 @@
 //! Module map, in layers from the maths up; a module imports only from its own layer or
 //! the ones below:
 //! 1. [`math`] (rays, frames, the laws of reflection and refraction, ray-origin offsets),
-//!    [`solve`] (the stable quadratic, the quartic root isolator), [`shading`] (the formulas
+//!    [`solve`] (the stable quadratic, the quartic root isolator), [`conventions`] (where
+//!    the course's two renderers disagree, as named switches), [`shading`] (the formulas
 //!    of the slides and the chapter, each once), [`material`], [`sampling`] (seeded random
 //!    streams), [`skips`] (the renderer's named shortcuts), [`limits`], [`film`],
 //!    [`compare`].
@@ -63,6 +64,7 @@ pub mod accel;
 pub mod area_light;
 pub mod camera;
 pub mod compare;
+pub mod conventions;
 pub mod family;
 pub mod figures;
 pub mod film;

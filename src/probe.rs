@@ -29,6 +29,9 @@ pub struct PixelProbe {
     pub seed: u64,
     pub depth: u32,
     pub adaptive_threshold: f64,
+    /// The conventions in force: a preset's name, or the switches that differ from the
+    /// chapter's ([`crate::conventions::Conventions::summary`]).
+    pub conventions: String,
     /// The samples traced: all of them, or only the one asked for.
     pub samples: Vec<SampleTrace>,
     pub color: FinalColor,
@@ -424,6 +427,7 @@ pub fn probe_with(
         seed: s.seed,
         depth: s.depth,
         adaptive_threshold: s.adaptive_threshold,
+        conventions: s.conventions.summary(),
         samples: rec.samples,
         color: FinalColor {
             of,
@@ -474,6 +478,7 @@ pub fn format_text(p: &PixelProbe) -> String {
         p.depth,
         num(p.adaptive_threshold)
     );
+    let _ = writeln!(o, "conventions {}", p.conventions);
     for s in &p.samples {
         let _ = writeln!(o, "sample {} at image position {}", s.index, vec(&s.position));
         write_ray(o, &s.ray, 1);

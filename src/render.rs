@@ -2,6 +2,7 @@
 //! sample's jitter from its own stream keyed by (seed, pixel, sample), so the bytes never
 //! depend on the thread count or the order rows finish in.
 
+use crate::conventions::{RayOrigin, SamplePosition};
 use crate::film::Film;
 use crate::math::Ray;
 use crate::sampling::{Purpose, Stream};
@@ -38,37 +39,60 @@ fn jitter_stream(world: &World, x: u32, y: u32) -> Stream {
     )
 }
 
-/// Image position of sample `k` of pixel `(x, y)` with the stream at sample `k`: cell
-/// `(k mod n, k div n)` of the pixel's `n x n` grid, jittered uniformly within the cell.
-fn jittered(rng: &mut Stream, n: u32, x: u32, y: u32, k: u32) -> (f64, f64) {
-    let (jx, jy) = (rng.next_f64(), rng.next_f64());
+/// Image position of sample `k` of pixel `(x, y)`, by the scene's sample-position
+/// convention, with the jitter stream at sample `k`: for `jittered`, cell
+/// `(k mod n, k div n)` of the pixel's `n x n` grid, jittered uniformly within the cell
+/// (reading the stream's next two numbers); for `regular`, that cell's center; for
+/// `center`, the pixel's center; for `corner`, its top-left corner as SIMRenderer places it
+/// (the image's center measured with an integer division by 2: half a pixel right of or
+/// below the true corner along an odd width or height).
+fn sample_at(world: &World, rng: &mut Stream, x: u32, y: u32, k: u32) -> (f64, f64) {
+    let s = &world.scene.settings;
+    let n = s.grid_side();
     let (cx, cy) = ((k % n) as f64, (k / n) as f64);
-    (x as f64 + (cx + jx) / n as f64, y as f64 + (cy + jy) / n as f64)
+    let (x, y, n) = (x as f64, y as f64, n as f64);
+    match s.conventions.sample_position {
+        SamplePosition::Jittered => {
+            let (jx, jy) = (rng.next_f64(), rng.next_f64());
+            (x + (cx + jx) / n, y + (cy + jy) / n)
+        }
+        SamplePosition::Regular => (x + (cx + 0.5) / n, y + (cy + 0.5) / n),
+        SamplePosition::Center => (x + 0.5, y + 0.5),
+        SamplePosition::Corner => {
+            let odd_half = |side: u32| f64::from(side % 2) * 0.5;
+            (x + odd_half(s.width), y + odd_half(s.height))
+        }
+    }
 }
 
-/// Image position of sample `k` of pixel `(x, y)` (see `jittered`).
+/// Image position of sample `k` of pixel `(x, y)` (see `sample_at`).
 pub fn sample_position(world: &World, x: u32, y: u32, k: u32) -> (f64, f64) {
     let mut rng = jitter_stream(world, x, y).skip_words(4 * k as u128);
-    jittered(&mut rng, world.scene.settings.grid_side(), x, y, k)
+    sample_at(world, &mut rng, x, y, k)
 }
 
-/// The camera ray through image position `(px, py)`.
+/// The camera ray through image position `(px, py)`: from the eye, or from the image plane
+/// at the conventions' `near`.
 fn camera_ray(world: &World, (px, py): (f64, f64)) -> Ray {
     let s = &world.scene.settings;
-    world.camera.ray(px, py, s.width, s.height)
+    match s.conventions.ray_origin {
+        RayOrigin::Eye => world.camera.ray(px, py, s.width, s.height),
+        RayOrigin::NearPlane => world
+            .camera
+            .ray_from_plane(px, py, s.width, s.height, s.conventions.near),
+    }
 }
 
 /// A pixel's radiance (the box filter): the mean of its samples, each traced by
-/// `trace(position, sample key)` at its jittered position, read in sample order from one
-/// jitter stream (the same numbers as [`sample_position`] for each sample).
+/// `trace(position, sample key)` at its position ([`sample_at`]), read in sample order from
+/// one jitter stream (the same numbers as [`sample_position`] for each sample).
 fn pixel_mean<const K: usize>(
     world: &World,
     x: u32,
     y: u32,
     mut trace: impl FnMut((f64, f64), SampleKey) -> [DVec3; K],
 ) -> [DVec3; K] {
-    let s = &world.scene.settings;
-    let (spp, n) = (s.samples_per_pixel, s.grid_side());
+    let spp = world.scene.settings.samples_per_pixel;
     let mut rng = jitter_stream(world, x, y);
     let mut sum = [DVec3::ZERO; K];
     for k in 0..spp {
@@ -76,7 +100,7 @@ fn pixel_mean<const K: usize>(
             pixel: pixel_index(world, x, y),
             sample: k,
         };
-        let c = trace(jittered(&mut rng, n, x, y, k), key);
+        let c = trace(sample_at(world, &mut rng, x, y, k), key);
         for j in 0..K {
             sum[j] += c[j];
         }

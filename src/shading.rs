@@ -8,6 +8,7 @@
 //! order either way, so a lane loop over one channel of many light points gives the bits
 //! of the colour formula applied point by point.
 
+use crate::conventions::{LocalWeight, ShadowFilter, Transmission};
 use crate::math::{length, mirror};
 use glam::DVec3;
 use std::ops::{Add, Mul};
@@ -198,6 +199,35 @@ pub fn shadow_filter(colors: impl IntoIterator<Item = DVec3>) -> DVec3 {
 #[inline(always)]
 pub fn filter_through(filter: DVec3, s_g: DVec3) -> DVec3 {
     filter * s_g
+}
+
+/// The colour `S_g` a transparent geometry of colour `S` and transmission `k_t` filters a
+/// shadow ray's light by: `S` (chapter 7.4b), or `k_t S` (SIMRenderer).
+#[inline(always)]
+pub fn transparent_filter(rule: ShadowFilter, kt: f64, s: DVec3) -> DVec3 {
+    match rule {
+        ShadowFilter::Color => s,
+        ShadowFilter::KtColor => s * kt,
+    }
+}
+
+/// What multiplies a refracted ray's radiance at a surface of colour `S` and transmission
+/// `k_t`: `k_t` (chapter 7.4b), or `k_t S` where the ray enters and `k_t` where it leaves
+/// (SIMRenderer).
+pub fn transmission_weight(rule: Transmission, kt: f64, s: DVec3, entering: bool) -> DVec3 {
+    match (rule, entering) {
+        (Transmission::KtColorEntering, true) => s * kt,
+        _ => DVec3::splat(kt),
+    }
+}
+
+/// What weighs a hit's local illumination: 1 (chapter 7.4b, SIMRenderer), or
+/// `1 - k_r - k_t`, what the reflected and refracted rays do not carry.
+pub fn local_weight(rule: LocalWeight, kr: f64, kt: f64) -> f64 {
+    match rule {
+        LocalWeight::One => 1.0,
+        LocalWeight::Remaining => 1.0 - kr - kt,
+    }
 }
 
 /// Adaptive depth control: whether a secondary ray of path weight `weight` (the product of
@@ -400,6 +430,24 @@ mod tests {
         // 0.9475, specular 0.3 * 0.9475 * 0.5 * 0.123 = 0.017481375.
         close(d.x, 0.124_44);
         close(sp.x, 0.017_481_375);
+    }
+
+    #[test]
+    fn conventions_of_filters_and_weights() {
+        let s = DVec3::new(1.0, 0.5, 0.25);
+        // SIMRenderer filters by kt S: kt = 0.8 gives (0.8, 0.4, 0.2); the chapter by S.
+        assert_eq!(
+            transparent_filter(ShadowFilter::KtColor, 0.8, s),
+            DVec3::new(0.8, 0.4, 0.2)
+        );
+        assert_eq!(transparent_filter(ShadowFilter::Color, 0.8, s), s);
+        // A refracted ray: kt S entering, kt leaving (a crossed sphere weighs kt^2 S).
+        let enter = transmission_weight(Transmission::KtColorEntering, 0.5, s, true);
+        let leave = transmission_weight(Transmission::KtColorEntering, 0.5, s, false);
+        assert_eq!(enter * leave, DVec3::new(0.25, 0.125, 0.0625));
+        assert_eq!(transmission_weight(Transmission::Kt, 0.5, s, true), DVec3::splat(0.5));
+        assert_eq!(local_weight(LocalWeight::Remaining, 0.25, 0.5), 0.25);
+        assert_eq!(local_weight(LocalWeight::One, 0.25, 0.5), 1.0);
     }
 
     #[test]

@@ -240,7 +240,12 @@ impl<'s> World<'s> {
     /// The closest hit along `ray` (`t > 0`): the object's index and the surface hit; on
     /// equal `t`, the lowest index.
     pub fn closest(&self, ray: &Ray) -> Option<(usize, SurfaceHit)> {
-        self.accel.closest(&self.scene.objects, ray, 0.0, f64::INFINITY)
+        self.closest_before(ray, f64::INFINITY)
+    }
+
+    /// [`World::closest`] among the hits with `t < t_max`.
+    pub fn closest_before(&self, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
+        self.accel.closest(&self.scene.objects, ray, 0.0, t_max)
     }
 
     /// Whether some object that `filter` accepts is hit along `ray` with `0 < t < t_max`.

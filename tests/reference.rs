@@ -73,6 +73,30 @@ fn every_course_figure_is_the_reference_image() {
 }
 
 #[test]
+fn under_simrenderer_conventions_too() {
+    use lumiere::conventions::Conventions;
+    // Every switch away from the chapter's at once, and each on its own from the chapter's.
+    let mut each = vec![Conventions::SIMRENDERER];
+    for (key, value) in Conventions::SIMRENDERER.describe() {
+        let mut c = Conventions::CHAPTER;
+        c.set(key, &value).unwrap();
+        each.push(c);
+    }
+    let mut remaining = Conventions::SIMRENDERER;
+    remaining.set("local_weight", "remaining").unwrap();
+    each.push(remaining);
+    for conventions in each {
+        for name in ["reference.toml", "prism.toml", "mirrors.toml", "soft-shadows.toml"] {
+            let mut s = sized(scene(name), 40, 30, 4);
+            s.settings.depth = s.settings.depth.max(6);
+            s.set_conventions(conventions);
+            let lit = assert_tracers_agree(&s, &format!("{name} under {}", conventions.summary()));
+            assert!(lit > 100, "{name} under {}: {lit} lit pixels", conventions.summary());
+        }
+    }
+}
+
+#[test]
 fn the_scene_files_are_the_reference_images() {
     for name in [
         "reference.toml",

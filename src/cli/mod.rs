@@ -140,6 +140,13 @@ pub struct Overrides {
     /// Adaptive depth control threshold in 8-bit levels (0 = off).
     #[arg(long)]
     pub adaptive_threshold: Option<f64>,
+    /// Conventions where the chapter and SIMRenderer differ: a preset, `chapter` or
+    /// `simrenderer` (see scenes/README.md, "Conventions").
+    #[arg(long, value_name = "PRESET")]
+    pub conventions: Option<String>,
+    /// One convention set after the preset, e.g. `shadow_filter=kt_color` (repeatable).
+    #[arg(long, value_name = "KEY=VALUE")]
+    pub convention: Vec<String>,
     /// Intersection core: the linear scan, the BVH, or auto (the BVH from a measured number
     /// of objects on). The image does not depend on it, only the time.
     #[arg(long, value_parser = accel_values(), default_value = "auto")]
@@ -156,6 +163,8 @@ impl Overrides {
             seed: self.seed,
             depth: self.depth,
             adaptive_threshold: self.adaptive_threshold,
+            conventions: self.conventions.clone(),
+            convention: self.convention.clone(),
         }
     }
 }

@@ -10,6 +10,7 @@ use super::locate::{FieldError, FieldPath, line_col, locate, path_at};
 use super::tag;
 use super::{CameraSpec, Object, Scene, Settings, ShadingModel, Specular};
 use crate::area_light::{AreaLight, AreaShape, PointMode};
+use crate::conventions::{Conventions, Highlight};
 use crate::light::{Attenuation, Light, PointLight, SpotLight};
 use crate::limits;
 use crate::material::Material;
@@ -47,7 +48,16 @@ pub enum SceneError {
 }
 
 /// The top-level keys of the format: the fields of [`FileScene`].
-const TOP_LEVEL: [&str; 7] = ["image", "camera", "render", "materials", "shapes", "lights", "generate"];
+const TOP_LEVEL: [&str; 8] = [
+    "image",
+    "camera",
+    "render",
+    "conventions",
+    "materials",
+    "shapes",
+    "lights",
+    "generate",
+];
 /// The top-level tables every scene file must have, in the order of the format's docs.
 const REQUIRED_TABLES: [&str; 2] = ["image", "camera"];
 
@@ -187,6 +197,8 @@ struct FileScene {
     #[serde(default)]
     render: FileRender,
     #[serde(default)]
+    conventions: FileConventions,
+    #[serde(default)]
     materials: BTreeMap<String, FileMaterial>,
     #[serde(default)]
     shapes: Vec<FileShape>,
@@ -271,6 +283,60 @@ impl Default for FileRender {
             background: [0.0; 3],
             adaptive_threshold: limits::DEFAULT_ADAPTIVE_THRESHOLD,
         }
+    }
+}
+
+/// The `[conventions]` table: a preset, then any switch set on its own (see
+/// [`Conventions::set`]).
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct FileConventions {
+    preset: Option<String>,
+    sample_position: Option<String>,
+    ray_origin: Option<String>,
+    near: Option<f64>,
+    far: Option<f64>,
+    shadow_filter: Option<String>,
+    transmission: Option<String>,
+    refracting: Option<String>,
+    total_internal_reflection: Option<String>,
+    local_weight: Option<String>,
+    default_highlight: Option<String>,
+}
+
+impl FileConventions {
+    fn validate(&self, path: &FieldPath) -> Check<Conventions> {
+        let mut c = match &self.preset {
+            Some(name) => Conventions::preset(name).or_else(|m| fail(&path.key("preset"), m))?,
+            None => Conventions::CHAPTER,
+        };
+        let number = |x: &Option<f64>| {
+            x.map(|x| {
+                if x.is_infinite() && x > 0.0 {
+                    "inf".to_string()
+                } else {
+                    x.to_string()
+                }
+            })
+        };
+        let switches = [
+            ("sample_position", self.sample_position.clone()),
+            ("ray_origin", self.ray_origin.clone()),
+            ("near", number(&self.near)),
+            ("far", number(&self.far)),
+            ("shadow_filter", self.shadow_filter.clone()),
+            ("transmission", self.transmission.clone()),
+            ("refracting", self.refracting.clone()),
+            ("total_internal_reflection", self.total_internal_reflection.clone()),
+            ("local_weight", self.local_weight.clone()),
+            ("default_highlight", self.default_highlight.clone()),
+        ];
+        for (key, value) in switches {
+            if let Some(value) = value {
+                c.set(key, &value).or_else(|m| fail(&path.key(key), m))?;
+            }
+        }
+        Ok(c)
     }
 }
 
@@ -514,7 +580,8 @@ impl FileScene {
         let root = FieldPath::default();
         let settings = self.settings(&root)?;
         let camera = self.camera(&root.key("camera"))?;
-        let (materials, material_names) = self.materials(&root.key("materials"))?;
+        let highlight = settings.conventions.default_highlight;
+        let (materials, material_names, metal_given) = self.materials(&root.key("materials"), highlight)?;
         let path = root.key("shapes");
         if self.shapes.len() > limits::MAX_OBJECTS {
             return fail(
@@ -580,6 +647,7 @@ impl FileScene {
             camera,
             materials,
             material_names,
+            metal_given,
             objects,
             lights,
         })
@@ -625,6 +693,7 @@ impl FileScene {
             shadows: self.render.shadows,
             background: color(&r.key("background"), self.render.background, limits::MAX_LIGHT)?,
             adaptive_threshold: in_range(&r.key("adaptive_threshold"), self.render.adaptive_threshold, 0.0, 255.0)?,
+            conventions: self.conventions.validate(&root.key("conventions"))?,
         })
     }
 
@@ -655,9 +724,15 @@ impl FileScene {
         })
     }
 
-    fn materials(&self, path: &FieldPath) -> Check<(Vec<Material>, Vec<String>)> {
-        let mut materials = vec![Material::default()];
+    /// The materials, their names and whether each gives its metal factor (the others take
+    /// `highlight`'s).
+    fn materials(&self, path: &FieldPath, highlight: Highlight) -> Check<(Vec<Material>, Vec<String>, Vec<bool>)> {
+        let mut materials = vec![Material {
+            metal: highlight.metal(),
+            ..Material::default()
+        }];
         let mut names = vec!["default".to_string()];
+        let mut metal_given = vec![false];
         for (name, m) in &self.materials {
             let p = path.key(name);
             let d = Material::default();
@@ -673,7 +748,7 @@ impl FileScene {
                     0.0,
                     limits::MAX_SHININESS,
                 )?,
-                metal: unit("m", m.m, d.metal)?,
+                metal: unit("m", m.m, highlight.metal())?,
                 kr: unit("kr", m.kr, d.kr)?,
                 kt: unit("kt", m.kt, d.kt)?,
                 ior: positive(&p.key("n"), m.n.unwrap_or(d.ior), limits::MAX_IOR)?,
@@ -689,12 +764,14 @@ impl FileScene {
             }
             if name == "default" {
                 materials[0] = mat;
+                metal_given[0] = m.m.is_some();
             } else {
                 materials.push(mat);
                 names.push(name.clone());
+                metal_given.push(m.m.is_some());
             }
         }
-        Ok((materials, names))
+        Ok((materials, names, metal_given))
     }
 }
 

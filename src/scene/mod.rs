@@ -11,6 +11,7 @@ pub mod transform;
 pub use file::{SceneError, load, parse};
 pub use overrides::Overrides;
 
+use crate::conventions::Conventions;
 use crate::light::Light;
 use crate::material::Material;
 use crate::shape::Shape;
@@ -65,6 +66,8 @@ pub struct Settings {
     /// Adaptive depth control: a secondary ray is not traced when the most it could add to
     /// the pixel is below this many 8-bit levels (0 = off).
     pub adaptive_threshold: f64,
+    /// Where the chapter's and SIMRenderer's conventions differ, which this scene follows.
+    pub conventions: Conventions,
 }
 
 impl Settings {
@@ -100,11 +103,25 @@ pub struct Scene {
     pub camera: CameraSpec,
     pub materials: Vec<Material>,
     pub material_names: Vec<String>,
+    /// Whether each material gives its metal factor `m`; the others take the conventions'
+    /// default highlight ([`Scene::set_conventions`]).
+    pub metal_given: Vec<bool>,
     pub objects: Vec<Object>,
     pub lights: Vec<Light>,
 }
 
 impl Scene {
+    /// Follows `conventions` from now on: the materials that give no metal factor take its
+    /// default highlight.
+    pub fn set_conventions(&mut self, conventions: Conventions) {
+        self.settings.conventions = conventions;
+        for (material, &given) in self.materials.iter_mut().zip(&self.metal_given) {
+            if !given {
+                material.metal = conventions.default_highlight.metal();
+            }
+        }
+    }
+
     /// The sum of the ambient lights' colours, `L_a`.
     pub fn ambient(&self) -> DVec3 {
         self.lights.iter().map(Light::ambient).sum()

@@ -1,8 +1,9 @@
 //! Values that replace a loaded scene's own settings (the command line's `--width`,
-//! `--height`, `--spp`, `--seed`, `--depth` and `--adaptive-threshold`), each checked against
-//! its limit as the scene file's value would be.
+//! `--height`, `--spp`, `--seed`, `--depth`, `--adaptive-threshold`, `--conventions` and
+//! `--convention`), each checked against its limit as the scene file's value would be.
 
 use super::Scene;
+use crate::conventions::Conventions;
 use crate::limits;
 
 /// Settings to replace; `None` keeps the scene's value.
@@ -20,6 +21,10 @@ pub struct Overrides {
     pub depth: Option<u32>,
     /// Adaptive depth control threshold in 8-bit levels (0 = off).
     pub adaptive_threshold: Option<f64>,
+    /// A preset of conventions (`chapter`, `simrenderer`) replacing the scene's.
+    pub conventions: Option<String>,
+    /// Switches of the conventions set after the preset, as `key=value`.
+    pub convention: Vec<String>,
 }
 
 impl Overrides {
@@ -56,6 +61,19 @@ impl Overrides {
             }
             s.adaptive_threshold = t;
         }
+        let mut conventions = match &self.conventions {
+            Some(name) => Conventions::preset(name).map_err(bad("conventions"))?,
+            None => s.conventions,
+        };
+        for switch in &self.convention {
+            let (key, value) = switch
+                .split_once('=')
+                .ok_or_else(|| format!("--convention: expected KEY=VALUE, got {switch:?}"))?;
+            conventions
+                .set(key.trim(), value.trim())
+                .map_err(|m| format!("--convention {}: {m}", key.trim()))?;
+        }
+        scene.set_conventions(conventions);
         Ok(())
     }
 }
@@ -78,8 +96,17 @@ mod tests {
             seed: Some(9),
             depth: Some(2),
             adaptive_threshold: Some(0.0),
+            conventions: Some("simrenderer".into()),
+            convention: vec!["far = 250".into(), "local_weight=remaining".into()],
         };
         o.apply(&mut s).unwrap();
+        // The preset, then each switch: SIMRenderer's but for the far limit and the weight.
+        let mut want = crate::conventions::Conventions::SIMRENDERER;
+        want.far = 250.0;
+        want.local_weight = crate::conventions::LocalWeight::Remaining;
+        assert_eq!(s.settings.conventions, want);
+        // The default material gives no m: its highlight is now the material's colour.
+        assert_eq!(s.materials[0].metal, 1.0);
         let t = &s.settings;
         assert_eq!(
             (t.width, t.height, t.samples_per_pixel, t.seed, t.depth),
@@ -96,6 +123,27 @@ mod tests {
     #[test]
     fn errors_name_the_option_and_the_range() {
         let err = |o: Overrides| o.apply(&mut scene()).unwrap_err();
+        assert_eq!(
+            err(Overrides {
+                conventions: Some("pov".into()),
+                ..Overrides::default()
+            }),
+            "--conventions: must be \"chapter\" or \"simrenderer\", got \"pov\""
+        );
+        assert_eq!(
+            err(Overrides {
+                convention: vec!["refracting".into()],
+                ..Overrides::default()
+            }),
+            "--convention: expected KEY=VALUE, got \"refracting\""
+        );
+        assert_eq!(
+            err(Overrides {
+                convention: vec!["near=0".into()],
+                ..Overrides::default()
+            }),
+            "--convention near: must be a finite distance above 0, got 0"
+        );
         assert_eq!(
             err(Overrides {
                 spp: Some(5),

@@ -197,6 +197,13 @@ impl Shape {
         )
     }
 
+    /// Whether the shape bounds a solid (sphere, box, capped cylinder and cone, torus): it
+    /// has an inside, which a refracted ray can enter. Planes, rectangles and disks are open
+    /// surfaces.
+    pub fn is_closed(&self) -> bool {
+        !matches!(self, Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_))
+    }
+
     /// The shape's kind as written in scene files.
     pub fn kind(&self) -> &'static str {
         match self {

@@ -20,11 +20,15 @@
 //! [`Reference`]: super::Reference
 
 use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface};
+use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light};
 use crate::material::Material;
 use crate::math::{Ray, offset_origin, reflect, refract};
 use crate::scene::{ShadingModel, Specular};
-use crate::shading::{ambient, beneath_notice, blinn, diffuse, phong, shadow_filter, specular, specular_tint};
+use crate::shading::{
+    ambient, beneath_notice, blinn, diffuse, local_weight, phong, shadow_filter, specular, specular_tint,
+    transmission_weight, transparent_filter,
+};
 use crate::skips::Skip;
 use crate::world::{Candidate, World};
 use glam::DVec3;
@@ -241,7 +245,9 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     ) -> [DVec3; K] {
         rec.ray(kind, ray, level, weight);
         let scene = self.world.scene;
-        let Some((object, hit)) = self.world.closest(ray) else {
+        let conventions = &scene.settings.conventions;
+        let t_max = if level == 1 { conventions.far } else { f64::INFINITY };
+        let Some((object, hit)) = self.world.closest_before(ray, t_max) else {
             rec.miss();
             rec.done(scene.settings.background);
             return [scene.settings.background; K];
@@ -250,6 +256,8 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         let surface = Surface::hit(self.world, ray, object, &hit);
         rec.hit(object, hit.t, surface.point, hit.normal, surface.entering);
         let mut color = self.local_counted(&surface, mask, rec);
+        let local = local_weight(conventions.local_weight, mat.kr, mat.kt);
+        members_of::<K>(mask).for_each(|j| color[j] *= local);
         rec.local(color[0]);
 
         // Without the zero-weight skip, rays of weight 0 are traced (and add 0).
@@ -261,12 +269,15 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         if deeper != 0 {
             let mut kr = mat.kr;
             let mut refracted = None;
-            if mat.kt > 0.0 || all {
+            let closed = scene.objects[object].shape.is_closed();
+            if (mat.kt > 0.0 || all) && conventions.refracting.admits(closed) {
                 match refract(ray.dir, surface.n, mat.eta(surface.entering)) {
                     Some(t) => refracted = Some(t.normalize()),
                     None => {
-                        // Total internal reflection: the transmitted energy is reflected.
-                        kr += mat.kt;
+                        // Total internal reflection: the transmitted energy is reflected, or lost.
+                        if conventions.total_internal_reflection == InternalReflection::Reflected {
+                            kr += mat.kt;
+                        }
                         self.count_members(deeper, |c| c.total_internal_reflections += 1);
                         rec.total_internal_reflection();
                     }
@@ -284,9 +295,17 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                 members_of::<K>(deeper).for_each(|j| color[j] += kr * reflected[j]);
             }
             if let Some(dir) = refracted {
-                let transmitted =
-                    self.secondary(RayKind::Refraction, &surface, dir, level, weight * mat.kt, deeper, rec);
-                members_of::<K>(deeper).for_each(|j| color[j] += mat.kt * transmitted[j]);
+                let kt = transmission_weight(conventions.transmission, mat.kt, mat.color, surface.entering);
+                let transmitted = self.secondary(
+                    RayKind::Refraction,
+                    &surface,
+                    dir,
+                    level,
+                    weight * kt.max_element(),
+                    deeper,
+                    rec,
+                );
+                members_of::<K>(deeper).for_each(|j| color[j] += kt * transmitted[j]);
             }
         }
         rec.done(color[0]);
@@ -603,7 +622,11 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         // Multiply in object order so the bits do not depend on the traversal order.
         self.crossed.sort_unstable();
         rec.shadow_crossed(&self.crossed);
-        shadow_filter(self.crossed.iter().map(|&i| world.material_of(i).color))
+        let rule = world.scene.settings.conventions.shadow_filter;
+        shadow_filter(self.crossed.iter().map(|&i| {
+            let mat = world.material_of(i);
+            transparent_filter(rule, mat.kt, mat.color)
+        }))
     }
 }
 

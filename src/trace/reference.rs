@@ -11,12 +11,21 @@
 //!    and `k_t` times that of the refracted ray, whose energy goes to the reflection on
 //!    total internal reflection; adaptive depth control leaves out a secondary ray that
 //!    cannot change its pixel's 8-bit value.
+//!
+//! Where SIMRenderer's conventions differ from the chapter's, the scene's
+//! [`crate::conventions::Conventions`] decide: how far a camera ray sees, what weighs the
+//! local terms, which objects refract, where the energy of a total internal reflection
+//! goes, what weighs a refracted ray and what a transparent object filters shadows by.
 
 use super::{SampleKey, Surface};
+use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, point_incidence};
 use crate::math::{Ray, reflect, refract};
 use crate::scene::Specular;
-use crate::shading::{ambient, beneath_notice, blinn, diffuse, phong, shadow_filter, specular, specular_tint};
+use crate::shading::{
+    ambient, beneath_notice, blinn, diffuse, local_weight, phong, shadow_filter, specular, specular_tint,
+    transmission_weight, transparent_filter,
+};
 use crate::world::World;
 use glam::DVec3;
 
@@ -44,20 +53,27 @@ impl<'w, 's> Reference<'w, 's> {
     /// pixel is scaled by `weight`, the product of the `k_r` and `k_t` along its path.
     fn radiance(&self, ray: &Ray, level: u32, weight: f64, key: SampleKey) -> DVec3 {
         let settings = &self.world.scene.settings;
-        let Some((object, hit)) = self.world.closest(ray) else {
+        let conventions = &settings.conventions;
+        let t_max = if level == 1 { conventions.far } else { f64::INFINITY };
+        let Some((object, hit)) = self.world.closest_before(ray, t_max) else {
             return settings.background;
         };
         let at = Surface::hit(self.world, ray, object, &hit);
-        let mut color = self.local(&at, key);
+        let mat = self.world.material_of(object);
+        let mut color = self.local(&at, key) * local_weight(conventions.local_weight, mat.kr, mat.kt);
         if level < settings.depth {
-            let mat = self.world.material_of(object);
             let mut kr = mat.kr;
             let mut refracted = None;
-            if mat.kt > 0.0 {
+            let closed = self.world.objects()[object].shape.is_closed();
+            if mat.kt > 0.0 && conventions.refracting.admits(closed) {
                 match refract(ray.dir, at.n, mat.eta(at.entering)) {
                     Some(t) => refracted = Some(t.normalize()),
-                    // Total internal reflection: the transmitted energy is reflected.
-                    None => kr += mat.kt,
+                    // Total internal reflection: the transmitted energy is reflected, or lost.
+                    None => {
+                        if conventions.total_internal_reflection == InternalReflection::Reflected {
+                            kr += mat.kt;
+                        }
+                    }
                 }
             }
             if kr > 0.0 {
@@ -65,7 +81,8 @@ impl<'w, 's> Reference<'w, 's> {
                 color += kr * self.secondary(&at, dir, level, weight * kr, key);
             }
             if let Some(dir) = refracted {
-                color += mat.kt * self.secondary(&at, dir, level, weight * mat.kt, key);
+                let kt = transmission_weight(conventions.transmission, mat.kt, mat.color, at.entering);
+                color += kt * self.secondary(&at, dir, level, weight * kt.max_element(), key);
             }
         }
         color
@@ -138,7 +155,8 @@ impl<'w, 's> Reference<'w, 's> {
 
     /// Chapter 7.4b's shadow ray towards the light of incidence `inc`, up to the light
     /// (`t_max` = its distance): 0 if it meets an opaque object, else the product of the
-    /// colours of the transparent objects it crosses, each counted once, in object order.
+    /// filters of the transparent objects it crosses (their colours, or `k_t S` by the
+    /// conventions), each counted once, in object order.
     fn shadow_filter(&self, at: &Surface, inc: &Incidence) -> DVec3 {
         let world = self.world;
         let ray = at.ray_along(inc.to_light);
@@ -149,6 +167,10 @@ impl<'w, 's> Reference<'w, 's> {
         let mut crossed = Vec::new();
         world.each_hit(&ray, inc.distance, &transparent, &mut |i| crossed.push(i));
         crossed.sort_unstable();
-        shadow_filter(crossed.into_iter().map(|i| world.material_of(i).color))
+        let rule = world.scene.settings.conventions.shadow_filter;
+        shadow_filter(crossed.into_iter().map(|i| {
+            let mat = world.material_of(i);
+            transparent_filter(rule, mat.kt, mat.color)
+        }))
     }
 }

@@ -2,7 +2,7 @@
 //! of its N points from one shading point, tested object by object. Each candidate object
 //! that may block one of them ([`crate::world::World::shadow_candidates`]) is met by every
 //! point it has not blocked yet, opaque objects first, then the transparent ones in
-//! ascending order, their colours multiplied in ([`filter_through`]): the objects, order
+//! ascending order, their filters multiplied in ([`transparent_filter`], [`filter_through`]): the objects, order
 //! and products of [`crate::trace::Reference`]'s `shadow_filter` for each point. Before the
 //! exact test, the candidate's cones of directions sort the points into sure hits, sure
 //! misses and the undecided ([`verdicts`]), and a candidate whose cone misses the light's
@@ -10,7 +10,7 @@
 
 use super::{AreaScratch, Lanes};
 use crate::math::Ray;
-use crate::shading::filter_through;
+use crate::shading::{filter_through, transparent_filter};
 use crate::shape::{Fan, Shape, Verdict, fan_verdicts};
 use crate::skips::Skip;
 use crate::trace::Surface;
@@ -166,7 +166,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
                     s.open.truncate(kept);
                 }
             } else {
-                let color = world.material_of(c.object).color;
+                let mat = world.material_of(c.object);
+                let color = transparent_filter(world.scene.settings.conventions.shadow_filter, mat.kt, mat.color);
                 s.tinted |= hits > 0;
                 for &i in met {
                     let i = i as usize;
