@@ -19,16 +19,13 @@
 //!
 //! [`Reference`]: super::Reference
 
-use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface};
+use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface, point_light_terms};
 use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light};
 use crate::material::Material;
 use crate::math::{Ray, offset_origin, reflect, refract};
-use crate::scene::{ShadingModel, Specular};
-use crate::shading::{
-    ambient, beneath_notice, blinn, diffuse, local_weight, phong, shadow_filter, specular, specular_tint,
-    transmission_weight, transparent_filter,
-};
+use crate::scene::ShadingModel;
+use crate::shading::{ambient, beneath_notice, local_weight, shadow_filter, transmission_weight, transparent_filter};
 use crate::skips::Skip;
 use crate::world::{Candidate, World};
 use glam::DVec3;
@@ -498,37 +495,19 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         at: &Surface,
         rec: &mut R,
     ) -> DVec3 {
-        let settings = &self.world.scene.settings;
-        if filter == DVec3::ZERO && self.world.skips.on(Skip::BlockedShading) {
-            // Everything below is a product with `arriving` = 0: exactly 0.
+        let (diffuse, specular) = if filter == DVec3::ZERO && self.world.skips.on(Skip::BlockedShading) {
+            // Both terms are products with the arriving light, 0: exactly 0.
             self.counts.saved.count(Skip::BlockedShading, 1);
-            rec.light(&LightShare {
-                light: index,
-                incidence: *inc,
-                n_dot_l,
-                shadow_ray: settings.shadows,
-                filter,
-                diffuse: DVec3::ZERO,
-                specular: DVec3::ZERO,
-            });
-            return DVec3::ZERO;
-        }
-        let (model, mat) = self.member_shading(member, at.object);
-        let arriving = inc.color * filter;
-        let spec = match model.specular {
-            Specular::None => 0.0,
-            Specular::Phong => phong(at.n, inc.to_light, at.eye, mat.shininess),
-            Specular::Blinn => blinn(at.n, inc.to_light, at.eye, mat.shininess),
+            (DVec3::ZERO, DVec3::ZERO)
+        } else {
+            let (model, mat) = self.member_shading(member, at.object);
+            point_light_terms(model, mat, at, inc.to_light, n_dot_l, inc.color * filter)
         };
-        let kd = if model.diffuse { mat.kd } else { 0.0 };
-        let tint = specular_tint(mat.metal, mat.color);
-        let diffuse = diffuse(arriving, kd, mat.color, n_dot_l);
-        let specular = specular(arriving, mat.ks, tint, spec);
         rec.light(&LightShare {
             light: index,
             incidence: *inc,
             n_dot_l,
-            shadow_ray: settings.shadows,
+            shadow_ray: self.world.scene.settings.shadows,
             filter,
             diffuse,
             specular,

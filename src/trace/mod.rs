@@ -18,7 +18,10 @@
 //! its one definition in [`crate::shading`], [`crate::light`] and [`crate::math`].
 
 use crate::light::Incidence;
+use crate::material::Material;
 use crate::math::{Ray, hit_point_error, offset_origin};
+use crate::scene::{ShadingModel, Specular};
+use crate::shading::{blinn, diffuse, phong, specular, specular_tint};
 use crate::shape::SurfaceHit;
 use crate::skips::Saved;
 use crate::world::World;
@@ -29,6 +32,30 @@ pub mod reference;
 
 pub use fast::{Member, Tracer};
 pub use reference::Reference;
+
+/// One point light's diffuse and specular shares at `at` (slides, full model):
+/// `L k_d S max(N.L, 0)` and `L k_s [m S + (1 - m)] spec`, `spec` Phong's or Blinn's term as
+/// `model` says, for the light `light` arriving through its shadow filter (`A C_theta L`
+/// times the filter) from direction `inc.to_light`. Both tracers shade every point light so.
+pub(crate) fn point_light_terms(
+    model: ShadingModel,
+    mat: &Material,
+    at: &Surface,
+    to_light: DVec3,
+    n_dot_l: f64,
+    light: DVec3,
+) -> (DVec3, DVec3) {
+    let spec = match model.specular {
+        Specular::None => 0.0,
+        Specular::Phong => phong(at.n, to_light, at.eye, mat.shininess),
+        Specular::Blinn => blinn(at.n, to_light, at.eye, mat.shininess),
+    };
+    let kd = if model.diffuse { mat.kd } else { 0.0 };
+    (
+        diffuse(light, kd, mat.color, n_dot_l),
+        specular(light, mat.ks, specular_tint(mat.metal, mat.color), spec),
+    )
+}
 
 /// Which pixel sample a ray belongs to: the pixel's index (row-major) and the sample's.
 /// The points of an area light drawn afresh for each sample depend on it.

@@ -17,15 +17,11 @@
 //! local terms, which objects refract, where the energy of a total internal reflection
 //! goes, what weighs a refracted ray and what a transparent object filters shadows by.
 
-use super::{SampleKey, Surface};
+use super::{SampleKey, Surface, point_light_terms};
 use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, point_incidence};
 use crate::math::{Ray, reflect, refract};
-use crate::scene::Specular;
-use crate::shading::{
-    ambient, beneath_notice, blinn, diffuse, local_weight, phong, shadow_filter, specular, specular_tint,
-    transmission_weight, transparent_filter,
-};
+use crate::shading::{ambient, beneath_notice, local_weight, shadow_filter, transmission_weight, transparent_filter};
 use crate::world::World;
 use glam::DVec3;
 
@@ -143,14 +139,8 @@ impl<'w, 's> Reference<'w, 's> {
             DVec3::ONE
         };
         let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
-        let light = inc.color * filter;
-        let spec = match model.specular {
-            Specular::None => 0.0,
-            Specular::Phong => phong(at.n, inc.to_light, at.eye, mat.shininess),
-            Specular::Blinn => blinn(at.n, inc.to_light, at.eye, mat.shininess),
-        };
-        let kd = if model.diffuse { mat.kd } else { 0.0 };
-        diffuse(light, kd, mat.color, n_dot_l) + specular(light, mat.ks, specular_tint(mat.metal, mat.color), spec)
+        let (diffuse, specular) = point_light_terms(model, mat, at, inc.to_light, n_dot_l, inc.color * filter);
+        diffuse + specular
     }
 
     /// Chapter 7.4b's shadow ray towards the light of incidence `inc`, up to the light
