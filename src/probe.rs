@@ -13,7 +13,7 @@ use crate::light::Light;
 use crate::math::Ray;
 use crate::render::{render_pixel_recorded, render_sample};
 use crate::scene::Scene;
-use crate::trace::{LightShare, RayKind, Recorder, Tracer};
+use crate::trace::{LightShare, RayCounts, RayKind, Recorder, Tracer};
 use crate::world::World;
 use glam::DVec3;
 use serde::Serialize;
@@ -35,7 +35,8 @@ pub struct PixelProbe {
     /// The samples traced: all of them, or only the one asked for.
     pub samples: Vec<SampleTrace>,
     pub color: FinalColor,
-    pub counts: Counts,
+    /// Rays traced for this probe, by kind.
+    pub counts: RayCounts,
 }
 
 /// One sample: its jittered image position, its camera ray's tree and its radiance.
@@ -57,18 +58,6 @@ pub struct FinalColor {
     pub radiance: [f64; 3],
     pub clamped: [f64; 3],
     pub rgb8: [u8; 3],
-}
-
-/// Rays traced for this probe, by kind, and work skipped.
-#[derive(Clone, Debug, Serialize)]
-pub struct Counts {
-    pub camera: u64,
-    pub shadow: u64,
-    pub reflection: u64,
-    pub refraction: u64,
-    pub total_internal_reflections: u64,
-    pub adaptive_cutoffs: u64,
-    pub non_finite: u64,
 }
 
 /// A camera, reflected or refracted ray and everything that happened along it.
@@ -435,15 +424,7 @@ pub fn probe_with(
             clamped: radiance.to_array().map(clamp_unit),
             rgb8: radiance.to_array().map(quantize),
         },
-        counts: Counts {
-            camera: c.camera,
-            shadow: c.shadow,
-            reflection: c.reflection,
-            refraction: c.refraction,
-            total_internal_reflections: c.total_internal_reflections,
-            adaptive_cutoffs: c.adaptive_cutoffs,
-            non_finite: c.non_finite,
-        },
+        counts: *c,
     })
 }
 

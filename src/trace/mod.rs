@@ -74,8 +74,9 @@ pub enum RayKind {
     Refraction,
 }
 
-/// Rays traced, by kind, and work skipped, by reason.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// Rays traced, by kind, and work skipped, by reason (left out of the serialised form,
+/// which `probe --json` prints).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct RayCounts {
     pub camera: u64,
     pub shadow: u64,
@@ -88,6 +89,7 @@ pub struct RayCounts {
     /// Samples whose radiance was NaN or infinite (replaced by black).
     pub non_finite: u64,
     /// Work left out, by shortcut (see [`crate::skips`]).
+    #[serde(skip)]
     pub saved: Saved,
 }
 
