@@ -157,7 +157,11 @@ impl<'s> World<'s> {
                 .map(|o| {
                     matches!(
                         o.shape,
-                        Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_) | Shape::Torus(_)
+                        Shape::Cuboid(_)
+                            | Shape::Cylinder(_)
+                            | Shape::Cone(_)
+                            | Shape::Torus(_)
+                            | Shape::Transformed(_)
                     )
                 })
                 .collect(),
