@@ -6,9 +6,10 @@
 
 use super::Object;
 use crate::sampling::{Purpose, Stream};
-use crate::shape::{Cone, Shape, Sphere, Torus};
+use crate::shape::{Cone, Shape, Sphere, Torus, Triangle};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// Objects drawn from one stream.
 pub const CHUNK: usize = 4096;
@@ -22,6 +23,9 @@ pub enum GenerateKind {
     /// Spheres, tori and cones in equal shares (random axes), each within a ball of the
     /// drawn radius.
     Mixed,
+    /// Equilateral triangles inscribed in the circle of the drawn radius, in a random plane
+    /// turned by a random angle: a triangle soup, its vertices in one shared array.
+    Triangles,
 }
 
 impl GenerateKind {
@@ -29,6 +33,7 @@ impl GenerateKind {
         match s {
             "spheres" => Some(GenerateKind::Spheres),
             "mixed" => Some(GenerateKind::Mixed),
+            "triangles" => Some(GenerateKind::Triangles),
             _ => None,
         }
     }
@@ -57,7 +62,7 @@ impl Generate {
     /// (meshes, grids); drawn in random order, a million objects would make every object
     /// test of a ray a cache miss, for either core.
     pub fn objects(&self, table: usize) -> Vec<Object> {
-        let mut shapes: Vec<(u64, Shape, usize)> = (0..self.count.div_ceil(CHUNK))
+        let mut shapes: Vec<(u64, Drawn, usize)> = (0..self.count.div_ceil(CHUNK))
             .into_par_iter()
             .flat_map_iter(|k| {
                 let mut s = Stream::new(self.seed, Purpose::Generator, ((table as u64) << 32) | k as u64);
@@ -67,12 +72,27 @@ impl Generate {
             .collect();
         // Stable: equal codes keep the drawing order, so the order is fully determined.
         shapes.par_sort_by_key(|(code, _, _)| *code);
+        // Triangles' vertices in one array, in the objects' order.
+        let vertices: Arc<[DVec3]> = shapes
+            .iter()
+            .flat_map(|(_, drawn, _)| match drawn {
+                Drawn::Triangle(points) => points.to_vec(),
+                Drawn::Shape(_) => Vec::new(),
+            })
+            .collect();
         shapes
             .into_par_iter()
             .enumerate()
-            .map(|(i, (_, shape, material))| Object {
+            .map(|(i, (_, drawn, material))| Object {
                 name: format!("generate[{table}]#{i}"),
-                shape,
+                shape: match drawn {
+                    Drawn::Shape(shape) => shape,
+                    Drawn::Triangle(_) => {
+                        let first = 3 * i as u32;
+                        let index = [first, first + 1, first + 2];
+                        Shape::Triangle(Triangle::in_mesh(&vertices, index).expect("three vertices per triangle"))
+                    }
+                },
                 material,
             })
             .collect()
@@ -96,24 +116,41 @@ impl Generate {
         spread(q[0]) | spread(q[1]) << 1 | spread(q[2]) << 2
     }
 
-    /// One object: centre, radius, material, then for `mixed` the kind and an axis; with
-    /// the Z-order code of its centre.
-    fn draw(&self, s: &mut Stream) -> (u64, Shape, usize) {
+    /// One object: centre, radius, material, then for `mixed` the kind and an axis, for
+    /// `triangles` a normal and a turn; with the Z-order code of its centre.
+    fn draw(&self, s: &mut Stream) -> (u64, Drawn, usize) {
         let mut u = || s.next_f64();
         let c = DVec3::new(u(), u(), u());
         let center = self.min + (self.max - self.min) * c;
         let (lo, hi) = self.radius;
         let r = lo + (hi - lo) * u();
         let material = self.materials[((u() * self.materials.len() as f64) as usize).min(self.materials.len() - 1)];
+        // A uniform direction: z uniform in [-1, 1], azimuth uniform.
+        let direction = |u: &mut dyn FnMut() -> f64| {
+            let z = 2.0 * u() - 1.0;
+            let phi = std::f64::consts::TAU * u();
+            let rho = (1.0 - z * z).max(0.0).sqrt();
+            DVec3::new(rho * libm::cos(phi), rho * libm::sin(phi), z)
+        };
         let shape = match self.kind {
             GenerateKind::Spheres => Shape::Sphere(Sphere::new(center, r)),
+            GenerateKind::Triangles => {
+                let normal = direction(&mut u);
+                let turn = std::f64::consts::TAU * u();
+                let frame = crate::math::Frame::from_z(normal);
+                let corner = |k: f64| {
+                    let a = turn + k * (std::f64::consts::TAU / 3.0);
+                    center + frame.to_world(DVec3::new(libm::cos(a), libm::sin(a), 0.0)) * r
+                };
+                return (
+                    self.z_order(center),
+                    Drawn::Triangle([corner(0.0), corner(1.0), corner(2.0)]),
+                    material,
+                );
+            }
             GenerateKind::Mixed => {
                 let which = u();
-                // A uniform direction: z uniform in [-1, 1], azimuth uniform.
-                let z = 2.0 * u() - 1.0;
-                let phi = std::f64::consts::TAU * u();
-                let rho = (1.0 - z * z).max(0.0).sqrt();
-                let axis = DVec3::new(rho * libm::cos(phi), rho * libm::sin(phi), z);
+                let axis = direction(&mut u);
                 if which < 1.0 / 3.0 {
                     Shape::Sphere(Sphere::new(center, r))
                 } else if which < 2.0 / 3.0 {
@@ -125,8 +162,15 @@ impl Generate {
                 }
             }
         };
-        (self.z_order(center), shape, material)
+        (self.z_order(center), Drawn::Shape(shape), material)
     }
+}
+
+/// A drawn object: a shape, or a triangle's points (its shared vertex array is made once
+/// every object is drawn and sorted).
+enum Drawn {
+    Shape(Shape),
+    Triangle([DVec3; 3]),
 }
 
 #[cfg(test)]
@@ -147,7 +191,7 @@ mod tests {
 
     #[test]
     fn objects_stay_in_the_region_and_are_reproducible() {
-        for kind in [GenerateKind::Spheres, GenerateKind::Mixed] {
+        for kind in [GenerateKind::Spheres, GenerateKind::Mixed, GenerateKind::Triangles] {
             let g = table(kind, CHUNK + 10);
             let a = g.objects(0);
             assert_eq!(a.len(), CHUNK + 10);
@@ -170,6 +214,32 @@ mod tests {
         for k in ["sphere", "torus", "cone"] {
             let n = kinds.iter().filter(|&&x| x == k).count();
             assert!((70..130).contains(&n), "{k}: {n} of 300");
+        }
+    }
+
+    #[test]
+    fn triangles_are_equilateral_and_share_one_vertex_array() {
+        let objects = table(GenerateKind::Triangles, 500).objects(3);
+        let Shape::Triangle(first) = &objects[0].shape else {
+            panic!("{:?}", objects[0]);
+        };
+        for (i, o) in objects.iter().enumerate() {
+            let Shape::Triangle(t) = &o.shape else {
+                panic!("{o:?}");
+            };
+            // Object i holds vertices 3i .. 3i + 2 of the table's one array.
+            let (shared, index) = t.shared();
+            assert!(Arc::ptr_eq(shared, first.shared().0));
+            assert_eq!(index, [3 * i as u32, 3 * i as u32 + 1, 3 * i as u32 + 2]);
+            // Sides r sqrt(3) for a radius r in [0.01, 0.1].
+            let [a, b, c] = t.points();
+            let sides = [(b - a).length(), (c - b).length(), (a - c).length()];
+            assert!(
+                sides.iter().all(|s| (s - sides[0]).abs() < 1e-12 * sides[0]),
+                "{sides:?}"
+            );
+            let r = sides[0] / 3f64.sqrt();
+            assert!((0.01 - 1e-12..=0.1 + 1e-12).contains(&r), "{r}");
         }
     }
 }
