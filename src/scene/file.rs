@@ -1013,12 +1013,23 @@ impl FileMesh {
         let file = dir.join(&self.file);
         let shown = file.display();
         let most = limits::MAX_MESH_TRIANGLES.min(room);
-        let mesh = Mesh::read(&file, most).map_err(|e| FieldError {
-            path: field.clone(),
-            message: match e.line {
-                Some(line) => format!("{shown}:{line}: {}", e.message),
-                None => format!("{shown}: {}", e.message),
-            },
+        let mesh = Mesh::read(&file, most).map_err(|e| {
+            // Say so when the scene's other objects, not the mesh limit, leave too little.
+            let why = if e.over_limit && most < limits::MAX_MESH_TRIANGLES {
+                format!(
+                    " (the scene's other objects leave room for {most} of the {} objects it may hold)",
+                    limits::MAX_OBJECTS
+                )
+            } else {
+                String::new()
+            };
+            FieldError {
+                path: field.clone(),
+                message: match e.line {
+                    Some(line) => format!("{shown}:{line}: {}{why}", e.message),
+                    None => format!("{shown}: {}{why}", e.message),
+                },
+            }
         })?;
         let material = resolve_material(path, self.material, material_names)?;
         let transform = transform_of(&path.key("transform"), self.transform)?;
@@ -1556,6 +1567,33 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A mesh that does not fit in what the scene's other objects leave is refused on the
+    /// face that passes the room, saying so.
+    #[test]
+    fn a_mesh_gets_the_room_the_scene_leaves() {
+        let mesh = || FileMesh {
+            file: "scenes/icosahedron.obj".to_string(),
+            material: None,
+            name: None,
+            transform: None,
+        };
+        let path = FieldPath::default().key("shapes").index(2);
+        let names = ["default".to_string()];
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+        assert_eq!(mesh().validate(&path, 2, &names, dir, 20).unwrap().len(), 20);
+        let e = mesh().validate(&path, 2, &names, dir, 19).unwrap_err();
+        assert_eq!(e.path.to_string(), "shapes[2].file");
+        let obj = dir.join("scenes/icosahedron.obj");
+        assert_eq!(
+            e.message,
+            format!(
+                "{}:34: the mesh would hold 20 triangles, at most 19 are allowed (the scene's other objects leave \
+                 room for 19 of the 4000000 objects it may hold)",
+                obj.display()
+            )
+        );
     }
 
     /// `TOP_LEVEL` lists the keys serde knows at the top level, in its order: with a key

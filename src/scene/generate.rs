@@ -62,40 +62,54 @@ impl Generate {
     /// (meshes, grids); drawn in random order, a million objects would make every object
     /// test of a ray a cache miss, for either core.
     pub fn objects(&self, table: usize) -> Vec<Object> {
-        let mut shapes: Vec<(u64, Drawn, usize)> = (0..self.count.div_ceil(CHUNK))
+        let name = |i: usize| format!("generate[{table}]#{i}");
+        if self.kind == GenerateKind::Triangles {
+            let drawn = self.sorted(table, |s| self.draw_triangle(s));
+            // The vertices in one array, in the objects' order.
+            let vertices: Arc<[DVec3]> = drawn.iter().flat_map(|(_, points, _)| *points).collect();
+            return drawn
+                .into_par_iter()
+                .enumerate()
+                .map(|(i, (_, _, material))| {
+                    let first = 3 * i as u32;
+                    let triangle = Triangle::in_mesh(&vertices, [first, first + 1, first + 2]);
+                    Object {
+                        name: name(i),
+                        shape: Shape::Triangle(triangle.expect("three vertices per triangle")),
+                        material,
+                    }
+                })
+                .collect();
+        }
+        self.sorted(table, |s| self.draw(s))
+            .into_par_iter()
+            .enumerate()
+            .map(|(i, (_, shape, material))| Object {
+                name: name(i),
+                shape,
+                material,
+            })
+            .collect()
+    }
+
+    /// What `draw` makes of each object of table number `table`, sorted by the Z-order codes
+    /// it returns first.
+    fn sorted<T: Send>(
+        &self,
+        table: usize,
+        draw: impl Fn(&mut Stream) -> (u64, T, usize) + Sync,
+    ) -> Vec<(u64, T, usize)> {
+        let mut drawn: Vec<(u64, T, usize)> = (0..self.count.div_ceil(CHUNK))
             .into_par_iter()
             .flat_map_iter(|k| {
                 let mut s = Stream::new(self.seed, Purpose::Generator, ((table as u64) << 32) | k as u64);
                 let end = ((k + 1) * CHUNK).min(self.count);
-                (k * CHUNK..end).map(|_| self.draw(&mut s)).collect::<Vec<_>>()
+                (k * CHUNK..end).map(|_| draw(&mut s)).collect::<Vec<_>>()
             })
             .collect();
         // Stable: equal codes keep the drawing order, so the order is fully determined.
-        shapes.par_sort_by_key(|(code, _, _)| *code);
-        // Triangles' vertices in one array, in the objects' order.
-        let vertices: Arc<[DVec3]> = shapes
-            .iter()
-            .flat_map(|(_, drawn, _)| match drawn {
-                Drawn::Triangle(points) => points.to_vec(),
-                Drawn::Shape(_) => Vec::new(),
-            })
-            .collect();
-        shapes
-            .into_par_iter()
-            .enumerate()
-            .map(|(i, (_, drawn, material))| Object {
-                name: format!("generate[{table}]#{i}"),
-                shape: match drawn {
-                    Drawn::Shape(shape) => shape,
-                    Drawn::Triangle(_) => {
-                        let first = 3 * i as u32;
-                        let index = [first, first + 1, first + 2];
-                        Shape::Triangle(Triangle::in_mesh(&vertices, index).expect("three vertices per triangle"))
-                    }
-                },
-                material,
-            })
-            .collect()
+        drawn.par_sort_by_key(|(code, _, _)| *code);
+        drawn
     }
 
     /// 63-bit Morton code of `p`: 21 bits per axis of its place in the region.
@@ -116,38 +130,22 @@ impl Generate {
         spread(q[0]) | spread(q[1]) << 1 | spread(q[2]) << 2
     }
 
-    /// One object: centre, radius, material, then for `mixed` the kind and an axis, for
-    /// `triangles` a normal and a turn; with the Z-order code of its centre.
-    fn draw(&self, s: &mut Stream) -> (u64, Drawn, usize) {
-        let mut u = || s.next_f64();
+    /// Where an object goes: its centre, the radius of its ball and its material.
+    fn place(&self, u: &mut dyn FnMut() -> f64) -> (DVec3, f64, usize) {
         let c = DVec3::new(u(), u(), u());
         let center = self.min + (self.max - self.min) * c;
         let (lo, hi) = self.radius;
         let r = lo + (hi - lo) * u();
         let material = self.materials[((u() * self.materials.len() as f64) as usize).min(self.materials.len() - 1)];
-        // A uniform direction: z uniform in [-1, 1], azimuth uniform.
-        let direction = |u: &mut dyn FnMut() -> f64| {
-            let z = 2.0 * u() - 1.0;
-            let phi = std::f64::consts::TAU * u();
-            let rho = (1.0 - z * z).max(0.0).sqrt();
-            DVec3::new(rho * libm::cos(phi), rho * libm::sin(phi), z)
-        };
+        (center, r, material)
+    }
+
+    /// One object: centre, radius, material, then for `mixed` the kind and an axis; with
+    /// the Z-order code of its centre.
+    fn draw(&self, s: &mut Stream) -> (u64, Shape, usize) {
+        let mut u = || s.next_f64();
+        let (center, r, material) = self.place(&mut u);
         let shape = match self.kind {
-            GenerateKind::Spheres => Shape::Sphere(Sphere::new(center, r)),
-            GenerateKind::Triangles => {
-                let normal = direction(&mut u);
-                let turn = std::f64::consts::TAU * u();
-                let frame = crate::math::Frame::from_z(normal);
-                let corner = |k: f64| {
-                    let a = turn + k * (std::f64::consts::TAU / 3.0);
-                    center + frame.to_world(DVec3::new(libm::cos(a), libm::sin(a), 0.0)) * r
-                };
-                return (
-                    self.z_order(center),
-                    Drawn::Triangle([corner(0.0), corner(1.0), corner(2.0)]),
-                    material,
-                );
-            }
             GenerateKind::Mixed => {
                 let which = u();
                 let axis = direction(&mut u);
@@ -161,16 +159,32 @@ impl Generate {
                     Shape::Cone(Box::new(Cone::new(center - axis * (0.6 * r), axis, 1.2 * r, 0.8 * r)))
                 }
             }
+            _ => Shape::Sphere(Sphere::new(center, r)),
         };
-        (self.z_order(center), Drawn::Shape(shape), material)
+        (self.z_order(center), shape, material)
+    }
+
+    /// One triangle: centre, radius and material as every object, then the normal of its
+    /// plane and its turn in that plane; its corners and the Z-order code of its centre.
+    fn draw_triangle(&self, s: &mut Stream) -> (u64, [DVec3; 3], usize) {
+        let mut u = || s.next_f64();
+        let (center, r, material) = self.place(&mut u);
+        let frame = crate::math::Frame::from_z(direction(&mut u));
+        let turn = std::f64::consts::TAU * u();
+        let corner = |k: f64| {
+            let a = turn + k * (std::f64::consts::TAU / 3.0);
+            center + frame.to_world(DVec3::new(libm::cos(a), libm::sin(a), 0.0)) * r
+        };
+        (self.z_order(center), [corner(0.0), corner(1.0), corner(2.0)], material)
     }
 }
 
-/// A drawn object: a shape, or a triangle's points (its shared vertex array is made once
-/// every object is drawn and sorted).
-enum Drawn {
-    Shape(Shape),
-    Triangle([DVec3; 3]),
+/// A uniform direction: `z` uniform in [-1, 1], the azimuth uniform.
+fn direction(u: &mut dyn FnMut() -> f64) -> DVec3 {
+    let z = 2.0 * u() - 1.0;
+    let phi = std::f64::consts::TAU * u();
+    let rho = (1.0 - z * z).max(0.0).sqrt();
+    DVec3::new(rho * libm::cos(phi), rho * libm::sin(phi), z)
 }
 
 #[cfg(test)]

@@ -32,6 +32,8 @@ pub struct Mesh {
 pub struct ObjError {
     pub line: Option<usize>,
     pub message: String,
+    /// Whether the file has more triangles than it was allowed.
+    pub over_limit: bool,
 }
 
 impl std::fmt::Display for ObjError {
@@ -47,6 +49,16 @@ fn at(line: usize, message: String) -> ObjError {
     ObjError {
         line: Some(line),
         message,
+        over_limit: false,
+    }
+}
+
+/// An error of the whole file.
+fn whole(message: String) -> ObjError {
+    ObjError {
+        line: None,
+        message,
+        over_limit: false,
     }
 }
 
@@ -54,19 +66,13 @@ impl Mesh {
     /// Reads and checks the file (see the module doc), refusing files larger than
     /// [`limits::MAX_MESH_FILE_BYTES`] and meshes of more than `max_triangles`.
     pub fn read(path: &Path, max_triangles: usize) -> Result<Mesh, ObjError> {
-        let cannot = |e: std::io::Error| ObjError {
-            line: None,
-            message: format!("cannot read the mesh file: {e}"),
-        };
+        let cannot = |e: std::io::Error| whole(format!("cannot read the mesh file: {e}"));
         let size = std::fs::metadata(path).map_err(cannot)?.len();
         if size > limits::MAX_MESH_FILE_BYTES {
-            return Err(ObjError {
-                line: None,
-                message: format!(
-                    "the file has {size} bytes, at most {} are read",
-                    limits::MAX_MESH_FILE_BYTES
-                ),
-            });
+            return Err(whole(format!(
+                "the file has {size} bytes, at most {} are read",
+                limits::MAX_MESH_FILE_BYTES
+            )));
         }
         let mut bytes = Vec::new();
         std::fs::File::open(path)
@@ -107,14 +113,11 @@ impl Mesh {
             .flat_map(|&(line, n)| std::iter::repeat_n(line, n - 2))
             .collect();
         if lines.len() != triangles.len() || vertices.len() > u32::MAX as usize {
-            return Err(ObjError {
-                line: None,
-                message: format!(
-                    "the faces give {} triangles, the parser found {}",
-                    lines.len(),
-                    triangles.len()
-                ),
-            });
+            return Err(whole(format!(
+                "the faces give {} triangles, the parser found {}",
+                lines.len(),
+                triangles.len()
+            )));
         }
         Ok(Mesh {
             vertices,
@@ -189,10 +192,13 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<(usize, usize)>, ObjErr
                 }
                 triangles += corners.len() - 2;
                 if triangles > max_triangles {
-                    return Err(at(
-                        number,
-                        format!("the mesh would hold {triangles} triangles, at most {max_triangles} are allowed"),
-                    ));
+                    return Err(ObjError {
+                        over_limit: true,
+                        ..at(
+                            number,
+                            format!("the mesh would hold {triangles} triangles, at most {max_triangles} are allowed"),
+                        )
+                    });
                 }
                 faces.push((number, corners.len()));
             }
@@ -200,10 +206,7 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<(usize, usize)>, ObjErr
         }
     }
     if faces.is_empty() {
-        return Err(ObjError {
-            line: None,
-            message: "the file has no faces (f)".to_string(),
-        });
+        return Err(whole("the file has no faces (f)".to_string()));
     }
     Ok(faces)
 }

@@ -102,7 +102,8 @@ pub enum Shape {
     Cylinder(Box<Cylinder>),
     Cone(Box<Cone>),
     Torus(Box<Torus>),
-    /// Inline: 28 bytes of shared vertices and indices, no allocation per triangle.
+    /// Inline (32 bytes: the shared vertex array and three indices), no allocation per
+    /// triangle.
     Triangle(Triangle),
     /// Any shape through an affine map.
     Transformed(Box<Transformed>),

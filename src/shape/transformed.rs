@@ -335,11 +335,8 @@ mod tests {
 
     #[test]
     fn a_matrix_shears() {
-        // x' = x + z: the unit cube becomes a parallelepiped leaning towards +x. A ray down
-        // z at x = 1.5 meets the top face (z from 0.5; x in [0, 1] + 0.5 ... ) only above
-        // z = 0.5: the slanted face x' - z = 0.5, hit where 1.5 - z = 0.5, z = 1: t = 9 from
-        // z = 10? The top face z = 0.5 spans x' in [0, 1]: the ray at x' = 1.5 misses it,
-        // and the side x = 0.5 (local) is x' = 0.5 + z: at x' = 1.5, z = 1 > 0.5: a miss.
+        // x' = x + z: the cube [-0.5, 0.5]^3 leans towards +x. A vertical line at x' = 1.5
+        // would need local x = 1.5 - z <= 0.5, so z >= 1, above the cube: a miss.
         let t = Transform::from_rows([[1., 0., 1., 0.], [0., 1., 0., 0.], [0., 0., 1., 0.]]).unwrap();
         let cube = t.apply(Shape::Cuboid(Box::new(Cuboid::new(
             DVec3::ZERO,
@@ -347,15 +344,16 @@ mod tests {
             DVec3::ZERO,
         ))));
         assert!(cube.intersect(&ray([1.5, 0., 10.], [0., 0., -1.]), 0.0, 1e9).is_none());
-        // At x' = 0.8: the local point (0.3, 0, 0.5) on the top face: t = 9.5, normal the
-        // top's (0, 0, 1) through A^-T = [[1, 0, 0], [0, 1, 0], [-1, 0, 1]]: (0, 0, 1)... and
-        // A^-T (0, 0, 1) = (-1... ): the face's plane z = 0.5 is unchanged, normal +z.
+        // At x' = 0.8 it meets the top face z = 0.5 at the local point (0.3, 0, 0.5): t = 9.5.
+        // The normal is A^-T (0, 0, 1) with A^-T = [[1, 0, 0], [0, 1, 0], [-1, 0, 1]]
+        // (rows): (0, 0, 1), the top's plane being unchanged by the shear.
         let h = cube.intersect(&ray([0.8, 0., 10.], [0., 0., -1.]), 0.0, 1e9).unwrap();
         assert!(
             (h.t - 9.5).abs() < 1e-14 && (h.normal - DVec3::Z).length() < 1e-15,
             "{h:?}"
         );
-        // From +x at z = 0: the slanted side x' = 0.5 + z, normal (1, 0, -1) / sqrt(2).
+        // From +x at z = 0: the slanted side x' = 0.5 + z at t = 4.5, its normal
+        // A^-T (1, 0, 0) = (1, 0, -1), normalised.
         let n = DVec3::new(1., 0., -1.).normalize();
         assert_hit(cube.intersect(&ray([5., 0., 0.], [-1., 0., 0.]), 0.0, 1e9), 4.5, n);
         // A singular matrix has no inverse.

@@ -3,10 +3,10 @@
 //! SIMRenderer's `triangle` has it.
 //!
 //! **Storage.** The vertices live in an array shared by every triangle of a mesh (a
-//! reference-counted slice) and each triangle holds its three indices: 28 bytes in the
-//! [`super::Shape`] enum and no allocation of its own, so that a million triangles cost a
-//! million objects and about 24 bytes of vertices each (see `shape/mesh.rs`). A lone
-//! triangle owns a slice of its three vertices.
+//! reference-counted slice) and each triangle holds its three indices: 32 bytes inline in
+//! the [`super::Shape`] enum and no allocation of its own. A closed mesh has about half as
+//! many vertices as triangles, 12 bytes of vertices a triangle; a soup of separate
+//! triangles 72. A lone triangle owns a slice of its three vertices.
 //!
 //! **Intersection.** The watertight test of Woop, Benthin and Wald ("Watertight
 //! Ray/Triangle Intersection", JCGT 2(1), 2013), in the form pbrt-v4's `Triangle::Intersect`
