@@ -67,7 +67,12 @@ impl Mesh {
     /// [`limits::MAX_MESH_FILE_BYTES`] and meshes of more than `max_triangles`.
     pub fn read(path: &Path, max_triangles: usize) -> Result<Mesh, ObjError> {
         let cannot = |e: std::io::Error| whole(format!("cannot read the mesh file: {e}"));
-        let size = std::fs::metadata(path).map_err(cannot)?.len();
+        let meta = std::fs::metadata(path).map_err(cannot)?;
+        // Not a directory, a device or a pipe, whose length says nothing of what they give.
+        if !meta.is_file() {
+            return Err(whole("not a regular file".to_string()));
+        }
+        let size = meta.len();
         if size > limits::MAX_MESH_FILE_BYTES {
             return Err(whole(format!(
                 "the file has {size} bytes, at most {} are read",
@@ -309,6 +314,15 @@ mod tests {
         assert_eq!(m.lines, vec![7, 7, 9, 10]);
         // Every triangle's normal is +z (counter-clockwise from above).
         assert!(m.triangles().iter().all(|t| t.normal() == DVec3::Z));
+    }
+
+    #[test]
+    fn only_regular_files_are_read() {
+        let device = if cfg!(unix) { "/dev/zero" } else { "." };
+        for path in [device, "."] {
+            let e = Mesh::read(Path::new(path), 100).unwrap_err();
+            assert_eq!(e.to_string(), "not a regular file", "{path}");
+        }
     }
 
     #[test]
