@@ -132,6 +132,7 @@ fn kind_name(k: GenerateKind) -> &'static str {
     match k {
         GenerateKind::Spheres => "spheres",
         GenerateKind::Mixed => "mixed",
+        GenerateKind::Triangles => "triangles",
     }
 }
 

@@ -21,6 +21,16 @@ pub const MAX_LIGHT_POINTS: u32 = 100_000;
 pub const MAX_TOTAL_LIGHT_POINTS: u64 = 10_000_000;
 /// Largest coordinate magnitude (beyond it f64 hit points lose all sub-unit precision).
 pub const MAX_COORDINATE: f64 = 1e9;
+/// Most triangles in one mesh file (each is an object, so [`MAX_OBJECTS`] bounds the
+/// scene's total too).
+pub const MAX_MESH_TRIANGLES: usize = MAX_OBJECTS;
+/// Largest mesh file read (a mesh of 4 000 000 triangles is about 250 MB of `.obj`).
+pub const MAX_MESH_FILE_BYTES: u64 = 1 << 30;
+/// Smallest magnitude of a transform's scale factor (and of the singular values of its
+/// matrix): below it a shape's local error bounds and sizes are stretched out of scale.
+pub const MIN_SCALE: f64 = 1e-6;
+/// Largest magnitude of a transform's scale factor (and of its matrix's entries).
+pub const MAX_SCALE: f64 = 1e6;
 /// Largest light colour channel.
 pub const MAX_LIGHT: f64 = 1e6;
 /// Largest specular exponent.

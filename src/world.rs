@@ -158,7 +158,11 @@ impl<'s> World<'s> {
                 .map(|o| {
                     matches!(
                         o.shape,
-                        Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_) | Shape::Torus(_)
+                        Shape::Cuboid(_)
+                            | Shape::Cylinder(_)
+                            | Shape::Cone(_)
+                            | Shape::Torus(_)
+                            | Shape::Transformed(_)
                     )
                 })
                 .collect(),

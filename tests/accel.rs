@@ -1,7 +1,8 @@
 //! The two intersection cores (linear scan and BVH) agree hit for hit: same object, same
-//! `t` and normal to the bit, on randomised scenes of every shape kind (planes included),
-//! random rays, rays grazing box edges and faces, and rays starting on surfaces; any-hit and
-//! every-hit agree too. The BVH's structure holds its invariants, every shape honours the
+//! `t` and normal to the bit, on randomised scenes of every shape kind (planes, triangles,
+//! tubes and transformed shapes included), on meshes (rays through their shared vertices
+//! too), random rays, rays grazing box edges and faces, and rays starting on surfaces;
+//! any-hit and every-hit agree too. The BVH's structure holds its invariants, every shape honours the
 //! `t_max` contract the cores rely on, and whole images are byte-identical with either core.
 
 mod common;
@@ -12,7 +13,7 @@ use lumiere::math::Ray;
 use lumiere::render::render;
 use lumiere::sampling::{Purpose, Stream};
 use lumiere::scene::Object;
-use lumiere::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus};
+use lumiere::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus, Transform, Triangle};
 use lumiere::world::World;
 
 fn object(shape: Shape) -> Object {
@@ -60,6 +61,49 @@ fn random_scene(seed: u64, n: usize, half: f64) -> Vec<Object> {
             7 => Shape::Cone(Box::new(Cone::new(c, axis, 2.0 * r, r))),
             8 => Shape::Torus(Box::new(Torus::new(c, axis, r, 0.3 * r))),
             _ if i > 0 => objects[(s.next_f64() * i as f64) as usize % i].shape.clone(),
+            _ => Shape::Sphere(Sphere::new(c, r)),
+        };
+        objects.push(object(shape));
+    }
+    objects
+}
+
+/// `n` random triangles, tubes and transformed shapes (ellipsoids and boxes scaled, turned,
+/// some mirrored, and moved; tori and cones sheared) among spheres, in a cube of half-side
+/// `half`, with copies of earlier objects.
+fn random_new_shapes(seed: u64, n: usize, half: f64) -> Vec<Object> {
+    let mut s = Stream::new(seed, Purpose::Generator, 5);
+    let mut objects: Vec<Object> = Vec::new();
+    for i in 0..n {
+        let c = point(&mut s, half);
+        let r = 0.05 + 0.6 * s.next_f64();
+        let axis = unit(&mut s);
+        let kind = (s.next_f64() * 6.0) as usize;
+        let shape = match kind {
+            0 => Shape::Triangle(Triangle::new(c, c + unit(&mut s) * r, c + unit(&mut s) * r)),
+            1 => Shape::Cylinder(Box::new(Cylinder::tube(c, axis, 2.0 * r, 0.5 * r))),
+            2 => {
+                // An ellipsoid or a box, scaled, turned and moved.
+                let scale = DVec3::new(0.3 + s.next_f64(), 0.3 + s.next_f64(), -0.3 - s.next_f64()) * r;
+                let local = if i % 2 == 0 {
+                    Shape::Sphere(Sphere::new(DVec3::ZERO, 1.0))
+                } else {
+                    Shape::Cuboid(Box::new(Cuboid::new(DVec3::ZERO, DVec3::ONE, DVec3::ZERO)))
+                };
+                Transform::from_parts(scale, point(&mut s, 180.0), c).apply(local)
+            }
+            3 => {
+                // A torus or a cone through a shear.
+                let a = point(&mut s, 0.4);
+                let rows = [[1.0, a.x, 0.0, c.x], [0.0, 1.0, a.y, c.y], [a.z, 0.0, 1.0, c.z]];
+                let local = if i % 2 == 0 {
+                    Shape::Torus(Box::new(Torus::new(DVec3::ZERO, axis, r, 0.3 * r)))
+                } else {
+                    Shape::Cone(Box::new(Cone::new(DVec3::ZERO, axis, 2.0 * r, r)))
+                };
+                Transform::from_rows(rows).unwrap().apply(local)
+            }
+            4 if i > 0 => objects[(s.next_f64() * i as f64) as usize % i].shape.clone(),
             _ => Shape::Sphere(Sphere::new(c, r)),
         };
         objects.push(object(shape));
@@ -184,7 +228,13 @@ fn assert_agree(objects: &[Object], linear: &Accel, bvh: &Accel, ray: &Ray, what
 
 fn check_scene(seed: u64, n: usize) {
     let half = 2.0 + (n as f64).cbrt();
-    let objects = random_scene(seed, n, half);
+    check_objects(seed, &random_scene(seed, n, half), half);
+}
+
+/// [`assert_agree`] on random, grazing and surface rays (and their far and tiny-component
+/// variants) for `objects` within a cube of half-side `half`.
+fn check_objects(seed: u64, objects: &[Object], half: f64) {
+    let objects = objects.to_vec();
     let linear = Accel::build_with(&objects, AccelChoice::Linear);
     let bvh = Accel::build_with(&objects, AccelChoice::Bvh);
     Bvh::new(&objects).check(&objects).unwrap();
@@ -215,6 +265,14 @@ fn check_scene(seed: u64, n: usize) {
 fn cores_agree_on_small_random_scenes() {
     for (seed, n) in [(1, 1), (2, 2), (3, 5), (4, 9), (5, 17), (6, 40)] {
         check_scene(seed, n);
+    }
+}
+
+#[test]
+fn cores_agree_on_triangles_tubes_and_transformed_shapes() {
+    for (seed, n) in [(31, 3), (32, 17), (33, 150), (34, 600)] {
+        let half = 2.0 + (n as f64).cbrt();
+        check_objects(seed, &random_new_shapes(seed, n, half), half);
     }
 }
 
@@ -384,9 +442,10 @@ fn the_tree_does_not_depend_on_the_thread_count() {
 fn every_shape_honours_the_t_max_contract() {
     // intersect(ray, a, b) for b below the full hit's t is None; for b above it, the same
     // hit to the bit.
-    let objects = random_scene(13, 400, 4.0);
-    let rays = random_rays(13, &objects, 400, 4.0);
-    let mut checked = [0usize; 8];
+    let mut objects = random_scene(13, 400, 4.0);
+    objects.extend(random_new_shapes(14, 200, 4.0));
+    let rays = random_rays(13, &objects, 1200, 4.0);
+    let mut checked = [0usize; 10];
     for o in &objects {
         for r in &rays {
             let Some(full) = o.shape.intersect(r, 0.0, f64::INFINITY) else {
@@ -401,6 +460,8 @@ fn every_shape_honours_the_t_max_contract() {
                 "cylinder",
                 "cone",
                 "torus",
+                "triangle",
+                "tube",
             ]
             .iter()
             .position(|k| *k == o.shape.kind())
@@ -420,6 +481,58 @@ fn every_shape_honours_the_t_max_contract() {
         }
     }
     assert!(checked.iter().all(|&c| c > 5), "hits by kind: {checked:?}");
+}
+
+/// A mesh scene: the committed icosahedron at five places (turned, scaled, one mirrored),
+/// a generated soup of 3000 triangles, and a floor.
+fn mesh_objects() -> Vec<Object> {
+    let mut text =
+        String::from("[image]\nwidth = 8\nheight = 6\n[camera]\nposition = [0, -8, 5]\nlook_at = [0, 0, 0]\n");
+    text += "[[shapes]]\ntype = \"plane\"\npoint = [0, 0, -3]\nnormal = [0, 0, 1]\n";
+    for k in 0..5 {
+        let x = 2.5 * k as f64 - 5.0;
+        let mirror = if k == 3 { -1.0 } else { 1.0 };
+        text += &format!(
+            "[[shapes]]\ntype = \"mesh\"\nfile = \"scenes/icosahedron.obj\"\n\
+             transform = {{ scale = [{mirror}, 1, {}], rotation = [{}, 10, 20], translation = [{x}, 0, 0] }}\n",
+            1.0 + 0.2 * k as f64,
+            17 * k
+        );
+    }
+    text += "[[generate]]\nkind = \"triangles\"\ncount = 3000\nseed = 4\nmin = [-6, -6, -2]\nmax = [6, 6, 2]\nradius = [0.05, 0.4]\n";
+    lumiere::scene::parse(&text, "mesh.toml").unwrap().objects
+}
+
+#[test]
+fn cores_agree_on_meshes() {
+    let objects = mesh_objects();
+    assert_eq!(objects.len(), 1 + 5 * 20 + 3000);
+    check_objects(21, &objects, 6.0);
+    // Rays through the icosahedra's vertices (each shared by five triangles) and their
+    // edges' midpoints, from points outside roughly along the way out from the
+    // icosahedron's center (so that the ray goes on into the solid): the cores agree, and
+    // none of these rays slips between the mesh's triangles.
+    let linear = Accel::build_with(&objects, AccelChoice::Linear);
+    let bvh = Accel::build_with(&objects, AccelChoice::Bvh);
+    let meshes = &objects[1..101];
+    let mesh_scan = Accel::build_with(meshes, AccelChoice::Linear);
+    let mut s = Stream::new(22, Purpose::Generator, 4);
+    let mut aimed = 0;
+    for (k, o) in meshes.iter().enumerate() {
+        let Shape::Triangle(t) = &o.shape else { panic!("{o:?}") };
+        let center = DVec3::new(2.5 * (k / 20) as f64 - 5.0, 0.0, 0.0);
+        let [a, b, c] = t.points();
+        for target in [a, 0.5 * (a + b), b, 0.5 * (b + c), c] {
+            let out = ((target - center).normalize() + unit(&mut s) * 0.3).normalize();
+            let from = target + out * 3.0;
+            let ray = Ray::new(from, (target - from).normalize());
+            assert_agree(&objects, &linear, &bvh, &ray, "through a mesh vertex or edge");
+            aimed += 1;
+            let hit = mesh_scan.closest(meshes, &ray, 0.0, f64::INFINITY);
+            assert!(hit.is_some(), "{ray:?} slipped through the mesh at {target}");
+        }
+    }
+    assert_eq!(aimed, 500);
 }
 
 /// Renders `scene` with both cores; the float pixels must be identical.
@@ -450,6 +563,11 @@ fn images_are_identical_with_either_core() {
     let mut mixed = lumiere::scene::parse(&text, "mixed.toml").unwrap();
     mixed.materials[1].kr = 0.5;
     assert_same_image(&mixed);
+    // A triangle, a tube, an ellipsoid and a mesh, with reflections.
+    let mut geometry = scene("geometry.toml");
+    geometry.settings.width = 160;
+    geometry.settings.height = 120;
+    assert_same_image(&geometry);
 }
 
 #[test]

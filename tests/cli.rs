@@ -112,7 +112,7 @@ fn unknown_field_is_an_error() {
         "radius = 1\n",
         "radius = 1\nradus = 2\n",
         &[
-            "scene.toml:19:1: shapes[0].radus: unknown field `radus`, expected one of `center`, `radius`, `material`, `name`\n",
+            "scene.toml:19:1: shapes[0].radus: unknown field `radus`, expected one of `center`, `radius`, `material`, `name`, `transform`\n",
         ],
     );
 }

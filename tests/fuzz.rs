@@ -1,5 +1,6 @@
 //! Hostile input, as a proptest harness: mutated scene files (of a scene with every shape,
-//! every light kind including area lights, and a `[[generate]]` table) and random text must
+//! a transform in each of its forms, a mesh, every light kind including area lights, and
+//! `[[generate]]` tables) and random text must
 //! give a scene, a located error, or (a required table deleted or cut off) an error naming
 //! each missing table, never a panic; random valid scenes (with random area lights) must
 //! render without a panic and with no NaN or infinity in any pixel. The suite runs 256
@@ -98,6 +99,41 @@ length = 2
 height = 2
 material = "mirror"
 
+[[shapes]]
+type = "triangle"
+p0 = [-2, 2, 0]
+p1 = [0, 2, 0]
+p2 = [-1, 2, 2]
+
+[[shapes]]
+type = "tube"
+start = [2, 2, 1]
+end = [4, 2, 1.5]
+radius = 0.5
+material = "glass"
+
+[[shapes]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 1
+transform = { scale = [0.5, 1, 1.5], rotation = [10, 20, 30], translation = [-2, -2, 1.5] }
+
+[[shapes]]
+type = "torus"
+center = [0, 0, 0]
+major_radius = 1
+minor_radius = 0.25
+
+[shapes.transform]
+matrix = [[1, 0.5, 0, 3], [0, 1, 0, -3], [0, 0, 2, 1]]
+
+[[shapes]]
+type = "mesh"
+file = "scenes/icosahedron.obj"
+name = "gem"
+material = "mirror"
+transform = { scale = [0.5, 0.5, -0.5], translation = [0, -4, 1] }
+
 [[lights]]
 type = "ambient"
 color = [0.5, 0.5, 0.5]
@@ -165,6 +201,14 @@ min = [-6, -6, 0]
 max = [6, 6, 3]
 radius = [0.2, 0.5]
 materials = ["glass", "default"]
+
+[[generate]]
+kind = "triangles"
+count = 5
+seed = 2
+min = [-6, -6, 0]
+max = [6, 6, 3]
+radius = [0.2, 0.5]
 "#;
 
 fn hostile_value() -> impl Strategy<Value = String> {
@@ -207,6 +251,20 @@ fn hostile_value() -> impl Strategy<Value = String> {
             "\"fibonacci\"",
             "\"per_sample\"",
             "\"mixed\"",
+            "\"triangle\"",
+            "\"triangles\"",
+            "\"mesh\"",
+            "\"scenes/icosahedron.obj\"",
+            "\"scenes/reference.toml\"",
+            "\"scenes\"",
+            "1e-7",
+            "[-1, 1, 1]",
+            "[1e-6, 1e6, 1]",
+            "{ scale = [0, 1, 1] }",
+            "{ matrix = [[0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 0]] }",
+            "{ matrix = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1e-7, 0]] }",
+            "[[1, 0, 0, 1e9], [0, 1, 0, 0], [0, 0, 1, 0]]",
+            "{ rotation = [0, 0, 90], translation = [1e9, 0, 0] }",
         ])
         .prop_map(str::to_string),
         any::<f64>().prop_map(|x| format!("{x:e}")),
@@ -329,7 +387,8 @@ fn render_tiny(mut s: scene::Scene) {
 #[test]
 fn the_fuzz_seed_scene_is_valid() {
     let s = scene::parse(VALID, "fuzz.toml").unwrap();
-    assert_eq!((s.objects.len(), s.lights.len()), (15, 8));
+    // 9 entries of one object, a mirror pair, 20 mesh triangles and 5 + 5 generated.
+    assert_eq!((s.objects.len(), s.lights.len()), (44, 8));
     render_tiny(s);
 }
 
@@ -378,7 +437,7 @@ proptest! {
         centers in prop::collection::vec((-50.0..50.0f64, -50.0..50.0f64, -5.0..20.0f64), 1..6),
         sizes in prop::collection::vec(1e-3..10.0f64, 6),
         axis in (-1.0..1.0f64, -1.0..1.0f64, 0.05..1.0f64),
-        kind in prop::collection::vec(0usize..6, 6),
+        kind in prop::collection::vec(0usize..9, 6),
         kr in 0.0..0.5f64,
         kt in 0.0..0.5f64,
         n in 0.2..3.0f64,
@@ -402,6 +461,9 @@ proptest! {
                 2 => format!("[[shapes]]\ntype = \"cone\"\nbase = [{x}, {y}, {z}]\naxis = [{ax}, {ay}, {az}]\nheight = {h}\nradius = {r}\nmaterial = \"m\"\n"),
                 3 => format!("[[shapes]]\ntype = \"cylinder\"\nbase = [{x}, {y}, {z}]\naxis = [{ax}, {ay}, {az}]\nheight = {h}\nradius = {r}\nmaterial = \"m\"\n"),
                 4 => format!("[[shapes]]\ntype = \"torus\"\ncenter = [{x}, {y}, {z}]\naxis = [{ax}, {ay}, {az}]\nmajor_radius = {}\nminor_radius = {}\nmaterial = \"m\"\n", r.max(h), r.min(h)),
+                6 => format!("[[shapes]]\ntype = \"triangle\"\np0 = [{x}, {y}, {z}]\np1 = [{}, {y}, {z}]\np2 = [{}, {}, {}]\nmaterial = \"m\"\n", x + r, x + ax, y + h, z + az),
+                7 => format!("[[shapes]]\ntype = \"tube\"\nstart = [{x}, {y}, {z}]\nend = [{}, {}, {}]\nradius = {r}\nmaterial = \"m\"\n", x + ax * h, y + ay * h, z + az * h),
+                8 => format!("[[shapes]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\ntransform = {{ scale = [{r}, {h}, 1], rotation = [{x}, {y}, {z}], translation = [{x}, {y}, {z}] }}\n"),
                 _ => format!("[[shapes]]\ntype = \"disk\"\ncenter = [{x}, {y}, {z}]\nnormal = [{ax}, {ay}, {az}]\nradius = {r}\nmaterial = \"m\"\n"),
             };
         }

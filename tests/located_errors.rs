@@ -84,7 +84,7 @@ fn unknown_field_in_the_third_shape() {
     assert_eq!(
         error_after("minor_radius = 0.25", "minor_radius = 0.25\nminr_radius = 1"),
         "s.toml:29:1: shapes[2].minr_radius: unknown field `minr_radius`, expected one of \
-         `center`, `axis`, `major_radius`, `minor_radius`, `material`, `name`"
+         `center`, `axis`, `major_radius`, `minor_radius`, `material`, `name`, `transform`"
     );
 }
 
@@ -117,7 +117,8 @@ fn misspelt_shape_type_lists_the_types() {
     assert_eq!(
         error_after("type = \"sphere\"", "type = \"sphear\""),
         "s.toml:19:8: shapes[1].type: must be \"plane\", \"rectangle\", \"disk\", \"sphere\", \
-         \"box\", \"cylinder\", \"cone\", \"mirror_pair\" or \"torus\", got \"sphear\""
+         \"box\", \"cylinder\", \"cone\", \"mirror_pair\", \"torus\", \"triangle\", \"tube\" or \"mesh\", \
+         got \"sphear\""
     );
 }
 
@@ -135,12 +136,14 @@ fn missing_type_points_at_the_entry() {
     assert_eq!(
         error_after("type = \"torus\"\n", ""),
         "s.toml:24:1: shapes[2].type: missing; must be \"plane\", \"rectangle\", \"disk\", \
-         \"sphere\", \"box\", \"cylinder\", \"cone\", \"mirror_pair\" or \"torus\""
+         \"sphere\", \"box\", \"cylinder\", \"cone\", \"mirror_pair\", \"torus\", \"triangle\", \
+         \"tube\" or \"mesh\""
     );
     assert_eq!(
         error_after("type = \"torus\"", "type = 3"),
         "s.toml:25:8: shapes[2].type: must be \"plane\", \"rectangle\", \"disk\", \"sphere\", \
-         \"box\", \"cylinder\", \"cone\", \"mirror_pair\" or \"torus\", got integer"
+         \"box\", \"cylinder\", \"cone\", \"mirror_pair\", \"torus\", \"triangle\", \"tube\" or \"mesh\", \
+         got integer"
     );
 }
 

@@ -2,7 +2,9 @@
 //! silently change a figure) and validation of every value against its allowed range.
 //! Every error names the file, line and column, the field, and what is allowed; a missing
 //! required top-level table (`[image]`, `[camera]`) has no place in the file and is named
-//! with the file alone.
+//! with the file alone. A mesh's `.obj` file is read relative to the scene file's
+//! directory, and its errors are placed on the entry's `file` field, naming the `.obj` file
+//! and its line.
 //! The format is documented in `scenes/README.md`.
 
 use super::generate::{Generate, GenerateKind};
@@ -15,7 +17,8 @@ use crate::light::{Attenuation, Light, PointLight, SpotLight};
 use crate::limits;
 use crate::material::Material;
 use crate::placement::Placement;
-use crate::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus};
+use crate::shape::mesh::Mesh;
+use crate::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus, Transform, Triangle};
 use glam::DVec3;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -124,7 +127,9 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
         };
         at(offset, field, e.message().trim().to_string())
     })?;
-    raw.validate().map_err(located)
+    // Mesh files are read relative to the scene file.
+    let dir = Path::new(file).parent().unwrap_or(Path::new(""));
+    raw.validate(dir).map_err(located)
 }
 
 type Check<T> = Result<T, FieldError>;
@@ -366,6 +371,9 @@ const SHAPE_TYPES: &[&str] = &[
     "cone",
     "mirror_pair",
     "torus",
+    "triangle",
+    "tube",
+    "mesh",
 ];
 
 /// One `[[shapes]]` entry, tagged by its `type` (lifted to an outer key by `tag::lift`, so that
@@ -382,6 +390,9 @@ enum FileShape {
     Cone(FileCapped),
     MirrorPair(FileMirrorPair),
     Torus(FileTorus),
+    Triangle(FileTriangle),
+    Tube(FileTube),
+    Mesh(FileMesh),
 }
 
 #[derive(Deserialize)]
@@ -391,6 +402,7 @@ struct FilePlane {
     normal: [f64; 3],
     material: Option<String>,
     name: Option<String>,
+    transform: Option<FileTransform>,
 }
 
 #[derive(Deserialize)]
@@ -401,6 +413,7 @@ struct FileRectangle {
     edge2: [f64; 3],
     material: Option<String>,
     name: Option<String>,
+    transform: Option<FileTransform>,
 }
 
 #[derive(Deserialize)]
@@ -411,6 +424,7 @@ struct FileDisk {
     radius: f64,
     material: Option<String>,
     name: Option<String>,
+    transform: Option<FileTransform>,
 }
 
 #[derive(Deserialize)]
@@ -420,6 +434,7 @@ struct FileSphere {
     radius: f64,
     material: Option<String>,
     name: Option<String>,
+    transform: Option<FileTransform>,
 }
 
 #[derive(Deserialize)]
@@ -431,6 +446,7 @@ struct FileBox {
     rotation: [f64; 3],
     material: Option<String>,
     name: Option<String>,
+    transform: Option<FileTransform>,
 }
 
 /// A cylinder or a cone: the same fields, checked the same way ([`FileCapped::frame`]).
@@ -444,6 +460,7 @@ struct FileCapped {
     radius: f64,
     material: Option<String>,
     name: Option<String>,
+    transform: Option<FileTransform>,
 }
 
 #[derive(Deserialize)]
@@ -458,6 +475,7 @@ struct FileMirrorPair {
     height: f64,
     material: Option<String>,
     name: Option<String>,
+    transform: Option<FileTransform>,
 }
 
 #[derive(Deserialize)]
@@ -470,6 +488,52 @@ struct FileTorus {
     minor_radius: f64,
     material: Option<String>,
     name: Option<String>,
+    transform: Option<FileTransform>,
+}
+
+/// Three points; the normal by the right-hand rule `(p1 - p0) x (p2 - p0)`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileTriangle {
+    p0: [f64; 3],
+    p1: [f64; 3],
+    p2: [f64; 3],
+    material: Option<String>,
+    name: Option<String>,
+    transform: Option<FileTransform>,
+}
+
+/// A cylinder without caps from `start` to `end`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileTube {
+    start: [f64; 3],
+    end: [f64; 3],
+    radius: f64,
+    material: Option<String>,
+    name: Option<String>,
+    transform: Option<FileTransform>,
+}
+
+/// The triangles of a `.obj` file (path relative to the scene file).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileMesh {
+    file: String,
+    material: Option<String>,
+    name: Option<String>,
+    transform: Option<FileTransform>,
+}
+
+/// `world = T Rz Ry Rx S local`, or `world = [A | b] local`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileTransform {
+    scale: Option<[f64; 3]>,
+    rotation: Option<[f64; 3]>,
+    translation: Option<[f64; 3]>,
+    /// Rows `[a, b, c, d]` of the 3x4 matrix `[A | b]`.
+    matrix: Option<[[f64; 4]; 3]>,
 }
 
 #[derive(Deserialize, Default)]
@@ -576,7 +640,7 @@ fn one_f() -> f64 {
 }
 
 impl FileScene {
-    fn validate(self) -> Check<Scene> {
+    fn validate(self, dir: &Path) -> Check<Scene> {
         let root = FieldPath::default();
         let settings = self.settings(&root)?;
         let camera = self.camera(&root.key("camera"))?;
@@ -589,15 +653,12 @@ impl FileScene {
                 format!("at most {} shapes, got {}", limits::MAX_OBJECTS, self.shapes.len()),
             );
         }
-        let mut objects: Vec<Object> = self
-            .shapes
-            .into_iter()
-            .enumerate()
-            .map(|(i, s)| s.validate(&path.index(i), i, &material_names))
-            .collect::<Check<Vec<_>>>()?
-            .into_iter()
-            .flatten()
-            .collect();
+        let mut objects: Vec<Object> = Vec::new();
+        for (i, s) in self.shapes.into_iter().enumerate() {
+            // A mesh may fill what the scene's other objects leave of the limit.
+            let room = limits::MAX_OBJECTS.saturating_sub(objects.len());
+            objects.extend(s.validate(&path.index(i), i, &material_names, dir, room)?);
+        }
         let path = root.key("generate");
         let tables = self
             .generate
@@ -776,15 +837,24 @@ impl FileScene {
 }
 
 impl FileShape {
-    /// The objects this entry describes (one, or two for a mirror pair).
-    fn validate(self, path: &FieldPath, index: usize, material_names: &[String]) -> Check<Vec<Object>> {
+    /// The objects this entry describes (one, two for a mirror pair, a mesh's triangles);
+    /// `room` is how many objects the scene may still hold.
+    fn validate(
+        self,
+        path: &FieldPath,
+        index: usize,
+        material_names: &[String],
+        dir: &Path,
+        room: usize,
+    ) -> Check<Vec<Object>> {
         let size = |key: &str, x: f64| positive(&path.key(key), x, limits::MAX_COORDINATE);
-        let (shape, material, name) = match self {
+        let (shape, material, name, transform) = match self {
             FileShape::Plane(FilePlane {
                 point,
                 normal,
                 material,
                 name,
+                transform,
             }) => (
                 Shape::Plane(Plane::new(
                     vec3(&path.key("point"), point)?,
@@ -792,6 +862,7 @@ impl FileShape {
                 )),
                 material,
                 name,
+                transform,
             ),
             FileShape::Rectangle(FileRectangle {
                 corner,
@@ -799,12 +870,14 @@ impl FileShape {
                 edge2,
                 material,
                 name,
+                transform,
             }) => {
                 let (e1, e2) = spanning_edges(path, edge1, edge2)?;
                 (
                     Shape::Rectangle(Box::new(Rectangle::new(vec3(&path.key("corner"), corner)?, e1, e2))),
                     material,
                     name,
+                    transform,
                 )
             }
             FileShape::Disk(FileDisk {
@@ -813,6 +886,7 @@ impl FileShape {
                 radius,
                 material,
                 name,
+                transform,
             }) => (
                 Shape::Disk(Disk::new(
                     vec3(&path.key("center"), center)?,
@@ -821,16 +895,19 @@ impl FileShape {
                 )),
                 material,
                 name,
+                transform,
             ),
             FileShape::Sphere(FileSphere {
                 center,
                 radius,
                 material,
                 name,
+                transform,
             }) => (
                 Shape::Sphere(Sphere::new(vec3(&path.key("center"), center)?, size("radius", radius)?)),
                 material,
                 name,
+                transform,
             ),
             FileShape::Box(FileBox {
                 center,
@@ -838,22 +915,18 @@ impl FileShape {
                 rotation,
                 material,
                 name,
+                transform,
             }) => {
                 let sz = vec3(&path.key("size"), s)?;
                 if sz.min_element() <= 0.0 {
                     return fail(&path.key("size"), format!("each side must be > 0, got {s:?}"));
                 }
-                let rot = vec3(&path.key("rotation"), rotation)?;
-                if rot.abs().max_element() > 360.0 {
-                    return fail(
-                        &path.key("rotation"),
-                        format!("angles must be in [-360, 360] degrees, got {rotation:?}"),
-                    );
-                }
+                let rot = angles(&path.key("rotation"), rotation)?;
                 (
                     Shape::Cuboid(Box::new(Cuboid::new(vec3(&path.key("center"), center)?, sz, rot))),
                     material,
                     name,
+                    transform,
                 )
             }
             FileShape::Cylinder(c) => {
@@ -862,6 +935,7 @@ impl FileShape {
                     Shape::Cylinder(Box::new(Cylinder::new(base, axis, height, radius))),
                     c.material,
                     c.name,
+                    c.transform,
                 )
             }
             FileShape::Cone(c) => {
@@ -870,6 +944,7 @@ impl FileShape {
                     Shape::Cone(Box::new(Cone::new(base, axis, height, radius))),
                     c.material,
                     c.name,
+                    c.transform,
                 )
             }
             FileShape::MirrorPair(FileMirrorPair {
@@ -880,8 +955,9 @@ impl FileShape {
                 height,
                 material,
                 name,
+                transform,
             }) => {
-                return mirror_pair(
+                let pair = mirror_pair(
                     path,
                     index,
                     hinge,
@@ -892,7 +968,19 @@ impl FileShape {
                     material,
                     name,
                     material_names,
-                );
+                )?;
+                let Some(t) = transform_of(&path.key("transform"), transform)? else {
+                    return Ok(pair);
+                };
+                return pair
+                    .into_iter()
+                    .map(|o| {
+                        Ok(Object {
+                            shape: moved(&path.key("transform"), &t, o.shape)?,
+                            ..o
+                        })
+                    })
+                    .collect();
             }
             FileShape::Torus(FileTorus {
                 center,
@@ -901,6 +989,7 @@ impl FileShape {
                 minor_radius,
                 material,
                 name,
+                transform,
             }) => {
                 let major = size("major_radius", major_radius)?;
                 let minor = size("minor_radius", minor_radius)?;
@@ -921,8 +1010,61 @@ impl FileShape {
                     ))),
                     material,
                     name,
+                    transform,
                 )
             }
+            FileShape::Triangle(FileTriangle {
+                p0,
+                p1,
+                p2,
+                material,
+                name,
+                transform,
+            }) => {
+                let (a, b, c) = (
+                    vec3(&path.key("p0"), p0)?,
+                    vec3(&path.key("p1"), p1)?,
+                    vec3(&path.key("p2"), p2)?,
+                );
+                if let Some(why) = Triangle::degenerate(a, b, c) {
+                    return fail(
+                        &path.key("p2"),
+                        format!("p0 {p0:?}, p1 {p1:?} and p2 {p2:?} make no triangle: {why}"),
+                    );
+                }
+                (Shape::Triangle(Triangle::new(a, b, c)), material, name, transform)
+            }
+            FileShape::Tube(FileTube {
+                start,
+                end,
+                radius,
+                material,
+                name,
+                transform,
+            }) => {
+                let (from, to) = (vec3(&path.key("start"), start)?, vec3(&path.key("end"), end)?);
+                let height = (to - from).length();
+                let axis = (to - from) / height;
+                // Two different finite points differ by a vector of non-zero length unless it
+                // underflows (coordinates 1e-320 apart).
+                if !axis.is_finite() {
+                    return fail(
+                        &path.key("end"),
+                        format!("must differ from start {start:?} (a tube needs a length), got {end:?}"),
+                    );
+                }
+                (
+                    Shape::Cylinder(Box::new(Cylinder::tube(from, axis, height, size("radius", radius)?))),
+                    material,
+                    name,
+                    transform,
+                )
+            }
+            FileShape::Mesh(m) => return m.validate(path, index, material_names, dir, room),
+        };
+        let shape = match transform_of(&path.key("transform"), transform)? {
+            Some(t) => moved(&path.key("transform"), &t, shape)?,
+            None => shape,
         };
         let material_index = resolve_material(path, material, material_names)?;
         Ok(vec![Object {
@@ -931,6 +1073,211 @@ impl FileShape {
             material: material_index,
         }])
     }
+}
+
+impl FileMesh {
+    /// The mesh's triangles, one object each, named `NAME/K` (`NAME` is `name`, default
+    /// `mesh#I`; `K` the triangle's place in the file, from 0).
+    fn validate(
+        self,
+        path: &FieldPath,
+        index: usize,
+        material_names: &[String],
+        dir: &Path,
+        room: usize,
+    ) -> Check<Vec<Object>> {
+        let field = path.key("file");
+        let file = dir.join(&self.file);
+        let shown = file.display();
+        let most = limits::MAX_MESH_TRIANGLES.min(room);
+        let mesh = Mesh::read(&file, most).map_err(|e| {
+            // Say so when the scene's other objects, not the mesh limit, leave too little.
+            let why = if e.over_limit && most < limits::MAX_MESH_TRIANGLES {
+                format!(
+                    " (the scene's other objects leave room for {most} of the {} objects it may hold)",
+                    limits::MAX_OBJECTS
+                )
+            } else {
+                String::new()
+            };
+            FieldError {
+                path: field.clone(),
+                message: match e.line {
+                    Some(line) => format!("{shown}:{line}: {}{why}", e.message),
+                    None => format!("{shown}: {}{why}", e.message),
+                },
+            }
+        })?;
+        let material = resolve_material(path, self.material, material_names)?;
+        let transform = transform_of(&path.key("transform"), self.transform)?;
+        let mut mesh = mesh;
+        if let Some(t) = &transform {
+            for v in &mut mesh.vertices {
+                *v = t.point(*v);
+            }
+            if let Some(v) = mesh.vertices.iter().find(|v| !within_limits(**v)) {
+                return fail(
+                    &path.key("transform"),
+                    format!(
+                        "moves a vertex of {shown} to {:?}, beyond the coordinates' range [-{m:e}, {m:e}]",
+                        v.to_array(),
+                        m = limits::MAX_COORDINATE
+                    ),
+                );
+            }
+            // A mirror turns the winding: swapped back, the normals stay outward.
+            if t.mirrors() {
+                for f in &mut mesh.faces {
+                    f.swap(1, 2);
+                }
+            }
+        }
+        for (k, f) in mesh.faces.iter().enumerate() {
+            let [a, b, c] = f.map(|i| mesh.vertices[i as usize]);
+            if let Some(why) = Triangle::degenerate(a, b, c) {
+                let line = mesh.lines[k];
+                let after = if transform.is_some() {
+                    " after the transform"
+                } else {
+                    ""
+                };
+                return fail(
+                    &field,
+                    format!("{shown}:{line}: the face makes no triangle{after}: {why}"),
+                );
+            }
+        }
+        let base = self.name.unwrap_or_else(|| format!("mesh#{index}"));
+        Ok(mesh
+            .triangles()
+            .into_iter()
+            .enumerate()
+            .map(|(k, t)| Object {
+                name: format!("{base}/{k}"),
+                shape: Shape::Triangle(t),
+                material,
+            })
+            .collect())
+    }
+}
+
+/// Angles in degrees, each in [-360, 360].
+fn angles(path: &FieldPath, v: [f64; 3]) -> Check<DVec3> {
+    let a = vec3(path, v)?;
+    if a.abs().max_element() > 360.0 {
+        return fail(path, format!("angles must be in [-360, 360] degrees, got {v:?}"));
+    }
+    Ok(a)
+}
+
+/// Whether every coordinate is within [`limits::MAX_COORDINATE`].
+fn within_limits(p: DVec3) -> bool {
+    p.is_finite() && p.abs().max_element() <= limits::MAX_COORDINATE
+}
+
+/// The checked transform of a shape's `transform` table at `path`, `None` when absent or
+/// the identity: scale factors of magnitude in [`limits::MIN_SCALE`, `limits::MAX_SCALE`]
+/// (negative ones mirror), angles in [-360, 360] degrees, a translation within the
+/// coordinates' range; or a `matrix` (alone) whose 3x3 part and its inverse have entries
+/// of magnitude at most `MAX_SCALE`, with a translation column within the range.
+fn transform_of(path: &FieldPath, t: Option<FileTransform>) -> Check<Option<Transform>> {
+    let Some(t) = t else { return Ok(None) };
+    let (lo, hi) = (limits::MIN_SCALE, limits::MAX_SCALE);
+    let transform = if let Some(rows) = t.matrix {
+        for (key, given) in [
+            ("scale", t.scale.is_some()),
+            ("rotation", t.rotation.is_some()),
+            ("translation", t.translation.is_some()),
+        ] {
+            if given {
+                return fail(
+                    &path.key(key),
+                    format!("{key} does not go with matrix (the matrix is the whole transform)"),
+                );
+            }
+        }
+        let m = path.key("matrix");
+        for (r, row) in rows.iter().enumerate() {
+            let linear = &row[..3];
+            if linear.iter().any(|a| !a.is_finite() || a.abs() > hi)
+                || !(row[3].is_finite() && row[3].abs() <= limits::MAX_COORDINATE)
+            {
+                return fail(
+                    &m.index(r),
+                    format!(
+                        "must be [a, b, c, d] with a, b, c finite in [-{hi:e}, {hi:e}] and d (the translation) in [-{c:e}, {c:e}], got {row:?}",
+                        c = limits::MAX_COORDINATE
+                    ),
+                );
+            }
+        }
+        match Transform::from_rows(rows) {
+            Some(t)
+                if t.to_local
+                    .to_cols_array()
+                    .iter()
+                    .all(|a| a.is_finite() && a.abs() <= 1.0 / lo) =>
+            {
+                t
+            }
+            _ => {
+                return fail(
+                    &m,
+                    format!(
+                        "the 3x3 part must be invertible, its inverse's entries in [-{:e}, {:e}] (no factor below {lo:e}), got {rows:?}",
+                        1.0 / lo,
+                        1.0 / lo
+                    ),
+                );
+            }
+        }
+    } else {
+        let scale = t.scale.unwrap_or([1.0; 3]);
+        if scale.iter().any(|s| !s.is_finite() || s.abs() < lo || s.abs() > hi) {
+            return fail(
+                &path.key("scale"),
+                format!(
+                    "each factor must be finite, of magnitude in [{lo:e}, {hi:e}] (negative mirrors), got {scale:?}"
+                ),
+            );
+        }
+        let rotation = angles(&path.key("rotation"), t.rotation.unwrap_or_default())?;
+        let translation = vec3(&path.key("translation"), t.translation.unwrap_or_default())?;
+        Transform::from_parts(DVec3::from(scale), rotation, translation)
+    };
+    Ok((!transform.is_identity()).then_some(transform))
+}
+
+/// `shape` through `t`, refused (at `path`, the `transform` field) when it leaves the
+/// coordinates' range or, for a triangle, when rounding made it degenerate.
+fn moved(path: &FieldPath, t: &Transform, shape: Shape) -> Check<Shape> {
+    let out = t.apply(shape);
+    let m = limits::MAX_COORDINATE;
+    let reach = match &out {
+        Shape::Transformed(s) => match s.bounds() {
+            Some(b) => within_limits(b.min) && within_limits(b.max),
+            // An unbounded shape (a plane): its point.
+            None => within_limits(t.point(match &s.shape {
+                Shape::Plane(p) => p.point,
+                _ => DVec3::ZERO,
+            })),
+        },
+        Shape::Triangle(tri) => tri.points().iter().all(|p| within_limits(*p)),
+        _ => true,
+    };
+    if !reach {
+        return fail(
+            path,
+            format!("moves the shape beyond the coordinates' range [-{m:e}, {m:e}]"),
+        );
+    }
+    if let Shape::Triangle(tri) = &out
+        && let [a, b, c] = tri.points()
+        && let Some(why) = Triangle::degenerate(a, b, c)
+    {
+        return fail(path, format!("makes the triangle degenerate: {why}"));
+    }
+    Ok(out)
 }
 
 impl FileCapped {
@@ -1297,6 +1644,33 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A mesh that does not fit in what the scene's other objects leave is refused on the
+    /// face that passes the room, saying so.
+    #[test]
+    fn a_mesh_gets_the_room_the_scene_leaves() {
+        let mesh = || FileMesh {
+            file: "scenes/icosahedron.obj".to_string(),
+            material: None,
+            name: None,
+            transform: None,
+        };
+        let path = FieldPath::default().key("shapes").index(2);
+        let names = ["default".to_string()];
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+        assert_eq!(mesh().validate(&path, 2, &names, dir, 20).unwrap().len(), 20);
+        let e = mesh().validate(&path, 2, &names, dir, 19).unwrap_err();
+        assert_eq!(e.path.to_string(), "shapes[2].file");
+        let obj = dir.join("scenes/icosahedron.obj");
+        assert_eq!(
+            e.message,
+            format!(
+                "{}:34: the mesh would hold 20 triangles, at most 19 are allowed (the scene's other objects leave \
+                 room for 19 of the 4000000 objects it may hold)",
+                obj.display()
+            )
+        );
     }
 
     /// `TOP_LEVEL` lists the keys serde knows at the top level, in its order: with a key

@@ -6,9 +6,10 @@
 
 use super::Object;
 use crate::sampling::{Purpose, Stream};
-use crate::shape::{Cone, Shape, Sphere, Torus};
+use crate::shape::{Cone, Shape, Sphere, Torus, Triangle};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// Objects drawn from one stream.
 pub const CHUNK: usize = 4096;
@@ -22,6 +23,9 @@ pub enum GenerateKind {
     /// Spheres, tori and cones in equal shares (random axes), each within a ball of the
     /// drawn radius.
     Mixed,
+    /// Equilateral triangles inscribed in the circle of the drawn radius, in a random plane
+    /// turned by a random angle: a triangle soup, its vertices in one shared array.
+    Triangles,
 }
 
 impl GenerateKind {
@@ -29,6 +33,7 @@ impl GenerateKind {
         match s {
             "spheres" => Some(GenerateKind::Spheres),
             "mixed" => Some(GenerateKind::Mixed),
+            "triangles" => Some(GenerateKind::Triangles),
             _ => None,
         }
     }
@@ -57,25 +62,54 @@ impl Generate {
     /// (meshes, grids); drawn in random order, a million objects would make every object
     /// test of a ray a cache miss, for either core.
     pub fn objects(&self, table: usize) -> Vec<Object> {
-        let mut shapes: Vec<(u64, Shape, usize)> = (0..self.count.div_ceil(CHUNK))
-            .into_par_iter()
-            .flat_map_iter(|k| {
-                let mut s = Stream::new(self.seed, Purpose::Generator, ((table as u64) << 32) | k as u64);
-                let end = ((k + 1) * CHUNK).min(self.count);
-                (k * CHUNK..end).map(|_| self.draw(&mut s)).collect::<Vec<_>>()
-            })
-            .collect();
-        // Stable: equal codes keep the drawing order, so the order is fully determined.
-        shapes.par_sort_by_key(|(code, _, _)| *code);
-        shapes
+        let name = |i: usize| format!("generate[{table}]#{i}");
+        if self.kind == GenerateKind::Triangles {
+            let drawn = self.sorted(table, |s| self.draw_triangle(s));
+            // The vertices in one array, in the objects' order.
+            let vertices: Arc<[DVec3]> = drawn.iter().flat_map(|(_, points, _)| *points).collect();
+            return drawn
+                .into_par_iter()
+                .enumerate()
+                .map(|(i, (_, _, material))| {
+                    let first = 3 * i as u32;
+                    let triangle = Triangle::in_mesh(&vertices, [first, first + 1, first + 2]);
+                    Object {
+                        name: name(i),
+                        shape: Shape::Triangle(triangle.expect("three vertices per triangle")),
+                        material,
+                    }
+                })
+                .collect();
+        }
+        self.sorted(table, |s| self.draw(s))
             .into_par_iter()
             .enumerate()
             .map(|(i, (_, shape, material))| Object {
-                name: format!("generate[{table}]#{i}"),
+                name: name(i),
                 shape,
                 material,
             })
             .collect()
+    }
+
+    /// What `draw` makes of each object of table number `table`, sorted by the Z-order codes
+    /// it returns first.
+    fn sorted<T: Send>(
+        &self,
+        table: usize,
+        draw: impl Fn(&mut Stream) -> (u64, T, usize) + Sync,
+    ) -> Vec<(u64, T, usize)> {
+        let mut drawn: Vec<(u64, T, usize)> = (0..self.count.div_ceil(CHUNK))
+            .into_par_iter()
+            .flat_map_iter(|k| {
+                let mut s = Stream::new(self.seed, Purpose::Generator, ((table as u64) << 32) | k as u64);
+                let end = ((k + 1) * CHUNK).min(self.count);
+                (k * CHUNK..end).map(|_| draw(&mut s)).collect::<Vec<_>>()
+            })
+            .collect();
+        // Stable: equal codes keep the drawing order, so the order is fully determined.
+        drawn.par_sort_by_key(|(code, _, _)| *code);
+        drawn
     }
 
     /// 63-bit Morton code of `p`: 21 bits per axis of its place in the region.
@@ -96,24 +130,25 @@ impl Generate {
         spread(q[0]) | spread(q[1]) << 1 | spread(q[2]) << 2
     }
 
-    /// One object: center, radius, material, then for `mixed` the kind and an axis; with
-    /// the Z-order code of its center.
-    fn draw(&self, s: &mut Stream) -> (u64, Shape, usize) {
-        let mut u = || s.next_f64();
+    /// Where an object goes: its center, the radius of its ball and its material.
+    fn place(&self, u: &mut dyn FnMut() -> f64) -> (DVec3, f64, usize) {
         let c = DVec3::new(u(), u(), u());
         let center = self.min + (self.max - self.min) * c;
         let (lo, hi) = self.radius;
         let r = lo + (hi - lo) * u();
         let material = self.materials[((u() * self.materials.len() as f64) as usize).min(self.materials.len() - 1)];
+        (center, r, material)
+    }
+
+    /// One object: center, radius, material, then for `mixed` the kind and an axis; with
+    /// the Z-order code of its center.
+    fn draw(&self, s: &mut Stream) -> (u64, Shape, usize) {
+        let mut u = || s.next_f64();
+        let (center, r, material) = self.place(&mut u);
         let shape = match self.kind {
-            GenerateKind::Spheres => Shape::Sphere(Sphere::new(center, r)),
             GenerateKind::Mixed => {
                 let which = u();
-                // A uniform direction: z uniform in [-1, 1], azimuth uniform.
-                let z = 2.0 * u() - 1.0;
-                let phi = std::f64::consts::TAU * u();
-                let rho = (1.0 - z * z).max(0.0).sqrt();
-                let axis = DVec3::new(rho * libm::cos(phi), rho * libm::sin(phi), z);
+                let axis = direction(&mut u);
                 if which < 1.0 / 3.0 {
                     Shape::Sphere(Sphere::new(center, r))
                 } else if which < 2.0 / 3.0 {
@@ -124,9 +159,32 @@ impl Generate {
                     Shape::Cone(Box::new(Cone::new(center - axis * (0.6 * r), axis, 1.2 * r, 0.8 * r)))
                 }
             }
+            _ => Shape::Sphere(Sphere::new(center, r)),
         };
         (self.z_order(center), shape, material)
     }
+
+    /// One triangle: center, radius and material as every object, then the normal of its
+    /// plane and its turn in that plane; its corners and the Z-order code of its center.
+    fn draw_triangle(&self, s: &mut Stream) -> (u64, [DVec3; 3], usize) {
+        let mut u = || s.next_f64();
+        let (center, r, material) = self.place(&mut u);
+        let frame = crate::math::Frame::from_z(direction(&mut u));
+        let turn = std::f64::consts::TAU * u();
+        let corner = |k: f64| {
+            let a = turn + k * (std::f64::consts::TAU / 3.0);
+            center + frame.to_world(DVec3::new(libm::cos(a), libm::sin(a), 0.0)) * r
+        };
+        (self.z_order(center), [corner(0.0), corner(1.0), corner(2.0)], material)
+    }
+}
+
+/// A uniform direction: `z` uniform in [-1, 1], the azimuth uniform.
+fn direction(u: &mut dyn FnMut() -> f64) -> DVec3 {
+    let z = 2.0 * u() - 1.0;
+    let phi = std::f64::consts::TAU * u();
+    let rho = (1.0 - z * z).max(0.0).sqrt();
+    DVec3::new(rho * libm::cos(phi), rho * libm::sin(phi), z)
 }
 
 #[cfg(test)]
@@ -147,7 +205,7 @@ mod tests {
 
     #[test]
     fn objects_stay_in_the_region_and_are_reproducible() {
-        for kind in [GenerateKind::Spheres, GenerateKind::Mixed] {
+        for kind in [GenerateKind::Spheres, GenerateKind::Mixed, GenerateKind::Triangles] {
             let g = table(kind, CHUNK + 10);
             let a = g.objects(0);
             assert_eq!(a.len(), CHUNK + 10);
@@ -170,6 +228,32 @@ mod tests {
         for k in ["sphere", "torus", "cone"] {
             let n = kinds.iter().filter(|&&x| x == k).count();
             assert!((70..130).contains(&n), "{k}: {n} of 300");
+        }
+    }
+
+    #[test]
+    fn triangles_are_equilateral_and_share_one_vertex_array() {
+        let objects = table(GenerateKind::Triangles, 500).objects(3);
+        let Shape::Triangle(first) = &objects[0].shape else {
+            panic!("{:?}", objects[0]);
+        };
+        for (i, o) in objects.iter().enumerate() {
+            let Shape::Triangle(t) = &o.shape else {
+                panic!("{o:?}");
+            };
+            // Object i holds vertices 3i .. 3i + 2 of the table's one array.
+            let (shared, index) = t.shared();
+            assert!(Arc::ptr_eq(shared, first.shared().0));
+            assert_eq!(index, [3 * i as u32, 3 * i as u32 + 1, 3 * i as u32 + 2]);
+            // Sides r sqrt(3) for a radius r in [0.01, 0.1].
+            let [a, b, c] = t.points();
+            let sides = [(b - a).length(), (c - b).length(), (a - c).length()];
+            assert!(
+                sides.iter().all(|s| (s - sides[0]).abs() < 1e-12 * sides[0]),
+                "{sides:?}"
+            );
+            let r = sides[0] / 3f64.sqrt();
+            assert!((0.01 - 1e-12..=0.1 + 1e-12).contains(&r), "{r}");
         }
     }
 }

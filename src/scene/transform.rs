@@ -4,12 +4,16 @@
 //! directions, spot orientations, the camera's up) are unchanged; lengths scale by `s`;
 //! point and spot attenuation coefficients are rescaled so that `A` at corresponding
 //! points is unchanged: `A = 1 / (C_const + C_lin d + C_quad d^2)` with `d' = s d` needs
-//! `C_lin' = C_lin / s` and `C_quad' = C_quad / s^2`.
+//! `C_lin' = C_lin / s` and `C_quad' = C_quad / s^2`. Triangles' vertices move (a mesh's
+//! shared array once for the whole mesh); a transformed shape's map is followed by the
+//! similarity.
 
 use super::{CameraSpec, Scene};
 use crate::light::{Attenuation, Light};
-use crate::shape::{Disk, Plane, Rectangle, Shape, Sphere};
+use crate::shape::{Disk, Plane, Rectangle, Shape, Sphere, Transformed, Triangle};
 use glam::DVec3;
+use std::collections::HashMap;
+use std::sync::Arc;
 
 /// `p -> scale p + offset`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -77,7 +81,25 @@ impl Similarity {
                 t.minor = self.length(t.minor);
                 Shape::Torus(t)
             }
+            Shape::Triangle(t) => {
+                let [p0, p1, p2] = t.points().map(|p| self.point(p));
+                Shape::Triangle(Triangle::new(p0, p1, p2))
+            }
+            Shape::Transformed(t) => Shape::Transformed(Box::new(Transformed::new(
+                t.shape.clone(),
+                t.transform.then_similarity(self.scale, self.offset),
+            ))),
         }
+    }
+
+    /// A triangle moved within its (moved) shared vertex array: `moved` keeps each array's
+    /// moved copy, keyed by the original's address.
+    fn triangle(&self, t: &Triangle, moved: &mut HashMap<*const DVec3, Arc<[DVec3]>>) -> Shape {
+        let (shared, index) = t.shared();
+        let copy = moved
+            .entry(Arc::as_ptr(shared).cast::<DVec3>())
+            .or_insert_with(|| shared.iter().map(|&p| self.point(p)).collect());
+        Shape::Triangle(Triangle::in_mesh(copy, index).expect("the same indices into an array of the same length"))
     }
 
     pub fn light(&self, light: &Light) -> Light {
@@ -131,8 +153,12 @@ impl Similarity {
     /// The whole scene transformed (settings and materials unchanged).
     pub fn scene(&self, scene: &Scene) -> Scene {
         let mut out = scene.clone();
+        let mut moved = HashMap::new();
         for o in &mut out.objects {
-            o.shape = self.shape(&o.shape);
+            o.shape = match &o.shape {
+                Shape::Triangle(t) => self.triangle(t, &mut moved),
+                other => self.shape(other),
+            };
         }
         out.lights = scene.lights.iter().map(|l| self.light(l)).collect();
         out.camera = self.camera(&scene.camera);

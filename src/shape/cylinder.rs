@@ -1,4 +1,5 @@
-//! A capped cylinder: base center, unit axis, height, radius.
+//! A cylinder: base center, unit axis, height, radius; capped (a closed solid), or open (a
+//! tube, SIMRenderer's `tube`: the side alone, seen from inside as from outside).
 
 use super::{Aabb, SurfaceHit, first_root_in, local_cap, nearer};
 use super::{gamma, l1};
@@ -12,6 +13,9 @@ pub struct Cylinder {
     pub axis: DVec3,
     pub height: f64,
     pub radius: f64,
+    /// Without caps: an open surface, not a solid.
+    #[serde(skip_serializing_if = "is_false")]
+    pub open: bool,
     #[serde(skip)]
     frame: Frame,
     /// The bounding ball ([`Cylinder::ball`]), tested before the quadric.
@@ -27,8 +31,17 @@ impl Cylinder {
             axis,
             height,
             radius,
+            open: false,
             frame: Frame::from_z(axis),
             ball: Self::ball_of(base, axis, height, radius),
+        }
+    }
+
+    /// The open tube: the same side, no caps.
+    pub fn tube(base: DVec3, axis: DVec3, height: f64, radius: f64) -> Self {
+        Cylinder {
+            open: true,
+            ..Cylinder::new(base, axis, height, radius)
         }
     }
 
@@ -54,7 +67,7 @@ impl Cylinder {
     }
 
     /// In the local frame (axis = +z, base at the origin): side `x^2 + y^2 = r^2` for
-    /// `0 <= z <= h`, and the caps `z = 0`, `z = h` within radius `r`.
+    /// `0 <= z <= h`, and (unless open) the caps `z = 0`, `z = h` within radius `r`.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         if super::misses_ball(ray, t_min, t_max, self.ball()) {
             return None;
@@ -94,6 +107,9 @@ impl Cylinder {
                 normal: self.frame.to_world(DVec3::new(p.x, p.y, 0.0) / self.radius).normalize(),
             }
         });
+        if self.open {
+            return side;
+        }
         let in_disk = |x: f64, y: f64| x * x + y * y <= r2;
         let bottom = local_cap(o, d, 0.0, t_min, t_max, in_disk).map(|t| SurfaceHit { t, normal: -self.axis });
         let top = local_cap(o, d, self.height, t_min, t_max, in_disk).map(|t| SurfaceHit { t, normal: self.axis });
@@ -101,11 +117,16 @@ impl Cylinder {
     }
 
     /// Bound on the distance from `p` to the cylinder: the smallest of the distances to the
-    /// side `| sqrt(x^2 + y^2) - r |` and to the cap planes, plus its evaluation error.
+    /// side `| sqrt(x^2 + y^2) - r |` and (unless open) to the cap planes, plus its
+    /// evaluation error.
     pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
         let l = self.frame.to_local(p - self.base);
         let side = (l.truncate().length() - self.radius).abs();
-        let residual = side.min(l.z.abs()).min((l.z - self.height).abs());
+        let residual = if self.open {
+            side
+        } else {
+            side.min(l.z.abs()).min((l.z - self.height).abs())
+        };
         residual + gamma(16) * (l1(p) + l1(self.base) + self.radius + self.height)
     }
 
@@ -113,6 +134,10 @@ impl Cylinder {
         disk_bounds(self.base, self.axis, self.radius)
             .map(|b| b.union(disk_bounds(self.base + self.axis * self.height, self.axis, self.radius).unwrap()))
     }
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 /// Box of a disk (shared by cylinder and cone caps).
@@ -173,6 +198,31 @@ mod tests {
         );
         // From inside the cylinder up the same kind of line (x = -4.5): the top cap, t = 2.
         assert_hit(c.intersect(&ray([-4.5, 9., 1.], [0., 0., 1.]), 0.0, 1e9), 2.0, DVec3::Z);
+    }
+
+    #[test]
+    fn an_open_tube_is_seen_from_inside() {
+        // The reference cylinder without caps.
+        let c = Cylinder::tube(DVec3::new(-5., 9., 0.), DVec3::Z, 3.0, 1.0);
+        // Down the axis from above: through both open ends, no hit (the capped one is hit
+        // at t = 7).
+        assert!(c.intersect(&ray([-5., 9., 10.], [0., 0., -1.]), 0.0, 1e9).is_none());
+        // From the axis outwards: the inner wall at t = 1, normal +x (outward; the tracer
+        // turns it to the ray's side).
+        assert_hit(c.intersect(&ray([-5., 9., 1.5], [1., 0., 0.]), 0.0, 1e9), 1.0, DVec3::X);
+        // Down the slant (1, 0, -1) / sqrt(2) from (-5.5, 9, 4): through the top opening at
+        // x = -4.5 (t = sqrt(2)), then the inner wall x = -4 at z = 2.5, t = 1.5 sqrt(2).
+        assert_hit(
+            c.intersect(&ray([-5.5, 9., 4.], [1., 0., -1.]), 0.0, 1e9),
+            1.5 * 2f64.sqrt(),
+            DVec3::X,
+        );
+        // From outside through the side: the outer wall first, at t = 8 (as the capped one).
+        assert_hit(c.intersect(&ray([-5., 0., 1.], [0., 1., 0.]), 0.0, 1e9), 8.0, -DVec3::Y);
+        // The far wall from inside the first: t = 10.
+        assert_hit(c.intersect(&ray([-5., 0., 1.], [0., 1., 0.]), 8.0, 1e9), 10.0, DVec3::Y);
+        // The error bound near an open end measures the side, not the missing cap's plane.
+        assert!(c.surface_error(DVec3::new(-5.5, 9., 0.0)) > 0.4);
     }
 
     #[test]

@@ -2,17 +2,21 @@
 //! parameter range (camera, reflection and refraction rays), whether any hit exists in a
 //! range (shadow rays: cheaper, may stop at the first root), and its bounding box when it
 //! is finite. Normals are unit length and point outward; the tracer decides which side the
-//! ray is on. Rays that start inside a shape get the exit hit.
+//! ray is on. Rays that start inside a shape get the exit hit. Open surfaces (plane,
+//! rectangle, disk, triangle, tube) bound no solid.
 
 mod cone;
 mod cuboid;
 mod cylinder;
 mod disk;
 mod fan;
+pub mod mesh;
 mod plane;
 mod rectangle;
 mod sphere;
 mod torus;
+mod transformed;
+mod triangle;
 
 pub use cone::Cone;
 pub use cuboid::Cuboid;
@@ -23,6 +27,8 @@ pub use plane::Plane;
 pub use rectangle::Rectangle;
 pub use sphere::Sphere;
 pub use torus::{QuarticMethod, Torus};
+pub use transformed::{Transform, Transformed};
+pub use triangle::Triangle;
 
 use crate::math::Ray;
 use glam::DVec3;
@@ -96,6 +102,11 @@ pub enum Shape {
     Cylinder(Box<Cylinder>),
     Cone(Box<Cone>),
     Torus(Box<Torus>),
+    /// Inline (32 bytes: the shared vertex array and three indices), no allocation per
+    /// triangle.
+    Triangle(Triangle),
+    /// Any shape through an affine map.
+    Transformed(Box<Transformed>),
 }
 
 macro_rules! dispatch {
@@ -109,6 +120,8 @@ macro_rules! dispatch {
             Shape::Cylinder($s) => $e,
             Shape::Cone($s) => $e,
             Shape::Torus($s) => $e,
+            Shape::Triangle($s) => $e,
+            Shape::Transformed($s) => $e,
         }
     };
 }
@@ -129,6 +142,7 @@ impl Shape {
         match self {
             Shape::Sphere(s) => s.occludes(ray, t_min, t_max),
             Shape::Torus(s) => s.occludes(ray, t_min, t_max),
+            Shape::Triangle(s) => s.occludes(ray, t_min, t_max),
             _ => self.intersect(ray, t_min, t_max).is_some(),
         }
     }
@@ -161,17 +175,20 @@ impl Shape {
             Shape::Cylinder(c) => c.ball(),
             Shape::Cone(c) => c.ball(),
             Shape::Torus(t) => (t.center, t.major + t.minor),
+            Shape::Triangle(t) => t.ball(),
+            Shape::Transformed(t) => return t.ball(),
         })
     }
 
     /// A ball inside the solid (center, radius): a segment that starts outside the shape and
     /// passes through it crosses the surface. `None` for surfaces that bound no solid
-    /// (plane, rectangle, disk) and for the torus (its center is in the hole).
+    /// (plane, rectangle, disk, triangle, tube) and for the torus (its center is in the hole).
     pub fn inner_ball(&self) -> Option<(DVec3, f64)> {
         match self {
-            Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Torus(_) => None,
+            Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Torus(_) | Shape::Triangle(_) => None,
             Shape::Sphere(s) => Some((s.center, s.radius)),
             Shape::Cuboid(b) => Some((b.center, b.half_size.min_element())),
+            Shape::Cylinder(c) if c.open => None,
             Shape::Cylinder(c) => Some((c.base + 0.5 * c.height * c.axis, c.radius.min(0.5 * c.height))),
             // The inscribed ball touches the base and the side: radius `r h / (r + sqrt(r^2 + h^2))`.
             Shape::Cone(c) => {
@@ -179,29 +196,43 @@ impl Shape {
                 let rho = r * h / (r + libm::hypot(r, h));
                 Some((c.base + rho * c.axis, rho))
             }
+            Shape::Transformed(t) => t.inner_ball(),
         }
     }
 
     /// Whether a ray leaving the surface outward can never meet it again: true of convex
-    /// solids and of flat shapes, false of the torus.
+    /// solids, of flat shapes and of the tube (outward is away from its axis), false of the
+    /// torus. An affine map keeps it.
     pub fn is_convex(&self) -> bool {
-        !matches!(self, Shape::Torus(_))
+        match self {
+            Shape::Torus(_) => false,
+            Shape::Transformed(t) => t.shape.is_convex(),
+            _ => true,
+        }
     }
 
     /// Whether the shape bounds a convex solid (sphere, box, capped cylinder and cone): a
-    /// ray that leaves its surface inward crosses it again on the far side.
+    /// ray that leaves its surface inward crosses it again on the far side. An affine map
+    /// keeps it.
     pub fn is_convex_solid(&self) -> bool {
-        matches!(
-            self,
-            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_)
-        )
+        match self {
+            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cone(_) => true,
+            Shape::Cylinder(c) => !c.open,
+            Shape::Transformed(t) => t.shape.is_convex_solid(),
+            _ => false,
+        }
     }
 
-    /// Whether the shape bounds a solid (sphere, box, capped cylinder and cone, torus): it
-    /// has an inside, which a refracted ray can enter. Planes, rectangles and disks are open
-    /// surfaces.
+    /// Whether the shape bounds a solid (sphere, box, capped cylinder and cone, torus, and
+    /// any of them transformed): it has an inside, which a refracted ray can enter. Planes,
+    /// rectangles, disks, triangles and tubes are open surfaces.
     pub fn is_closed(&self) -> bool {
-        !matches!(self, Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_))
+        match self {
+            Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Triangle(_) => false,
+            Shape::Cylinder(c) => !c.open,
+            Shape::Transformed(t) => t.shape.is_closed(),
+            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cone(_) | Shape::Torus(_) => true,
+        }
     }
 
     /// The shape's kind as written in scene files.
@@ -212,9 +243,13 @@ impl Shape {
             Shape::Disk(_) => "disk",
             Shape::Sphere(_) => "sphere",
             Shape::Cuboid(_) => "box",
+            Shape::Cylinder(c) if c.open => "tube",
             Shape::Cylinder(_) => "cylinder",
             Shape::Cone(_) => "cone",
             Shape::Torus(_) => "torus",
+            Shape::Triangle(_) => "triangle",
+            // Written as the inner shape's table with a `transform`.
+            Shape::Transformed(t) => t.shape.kind(),
         }
     }
 }
@@ -402,7 +437,34 @@ mod tests {
                 DVec3::new(4.0, 0.0, 0.0),
                 DVec3::new(0.0, 3.0, 1.0),
             ))),
+            Shape::Triangle(Triangle::new(
+                DVec3::new(1.0, 2.0, 3.0),
+                DVec3::new(4.0, 0.0, 2.0),
+                DVec3::new(-1.0, -2.0, 0.5),
+            )),
+            Shape::Cylinder(Box::new(Cylinder::tube(DVec3::new(2.0, -1.0, 0.0), tilt, 3.0, 1.0))),
+            Transform::from_parts(
+                DVec3::new(2.0, 0.5, 1.0),
+                DVec3::new(10.0, 20.0, 30.0),
+                DVec3::new(3.0, 1.0, -2.0),
+            )
+            .apply(Shape::Sphere(Sphere::new(DVec3::ZERO, 1.0))),
+            Transform::from_rows([[1.0, 0.3, 0.0, 1.0], [0.0, 1.0, -0.4, 2.0], [0.2, 0.0, 0.8, 0.0]])
+                .unwrap()
+                .apply(Shape::Torus(Box::new(Torus::new(DVec3::ZERO, tilt, 1.5, 0.5)))),
+            Transform::from_parts(DVec3::new(1.0, 3.0, 0.5), DVec3::new(-40.0, 0.0, 15.0), DVec3::ONE).apply(
+                Shape::Cuboid(Box::new(Cuboid::new(DVec3::ZERO, DVec3::ONE, DVec3::ZERO))),
+            ),
         ]
+    }
+
+    /// The enum stays at the size of its largest inline shape (the disk) plus the tag, and
+    /// an object (name, shape, material) at 96 bytes: a million spheres are benchmarked.
+    #[test]
+    fn shapes_and_objects_keep_their_size() {
+        let (shape, object) = (size_of::<Shape>(), size_of::<crate::scene::Object>());
+        assert_eq!((shape, object), (64, 96), "size_of::<Shape>(), size_of::<Object>()");
+        assert_eq!(size_of::<Triangle>(), 32);
     }
 
     #[test]

@@ -186,6 +186,14 @@ impl Dd3 {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
 
+    pub fn cross(self, o: Dd3) -> Dd3 {
+        Dd3::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+
     pub fn scale(self, s: Dd) -> Dd3 {
         Dd3::new(self.x * s, self.y * s, self.z * s)
     }

@@ -10,19 +10,23 @@
 //! f64 result is off. No f64 code can be expected to decide those rays, so disagreements
 //! there are counted apart (`band`); every other disagreement is a missed or a false hit.
 //! A hit whose relative error exceeds 1e-6 and is not explained by the band counts as false.
+//!
+//! The triangle, the open tube and the ellipsoid (the unit sphere through a random scale,
+//! rotation and translation: the instance transform) meet the same four families as every
+//! shape.
 
 pub mod dd;
 pub mod reference;
 
 use crate::math::{Frame, Ray};
 use crate::sampling::{Purpose, Stream};
-use crate::shape::{QuarticMethod, Shape};
+use crate::shape::{QuarticMethod, Shape, Transform};
 use dd::{Dd, Dd3};
 use glam::DVec3;
 use reference::Spec;
 
-/// The shapes, in table order.
-pub const SHAPES: [&str; 8] = [
+/// The shapes, in table order (a shape's place keys its random streams: new ones go last).
+pub const SHAPES: [&str; 11] = [
     "sphere",
     "box",
     "cylinder",
@@ -31,6 +35,9 @@ pub const SHAPES: [&str; 8] = [
     "disk",
     "rectangle",
     "plane",
+    "triangle",
+    "tube",
+    "ellipsoid",
 ];
 
 /// A family of rays.
@@ -172,6 +179,25 @@ fn random_spec(shape: &str, s: f64, spread: f64, g: &mut Gen) -> Spec {
             a: s * g.uniform(0.5, 3.0),
             b: s * g.uniform(0.5, 3.0),
         },
+        "triangle" => {
+            // Three points in random directions from the center, 0.5 to 1.5 sizes away.
+            let mut corner = || c + g.unit() * (s * g.uniform(0.5, 1.5));
+            Spec::Triangle {
+                p: [corner(), corner(), corner()],
+            }
+        }
+        "tube" => Spec::Tube {
+            base: c,
+            h: s * g.uniform(0.5, 3.0),
+            r: s * g.uniform(0.5, 1.5),
+        },
+        "ellipsoid" => {
+            let scale = DVec3::new(g.uniform(0.3, 2.0), g.uniform(0.3, 2.0), g.uniform(0.3, 2.0)) * s;
+            let rotation = DVec3::new(g.uniform(-180., 180.), g.uniform(-180., 180.), g.uniform(-180., 180.));
+            Spec::Ellipsoid {
+                transform: Transform::from_parts(scale, rotation, c),
+            }
+        }
         _ => Spec::Plane { p: c },
     }
 }
@@ -240,6 +266,27 @@ fn silhouette_point(spec: &Spec, g: &mut Gen) -> (DVec3, Option<DVec3>) {
             (c + p, None)
         }
         Spec::Plane { p } => (p, Some(DVec3::Z)),
+        Spec::Triangle { p } => {
+            let k = (g.0.next_f64() * 3.0) as usize % 3;
+            (p[k] + (p[(k + 1) % 3] - p[k]) * g.0.next_f64(), None)
+        }
+        Spec::Tube { base, h, r } => {
+            if rim_or_side {
+                (base + radial * r + DVec3::Z * g.uniform(0.0, h), Some(radial))
+            } else {
+                let z = if g.0.next_f64() < 0.5 { 0.0 } else { h };
+                (base + radial * r + DVec3::Z * z, None)
+            }
+        }
+        Spec::Ellipsoid { transform } => {
+            // The image of a point of the unit sphere, and the normal there (the local one
+            // through the inverse transpose).
+            let n = g.unit();
+            (
+                transform.point(n),
+                Some((transform.to_local.transpose() * n).normalize()),
+            )
+        }
     }
 }
 
@@ -253,7 +300,16 @@ fn make_case(shape: &str, family: Family, g: &mut Gen) -> (Spec, Ray, f64) {
     let spec = random_spec(shape, s, 5.0 * s, g);
     let (c, size) = (spec.center(), spec.size());
     let aim = |g: &mut Gen, o: DVec3| {
-        let target = c + g.in_ball() * (1.2 * size);
+        let target = match spec {
+            // A flat triangle fills little of its ball: aim at its plane, within the
+            // triangle grown by 1.3 about its centroid (a third of the aims miss it).
+            Spec::Triangle { p } => {
+                let (u, v) = (g.0.next_f64(), g.0.next_f64());
+                let (u, v) = if u + v > 1.0 { (1.0 - u, 1.0 - v) } else { (u, v) };
+                c + (p[0] + (p[1] - p[0]) * u + (p[2] - p[0]) * v - c) * 1.3
+            }
+            _ => c + g.in_ball() * (1.2 * size),
+        };
         Ray::new(o, (target - o).normalize())
     };
     match family {
@@ -506,11 +562,12 @@ mod tests {
 
     #[test]
     fn table_lists_every_cell() {
-        // 4 shared families x 8 shapes + 3 torus-only families.
+        // 4 shared families x 11 shapes + 3 torus-only families.
         let rows = campaign(2, 1);
-        assert_eq!(rows.len(), 35);
+        assert_eq!(rows.len(), 47);
         let t = table(&rows);
-        assert_eq!(t.lines().count(), 2 + 35);
+        assert_eq!(t.lines().count(), 2 + 47);
+        assert!(t.contains("| ellipsoid | far | 2 |"));
         assert!(t.contains("| torus | torus-equator | 2 |"));
     }
 }

@@ -7,10 +7,15 @@
 //! ([`Dd`]), independent of the f64 code: quadrics by their quadratic with a double-double
 //! discriminant, flat shapes by their plane equation, the box by its slabs, and the torus
 //! by root bracketing (derivative recursion) and plain bisection on its implicit equation
-//! `(|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2)` evaluated in double-double.
+//! `(|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2)` evaluated in double-double. A triangle is
+//! its plane and three edge tests (its vertices are f64, so the set is exact); the
+//! ellipsoid is the unit sphere through the f64 shape's own map: the reference carries the
+//! ray to the local frame with the map's stored inverse, in double-double and without
+//! normalising the direction, so both sides intersect the same set and `t` is the same
+//! parameter.
 
 use super::dd::{Dd, Dd3};
-use crate::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus};
+use crate::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus, Transform, Triangle};
 use glam::DVec3;
 
 /// A campaign shape, axis-aligned, with its exact parameters.
@@ -53,6 +58,20 @@ pub enum Spec {
     Plane {
         p: DVec3,
     },
+    /// Vertices in winding order.
+    Triangle {
+        p: [DVec3; 3],
+    },
+    /// The cylinder's side without caps.
+    Tube {
+        base: DVec3,
+        h: f64,
+        r: f64,
+    },
+    /// The unit sphere through `transform` (scale, rotation, translation).
+    Ellipsoid {
+        transform: Transform,
+    },
 }
 
 fn dd(x: f64) -> Dd {
@@ -75,6 +94,9 @@ impl Spec {
                 DVec3::new(0.0, b, 0.0),
             ))),
             Spec::Plane { p } => Shape::Plane(Plane::new(p, DVec3::Z)),
+            Spec::Triangle { p } => Shape::Triangle(Triangle::new(p[0], p[1], p[2])),
+            Spec::Tube { base, h, r } => Shape::Cylinder(Box::new(Cylinder::tube(base, DVec3::Z, h, r))),
+            Spec::Ellipsoid { transform } => transform.apply(Shape::Sphere(Sphere::new(DVec3::ZERO, 1.0))),
         }
     }
 
@@ -82,9 +104,13 @@ impl Spec {
     pub fn center(&self) -> DVec3 {
         match *self {
             Spec::Sphere { c, .. } | Spec::Box { c, .. } | Spec::Torus { c, .. } | Spec::Disk { c, .. } => c,
-            Spec::Cylinder { base, h, .. } | Spec::Cone { base, h, .. } => base + DVec3::Z * (0.5 * h),
+            Spec::Cylinder { base, h, .. } | Spec::Cone { base, h, .. } | Spec::Tube { base, h, .. } => {
+                base + DVec3::Z * (0.5 * h)
+            }
             Spec::Rect { corner, a, b } => corner + DVec3::new(0.5 * a, 0.5 * b, 0.0),
             Spec::Plane { p } => p,
+            Spec::Triangle { p } => (p[0] + p[1] + p[2]) / 3.0,
+            Spec::Ellipsoid { transform } => transform.to_world.translation,
         }
     }
 
@@ -94,10 +120,17 @@ impl Spec {
         match *self {
             Spec::Sphere { r, .. } | Spec::Disk { r, .. } => r,
             Spec::Box { half, .. } => half.length(),
-            Spec::Cylinder { h, r, .. } | Spec::Cone { h, r, .. } => (0.25 * h * h + r * r).sqrt(),
+            Spec::Cylinder { h, r, .. } | Spec::Cone { h, r, .. } | Spec::Tube { h, r, .. } => {
+                (0.25 * h * h + r * r).sqrt()
+            }
             Spec::Torus { big, small, .. } => big + small,
             Spec::Rect { a, b, .. } => 0.5 * (a * a + b * b).sqrt(),
             Spec::Plane { .. } => 1.0,
+            Spec::Triangle { p } => {
+                let c = self.center();
+                p.iter().map(|v| (*v - c).length()).fold(0.0, f64::max)
+            }
+            Spec::Ellipsoid { transform } => transform.stretch,
         }
     }
 
@@ -176,8 +209,50 @@ impl Spec {
                 first(&mut ts)
             }
             Spec::Torus { c, big, small } => torus_reference(o - Dd3::from_f64(c), d, big, small, t_min),
+            Spec::Triangle { p } => triangle_reference(p, o, d).filter(|t| *t > t_min),
+            Spec::Tube { base, h, r } => {
+                let l = o - Dd3::from_f64(base);
+                let a = d.x.sqr() + d.y.sqr();
+                if a.hi == 0.0 {
+                    return None;
+                }
+                let cands = quadratic_dd(a, l.x * d.x + l.y * d.y, l.x.sqr() + l.y.sqr() - dd(r).sqr());
+                first(&mut cands.into_iter().filter(|t| within(l.z + d.z * *t, h)).collect())
+            }
+            Spec::Ellipsoid { transform } => {
+                // The local ray `M (o - b) + t M d`, its direction not normalised.
+                let m = transform.to_local;
+                let row = |i: usize, v: Dd3| {
+                    Dd::new(m.x_axis[i]) * v.x + Dd::new(m.y_axis[i]) * v.y + Dd::new(m.z_axis[i]) * v.z
+                };
+                let f = o - Dd3::from_f64(transform.to_world.translation);
+                let (lo, ld) = (
+                    Dd3::new(row(0, f), row(1, f), row(2, f)),
+                    Dd3::new(row(0, d), row(1, d), row(2, d)),
+                );
+                first(&mut quadratic_dd(ld.dot(ld), lo.dot(ld), lo.dot(lo) - Dd::new(1.0)))
+            }
         }
     }
+}
+
+/// The plane of `p` met by `o + t d`, kept when the point is inside every edge (on an edge
+/// counts), in double-double: the edge tests `((b - a) x (q - a)).n >= 0` with the normal
+/// `n = (p1 - p0) x (p2 - p0)`.
+fn triangle_reference(p: [DVec3; 3], o: Dd3, d: Dd3) -> Option<Dd> {
+    let v = p.map(Dd3::from_f64);
+    let n = (v[1] - v[0]).cross(v[2] - v[0]);
+    let denom = n.dot(d);
+    if denom.hi == 0.0 {
+        return None;
+    }
+    let t = n.dot(v[0] - o) / denom;
+    let q = o.along(d, t);
+    let inside = (0..3).all(|k| {
+        let (a, b) = (v[k], v[(k + 1) % 3]);
+        (b - a).cross(q - a).dot(n) >= Dd::ZERO
+    });
+    inside.then_some(t)
 }
 
 /// `0 <= z <= h`.
@@ -366,5 +441,33 @@ mod tests {
         };
         let (o, d) = ray_dd([0., 0., 0.], [0., 1., 0.]);
         assert_eq!(b.reference(o, d, Dd::ZERO).unwrap().to_f64(), 2.0);
+        // Triangle (0,0,1) (2,0,1) (0,2,1) from (0.5, 0.5, 4) down: t = 3; through the
+        // hypotenuse's midpoint (1, 1) too (an edge counts); beyond it at (1.1, 1), none.
+        let tri = Spec::Triangle {
+            p: [DVec3::new(0., 0., 1.), DVec3::new(2., 0., 1.), DVec3::new(0., 2., 1.)],
+        };
+        for (x, y, want) in [(0.5, 0.5, Some(3.0)), (1.0, 1.0, Some(3.0)), (1.1, 1.0, None)] {
+            let (o, d) = ray_dd([x, y, 4.], [0., 0., -1.]);
+            assert_eq!(tri.reference(o, d, Dd::ZERO).map(Dd::to_f64), want, "({x}, {y})");
+        }
+        // Tube r = 1, h = 3 at the origin: down its axis, nothing; from the axis along +x,
+        // the inner wall at t = 1.
+        let tube = Spec::Tube {
+            base: DVec3::ZERO,
+            h: 3.0,
+            r: 1.0,
+        };
+        let (o, d) = ray_dd([0., 0., 5.], [0., 0., -1.]);
+        assert!(tube.reference(o, d, Dd::ZERO).is_none());
+        let (o, d) = ray_dd([0., 0., 1.], [1., 0., 0.]);
+        assert_eq!(tube.reference(o, d, Dd::ZERO).unwrap().to_f64(), 1.0);
+        // The unit sphere scaled by (2, 1, 0.5): from x = 10 along -x, the tip x = 2 at t = 8,
+        // then x = -2 at t = 12.
+        let e = Spec::Ellipsoid {
+            transform: Transform::from_parts(DVec3::new(2., 1., 0.5), DVec3::ZERO, DVec3::ZERO),
+        };
+        let (o, d) = ray_dd([10., 0., 0.], [-1., 0., 0.]);
+        assert_eq!(e.reference(o, d, Dd::ZERO).unwrap().to_f64(), 8.0);
+        assert_eq!(e.reference(o, d, dd(9.0)).unwrap().to_f64(), 12.0);
     }
 }

@@ -1,0 +1,377 @@
+//! Triangle meshes from Wavefront `.obj` files, read by the `tobj` crate: every face becomes
+//! [`Triangle`]s (a polygon of `n` vertices, `n - 2` of them, fanned from its first vertex,
+//! as `tobj` triangulates) over one vertex array shared by the whole mesh.
+//!
+//! Before `tobj` parses the text, one pass over its lines checks what `tobj` would accept
+//! without a word or report without a line: vertex coordinates that are not finite or
+//! beyond [`crate::limits::MAX_COORDINATE`], faces of fewer than 3 vertices, line elements
+//! (`l`), vertex indices out of range, and more triangles than allowed. `tobj`'s own errors
+//! (a number it cannot parse, say) are placed on the line it stopped at. Material libraries
+//! (`mtllib`) are not read: the scene file gives the material. Normals and texture
+//! coordinates are checked but not used (the renderer shades with the face normal).
+
+use super::Triangle;
+use crate::limits;
+use glam::DVec3;
+use std::io::{BufRead, Read};
+use std::path::Path;
+use std::sync::Arc;
+
+/// A mesh read from a file: vertices, triangles (indices into them, in winding order) and
+/// the file's line of the face each triangle comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    pub vertices: Vec<DVec3>,
+    pub faces: Vec<[u32; 3]>,
+    /// 1-based line of the face of each triangle.
+    pub lines: Vec<usize>,
+}
+
+/// Why a mesh file was refused: the message, and the line it concerns when there is one.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjError {
+    pub line: Option<usize>,
+    pub message: String,
+    /// Whether the file has more triangles than it was allowed.
+    pub over_limit: bool,
+}
+
+impl std::fmt::Display for ObjError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.line {
+            Some(line) => write!(f, "line {line}: {}", self.message),
+            None => f.write_str(&self.message),
+        }
+    }
+}
+
+fn at(line: usize, message: String) -> ObjError {
+    ObjError {
+        line: Some(line),
+        message,
+        over_limit: false,
+    }
+}
+
+/// An error of the whole file.
+fn whole(message: String) -> ObjError {
+    ObjError {
+        line: None,
+        message,
+        over_limit: false,
+    }
+}
+
+impl Mesh {
+    /// Reads and checks the file (see the module doc), refusing files larger than
+    /// [`limits::MAX_MESH_FILE_BYTES`] and meshes of more than `max_triangles`.
+    pub fn read(path: &Path, max_triangles: usize) -> Result<Mesh, ObjError> {
+        let cannot = |e: std::io::Error| whole(format!("cannot read the mesh file: {e}"));
+        let meta = std::fs::metadata(path).map_err(cannot)?;
+        // Not a directory, a device or a pipe, whose length says nothing of what they give.
+        if !meta.is_file() {
+            return Err(whole("not a regular file".to_string()));
+        }
+        let size = meta.len();
+        if size > limits::MAX_MESH_FILE_BYTES {
+            return Err(whole(format!(
+                "the file has {size} bytes, at most {} are read",
+                limits::MAX_MESH_FILE_BYTES
+            )));
+        }
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)
+            .and_then(|f| f.take(limits::MAX_MESH_FILE_BYTES + 1).read_to_end(&mut bytes))
+            .map_err(cannot)?;
+        Mesh::parse(&String::from_utf8_lossy(&bytes), max_triangles)
+    }
+
+    /// Checks and parses `.obj` text.
+    pub fn parse(text: &str, max_triangles: usize) -> Result<Mesh, ObjError> {
+        let faces = check(text, max_triangles)?;
+        let mut reader = LineCounter {
+            text: text.as_bytes(),
+            pos: 0,
+        };
+        let options = tobj::LoadOptions {
+            triangulate: true,
+            ..Default::default()
+        };
+        // Material libraries are not opened; the (ignored) material list records the failure.
+        let (models, _) = tobj::load_obj_buf(&mut reader, &options, |_| Err(tobj::LoadError::OpenFileFailed))
+            .map_err(|e| at(reader.line(), e.to_string()))?;
+        let mut vertices = Vec::new();
+        let mut triangles = Vec::new();
+        for m in &models {
+            let first = vertices.len() as u32;
+            vertices.extend(m.mesh.positions.chunks_exact(3).map(|p| DVec3::new(p[0], p[1], p[2])));
+            triangles.extend(
+                m.mesh
+                    .indices
+                    .chunks_exact(3)
+                    .map(|f| [first + f[0], first + f[1], first + f[2]]),
+            );
+        }
+        // Face `k` of the file gives `n_k - 2` triangles, in the file's order.
+        let lines: Vec<usize> = faces
+            .iter()
+            .flat_map(|&(line, n)| std::iter::repeat_n(line, n - 2))
+            .collect();
+        if lines.len() != triangles.len() || vertices.len() > u32::MAX as usize {
+            return Err(whole(format!(
+                "the faces give {} triangles, the parser found {}",
+                lines.len(),
+                triangles.len()
+            )));
+        }
+        Ok(Mesh {
+            vertices,
+            faces: triangles,
+            lines,
+        })
+    }
+
+    /// The triangles over one shared copy of `vertices`.
+    pub fn triangles(&self) -> Vec<Triangle> {
+        let shared: Arc<[DVec3]> = Arc::from(self.vertices.as_slice());
+        self.faces
+            .iter()
+            .filter_map(|&f| Triangle::in_mesh(&shared, f))
+            .collect()
+    }
+}
+
+/// The checks of the module doc; returns the line and vertex count of every face.
+fn check(text: &str, max_triangles: usize) -> Result<Vec<(usize, usize)>, ObjError> {
+    // Counts of vertices, texture coordinates and normals in the whole file: `tobj`
+    // resolves positive indices against them (relative ones against those read so far).
+    let (mut v_total, mut vt_total, mut vn_total) = (0, 0, 0);
+    for line in text.lines() {
+        match line.split_whitespace().next() {
+            Some("v") => v_total += 1,
+            Some("vt") => vt_total += 1,
+            Some("vn") => vn_total += 1,
+            _ => {}
+        }
+    }
+    let (mut v, mut vt, mut vn) = (0, 0, 0);
+    let mut faces = Vec::new();
+    let mut triangles = 0usize;
+    for (i, line) in text.lines().enumerate() {
+        let number = i + 1;
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                v += 1;
+                let values: Vec<&str> = words.collect();
+                check_vertex(&values, v).map_err(|m| at(number, m))?;
+            }
+            Some("vt") => vt += 1,
+            Some("vn") => vn += 1,
+            Some("l") => {
+                return Err(at(
+                    number,
+                    "a line element (l) is no surface; only faces (f) are read".to_string(),
+                ));
+            }
+            Some("f") => {
+                let corners: Vec<&str> = words.collect();
+                if corners.len() < 3 {
+                    return Err(at(
+                        number,
+                        format!("a face needs at least 3 vertices, got {}", corners.len()),
+                    ));
+                }
+                for corner in &corners {
+                    // `v`, `v/vt`, `v//vn` or `v/vt/vn`; what does not parse is left to tobj.
+                    for (k, part) in corner.split('/').enumerate().take(3) {
+                        let (what, before, total) = [
+                            ("vertex", v, v_total),
+                            ("texture", vt, vt_total),
+                            ("normal", vn, vn_total),
+                        ][k];
+                        if let Ok(index) = part.parse::<i64>() {
+                            check_index(what, index, before, total).map_err(|m| at(number, m))?;
+                        }
+                    }
+                }
+                triangles += corners.len() - 2;
+                if triangles > max_triangles {
+                    return Err(ObjError {
+                        over_limit: true,
+                        ..at(
+                            number,
+                            format!("the mesh would hold {triangles} triangles, at most {max_triangles} are allowed"),
+                        )
+                    });
+                }
+                faces.push((number, corners.len()));
+            }
+            _ => {}
+        }
+    }
+    if faces.is_empty() {
+        return Err(whole("the file has no faces (f)".to_string()));
+    }
+    Ok(faces)
+}
+
+/// The coordinates of vertex number `n` (`x y z`, `x y z w` or `x y z r g b`; `w` divides,
+/// as `tobj` applies it) must be finite and at most `MAX_COORDINATE` in magnitude.
+fn check_vertex(values: &[&str], n: usize) -> Result<(), String> {
+    let parsed: Vec<f64> = values.iter().take(4).map_while(|s| s.parse().ok()).collect();
+    if parsed.len() < 3 {
+        // Not three numbers: tobj's error, on this line.
+        return Ok(());
+    }
+    let w = if values.len() == 4 && parsed.len() == 4 && parsed[3] != 0.0 {
+        parsed[3]
+    } else {
+        1.0
+    };
+    let xyz = [parsed[0] / w, parsed[1] / w, parsed[2] / w];
+    let m = limits::MAX_COORDINATE;
+    if xyz.iter().any(|c| !c.is_finite() || c.abs() > m) {
+        return Err(format!(
+            "vertex {n}: coordinates must be finite numbers in [-{m:e}, {m:e}], got {xyz:?}"
+        ));
+    }
+    Ok(())
+}
+
+/// A face's index of a `what` (vertex, texture, normal): from 1 to `total`, or from -1 back
+/// to the first of the `before` read so far.
+fn check_index(what: &str, index: i64, before: usize, total: usize) -> Result<(), String> {
+    let fine = if index > 0 {
+        index as u64 <= total as u64
+    } else {
+        index < 0 && index.unsigned_abs() <= before as u64
+    };
+    if fine {
+        return Ok(());
+    }
+    Err(if index == 0 {
+        format!("{what} index 0: indices start at 1 (or count back from -1)")
+    } else if index > 0 {
+        format!("{what} index {index}, but the file has {total}")
+    } else {
+        format!("{what} index {index}, but only {before} come before this face")
+    })
+}
+
+/// The text as `tobj` reads it, counting how far it got: on an error, the line it stopped
+/// at is the one it could not parse.
+struct LineCounter<'a> {
+    text: &'a [u8],
+    pos: usize,
+}
+
+impl LineCounter<'_> {
+    /// The 1-based line of the last byte read.
+    fn line(&self) -> usize {
+        let end = self.pos.saturating_sub(1).min(self.text.len());
+        self.text[..end].iter().filter(|&&b| b == b'\n').count() + 1
+    }
+}
+
+impl Read for LineCounter<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = buf.len().min(self.text.len() - self.pos);
+        buf[..n].copy_from_slice(&self.text[self.pos..self.pos + n]);
+        self.pos += n;
+        Ok(n)
+    }
+}
+
+impl BufRead for LineCounter<'_> {
+    fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
+        Ok(&self.text[self.pos..])
+    }
+
+    fn consume(&mut self, amount: usize) {
+        self.pos = (self.pos + amount).min(self.text.len());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SQUARE: &str = "# a unit square in z = 0, as a quad and as two triangles\n\
+        v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+        o quad\nf 1 2 3 4\n\
+        o pair\nf 1/1 2/1 3/1\nf -4 -2 -1\nvt 0 0\n";
+
+    #[test]
+    fn faces_become_triangles_with_their_lines() {
+        let m = Mesh::parse(SQUARE, 100).unwrap();
+        // The quad fans into (1 2 3) (1 3 4); the pair's second face is (1 3 4) by relative
+        // indices. Each model keeps its own vertices (tobj re-indexes per model).
+        assert_eq!(m.faces.len(), 4);
+        let points: Vec<[DVec3; 3]> = m.triangles().iter().map(|t| t.points()).collect();
+        let (a, b, c, d) = (DVec3::ZERO, DVec3::X, DVec3::new(1., 1., 0.), DVec3::Y);
+        assert_eq!(points, vec![[a, b, c], [a, c, d], [a, b, c], [a, c, d]]);
+        assert_eq!(m.lines, vec![7, 7, 9, 10]);
+        // Every triangle's normal is +z (counter-clockwise from above).
+        assert!(m.triangles().iter().all(|t| t.normal() == DVec3::Z));
+    }
+
+    #[test]
+    fn only_regular_files_are_read() {
+        let device = if cfg!(unix) { "/dev/zero" } else { "." };
+        for path in [device, "."] {
+            let e = Mesh::read(Path::new(path), 100).unwrap_err();
+            assert_eq!(e.to_string(), "not a regular file", "{path}");
+        }
+    }
+
+    #[test]
+    fn bad_files_are_refused_on_their_line() {
+        let err = |text: &str| Mesh::parse(text, 100).unwrap_err().to_string();
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\nf 1 2\n"),
+            "line 3: a face needs at least 3 vertices, got 2"
+        );
+        assert_eq!(
+            err("v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
+            "line 2: vertex 2: coordinates must be finite numbers in [-1e9, 1e9], got [NaN, 0.0, 0.0]"
+        );
+        assert_eq!(
+            err("v 0 0 0\nv 2e9 0 0\nv 0 1 0\nf 1 2 3\n"),
+            "line 2: vertex 2: coordinates must be finite numbers in [-1e9, 1e9], got [2000000000.0, 0.0, 0.0]"
+        );
+        // w divides: 1 / 1e-300 overflows nothing until it passes the limit.
+        assert!(err("v 1 0 0 1e-300\nv 0 0 0\nv 0 1 0\nf 1 2 3\n").starts_with("line 1: vertex 1:"));
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"),
+            "line 4: vertex index 4, but the file has 3"
+        );
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\nf 1 2 -3\nv 0 1 0\n"),
+            "line 3: vertex index -3, but only 2 come before this face"
+        );
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"),
+            "line 4: vertex index 0: indices start at 1 (or count back from -1)"
+        );
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/2\nvt 0 0\n"),
+            "line 4: texture index 2, but the file has 1"
+        );
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n"),
+            "line 4: a line element (l) is no surface; only faces (f) are read"
+        );
+        assert_eq!(err("v 0 0 0\n"), "the file has no faces (f)");
+        // tobj's own error, on the line where it stopped.
+        assert_eq!(
+            err("v 0 0 0\nv 1 0 0\nv 0 1 x\nf 1 2 3\n"),
+            "line 3: position parse error"
+        );
+        let limited = Mesh::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 1 2 3 4 2 3\n", 4);
+        assert_eq!(
+            limited.unwrap_err().to_string(),
+            "line 6: the mesh would hold 5 triangles, at most 4 are allowed"
+        );
+    }
+}
