@@ -98,9 +98,9 @@ pub enum Command {
         after_help = "Examples:\n  lumiere probe scenes/reference.toml --pixel 400,300\n  lumiere probe scenes/prism.toml --pixel 80,60 --width 160 --height 120 --sample 0 --json\n\nExit codes: 0 ok, 2 bad input (scene, pixel outside the image, sample index)."
     )]
     Probe(probe::ProbeArgs),
-    /// Write old | new | difference sheets for pending insta image snapshots.
+    /// Write accepted | new | difference sheets and a review page for pending insta image snapshots.
     #[command(
-        after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/snapshot-review\n\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written (disk full), 2 bad input (folders, images)."
+        after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/review\n\nSheets go to <out>/snapshots/; <out>/index.html lists them with the figure changes of the last `lumiere figures --check --review <out>`.\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written (disk full), 2 bad input (folders, images)."
     )]
     ReviewSnapshots(review::ReviewArgs),
     /// Numerical stress campaign: hard rays against every shape, checked against double-double references.
