@@ -281,13 +281,29 @@ fn figures_differ_from_their_manifests() {
     );
     entry["pixel_hash"] = "fnv1a64:0000000000000000".into();
     fs::write(&path, serde_json::to_string_pretty(&manifest).unwrap()).unwrap();
-    let (code, out, err) = result(lumiere(&["figures", "lighting", "--check", "--out", d]));
+    let review = dir.join("review");
+    let r = review.to_str().unwrap();
+    let (code, out, err) = result(lumiere(&["figures", "lighting", "--check", "--out", d, "--review", r]));
     assert_eq!(code, 1);
+    let lines: Vec<&str> = out.lines().collect();
     assert_eq!(
-        out,
-        format!("lighting/{file}: pixel hash {hash} (manifest fnv1a64:0000000000000000)\nlighting     DIFFERS\n")
+        lines[0],
+        format!("lighting/{file}: pixel hash {hash}, its manifest says fnv1a64:0000000000000000")
     );
-    assert_eq!(err, "lumiere: error: 1 figures differ from their manifests\n");
+    assert!(
+        lines[1].starts_with("lighting/manifest.json: differs from its regenerated self at line "),
+        "{out}"
+    );
+    assert_eq!(
+        lines[2..],
+        ["lighting     DIFFERS", &format!("review page: {r}/index.html")]
+    );
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: error: 2 problems: the figures on disk differ from their sets (`lumiere figures --out {d}` regenerates them)\n"
+        )
+    );
 }
 
 #[test]
