@@ -11,7 +11,7 @@ use lumiere::figures::{FigureSet, FiguresError, Reuse, Run, files, generate_unti
 use lumiere::film::{WriteError, write_atomic};
 use lumiere::review::{self, PageItem, Section};
 use serde_json::json;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// The file of the output folder that the last run's times go to (not a figure: the
 /// figures' own files hold no time, so that they change only when a pixel or a scene does).
@@ -194,6 +194,13 @@ fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosit
     let mut items: Vec<PageItem> = Vec::new();
     let mut manifests = Vec::new();
     let mut reuse = Reuse::for_sets(sets);
+    // The sets that differ, and the command that regenerates them.
+    let mut differing: Vec<&str> = Vec::new();
+    let mut remake = Run {
+        out: args.out.clone(),
+        scenes: args.scenes.clone(),
+        scale: args.scale,
+    };
     for set in sets {
         let run = Run {
             out: args.out.clone(),
@@ -211,6 +218,10 @@ fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosit
                 set.name,
                 if checked.problems.is_empty() { "ok" } else { "DIFFERS" }
             );
+        }
+        if !checked.problems.is_empty() {
+            differing.push(&set.name);
+            remake.scale = run.scale;
         }
         problems.extend(checked.problems);
         items.extend(checked.review);
@@ -238,15 +249,17 @@ fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosit
     if v != Verbosity::Quiet && !items.is_empty() {
         println!("review page: {}", review_dir.join("index.html").display());
     }
+    // The gallery alone differs: regenerating any set rewrites it.
+    let names = if differing.is_empty() {
+        sets[0].name.clone()
+    } else {
+        differing.join(" ")
+    };
     Err(CliError::Failed(format!(
-        "{} problems: the figures on disk differ from their sets{}",
+        "{} problems: the figures on disk differ from their sets (`{}` regenerates them)",
         problems.len(),
-        hint(&args.out)
+        remake.command(&names)
     )))
-}
-
-fn hint(out: &Path) -> String {
-    format!(" (`lumiere figures --out {}` regenerates them)", out.display())
 }
 
 fn review_error(e: review::ReviewError) -> CliError {

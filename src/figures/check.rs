@@ -233,7 +233,14 @@ pub fn check_set(set: &FigureSet, run: &Run, reuse: &mut Reuse, review_dir: &Pat
             }
         };
         let Some(r) = rendered.iter().find(|r| format!("{}.png", r.figure.stem) == *name) else {
-            problems.extend(compare_file(file, &found, fresh));
+            if let Some(p) = compare_file(file.clone(), &found, fresh) {
+                review_items.push(PageItem {
+                    name: file,
+                    summary: p.to_string(),
+                    sheet: None,
+                });
+                problems.push(p);
+            }
             continue;
         };
         let before = problems.len();
