@@ -296,6 +296,53 @@ fn committed_rgb(set: &str, file: &str) -> (u32, u32, Vec<u8>) {
 }
 
 #[test]
+fn no_committed_figure_is_washed_out_unless_its_manifest_says_why() {
+    // Fully white pixels (255, 255, 255) counted on every committed PNG: at most 1 %, but
+    // for figures whose manifest says saturation is intended (their point) or kept (and
+    // why); the manifest's fact is the count of the PNG on disk.
+    let (mut intended, mut kept) = (Vec::new(), Vec::new());
+    let mut worst = (0.0, String::new());
+    for set in registry().unwrap() {
+        let manifest = json_file(&repo(&format!("figures/{}/manifest.json", set.name)));
+        for image in manifest["images"].as_array().unwrap() {
+            let file = image["file"].as_str().unwrap();
+            let name = format!("{}/{file}", set.name);
+            let (w, h, rgb) = committed_rgb(&set.name, file);
+            let white = rgb.chunks(3).filter(|p| p == &[255, 255, 255]).count() as f64 / (w * h) as f64;
+            let recorded = image["facts"]["white_fraction"].as_f64().unwrap();
+            assert!(
+                (white - recorded).abs() <= 1e-6,
+                "{name}: {white} on disk, {recorded} recorded"
+            );
+            if image["facts"]["saturation_intended"] == true {
+                intended.push(name);
+            } else if image["facts"]["saturation_accepted"].is_string() {
+                kept.push(name);
+            } else {
+                assert!(white <= 0.01, "{name}: {:.2} % fully white", white * 100.0);
+                if white > worst.0 {
+                    worst = (white, name);
+                }
+            }
+        }
+    }
+    assert_eq!(intended, ["attenuation/01-no-attenuation.png"]);
+    assert_eq!(kept, ["spotlight/02-theta-120.png", "prism/01-top-depth-01.png"]);
+    // Those are saturated indeed (no figure is excused for nothing), and some other figure
+    // has white highlights: the count sees white where there is some.
+    for (set, file, at_least) in [
+        ("attenuation", "01-no-attenuation.png", 0.10),
+        ("spotlight", "02-theta-120.png", 0.04),
+        ("prism", "01-top-depth-01.png", 0.015),
+    ] {
+        let (w, h, rgb) = committed_rgb(set, file);
+        let white = rgb.chunks(3).filter(|p| p == &[255, 255, 255]).count() as f64;
+        assert!(white > at_least * (w * h) as f64, "{set}/{file}");
+    }
+    assert!(worst.0 > 0.0, "no figure has a white pixel");
+}
+
+#[test]
 fn the_mirrors_count_their_cone_images_on_the_committed_figures() {
     // floor(360 / opening - 1) once the depth lets every image through: 5 at 60 degrees from
     // depth 4 on, 3 at 90, 7 at 45, 11 at 30; fewer at depths 1 to 3.

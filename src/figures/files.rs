@@ -35,6 +35,9 @@ pub struct Figure {
     pub measures: Vec<Measure>,
     /// The figure shows saturation on purpose: its white pixels are not a lighting fault.
     pub saturation_intended: bool,
+    /// Why the figure's saturation is kept although it is not the figure's point (its scene
+    /// follows the chapter's values, or is shared with figures that do not saturate).
+    pub saturation_accepted: Option<String>,
     /// The set's key parameters as this figure's scene file writes them (`null` when the
     /// file leaves the value to its default), in the set's order.
     pub parameters: Vec<(String, Value)>,
@@ -243,6 +246,7 @@ fn load_set(dir: &Path, folder: &Path) -> Result<FigureSet, RegistryError> {
             scene_file: file,
             measures,
             saturation_intended: entry.saturation_intended,
+            saturation_accepted: entry.saturation_accepted.clone(),
             parameters,
         });
     }
@@ -302,6 +306,7 @@ struct Entry {
     caption: String,
     measures: Vec<Measure>,
     saturation_intended: bool,
+    saturation_accepted: Option<String>,
     /// The entry's key in the file.
     span: Range<usize>,
 }
@@ -430,6 +435,7 @@ impl<'a> SetDoc<'a> {
             caption: String::new(),
             measures: Vec::new(),
             saturation_intended: false,
+            saturation_accepted: None,
             span,
         };
         let mut caption = None;
@@ -443,11 +449,14 @@ impl<'a> SetDoc<'a> {
                     DeValue::Boolean(b) => entry.saturation_intended = *b,
                     _ => return Err(self.invalid(v.span(), &f, "must be true or false".into())),
                 },
+                "saturation_accepted" => entry.saturation_accepted = Some(self.string(v, &f)?),
                 _ => {
                     return Err(self.invalid(
                         key.span(),
                         &f,
-                        format!("unknown field `{k}`, expected one of `caption`, `measure`, `saturation_intended`"),
+                        format!(
+                            "unknown field `{k}`, expected one of `caption`, `measure`, `saturation_intended`, `saturation_accepted`"
+                        ),
                     ));
                 }
             }
@@ -544,7 +553,7 @@ mod tests {
         );
         assert_eq!(
             err("title = \"T\"\norder = 1\n[figures.01-a]\ncaptoin = \"c\"\n"),
-            "s/set.toml:4:1: figures.01-a.captoin: unknown field `captoin`, expected one of `caption`, `measure`, `saturation_intended`"
+            "s/set.toml:4:1: figures.01-a.captoin: unknown field `captoin`, expected one of `caption`, `measure`, `saturation_intended`, `saturation_accepted`"
         );
         assert_eq!(
             err("title = \"T\"\norder = 1\nmeasure = [\"cones\"]\n[figures.01-a]\ncaption = \"c\"\n"),

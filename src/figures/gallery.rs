@@ -79,6 +79,9 @@ pub fn facts_text(facts: &Value) -> String {
     if facts["saturation_intended"] == Value::Bool(true) {
         out.push("saturation intended".into());
     }
+    if let Some(why) = facts["saturation_accepted"].as_str() {
+        out.push(format!("saturation kept: {why}"));
+    }
     if let Some(n) = facts["cone_images"].as_u64() {
         out.push(format!("cone images {n}"));
     }

@@ -202,13 +202,17 @@ pub fn white_fraction(rgb: &[u8]) -> f64 {
 }
 
 /// The facts measured on `rgb`, the image of `figure` rendered as `scene` (its scene at the
-/// run's scale): its white fraction, whether saturation is its point, and its own measures.
+/// run's scale): its white fraction, whether saturation is its point or why it is kept,
+/// and its own measures.
 pub fn facts(figure: &Figure, scene: &Scene, rgb: &[u8]) -> Map<String, Value> {
     let (w, h) = (scene.settings.width as usize, scene.settings.height as usize);
     let mut facts = Map::new();
     facts.insert("white_fraction".into(), json!(white_fraction(rgb)));
     if figure.saturation_intended {
         facts.insert("saturation_intended".into(), json!(true));
+    }
+    if let Some(why) = &figure.saturation_accepted {
+        facts.insert("saturation_accepted".into(), json!(why));
     }
     for m in &figure.measures {
         match m {
