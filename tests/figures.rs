@@ -207,6 +207,23 @@ fn a_set_writes_the_same_bytes_alone_or_with_others() {
     }
     let read = |dir: &Path| std::fs::read(dir.join("figures/index.html")).unwrap();
     assert_eq!(read(&together), read(&alone));
+    // The gallery lists the five sets present and no other, and every image it shows is there.
+    let html = String::from_utf8(read(&together)).unwrap();
+    let shown: Vec<&str> = html
+        .split("<img src=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap())
+        .collect();
+    assert_eq!(shown.len(), 3 + 4 + 2 + 8 + 3);
+    for src in &shown {
+        assert!(together.join("figures").join(src).is_file(), "{src}");
+    }
+    for set in registry().unwrap() {
+        assert_eq!(
+            html.contains(&format!("id=\"{}\"", set.name)),
+            sets.contains(&set.name.as_str())
+        );
+    }
     // Manifests name no other set's file, only figures of their own set.
     let directional = json_file(&together.join("figures/directional/manifest.json"));
     assert_eq!(
@@ -269,6 +286,35 @@ fn regenerating_an_unchanged_set_changes_no_committed_byte() {
     // index.html and .gitignore, lighting's 3 figures, sheet and manifest, and two other sets.
     assert!(compared >= 2 + 5 + 6 + 15, "{compared} files compared");
     assert!(root.join("figures/timings.json").is_file());
+}
+
+#[test]
+fn a_figure_file_renders_as_any_scene_into_the_committed_figure() {
+    // `lumiere render` reads a figure's scene file like any scene, and gives the committed
+    // figure's pixels: the scene the manifest names can be rendered again.
+    let dir = temp_dir("figure-render");
+    let png = dir.join("03.png");
+    let o = lumiere(&[
+        "render",
+        repo("scenes/figures/lighting/03-ambient-directional.toml")
+            .to_str()
+            .unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rendered = lumiere::compare::load_rgb8(&png).unwrap();
+    assert_eq!(rendered, committed_rgb("lighting", "03-ambient-directional.png"));
+    let manifest = json_file(&repo("figures/lighting/manifest.json"));
+    assert_eq!(
+        manifest["images"][2]["pixel_hash"],
+        format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(&rendered.2)).as_str()
+    );
+    assert_eq!(
+        manifest["images"][2]["scene"],
+        "scenes/figures/lighting/03-ambient-directional.toml"
+    );
 }
 
 #[test]
