@@ -81,8 +81,8 @@ fn generate_writes_images_manifest_sheet_and_gallery() {
     assert_eq!(first["family"], serde_json::json!(["02-theta-120.png"]));
     assert!(first["pixel_hash"].as_str().unwrap().starts_with("fnv1a64:"));
     assert!(first["facts"]["white_fraction"].as_f64().unwrap() < 0.01);
-    for gone in ["render_seconds", "one_pass_with", "same_image_as"] {
-        assert!(first.get(gone).is_none(), "{gone}");
+    for absent in ["render_seconds", "one_pass_with", "same_image_as"] {
+        assert!(first.get(absent).is_none(), "{absent}");
     }
     // The PNG's provenance, in the order written.
     let png = std::fs::read(out.join("spotlight/01-theta-70.png")).unwrap();
