@@ -17,10 +17,11 @@ fn figures(c: &mut Criterion) {
     let mut g = c.benchmark_group("figure");
     g.sample_size(10);
     for set in registry()
+        .expect("the figure files load")
         .into_iter()
-        .filter(|s| ["lighting", "mirrors", "prism", "shading"].contains(&s.name))
+        .filter(|s| ["lighting", "mirrors", "prism", "shading"].contains(&s.name.as_str()))
     {
-        let first = (set.figures)().remove(0);
+        let first = set.figures[0].clone();
         g.bench_function(format!("{}/{}@0.25", set.name, first.stem), |b| {
             b.iter(|| render_figure(first.clone(), 0.25))
         });

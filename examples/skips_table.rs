@@ -44,13 +44,17 @@ fn main() {
     );
     println!("|---|---|---|---|---|---|---|---|");
     let (mut total_off, mut total_on) = (0.0, 0.0);
-    for set in registry() {
-        if !only.is_empty() && !only.iter().any(|o| o == set.name) {
+    for set in registry().expect("run from the repository root: the figure files load") {
+        if !only.is_empty() && !only.contains(&set.name) {
             continue;
         }
-        let scale = if AREA_SETS.contains(&set.name) { area_scale } else { 1.0 };
+        let scale = if AREA_SETS.contains(&set.name.as_str()) {
+            area_scale
+        } else {
+            1.0
+        };
         let mut scenes: Vec<lumiere::scene::Scene> = Vec::new();
-        for f in (set.figures)() {
+        for f in set.figures {
             if !scenes.contains(&f.scene) {
                 scenes.push(f.scene);
             }

@@ -155,7 +155,7 @@ mod tests {
         }
     }
 
-    /// FIGURES.md's tube: from (-2, 0, 10) to (2, 0, 10).
+    /// The light-shapes figures' tube: from (-2, 0, 10) to (2, 0, 10).
     fn figure_tube(n: u32, placement: Placement) -> AreaLight {
         AreaLight {
             shape: AreaShape::Tube {
@@ -166,7 +166,7 @@ mod tests {
         }
     }
 
-    /// FIGURES.md's window: center (0, 0, 10), edges (4, 0, 0) and (0, 3, 0).
+    /// The light-shapes figures' window: center (0, 0, 10), edges (4, 0, 0) and (0, 3, 0).
     fn figure_window(n: u32, placement: Placement) -> AreaLight {
         AreaLight {
             shape: AreaShape::Window {
@@ -193,7 +193,7 @@ mod tests {
 
     #[test]
     fn bounding_spheres_reach_the_farthest_point() {
-        // FIGURES.md's window: corners 2.5 from the center.
+        // The light-shapes figures' window: corners 2.5 from the center.
         let window = figure_window(400, Placement::Stratified);
         assert_eq!(window.bounding_sphere(), (DVec3::new(0.0, 0.0, 10.0), 2.5));
         // A sheared window: its long diagonal, |(4, 0, 0) + (2, 3, 0)| / 2.

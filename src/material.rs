@@ -36,7 +36,7 @@ impl Material {
 }
 
 impl Default for Material {
-    /// The default material of FIGURES.md: ka 0.2, kd 0.8, ks 0.5, shininess 20, plastic,
+    /// The default material of the course's figures (docs/figures.md): ka 0.2, kd 0.8, ks 0.5, shininess 20, plastic,
     /// no reflection or transmission, n 1, white.
     fn default() -> Self {
         Material {

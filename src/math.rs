@@ -166,7 +166,7 @@ mod tests {
 
     #[test]
     fn total_internal_reflection_at_the_critical_angle() {
-        // n = 1.66 to air: critical angle asin(1/1.66) = 37.0427 degrees (FIGURES.md: 37.04).
+        // n = 1.66 to air: critical angle asin(1/1.66) = 37.0427 degrees (the prism figures: 37.04).
         let crit = libm::asin(1.0 / 1.66);
         assert!((crit.to_degrees() - 37.042_671).abs() < 1e-6);
         let dir = |deg: f64| {

@@ -269,7 +269,9 @@ fn figures_differ_from_their_manifests() {
     let d = dir.to_str().unwrap();
     let (code, _, err) = result(lumiere(&["figures", "lighting", "--scale", "0.05", "-q", "--out", d]));
     assert_eq!(code, 0, "{err}");
-    let (code, out, _) = result(lumiere(&["figures", "lighting", "--check", "--out", d]));
+    let review = dir.join("review");
+    let r = review.to_str().unwrap();
+    let (code, out, _) = result(lumiere(&["figures", "lighting", "--check", "--out", d, "--review", r]));
     assert_eq!((code, out.as_str()), (0, "lighting     ok\n"));
     // One manifest hash changed: that figure differs.
     let path = dir.join("lighting/manifest.json");
@@ -281,13 +283,27 @@ fn figures_differ_from_their_manifests() {
     );
     entry["pixel_hash"] = "fnv1a64:0000000000000000".into();
     fs::write(&path, serde_json::to_string_pretty(&manifest).unwrap()).unwrap();
-    let (code, out, err) = result(lumiere(&["figures", "lighting", "--check", "--out", d]));
+    let (code, out, err) = result(lumiere(&["figures", "lighting", "--check", "--out", d, "--review", r]));
     assert_eq!(code, 1);
+    let lines: Vec<&str> = out.lines().collect();
     assert_eq!(
-        out,
-        format!("lighting/{file}: pixel hash {hash} (manifest fnv1a64:0000000000000000)\nlighting     DIFFERS\n")
+        lines[0],
+        format!("lighting/{file}: pixel hash {hash}, its manifest says fnv1a64:0000000000000000")
     );
-    assert_eq!(err, "lumiere: error: 1 figures differ from their manifests\n");
+    assert!(
+        lines[1].starts_with("lighting/manifest.json: differs from its regenerated self at line "),
+        "{out}"
+    );
+    assert_eq!(
+        lines[2..],
+        ["lighting     DIFFERS", &format!("review page: {r}/index.html")]
+    );
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: error: 2 problems: the figures on disk differ from their sets (`lumiere figures lighting --scale 0.05 --out {d}` regenerates them)\n"
+        )
+    );
 }
 
 #[test]

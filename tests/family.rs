@@ -17,8 +17,8 @@ use std::sync::atomic::AtomicBool;
 
 /// The scenes of the figures `stems` of set `set`, at `scale`.
 fn figure_scenes(set: &str, stems: &[&str], scale: f64) -> Vec<Scene> {
-    let set = registry().into_iter().find(|s| s.name == set).unwrap();
-    let figures = (set.figures)();
+    let set = registry().unwrap().into_iter().find(|s| s.name == set).unwrap();
+    let figures = set.figures;
     stems
         .iter()
         .map(|stem| {
@@ -83,8 +83,8 @@ fn area_light_counts_in_one_pass_are_separate_renders() {
 
 /// Every figure's scene of set `set`, at `scale`.
 fn set_scenes(set: &str, scale: f64) -> Vec<Scene> {
-    let set = registry().into_iter().find(|s| s.name == set).unwrap();
-    (set.figures)().into_iter().map(|f| scaled(f.scene, scale)).collect()
+    let set = registry().unwrap().into_iter().find(|s| s.name == set).unwrap();
+    set.figures.into_iter().map(|f| scaled(f.scene, scale)).collect()
 }
 
 #[test]
@@ -137,8 +137,9 @@ fn depth_and_count_together_are_separate_renders() {
 fn shading_models_in_one_pass_are_separate_renders() {
     // The slides' sweeps: terms on and off, Phong and Blinn exponents 2 ... 512, metal
     // factors: one shadow ray per light for all, each lane its own shading.
-    let set = registry().into_iter().find(|s| s.name == "shading").unwrap();
-    let scenes: Vec<Scene> = (set.figures)()
+    let set = registry().unwrap().into_iter().find(|s| s.name == "shading").unwrap();
+    let scenes: Vec<Scene> = set
+        .figures
         .into_iter()
         .filter(|f| f.stem != "23-metal-0") // the combined figure's scene again
         .map(|f| scaled(f.scene, 0.1))
@@ -217,7 +218,7 @@ fn only_scenes_one_pass_can_render_are_grouped() {
 #[test]
 fn committed_prism_set_is_reproduced_bit_for_bit_in_one_pass() {
     // Full size, depth 1 to 20 in two passes (16 + 4 lanes) and the top view alone.
-    assert_eq!(committed_set_mismatches("prism"), vec![]);
+    assert_eq!(committed_set_mismatches("prism"), Vec::<String>::new());
 }
 
 #[test]
@@ -241,4 +242,56 @@ fn lanes_that_cannot_share_light_points_are_refused() {
     let shadow = |s: &Scene| render(&World::new(s), &|| {}).1.counts.shadow;
     assert_eq!(shadow(&scenes[1]), 0);
     assert!(shadow(&scenes[0]) > 0);
+}
+
+#[test]
+fn the_families_are_found_from_the_figure_files() {
+    // Every figure of every set's files, grouped as one run over all sets groups them: by
+    // the scenes alone, whatever code or file order made them.
+    let sets = registry().unwrap();
+    let named: Vec<(String, &Scene)> = sets
+        .iter()
+        .flat_map(|s| {
+            s.figures
+                .iter()
+                .map(move |f| (format!("{}/{}", s.name, f.stem), &f.scene))
+        })
+        .collect();
+    let scenes: Vec<&Scene> = named.iter().map(|(_, s)| *s).collect();
+    let groups: Vec<Vec<&str>> = family::group(&scenes)
+        .into_iter()
+        .filter(|g| g.len() > 1)
+        .map(|g| g.into_iter().map(|i| named[i].0.as_str()).collect())
+        .collect();
+    let range = |set: &str, stems: &[&str]| stems.iter().map(|s| format!("{set}/{s}")).collect::<Vec<_>>();
+    // The reference scene under its eleven lightings (directional/01 is lighting/03's scene).
+    let mut lightings = range("lighting", &["01-ambient", "02-directional", "03-ambient-directional"]);
+    lightings.extend(range(
+        "directional",
+        &["01-d-1-1--1", "02-d-0p5-1--1", "03-d-0-1--1", "04-d--1-1--1"],
+    ));
+    lightings.extend(range("attenuation", &["01-no-attenuation", "02-quadratic-0p01"]));
+    lightings.extend(range("spotlight", &["01-theta-70", "02-theta-120"]));
+    lightings.extend(range("soft-shadows", &["01-hard"]));
+    // The spherical light's N = 1 ... 1000 (and light-shapes' sphere, N = 100).
+    let mut sphere = range(
+        "soft-shadows",
+        &[
+            "02-soft-200",
+            "03-points-1",
+            "04-points-5",
+            "05-points-25",
+            "06-points-100",
+            "07-points-200",
+            "08-points-1000",
+        ],
+    );
+    sphere.push("light-shapes/01-sphere".into());
+    let mirrors: Vec<String> = (1..=10)
+        .map(|d| format!("mirrors/{d:02}-opening-60-depth-{d:02}"))
+        .collect();
+    let prism: Vec<String> = (1..=20).map(|d| format!("prism/{:02}-depth-{d:02}", d + 1)).collect();
+    let shading: Vec<String> = sets[8].figures.iter().map(|f| format!("shading/{}", f.stem)).collect();
+    assert_eq!(shading.len(), 25);
+    assert_eq!(groups, [lightings, sphere, mirrors, prism, shading]);
 }

@@ -1,9 +1,12 @@
 //! The figure sets: every figure pinned as a small PNG snapshot, the committed full-size
-//! figures reproduced bit for bit, and the gallery and contact sheets written.
+//! figures reproduced bit for bit, and what a set writes: images with their provenance,
+//! manifests that depend on their set alone, contact sheets and the gallery.
 
 mod common;
 use common::*;
-use lumiere::figures::{self, registry, render_figure};
+use lumiere::figures::{self, Run, files, provenance, registry, render_figure};
+use serde_json::Value;
+use std::path::Path;
 
 /// Scale of the snapshot images: 80 x 60 from the 800 x 600 figures.
 const SNAPSHOT_SCALE: f64 = 0.1;
@@ -12,8 +15,8 @@ const SNAPSHOT_SCALE: f64 = 0.1;
 fn every_figure_matches_its_snapshot() {
     let settings = snapshot_settings();
     let mut count = 0;
-    for set in registry() {
-        for figure in (set.figures)() {
+    for set in registry().unwrap() {
+        for figure in set.figures {
             let name = format!("figure__{}__{}.png", set.name, figure.stem);
             let r = render_figure(figure, SNAPSHOT_SCALE);
             assert_eq!((r.image.width(), r.image.height()), (80, 60));
@@ -23,22 +26,33 @@ fn every_figure_matches_its_snapshot() {
         }
     }
     // lighting 3 + directional 4 + attenuation 2 + spotlight 2 + soft-shadows 8 +
-    // light-shapes 3 + mirrors 13 + prism 21 + shading 25: every figure of FIGURES.md.
+    // light-shapes 3 + mirrors 13 + prism 21 + shading 25: every figure of the course.
     assert_eq!(count, 81);
 }
 
 #[test]
 fn committed_lighting_set_is_reproduced_bit_for_bit() {
-    // Full size, 800 x 600 with 4 samples: the pixel hashes of figures/lighting/manifest.json.
-    // `lumiere figures --check` does the same for every set.
-    assert_eq!(committed_set_mismatches("lighting"), vec![]);
+    // Full size, 800 x 600 with 4 samples: the PNGs, manifest and contact sheet of
+    // figures/lighting. `lumiere figures --check` does the same for every set.
+    assert_eq!(committed_set_mismatches("lighting"), Vec::<String>::new());
+}
+
+/// `dir/name`, parsed as JSON.
+fn json_file(path: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
 #[test]
 fn generate_writes_images_manifest_sheet_and_gallery() {
     let out = temp_dir("figures");
-    let set = registry().into_iter().find(|s| s.name == "spotlight").unwrap();
-    let report = figures::generate(&set, &out, 0.05).unwrap();
+    let sets = registry().unwrap();
+    let set = sets.iter().find(|s| s.name == "spotlight").unwrap();
+    let run = Run {
+        out: out.to_path_buf(),
+        scale: 0.05,
+        ..Run::default()
+    };
+    let report = figures::generate(set, &run).unwrap();
     assert_eq!(report.images, 2);
     for f in [
         "01-theta-70.png",
@@ -50,33 +64,71 @@ fn generate_writes_images_manifest_sheet_and_gallery() {
     }
     let img = image::open(out.join("spotlight/01-theta-70.png")).unwrap();
     assert_eq!((img.width(), img.height()), (40, 30));
-    let manifest: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("spotlight/manifest.json")).unwrap()).unwrap();
+    let manifest = json_file(&out.join("spotlight/manifest.json"));
+    assert_eq!(manifest["definition"], "scenes/figures/spotlight/set.toml");
+    assert_eq!(manifest["scale"], 0.05);
     let first = &manifest["images"][0];
     assert_eq!(first["caption"], "Avec un angle d'ouverture θ = 70°");
+    assert_eq!(first["scene"], "scenes/figures/spotlight/01-theta-70.toml");
+    let scene_bytes = std::fs::read(repo("scenes/figures/spotlight/01-theta-70.toml")).unwrap();
+    let scene_hash = format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(&scene_bytes));
+    assert_eq!(first["scene_hash"], scene_hash.as_str());
+    assert_eq!(first["parameters"]["lights[1].angle"], 70);
     assert_eq!(first["seed"], 42);
     assert_eq!(first["samples_per_pixel"], 4);
+    assert_eq!(first["conventions"], "chapter");
     assert_eq!(first["rays"]["camera"], 40 * 30 * 4);
-    assert_eq!(first["scene"]["lights"][1]["angle_deg"], 70.0);
+    assert_eq!(first["family"], serde_json::json!(["02-theta-120.png"]));
     assert!(first["pixel_hash"].as_str().unwrap().starts_with("fnv1a64:"));
-    figures::write_index(&out).unwrap();
-    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
-    for set in registry() {
-        assert!(html.contains(&format!("id=\"{}\"", set.name)), "{}", set.name);
+    assert!(first["facts"]["white_fraction"].as_f64().unwrap() < 0.01);
+    for absent in ["render_seconds", "one_pass_with", "same_image_as"] {
+        assert!(first.get(absent).is_none(), "{absent}");
     }
-    assert!(html.contains("Niveau de récursivité : 3"));
+    // The PNG's provenance, in the order written.
+    let png = std::fs::read(out.join("spotlight/01-theta-70.png")).unwrap();
+    let command = format!("lumiere figures spotlight --scale 0.05 --out {}", out.display());
+    let expected: Vec<(String, String)> = [
+        ("Title", "spotlight/01-theta-70"),
+        ("Software", &format!("lumiere {}", lumiere::VERSION)),
+        ("Scene", "scenes/figures/spotlight/01-theta-70.toml"),
+        ("Scene hash", &scene_hash),
+        ("Seed", "42"),
+        ("Conventions", "chapter"),
+        ("Command", &command),
+    ]
+    .iter()
+    .map(|(k, v)| (k.to_string(), v.to_string()))
+    .collect();
+    assert_eq!(provenance::text_chunks(&png).unwrap(), expected);
+    assert_eq!(manifest["command"], command.as_str());
+    figures::write_index(&out, &sets).unwrap();
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    // Only the set present in the folder.
+    assert!(html.contains("id=\"spotlight\""));
+    for other in sets.iter().filter(|s| s.name != "spotlight") {
+        assert!(!html.contains(&format!("id=\"{}\"", other.name)), "{}", other.name);
+    }
+    assert!(html.contains("Avec un angle d'ouverture θ = 70°"));
+    assert!(html.contains("lights[1].angle = 120"));
 }
 
 #[test]
 fn attenuation_range_is_measured() {
     // Point light at (0, 0, 10) with C_quad = 0.01: the highest lit point seen is the cube's top
     // (z = 4, d = 6): A = 1 / (1 + 0.36) = 0.7353; the far floor drives the minimum to ~0.
-    let set = registry().into_iter().find(|s| s.name == "attenuation").unwrap();
-    let quad = (set.figures)().pop().unwrap();
+    let set = registry()
+        .unwrap()
+        .into_iter()
+        .find(|s| s.name == "attenuation")
+        .unwrap();
+    let quad = set.figures[1].clone();
     let r = render_figure(quad, 0.2);
-    let max = r.manifest["facts"]["attenuation_max"].as_f64().unwrap();
+    let scene = figures::scaled(r.figure.scene.clone(), 0.2);
+    let facts = figures::facts(&r.figure, &scene, r.image.as_raw());
+    let max = facts["attenuation_max"].as_f64().unwrap();
     assert!((max - 1.0 / 1.36).abs() < 1e-3, "{max}");
-    assert!(r.manifest["facts"]["attenuation_min"].as_f64().unwrap() < 0.01);
+    assert!(facts["attenuation_min"].as_f64().unwrap() < 0.01);
+    assert!(facts.get("saturation_intended").is_none());
 }
 
 #[test]
@@ -89,106 +141,400 @@ fn figures_command_rejects_bad_requests() {
     let o = lumiere(&["figures", "--list"]);
     assert_eq!(o.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&o.stdout).contains("01-top-depth-01.png  Récursivité : 1 (vue de haut)"));
+    let o = lumiere(&["figures", "--list", "--scenes", "/tmp/lumiere-no-figure-files"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("/tmp/lumiere-no-figure-files: cannot read the folder of figure files"),
+        "{err}"
+    );
+    assert!(!Path::new("/tmp/lumiere-nothing").exists());
 }
 
-/// Runs `lumiere figures` on `sets` at scale 0.05 into `out`, quietly; asserts it succeeds.
-fn generate_sets(out: &std::path::Path, sets: &[&str]) {
-    let mut args = vec!["figures", "--scale", "0.05", "--out", out.to_str().unwrap(), "--quiet"];
-    args.extend_from_slice(sets);
-    let o = lumiere(&args);
+/// Runs `lumiere figures` with `args` in folder `cwd`, reading the repository's figure files,
+/// quietly; asserts it succeeds.
+fn figures_in(cwd: &Path, args: &[&str]) {
+    let scenes = repo("scenes/figures");
+    let mut all = vec!["figures", "--quiet", "--scenes", scenes.to_str().unwrap()];
+    all.extend_from_slice(args);
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(&all)
+        .current_dir(cwd)
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
-/// `<dir>/<set>/manifest.json`, parsed.
-fn set_manifest(dir: &std::path::Path, set: &str) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(dir.join(set).join("manifest.json")).unwrap()).unwrap()
+/// The files of a folder (not its folders), sorted, with their bytes.
+fn folder_bytes(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().path().is_file())
+        .map(|e| {
+            let e = e.unwrap();
+            (
+                e.file_name().to_string_lossy().into_owned(),
+                std::fs::read(e.path()).unwrap(),
+            )
+        })
+        .collect();
+    files.sort();
+    files
 }
 
-/// A manifest entry's `one_pass_with` list.
-fn one_pass_with(image: &serde_json::Value) -> Vec<&str> {
-    image["one_pass_with"]
+#[test]
+fn a_set_writes_the_same_bytes_alone_or_with_others() {
+    // The reference scene's lightings of three sets share one pass in a run over the three,
+    // and soft-shadows' N = 100 is light-shapes' sphere: a run over all five renders less,
+    // yet each set's folder is byte for byte what the set alone writes.
+    let (together, alone) = (temp_dir("figures-together"), temp_dir("figures-alone"));
+    let sets = ["lighting", "directional", "spotlight", "soft-shadows", "light-shapes"];
+    let mut args = vec!["--scale", "0.05"];
+    args.extend_from_slice(&sets);
+    figures_in(&together, &args);
+    for set in sets {
+        figures_in(&alone, &["--scale", "0.05", set]);
+    }
+    for set in sets {
+        let (a, b) = (
+            folder_bytes(&together.join("figures").join(set)),
+            folder_bytes(&alone.join("figures").join(set)),
+        );
+        assert_eq!(a.len(), b.len(), "{set}");
+        for ((name, x), (_, y)) in a.iter().zip(&b) {
+            assert!(x == y, "{set}/{name} differs");
+        }
+    }
+    let read = |dir: &Path| std::fs::read(dir.join("figures/index.html")).unwrap();
+    assert_eq!(read(&together), read(&alone));
+    // The gallery lists the five sets present and no other, and every image it shows is there.
+    let html = String::from_utf8(read(&together)).unwrap();
+    let shown: Vec<&str> = html
+        .split("<img src=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap())
+        .collect();
+    assert_eq!(shown.len(), 3 + 4 + 2 + 8 + 3);
+    for src in &shown {
+        assert!(together.join("figures").join(src).is_file(), "{src}");
+    }
+    for set in registry().unwrap() {
+        assert_eq!(
+            html.contains(&format!("id=\"{}\"", set.name)),
+            sets.contains(&set.name.as_str())
+        );
+    }
+    // Manifests name no other set's file, only figures of their own set.
+    let directional = json_file(&together.join("figures/directional/manifest.json"));
+    assert_eq!(
+        directional["images"][1]["family"],
+        serde_json::json!(["01-d-1-1--1.png", "03-d-0-1--1.png", "04-d--1-1--1.png"])
+    );
+    let soft = json_file(&together.join("figures/soft-shadows/manifest.json"));
+    assert_eq!(soft["images"][6]["same_image_as"], "02-soft-200.png");
+    assert!(soft["images"][0].get("family").is_none());
+    let shapes = json_file(&together.join("figures/light-shapes/manifest.json"));
+    assert!(shapes["images"][0].get("same_image_as").is_none());
+    // Timings go to the run's own file, which `figures/.gitignore` keeps out of git.
+    let timings = json_file(&together.join("figures/timings.json"));
+    assert_eq!(timings["sets"].as_array().unwrap().len(), 5);
+    assert_eq!(timings["sets"][3]["set"], "soft-shadows");
+    assert!(timings["sets"][3]["seconds"].as_f64().unwrap() > 0.0);
+    let ignored = std::fs::read_to_string(repo("figures/.gitignore")).unwrap();
+    assert!(ignored.lines().any(|l| l == "timings.json"));
+}
+
+/// Copies `from` into `to`, folders included.
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        if e.path().is_dir() {
+            copy_tree(&e.path(), &to.join(e.file_name()));
+        } else {
+            std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
+        }
+    }
+}
+
+#[test]
+fn regenerating_an_unchanged_set_changes_no_committed_byte() {
+    // A copy of the repository's figure files and committed figures; `lumiere figures
+    // lighting` run there as from the repository's root, at full size. Every committed file
+    // of figures/ (the set, the others, the gallery made from all manifests) keeps its bytes.
+    let root = temp_dir("figures-regenerate");
+    copy_tree(&repo("scenes/figures"), &root.join("scenes/figures"));
+    copy_tree(&repo("figures"), &root.join("figures"));
+    let _ = std::fs::remove_file(root.join("figures/timings.json"));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(["figures", "lighting", "--quiet"])
+        .current_dir(&root)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut compared = 0;
+    for set in ["", "lighting", "directional", "mirrors"] {
+        for (name, bytes) in folder_bytes(&repo("figures").join(set)) {
+            if name == "timings.json" {
+                continue;
+            }
+            let regenerated = std::fs::read(root.join("figures").join(set).join(&name)).unwrap();
+            assert!(regenerated == bytes, "figures/{set}/{name} changed");
+            compared += 1;
+        }
+    }
+    // index.html and .gitignore, lighting's 3 figures, sheet and manifest, and two other sets.
+    assert!(compared >= 2 + 5 + 6 + 15, "{compared} files compared");
+    assert!(root.join("figures/timings.json").is_file());
+}
+
+#[test]
+fn a_figure_file_renders_as_any_scene_into_the_committed_figure() {
+    // `lumiere render` reads a figure's scene file like any scene, and gives the committed
+    // figure's pixels: the scene the manifest names can be rendered again.
+    let dir = temp_dir("figure-render");
+    let png = dir.join("03.png");
+    let o = lumiere(&[
+        "render",
+        repo("scenes/figures/lighting/03-ambient-directional.toml")
+            .to_str()
+            .unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rendered = lumiere::compare::load_rgb8(&png).unwrap();
+    assert_eq!(rendered, committed_rgb("lighting", "03-ambient-directional.png"));
+    let manifest = json_file(&repo("figures/lighting/manifest.json"));
+    assert_eq!(
+        manifest["images"][2]["pixel_hash"],
+        format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(&rendered.2)).as_str()
+    );
+    assert_eq!(
+        manifest["images"][2]["scene"],
+        "scenes/figures/lighting/03-ambient-directional.toml"
+    );
+}
+
+#[test]
+fn committed_figures_carry_their_provenance() {
+    for set in registry().unwrap() {
+        for f in &set.figures {
+            let png = std::fs::read(repo(&format!("figures/{}/{}.png", set.name, f.stem))).unwrap();
+            let texts = provenance::text_chunks(&png).unwrap();
+            let get = |k: &str| texts.iter().find(|(key, _)| key == k).map(|(_, v)| v.as_str());
+            let scene = std::fs::read(repo(&f.scene_file)).unwrap();
+            let hash = format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(&scene));
+            assert_eq!(get("Scene"), Some(f.scene_file.as_str()));
+            assert_eq!(get("Scene hash"), Some(hash.as_str()), "{}", f.scene_file);
+            assert_eq!(get("Seed"), Some("42"));
+            assert_eq!(get("Conventions"), Some("chapter"));
+            assert_eq!(get("Software"), Some(format!("lumiere {}", lumiere::VERSION).as_str()));
+            assert_eq!(get("Command"), Some(format!("lumiere figures {}", set.name).as_str()));
+        }
+    }
+}
+
+/// The committed PNG of `set/file`, decoded.
+fn committed_rgb(set: &str, file: &str) -> (u32, u32, Vec<u8>) {
+    lumiere::compare::load_rgb8(&repo(&format!("figures/{set}/{file}"))).unwrap()
+}
+
+#[test]
+fn no_committed_figure_is_washed_out_unless_its_manifest_says_why() {
+    // Fully white pixels (255, 255, 255) counted on every committed PNG: at most 1 %, but
+    // for figures whose manifest says saturation is intended (their point) or kept (and
+    // why); the manifest's fact is the count of the PNG on disk.
+    let (mut intended, mut kept) = (Vec::new(), Vec::new());
+    let mut worst = (0.0, String::new());
+    for set in registry().unwrap() {
+        let manifest = json_file(&repo(&format!("figures/{}/manifest.json", set.name)));
+        for image in manifest["images"].as_array().unwrap() {
+            let file = image["file"].as_str().unwrap();
+            let name = format!("{}/{file}", set.name);
+            let (w, h, rgb) = committed_rgb(&set.name, file);
+            let white = rgb.chunks(3).filter(|p| p == &[255, 255, 255]).count() as f64 / (w * h) as f64;
+            let recorded = image["facts"]["white_fraction"].as_f64().unwrap();
+            assert!(
+                (white - recorded).abs() <= 1e-6,
+                "{name}: {white} on disk, {recorded} recorded"
+            );
+            if image["facts"]["saturation_intended"] == true {
+                intended.push(name);
+            } else if image["facts"]["saturation_accepted"].is_string() {
+                kept.push(name);
+            } else {
+                assert!(white <= 0.01, "{name}: {:.2} % fully white", white * 100.0);
+                if white > worst.0 {
+                    worst = (white, name);
+                }
+            }
+        }
+    }
+    assert_eq!(intended, ["attenuation/01-no-attenuation.png"]);
+    assert_eq!(kept, ["spotlight/02-theta-120.png", "prism/01-top-depth-01.png"]);
+    // Those are saturated indeed (no figure is excused for nothing), and some other figure
+    // has white highlights: the count sees white where there is some.
+    for (set, file, at_least) in [
+        ("attenuation", "01-no-attenuation.png", 0.10),
+        ("spotlight", "02-theta-120.png", 0.04),
+        ("prism", "01-top-depth-01.png", 0.015),
+    ] {
+        let (w, h, rgb) = committed_rgb(set, file);
+        let white = rgb.chunks(3).filter(|p| p == &[255, 255, 255]).count() as f64;
+        assert!(white > at_least * (w * h) as f64, "{set}/{file}");
+    }
+    assert!(worst.0 > 0.0, "no figure has a white pixel");
+}
+
+#[test]
+fn the_mirrors_count_their_cone_images_on_the_committed_figures() {
+    // floor(360 / opening - 1) once the depth lets every image through: 5 at 60 degrees from
+    // depth 4 on, 3 at 90, 7 at 45, 11 at 30; fewer at depths 1 to 3.
+    let manifest = json_file(&repo("figures/mirrors/manifest.json"));
+    let counts: Vec<u64> = manifest["images"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|f| f.as_str().unwrap())
-        .collect()
+        .map(|i| i["facts"]["cone_images"].as_u64().unwrap())
+        .collect();
+    assert_eq!(counts, [0, 2, 4, 5, 5, 5, 5, 5, 5, 5, 3, 7, 11]);
+    for (i, image) in manifest["images"].as_array().unwrap().iter().enumerate() {
+        let file = image["file"].as_str().unwrap();
+        let (w, h, rgb) = committed_rgb("mirrors", file);
+        let regions = lumiere::figures::measure::red_regions(&rgb, w as usize, h as usize);
+        assert_eq!(regions as u64 - 1, counts[i], "{file}");
+    }
 }
 
 #[test]
-fn a_run_renders_the_lightings_of_several_sets_in_one_pass() {
-    // The reference scene under lighting's, directional's and spotlight's lights: one pass
-    // in a run over the three sets, each image the bytes of its set rendered alone.
-    let (run, alone) = (temp_dir("figures-lightings"), temp_dir("figures-lightings-alone"));
-    let sets = ["lighting", "directional", "spotlight"];
-    generate_sets(&run, &sets);
-    for set in sets {
-        generate_sets(&alone, &[set]);
-    }
-    for set in sets {
-        for image in set_manifest(&alone, set)["images"].as_array().unwrap() {
-            let file = image["file"].as_str().unwrap();
-            let read = |dir: &std::path::Path| std::fs::read(dir.join(set).join(file)).unwrap();
-            assert!(read(&run) == read(&alone), "{set}/{file}");
+fn the_gallery_links_each_scene_file_and_shows_its_facts() {
+    let html = std::fs::read_to_string(repo("figures/index.html")).unwrap();
+    for set in registry().unwrap() {
+        assert!(
+            html.contains(&format!("href=\"../{}\"", set.definition)),
+            "{}",
+            set.definition
+        );
+        for f in &set.figures {
+            assert!(
+                html.contains(&format!("href=\"../{}\"", f.scene_file)),
+                "{}",
+                f.scene_file
+            );
+            assert!(repo(&f.scene_file).is_file());
+            assert!(html.contains(&format!("src=\"{}/{}.png\"", set.name, f.stem)));
         }
     }
-    // Directional's first figure is lighting's third (same scene): a copy. The other eight
-    // distinct scenes were one pass, and each manifest names the others with their set.
-    let directional = set_manifest(&run, "directional");
-    assert_eq!(
-        directional["images"][0]["same_image_as"],
-        "lighting/03-ambient-directional.png"
-    );
-    assert_eq!(
-        one_pass_with(&directional["images"][1]),
-        [
-            "lighting/01-ambient.png",
-            "lighting/02-directional.png",
-            "lighting/03-ambient-directional.png",
-            "directional/03-d-0-1--1.png",
-            "directional/04-d--1-1--1.png",
-            "spotlight/01-theta-70.png",
-            "spotlight/02-theta-120.png"
-        ]
-    );
-    // Rendered alone, a set's family names its own files only.
-    let alone_with = &set_manifest(&alone, "directional")["images"][1]["one_pass_with"];
-    assert_eq!(
-        alone_with,
-        &serde_json::json!(["01-d-1-1--1.png", "03-d-0-1--1.png", "04-d--1-1--1.png"])
-    );
+    assert!(html.contains("render.depth = 10; shapes[1].opening = 30"));
+    assert!(html.contains("fully white pixels 11.84 %; saturation intended"));
+    assert!(html.contains("cone images 11"));
+    assert!(html.contains("href=\"../docs/figures.md\""));
 }
 
 #[test]
-fn a_run_renders_a_scene_two_sets_share_once_and_families_in_one_pass() {
-    // Light-shapes' sphere is soft-shadows' N = 100: in a run over both it is copied, with
-    // the same bytes as when light-shapes is rendered alone.
-    let (both, alone) = (temp_dir("figures-both"), temp_dir("figures-alone"));
-    generate_sets(&both, &["soft-shadows", "light-shapes"]);
-    generate_sets(&alone, &["light-shapes"]);
-    let sphere = |dir: &std::path::Path| std::fs::read(dir.join("light-shapes/01-sphere.png")).unwrap();
-    assert_eq!(sphere(&both), sphere(&alone));
-    let shared = &set_manifest(&both, "light-shapes")["images"][0];
-    assert_eq!(shared["same_image_as"], "soft-shadows/06-points-100.png");
-    assert_eq!(shared["render_seconds"], 0.0);
-    assert!(
-        set_manifest(&alone, "light-shapes")["images"][0]
-            .get("same_image_as")
-            .is_none()
-    );
-    // The soft-shadows N = 1 ... 1000 figures were one pass: each lists the others.
-    let soft = set_manifest(&both, "soft-shadows");
-    let last = &soft["images"][7];
-    assert_eq!(last["file"], "08-points-1000.png");
+fn nothing_points_outside_the_repository() {
+    // The specification the figures follow is docs/figures.md and the scene files' comments.
+    fn scan(dir: &Path, found: &mut Vec<String>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let path = e.unwrap().path();
+            if path.is_dir() {
+                scan(&path, found);
+            } else if let Ok(text) = std::fs::read_to_string(&path) {
+                for word in ["FIGURES.md", "shared/"] {
+                    if text.contains(word) {
+                        found.push(format!("{}: {word}", path.display()));
+                    }
+                }
+            }
+        }
+    }
+    let mut found = Vec::new();
+    for dir in ["src", "tests", "scenes", "docs", "figures", "examples", "benches"] {
+        scan(&repo(dir), &mut found);
+    }
+    let readme = std::fs::read_to_string(repo("README.md")).unwrap();
+    if readme.contains("FIGURES.md") || readme.contains("shared/") {
+        found.push("README.md".into());
+    }
+    // This file names them to look for them.
+    found.retain(|f| !f.contains("tests/figures.rs"));
+    assert_eq!(found, Vec::<String>::new());
+    assert!(repo("docs/figures.md").is_file());
+}
+
+#[test]
+fn adding_a_figure_is_adding_a_file() {
+    // A copy of the lighting set with a fourth figure: its scene file and its entry.
+    let dir = temp_dir("figure-files");
+    copy_tree(&repo("scenes/figures/lighting"), &dir.join("lighting"));
+    std::fs::copy(
+        repo("scenes/figures/directional/04-d--1-1--1.toml"),
+        dir.join("lighting/04-from-the-left.toml"),
+    )
+    .unwrap();
+    let set_toml = dir.join("lighting/set.toml");
+    let mut text = std::fs::read_to_string(&set_toml).unwrap();
+    text += "\n[figures.04-from-the-left]\ncaption = \"De la gauche\"\n";
+    std::fs::write(&set_toml, &text).unwrap();
+    let sets = files::load(&dir).unwrap();
+    assert_eq!(sets.len(), 1);
+    let stems: Vec<&str> = sets[0].figures.iter().map(|f| f.stem.as_str()).collect();
     assert_eq!(
-        one_pass_with(last),
+        stems,
         [
-            "02-soft-200.png",
-            "03-points-1.png",
-            "04-points-5.png",
-            "05-points-25.png",
-            "06-points-100.png"
+            "01-ambient",
+            "02-directional",
+            "03-ambient-directional",
+            "04-from-the-left"
         ]
     );
-    // The hard-shadow figure (a point light) is its own render.
-    assert!(soft["images"][0].get("one_pass_with").is_none());
+    assert_eq!(sets[0].figures[3].caption, "De la gauche");
+    let o = lumiere(&["figures", "--list", "--scenes", dir.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("  04-from-the-left.png  De la gauche"));
+}
+
+#[test]
+fn figure_files_that_do_not_go_together_are_refused() {
+    let error = |change: &dyn Fn(&Path)| {
+        let dir = temp_dir("figure-files-bad");
+        copy_tree(&repo("scenes/figures/spotlight"), &dir.join("spotlight"));
+        change(&dir.join("spotlight"));
+        let message = files::load(&dir).unwrap_err().to_string();
+        let o = lumiere(&["figures", "--list", "--scenes", dir.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{message}");
+        assert_eq!(
+            String::from_utf8_lossy(&o.stderr).trim(),
+            format!("lumiere: error: {message}")
+        );
+        message.replace(&format!("{}/", dir.display()), "")
+    };
+    assert_eq!(
+        error(
+            &|d| std::fs::copy(d.join("01-theta-70.toml"), d.join("03-theta-90.toml"))
+                .map(drop)
+                .unwrap()
+        ),
+        "spotlight/03-theta-90.toml: no entry [figures.03-theta-90] in spotlight/set.toml gives this figure its caption"
+    );
+    assert_eq!(
+        error(&|d| std::fs::remove_file(d.join("02-theta-120.toml")).unwrap()),
+        "spotlight/set.toml:16:10: figures.02-theta-120: no scene file 02-theta-120.toml beside this file"
+    );
+    assert_eq!(
+        error(&|d| {
+            std::fs::rename(d.join("02-theta-120.toml"), d.join("03-theta-120.toml")).unwrap();
+            let t = std::fs::read_to_string(d.join("set.toml")).unwrap();
+            std::fs::write(d.join("set.toml"), t.replace("02-theta-120", "03-theta-120")).unwrap();
+        }),
+        "spotlight/set.toml:16:10: figures.03-theta-120: figures are numbered 01, 02, ... without a gap: expected number 02, got 03"
+    );
+    assert_eq!(
+        error(&|d| {
+            let t = std::fs::read_to_string(d.join("01-theta-70.toml")).unwrap();
+            std::fs::write(d.join("01-theta-70.toml"), t.replace("angle = 70", "angle = 270")).unwrap();
+        }),
+        "spotlight/01-theta-70.toml:114:9: lights[1].angle: must be a finite number in [0, 180], got 270"
+    );
 }

@@ -74,7 +74,7 @@ fn a_second_run_is_refused_while_the_first_completes() {
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(rest[0].starts_with("mirrors "), "{rest:?}");
     // Both sets are the first run's (400 x 300, not the refused run's 40 x 30), the gallery
-    // is written, and neither the lock file nor a temporary file is left.
+    // is written with the run's times, and neither the lock file nor a temporary file is left.
     for set in ["lighting", "mirrors"] {
         let manifest: serde_json::Value =
             serde_json::from_slice(&fs::read(out.join(set).join("manifest.json")).unwrap()).unwrap();
@@ -84,7 +84,7 @@ fn a_second_run_is_refused_while_the_first_completes() {
             assert_eq!((png.width(), png.height()), (400, 300));
         }
     }
-    assert_eq!(names(&out), ["index.html", "lighting", "mirrors"]);
+    assert_eq!(names(&out), ["index.html", "lighting", "mirrors", "timings.json"]);
 }
 
 #[test]
@@ -103,5 +103,5 @@ fn a_lock_file_left_behind_is_taken_over() {
         out.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(names(&out), ["index.html", "lighting"]);
+    assert_eq!(names(&out), ["index.html", "lighting", "timings.json"]);
 }

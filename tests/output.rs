@@ -245,7 +245,9 @@ fn ctrl_c_during_figures_leaves_each_set_wholly_old_or_wholly_new() {
         let hash = format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(png.as_raw()));
         assert_eq!(entry["pixel_hash"], hash.as_str());
     }
-    // Nothing else beside the sets: no temporary file left in the output folder.
+    // Nothing else beside the sets, the gallery and the times of the set written: no
+    // temporary file left in the output folder.
     let names: Vec<_> = fs::read_dir(&out).unwrap().map(|f| f.unwrap().file_name()).collect();
-    assert_eq!(names.len(), 3, "{names:?}");
+    assert_eq!(names.len(), 4, "{names:?}");
+    assert!(out.join("timings.json").is_file());
 }

@@ -181,7 +181,14 @@ position = [0, 0, 1.5]
 
 /// Cone images seen for a mirror opening: red regions in the render minus the real cone.
 fn cone_images(opening: u32) -> usize {
-    let scene = lumiere::figures::sets::mirrors_scene(opening, 12);
+    let file = match opening {
+        60 => "10-opening-60-depth-10",
+        90 => "11-opening-90-depth-04",
+        45 => "12-opening-45-depth-08",
+        _ => "13-opening-30-depth-10",
+    };
+    let mut scene = scene(&format!("figures/mirrors/{file}.toml"));
+    scene.settings.depth = 12;
     let (w, h) = (480, 360);
     let film = render_small(&scene, w, h, 1, 2);
     lumiere::figures::measure::red_regions(&film.to_rgb8(), w as usize, h as usize) - 1

@@ -1,6 +1,6 @@
 //! `lumiere review-snapshots` on a fake snapshot folder laid out as insta 1.49 lays out
 //! image snapshots: `NAME.snap` + `NAME.snap.png` accepted, `NAME.snap.new` +
-//! `NAME.snap.new.png` pending.
+//! `NAME.snap.new.png` pending; labelled, enlarged sheets and the review page.
 
 mod common;
 use common::*;
@@ -56,32 +56,78 @@ fn sheets_show_old_new_and_difference() {
     );
     assert!(lines[2].starts_with("words: text snapshot"), "{stdout}");
 
-    // Three 4 x 3 panels with 8 pixels around and between: (8 + 3 x 12) x (3 + 16) = 44 x 19.
-    let (w, h, sheet) = load_rgb8(&out.join("changed.png")).unwrap();
-    assert_eq!((w, h), (44, 19));
+    // Three 4 x 3 panels enlarged 80 times to 320 x 240, labels 16 pixels tall above them,
+    // 8 pixels around and between: (8 + 3 x 328) x (8 + 16 + 8 + 240 + 8) = 992 x 280.
+    let (w, h, sheet) = load_rgb8(&out.join("snapshots/changed.png")).unwrap();
+    assert_eq!((w, h), (992, 280));
     let px = |x: u32, y: u32| sheet[((y * w + x) * 3) as usize..][..3].to_vec();
+    // Pixel (x, y) of panel p covers the 80 x 80 square from (8 + 328 p + 80 x, 32 + 80 y).
+    let at = |p: u32, x: u32, y: u32| px(8 + 328 * p + 80 * x + 40, 32 + 80 * y + 40);
     assert_eq!(px(0, 0), [128, 128, 128]); // the grey ground
-    assert_eq!(px(8 + 1, 8 + 2), [100, 100, 100]); // old panel at x = 8
-    assert_eq!(px(20 + 1, 8 + 2), [120, 100, 100]); // new panel at x = 20
-    assert_eq!(px(20 + 3, 8), [100, 100, 104]);
-    assert_eq!(px(32, 8), [0, 0, 0]); // difference panel at x = 32: equal is black
-    assert_eq!(px(32 + 1, 8 + 2), [255, 255, 255]); // 20 >= 16 levels: white
+    assert_eq!(at(0, 1, 2), [100, 100, 100]); // accepted
+    assert_eq!(at(1, 1, 2), [120, 100, 100]); // new
+    assert_eq!(at(1, 3, 0), [100, 100, 104]);
+    assert_eq!(at(2, 0, 0), [0, 0, 0]); // difference: equal is black
+    assert_eq!(at(2, 1, 2), [255, 255, 255]); // 20 >= 16 levels: white
     // 4 levels of 16: x = 0.25, blue to red halfway: (64 + 0.5 x 191, 0, 64 + 0.5 x 191).
-    assert_eq!(px(32 + 3, 8), [160, 0, 160]);
+    assert_eq!(at(2, 3, 0), [160, 0, 160]);
+    // Each panel is labelled above: white glyph pixels in the band 8 to 24 over each panel.
+    let label = |p: u32| {
+        (8..24)
+            .flat_map(|y| (8 + 328 * p..8 + 328 * p + 320).map(move |x| (x, y)))
+            .filter(|&(x, y)| px(x, y) == [255, 255, 255])
+            .count()
+    };
+    assert!(label(0) > 0 && label(1) > 0 && label(2) > 0);
+    // "difference" (10 glyphs) takes more ink than "new" (3).
+    assert!(label(2) > 2 * label(1));
 
-    // The new snapshot alone: (8 + 5 + 8) x (2 + 16) = 21 x 18.
-    let (w, h, fresh) = load_rgb8(&out.join("fresh.png")).unwrap();
-    assert_eq!((w, h), (21, 18));
-    assert_eq!(fresh[((8 * w + 8) * 3) as usize], 7);
-    assert!(!out.join("words.png").exists());
+    // The new snapshot alone, 5 x 2 enlarged 64 times: (8 + 320 + 8) x (8 + 24 + 128 + 8).
+    let (w, h, fresh) = load_rgb8(&out.join("snapshots/fresh.png")).unwrap();
+    assert_eq!((w, h), (336, 168));
+    assert_eq!(fresh[((32 * w + 8) * 3) as usize], 7);
+    assert_eq!(fresh[((159 * w + 327) * 3) as usize], 7);
+    assert!(!out.join("snapshots/words.png").exists());
+
+    // The review page lists the three, with the sheets of the two images.
+    let page = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(page.contains("<h2>Pending snapshots (3)</h2>"), "{page}");
+    for name in ["changed", "fresh", "words"] {
+        assert!(page.contains(&format!("<h3>{name}</h3>")), "{name}");
+    }
+    assert!(page.contains("<img src=\"snapshots/changed.png\""));
+    assert!(page.contains("<img src=\"snapshots/fresh.png\""));
+    assert!(!page.contains("snapshots/words.png"));
+    assert!(page.contains("Not reviewed yet: run <code>lumiere figures --check</code>"));
 }
 
 #[test]
 fn no_pending_snapshots_and_missing_folder() {
     let dir = temp_dir("review-empty");
-    let o = lumiere(&["review-snapshots", "--dir", dir.to_str().unwrap()]);
+    let out = dir.join("review");
+    let o = lumiere(&[
+        "review-snapshots",
+        "--dir",
+        dir.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert_eq!(o.status.code(), Some(0));
     assert!(String::from_utf8(o.stdout).unwrap().starts_with("no pending snapshots"));
+    // Nothing to review and no review folder yet: nothing written.
+    assert!(!out.exists());
+    // With a review folder, its page says there is nothing pending.
+    std::fs::create_dir(&out).unwrap();
+    let o = lumiere(&[
+        "review-snapshots",
+        "--dir",
+        dir.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let page = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(page.contains("<h2>Pending snapshots (0)</h2>"), "{page}");
     let o = lumiere(&["review-snapshots", "--dir", dir.join("nope").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("cannot read the folder"));

@@ -141,6 +141,6 @@ fn a_signal_leaves_each_figure_set_wholly_old_or_wholly_new() {
         assert_eq!(fs::read(out.join("index.html")).unwrap(), old_index);
         let mut names: Vec<_> = fs::read_dir(&*out).unwrap().map(|f| f.unwrap().file_name()).collect();
         names.sort();
-        assert_eq!(names, ["index.html", "lighting", "soft-shadows"]);
+        assert_eq!(names, ["index.html", "lighting", "soft-shadows", "timings.json"]);
     }
 }

@@ -41,8 +41,12 @@ fn sized(mut scene: Scene, width: u32, height: u32, spp: u32) -> Scene {
 
 /// The figure `stem` of set `set`.
 fn figure(set: &str, stem: &str) -> Scene {
-    let set = registry().into_iter().find(|s| s.name == set).expect("set exists");
-    (set.figures)()
+    let set = registry()
+        .expect("the figure files load")
+        .into_iter()
+        .find(|s| s.name == set)
+        .expect("set exists");
+    set.figures
         .into_iter()
         .find(|f| f.stem == stem)
         .unwrap_or_else(|| panic!("no figure {stem}"))
@@ -241,9 +245,9 @@ fn every_skip_is_tested_here() {
 
 #[test]
 fn every_figure_is_identical_with_no_skips_and_with_all() {
-    for set in registry() {
+    for set in registry().expect("the figure files load") {
         let mut done: Vec<Scene> = Vec::new();
-        for f in (set.figures)() {
+        for f in set.figures {
             if done.contains(&f.scene) {
                 continue;
             }

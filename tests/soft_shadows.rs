@@ -23,7 +23,7 @@ use lumiere::trace::{NoRecord, SampleKey, Tracer};
 use lumiere::world::World;
 use std::f64::consts::PI;
 
-/// The spherical light of FIGURES.md: center (0, 0, 10), R = 2, C_const 1, C_quad 0.005.
+/// The spherical light of the soft-shadow figures: center (0, 0, 10), R = 2, C_const 1, C_quad 0.005.
 const CENTRE: DVec3 = DVec3::new(0.0, 0.0, 10.0);
 const RADIUS: f64 = 2.0;
 const ATTENUATION: Attenuation = Attenuation {

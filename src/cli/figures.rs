@@ -1,42 +1,69 @@
-//! `lumiere figures`: the course's figure sets regenerated (or listed, or checked against
-//! their manifests), one line per set written, a signal (Ctrl-C, SIGTERM, SIGHUP) leaving
-//! each set wholly old or wholly new, one run at a time in an output folder.
+//! `lumiere figures`: the course's figure sets, read from their scene files, regenerated
+//! (or listed, or checked against the files on disk), one line per set written with its
+//! time, the times also in `<out>/timings.json`, a signal (Ctrl-C, SIGTERM, SIGHUP)
+//! leaving each set wholly old or wholly new, one run at a time in an output folder.
 
 use super::lock::FolderLock;
 use super::{CliError, Verbosity, signals, with_threads};
 use clap::Args;
-use lumiere::figures::{FigureSet, FiguresError, Reuse, generate_until, registry, write_index};
-use lumiere::film::WriteError;
+use lumiere::figures::check::{Problem, check_index, check_set, extra_folders, recorded_scale};
+use lumiere::figures::{FigureSet, FiguresError, Reuse, Run, files, generate_until, write_index};
+use lumiere::film::{WriteError, write_atomic};
+use lumiere::review::{self, PageItem, Section};
+use serde_json::json;
 use std::path::PathBuf;
+
+/// The file of the output folder that the last run's times go to (not a figure: the
+/// figures' own files hold no time, so that they change only when a pixel or a scene does).
+pub const TIMINGS: &str = "timings.json";
 
 #[derive(Args, Debug)]
 pub struct FiguresArgs {
     /// Sets to regenerate (see --list); all when none is given.
     pub sets: Vec<String>,
     /// Output directory.
-    #[arg(long, default_value = "figures")]
+    #[arg(long, default_value = lumiere::figures::DEFAULT_OUT)]
     pub out: PathBuf,
+    /// The figure files: one folder per set, with its set.toml and one scene file per figure.
+    #[arg(long, default_value = lumiere::figures::DEFAULT_DIR)]
+    pub scenes: PathBuf,
     /// Image size factor, in (0, 4] (0.25 gives 200 x 150 previews).
     #[arg(long, default_value_t = 1.0)]
     pub scale: f64,
     /// List the sets and their images, render nothing.
     #[arg(long)]
     pub list: bool,
-    /// Re-render the sets in memory and compare their pixel hashes with the manifests in
-    /// the output directory; write nothing; exit 1 on any difference.
+    /// Check the sets' files in the output directory: each PNG against its manifest's pixel
+    /// hash and a fresh render (at the manifest's scale), the contact sheets, manifests and
+    /// index.html against their regenerated selves, byte for byte; write nothing there;
+    /// exit 1 on any difference.
     #[arg(long)]
     pub check: bool,
+    /// With --check: the folder for the heat-maps, sheets and review page of the figures
+    /// that differ (index.html, shared with `lumiere review-snapshots`).
+    #[arg(long, default_value = "target/review")]
+    pub review: PathBuf,
     /// Worker threads (default: all cores). The images do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
 }
 
+fn registry_error(e: files::RegistryError) -> CliError {
+    match e {
+        files::RegistryError::Io { ref source, .. } if super::error::is_path_error(source) => {
+            CliError::BadInput(format!("{e} (run from the repository's root, or give --scenes)"))
+        }
+        files::RegistryError::Io { .. } => CliError::Failed(e.to_string()),
+        other => CliError::BadInput(other.to_string()),
+    }
+}
+
 pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
-    let all = registry();
+    let all = files::load(&args.scenes).map_err(registry_error)?;
     if args.list {
         for set in &all {
             println!("{}: {}", set.name, set.title);
-            for f in (set.figures)() {
+            for f in &set.figures {
                 println!("  {}.png  {}", f.stem, f.caption);
             }
         }
@@ -48,7 +75,7 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
             args.scale
         )));
     }
-    let names: Vec<&str> = all.iter().map(|s| s.name).collect();
+    let names: Vec<&str> = all.iter().map(|s| s.name.as_str()).collect();
     for name in &args.sets {
         if !names.contains(&name.as_str()) {
             return Err(CliError::BadInput(format!(
@@ -57,12 +84,12 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
             )));
         }
     }
-    let chosen: Vec<_> = all
+    let chosen: Vec<&FigureSet> = all
         .iter()
-        .filter(|s| args.sets.is_empty() || args.sets.iter().any(|n| n == s.name))
+        .filter(|s| args.sets.is_empty() || args.sets.contains(&s.name))
         .collect();
     if args.check {
-        return check(&chosen, args, v);
+        return check(&all, &chosen, args, v);
     }
     std::fs::create_dir_all(&args.out)
         .map_err(|e| WriteError::new(&args.out, "cannot create the output directory", e))?;
@@ -74,16 +101,20 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     // ends the process, which also leaves every set whole unless it lands in the
     // milliseconds a set's files take to write.
     let cancel = signals::catch();
-    let mut written = Vec::new();
+    let mut written: Vec<&str> = Vec::new();
+    let mut times: Vec<serde_json::Value> = Vec::new();
     let mut reuse = Reuse::for_sets(&chosen);
-    for set in chosen {
-        let report = with_threads(args.threads, || {
-            generate_until(set, &args.out, args.scale, cancel, &mut reuse)
-        })?
-        .map_err(|e| match e {
-            FiguresError::Encode(m) => CliError::Failed(m),
-            FiguresError::Write(w) => CliError::from(w),
-        })?;
+    let run = Run {
+        out: args.out.clone(),
+        scenes: args.scenes.clone(),
+        scale: args.scale,
+    };
+    for set in &chosen {
+        let report =
+            with_threads(args.threads, || generate_until(set, &run, cancel, &mut reuse))?.map_err(|e| match e {
+                FiguresError::Encode(m) => CliError::Failed(m),
+                FiguresError::Write(w) => CliError::from(w),
+            })?;
         let stopped = signals::received();
         let Some(report) = report else {
             let signal = stopped.unwrap_or(signals::Signal::INT);
@@ -96,7 +127,9 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
                 ),
             ));
         };
-        written.push(set.name);
+        written.push(&set.name);
+        times.push(json!({"set": report.name, "images": report.images, "seconds": round_ms(report.seconds)}));
+        write_timings(args, &times, start.elapsed().as_secs_f64())?;
         if v != Verbosity::Quiet {
             println!(
                 "{:<12} {:>3} images  {:>7.2} s  {}",
@@ -116,44 +149,122 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
             ));
         }
     }
-    write_index(&args.out)?;
+    write_index(&args.out, &all)?;
+    let total = start.elapsed().as_secs_f64();
+    write_timings(args, &times, total)?;
     if v != Verbosity::Quiet {
         println!(
             "total                     {:>7.2} s  {}",
-            start.elapsed().as_secs_f64(),
+            total,
             args.out.join("index.html").display()
         );
     }
     Ok(())
 }
 
-/// `--check`: each set re-rendered in memory against its manifest; one line per differing
-/// figure, exit 1 if any.
-fn check(sets: &[&FigureSet], args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
-    let mut failures = 0;
+fn round_ms(seconds: f64) -> f64 {
+    (seconds * 1000.0).round() / 1000.0
+}
+
+/// `<out>/timings.json`: the run's sets with their images and wall times so far.
+fn write_timings(args: &FiguresArgs, sets: &[serde_json::Value], total: f64) -> Result<(), CliError> {
+    let threads = args.threads.unwrap_or_else(rayon::current_num_threads);
+    let text = serde_json::to_string_pretty(&json!({
+        "renderer": format!("lumiere {}", lumiere::VERSION),
+        "scale": args.scale,
+        "threads": threads,
+        "sets": sets,
+        "total_seconds": round_ms(total),
+        "note": "wall times of the last run of `lumiere figures` in this folder; a set's time includes the figures of later sets rendered in its passes",
+    }))
+    .map_err(|e| CliError::Failed(e.to_string()))?
+        + "\n";
+    let path = args.out.join(TIMINGS);
+    write_atomic(&path, text.as_bytes()).map_err(|e| CliError::from(WriteError::new(&path, "cannot write", e)))
+}
+
+/// `--check`: each chosen set rendered again in memory and held to its files on disk, then
+/// the gallery, and with every set chosen, the output's folders; one line per problem,
+/// heat-maps and the review page in `--review` when a figure differs, exit 1 if any.
+fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
+    let review_dir = &args.review;
+    let figures_dir = review_dir.join(review::FIGURES);
+    review::clear_sheets(&figures_dir).map_err(review_error)?;
+    let mut problems: Vec<Problem> = Vec::new();
+    let mut items: Vec<PageItem> = Vec::new();
+    let mut manifests = Vec::new();
     let mut reuse = Reuse::for_sets(sets);
+    // The sets that differ, and the command that regenerates them.
+    let mut differing: Vec<&str> = Vec::new();
+    let mut remake = Run {
+        out: args.out.clone(),
+        scenes: args.scenes.clone(),
+        scale: args.scale,
+    };
     for set in sets {
-        let mismatches = with_threads(args.threads, || lumiere::figures::check(set, &args.out, &mut reuse))?
-            .map_err(CliError::BadInput)?;
-        for m in &mismatches {
-            println!(
-                "{}/{}: pixel hash {} (manifest {})",
-                set.name, m.file, m.actual, m.expected
-            );
+        let run = Run {
+            out: args.out.clone(),
+            scenes: args.scenes.clone(),
+            scale: recorded_scale(&args.out, &set.name, args.scale),
+        };
+        let checked = with_threads(args.threads, || check_set(set, &run, &mut reuse, review_dir))?
+            .map_err(|e| CliError::Failed(e.to_string()))?;
+        for p in &checked.problems {
+            println!("{p}");
         }
         if v != Verbosity::Quiet {
             println!(
                 "{:<12} {}",
                 set.name,
-                if mismatches.is_empty() { "ok" } else { "DIFFERS" }
+                if checked.problems.is_empty() { "ok" } else { "DIFFERS" }
             );
         }
-        failures += mismatches.len();
+        if !checked.problems.is_empty() {
+            differing.push(&set.name);
+            remake.scale = run.scale;
+        }
+        problems.extend(checked.problems);
+        items.extend(checked.review);
+        manifests.push((set.name.clone(), checked.manifest));
     }
-    if failures > 0 {
-        return Err(CliError::Failed(format!(
-            "{failures} figures differ from their manifests"
-        )));
+    let mut rest: Vec<Problem> = check_index(&args.out, all, &manifests).into_iter().collect();
+    if sets.len() == all.len() {
+        rest.extend(extra_folders(&args.out, all));
     }
-    Ok(())
+    for p in &rest {
+        println!("{p}");
+        items.push(PageItem {
+            name: p.file.clone(),
+            summary: p.to_string(),
+            sheet: None,
+        });
+    }
+    problems.extend(rest);
+    if !items.is_empty() || review_dir.is_dir() {
+        review::write_section(review_dir, Section::Figures, &items).map_err(review_error)?;
+    }
+    if problems.is_empty() {
+        return Ok(());
+    }
+    if v != Verbosity::Quiet && !items.is_empty() {
+        println!("review page: {}", review_dir.join("index.html").display());
+    }
+    // The gallery alone differs: regenerating any set rewrites it.
+    let names = if differing.is_empty() {
+        sets[0].name.clone()
+    } else {
+        differing.join(" ")
+    };
+    Err(CliError::Failed(format!(
+        "{} problems: the figures on disk differ from their sets (`{}` regenerates them)",
+        problems.len(),
+        remake.command(&names)
+    )))
+}
+
+fn review_error(e: review::ReviewError) -> CliError {
+    match e {
+        review::ReviewError::Write(w) => CliError::from(w),
+        other => CliError::Failed(other.to_string()),
+    }
 }

@@ -81,7 +81,7 @@ pub enum Command {
     Compare(compare::CompareArgs),
     /// Regenerate the course's figures (all sets when none is named).
     #[command(
-        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --list\n\nEach set writes <out>/<set>/NN-name.png, manifest.json and contact-sheet.png; <out>/index.html is a gallery of all sets.\nCtrl-C, SIGTERM or SIGHUP leaves each set wholly old or wholly new. One run at a time writes into an output folder.\nExit codes: 0 ok, 1 a figure could not be written (disk full) or differs (--check), 2 bad input (option, output folder, or another run writing into it), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP."
+        after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --check               # the committed files against a fresh render\n  lumiere figures --list\n\nThe sets are read from scenes/figures/<set>/ (set.toml and one scene file per figure). Each set writes <out>/<set>/NN-name.png (with its provenance in tEXt chunks), manifest.json and contact-sheet.png; <out>/index.html is a gallery of the sets in <out>; the run's times go to <out>/timings.json.\nCtrl-C, SIGTERM or SIGHUP leaves each set wholly old or wholly new. One run at a time writes into an output folder.\nExit codes: 0 ok, 1 a figure could not be written (disk full) or differs (--check), 2 bad input (option, output folder, or another run writing into it), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP."
     )]
     Figures(figures::FiguresArgs),
     /// Assemble the shard files of a split render (`render --shard K/N`) into one image,
@@ -98,9 +98,9 @@ pub enum Command {
         after_help = "Examples:\n  lumiere probe scenes/reference.toml --pixel 400,300\n  lumiere probe scenes/prism.toml --pixel 80,60 --width 160 --height 120 --sample 0 --json\n\nExit codes: 0 ok, 2 bad input (scene, pixel outside the image, sample index)."
     )]
     Probe(probe::ProbeArgs),
-    /// Write old | new | difference sheets for pending insta image snapshots.
+    /// Write accepted | new | difference sheets and a review page for pending insta image snapshots.
     #[command(
-        after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/snapshot-review\n\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written (disk full), 2 bad input (folders, images)."
+        after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/review\n\nSheets go to <out>/snapshots/; <out>/index.html lists them with the figure changes of the last `lumiere figures --check --review <out>`.\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written (disk full), 2 bad input (folders, images)."
     )]
     ReviewSnapshots(review::ReviewArgs),
     /// Numerical stress campaign: hard rays against every shape, checked against double-double references.

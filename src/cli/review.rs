@@ -1,5 +1,5 @@
-//! `lumiere review-snapshots`: one summary line per pending snapshot, its sheet written by
-//! the library.
+//! `lumiere review-snapshots`: one summary line per pending snapshot; its labelled sheet
+//! and the review page (shared with `lumiere figures --check`) written by the library.
 
 use super::CliError;
 use clap::Args;
@@ -11,8 +11,9 @@ pub struct ReviewArgs {
     /// Folder of the insta snapshots.
     #[arg(long, default_value = "snapshots")]
     pub dir: PathBuf,
-    /// Folder for the sheets (created if missing).
-    #[arg(long, default_value = "target/snapshot-review")]
+    /// Folder for the sheets (in its `snapshots/`) and the review page `index.html`, which
+    /// also lists the figure changes found by `lumiere figures --check` (created if missing).
+    #[arg(long, default_value = "target/review")]
     pub out: PathBuf,
 }
 

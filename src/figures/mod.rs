@@ -1,23 +1,56 @@
-//! The course's figures: a registry of figure sets (one file each in `sets/`), each a list
-//! of scenes with the chapter's captions, and the generator that renders a set into
-//! `<out>/<set>/NN-name.png`, `manifest.json` and `contact-sheet.png`, plus
-//! `<out>/index.html`, a gallery of every set. The specifications are shared/FIGURES.md.
+//! The course's figures as data. The registry is read from the figure files
+//! (`scenes/figures/<set>/`: [`files`]); a set is rendered with the figures that differ
+//! only in depth, lights, an area light's points or shading traced in one pass
+//! ([`crate::family`]), and written into `<out>/<set>/` as `NN-name.png` carrying its
+//! provenance ([`provenance`]), `manifest.json` and `contact-sheet.png` ([`sheet`]), with
+//! `<out>/index.html`, the gallery of the sets present ([`gallery`]). A set's files depend
+//! on that set alone: no wall time, nothing of the other sets of the run, so regenerating
+//! an unchanged set changes no byte. [`check`] holds the files on disk to a fresh render.
+//! What the figures show and the conventions they follow: docs/figures.md.
 
+pub mod check;
+pub mod files;
+pub mod gallery;
 pub mod measure;
-pub mod sets;
+pub mod provenance;
 pub mod sheet;
+
+pub use files::{DEFAULT_DIR, Figure, FigureSet, RegistryError};
 
 use crate::film::{WriteError, pixel_hash, write_atomic};
 use crate::render::render_rows;
 use crate::scene::{self, Scene};
+use crate::trace::RayCounts;
 use crate::world::World;
 use rayon::prelude::*;
-use serde_json::{Value, json};
-use std::path::{Path, PathBuf};
+use serde_json::{Map, Value, json};
+use std::path::{Component, Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-/// A fact measured on a rendered figure and recorded in the manifest.
+/// The conventions figure scenes follow, as manifests and PNGs record them: the preset's
+/// name (`chapter` for every course figure), or the switches that differ from the
+/// chapter's ([`crate::conventions::Conventions::summary`]).
+fn conventions_of(scene: &Scene) -> String {
+    scene.settings.conventions.summary()
+}
+
+/// The conventions of a set's figures: the one every figure follows, or `per figure`.
+fn set_conventions(figures: &[Figure]) -> String {
+    let mut each = figures.iter().map(|f| conventions_of(&f.scene));
+    let first = each.next().unwrap_or_else(|| "chapter".to_string());
+    if each.all(|c| c == first) {
+        first
+    } else {
+        "per figure".to_string()
+    }
+}
+
+/// The output folder that `lumiere figures` writes by default.
+pub const DEFAULT_OUT: &str = "figures";
+
+/// A fact measured on a rendered figure and recorded in the manifest (besides its share of
+/// fully white pixels, measured on every figure).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Measure {
     /// Minimum and maximum attenuation `A` over visible lit points.
@@ -26,48 +59,14 @@ pub enum Measure {
     ConeImages,
 }
 
-/// One image of a set.
-#[derive(Clone, Debug)]
-pub struct Figure {
-    /// File name without extension: `NN-short-name`.
-    pub stem: String,
-    /// The chapter's caption (French), drawn on the contact sheet.
-    pub caption: String,
-    pub scene: Scene,
-    pub measures: Vec<Measure>,
+/// Every set of the figure files in [`DEFAULT_DIR`] (relative to the working folder: the
+/// repository's root), by their order in the course.
+pub fn registry() -> Result<Vec<FigureSet>, RegistryError> {
+    files::load(Path::new(DEFAULT_DIR))
 }
 
-impl Figure {
-    pub fn new(number: usize, short: &str, caption: impl Into<String>, scene: Scene) -> Self {
-        Figure {
-            stem: format!("{number:02}-{short}"),
-            caption: caption.into(),
-            scene,
-            measures: Vec::new(),
-        }
-    }
-
-    pub fn measuring(mut self, m: Measure) -> Self {
-        self.measures.push(m);
-        self
-    }
-}
-
-/// A named set of figures.
-pub struct FigureSet {
-    pub name: &'static str,
-    /// Title of the contact sheet and gallery section.
-    pub title: &'static str,
-    pub figures: fn() -> Vec<Figure>,
-}
-
-/// Every set of FIGURES.md, in the order of the course.
-pub fn registry() -> Vec<FigureSet> {
-    sets::all()
-}
-
-/// Parses one of the scene files shipped in `scenes/` (embedded in the binary, so the
-/// figures do not depend on the working directory).
+/// Parses one of the base scene files shipped in `scenes/` (embedded in the binary, so the
+/// callers do not depend on the working folder).
 pub fn base_scene(name: &str) -> Scene {
     let text = match name {
         "reference" => include_str!("../../scenes/reference.toml"),
@@ -92,14 +91,66 @@ pub fn scaled(mut scene: Scene, scale: f64) -> Scene {
     scene
 }
 
-/// A rendered figure and what was measured.
+/// Where a run reads the figure files and writes the figures, and at what size: what the
+/// command that remakes a set says.
+#[derive(Clone, Debug)]
+pub struct Run {
+    pub out: PathBuf,
+    pub scenes: PathBuf,
+    pub scale: f64,
+}
+
+impl Default for Run {
+    fn default() -> Self {
+        Run {
+            out: PathBuf::from(DEFAULT_OUT),
+            scenes: PathBuf::from(DEFAULT_DIR),
+            scale: 1.0,
+        }
+    }
+}
+
+/// `path` without `.` components, so `./figures/` and `figures` are one folder.
+fn tidy(path: &Path) -> PathBuf {
+    path.components().filter(|c| *c != Component::CurDir).collect()
+}
+
+/// A path as a shell word: quoted when it holds anything but plain characters.
+fn shell_word(path: &Path) -> String {
+    let s = path.display().to_string();
+    if !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || "/._-+,:=".contains(c)) {
+        s
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}
+
+impl Run {
+    /// The command that remakes set `set` as this run does, from the repository's root:
+    /// options at their defaults are left out.
+    pub fn command(&self, set: &str) -> String {
+        let mut c = format!("lumiere figures {set}");
+        if self.scale != 1.0 {
+            c += &format!(" --scale {}", self.scale);
+        }
+        if tidy(&self.out) != Path::new(DEFAULT_OUT) {
+            c += &format!(" --out {}", shell_word(&self.out));
+        }
+        if tidy(&self.scenes) != Path::new(DEFAULT_DIR) {
+            c += &format!(" --scenes {}", shell_word(&self.scenes));
+        }
+        c
+    }
+}
+
+/// A rendered figure: its image and the rays it took.
 pub struct RenderedFigure {
     pub figure: Figure,
     pub image: image::RgbImage,
-    pub manifest: Value,
+    pub counts: RayCounts,
 }
 
-/// Renders one figure (at `scale`) and measures its facts.
+/// Renders one figure (at `scale`).
 pub fn render_figure(figure: Figure, scale: f64) -> RenderedFigure {
     render_figure_until(figure, scale, &AtomicBool::new(false)).expect("never cancelled")
 }
@@ -108,7 +159,6 @@ pub fn render_figure(figure: Figure, scale: f64) -> RenderedFigure {
 pub fn render_figure_until(figure: Figure, scale: f64, cancel: &AtomicBool) -> Option<RenderedFigure> {
     let scene = scaled(figure.scene.clone(), scale);
     let world = World::new(&scene);
-    let start = Instant::now();
     let (w, h) = (scene.settings.width, scene.settings.height);
     let (pixels, stats) = render_rows(&world, 0..h, &|| {}, Some(cancel));
     if cancel.load(Ordering::Relaxed) {
@@ -119,22 +169,23 @@ pub fn render_figure_until(figure: Figure, scale: f64, cancel: &AtomicBool) -> O
         height: h,
         pixels,
     };
-    let seconds = start.elapsed().as_secs_f64();
-    Some(finish(figure, &scene, film.to_rgb8(), &stats.counts, seconds))
+    let image = image::RgbImage::from_raw(w, h, film.to_rgb8()).expect("film size");
+    Some(RenderedFigure {
+        figure,
+        image,
+        counts: stats.counts,
+    })
 }
 
 /// Renders the figures of one family (see [`crate::family`]) at `scale` in passes of
-/// [`crate::family::MEMBERS_PER_PASS`], or one by one if their members diverge; `None` if cancelled.
-/// Each manifest records the images of its pass (`one_pass_with`: each figure's `label`,
-/// its file name, or `set/file` when the family spans sets) and an equal share of the
-/// pass's time.
-fn render_family_until(figures: Vec<(Figure, String)>, scale: f64, cancel: &AtomicBool) -> Option<Vec<RenderedFigure>> {
+/// [`crate::family::MEMBERS_PER_PASS`], or one by one if their members diverge; `None` if
+/// cancelled. Each image has the bytes and ray counts of its render alone (tests/family.rs).
+fn render_family_until(figures: Vec<Figure>, scale: f64, cancel: &AtomicBool) -> Option<Vec<RenderedFigure>> {
     let mut done = Vec::new();
     let mut figures = figures.into_iter().peekable();
     while figures.peek().is_some() {
-        let (pass, labels): (Vec<Figure>, Vec<String>) = figures.by_ref().take(crate::family::MEMBERS_PER_PASS).unzip();
+        let pass: Vec<Figure> = figures.by_ref().take(crate::family::MEMBERS_PER_PASS).collect();
         let scenes: Vec<Scene> = pass.iter().map(|f| scaled(f.scene.clone(), scale)).collect();
-        let start = Instant::now();
         let images = crate::family::render(&scenes.iter().collect::<Vec<_>>(), cancel);
         if cancel.load(Ordering::Relaxed) {
             return None;
@@ -145,26 +196,38 @@ fn render_family_until(figures: Vec<(Figure, String)>, scale: f64, cancel: &Atom
             }
             continue;
         };
-        let share = start.elapsed().as_secs_f64() / pass.len() as f64;
-        for (j, ((figure, scene), (rgb, stats))) in pass.into_iter().zip(&scenes).zip(images).enumerate() {
-            let mut r = finish(figure, scene, rgb, &stats.counts, share);
-            let others: Vec<&String> = labels
-                .iter()
-                .enumerate()
-                .filter(|&(k, _)| k != j)
-                .map(|(_, l)| l)
-                .collect();
-            r.manifest["one_pass_with"] = json!(others);
-            done.push(r);
+        for ((figure, scene), (rgb, stats)) in pass.into_iter().zip(&scenes).zip(images) {
+            let (w, h) = (scene.settings.width, scene.settings.height);
+            done.push(RenderedFigure {
+                figure,
+                image: image::RgbImage::from_raw(w, h, rgb).expect("film size"),
+                counts: stats.counts,
+            });
         }
     }
     Some(done)
 }
 
-/// A rendered figure's image, measured facts and manifest entry.
-fn finish(figure: Figure, scene: &Scene, rgb: Vec<u8>, c: &crate::trace::RayCounts, seconds: f64) -> RenderedFigure {
-    let (w, h) = (scene.settings.width, scene.settings.height);
-    let mut facts = serde_json::Map::new();
+/// Share of the pixels whose three channels are all 255, rounded to 1e-6.
+pub fn white_fraction(rgb: &[u8]) -> f64 {
+    let pixels = rgb.len() / 3;
+    let white = rgb.chunks_exact(3).filter(|p| p == &[255, 255, 255]).count();
+    (white as f64 / pixels.max(1) as f64 * 1e6).round() / 1e6
+}
+
+/// The facts measured on `rgb`, the image of `figure` rendered as `scene` (its scene at the
+/// run's scale): its white fraction, whether saturation is its point or why it is kept,
+/// and its own measures.
+pub fn facts(figure: &Figure, scene: &Scene, rgb: &[u8]) -> Map<String, Value> {
+    let (w, h) = (scene.settings.width as usize, scene.settings.height as usize);
+    let mut facts = Map::new();
+    facts.insert("white_fraction".into(), json!(white_fraction(rgb)));
+    if figure.saturation_intended {
+        facts.insert("saturation_intended".into(), json!(true));
+    }
+    if let Some(why) = &figure.saturation_accepted {
+        facts.insert("saturation_accepted".into(), json!(why));
+    }
     for m in &figure.measures {
         match m {
             Measure::AttenuationRange => {
@@ -173,47 +236,20 @@ fn finish(figure: Figure, scene: &Scene, rgb: Vec<u8>, c: &crate::trace::RayCoun
                 facts.insert("attenuation_max".into(), json!(range.map(|r| r.1)));
             }
             Measure::ConeImages => {
-                let regions = measure::red_regions(&rgb, w as usize, h as usize);
+                let regions = measure::red_regions(rgb, w, h);
                 facts.insert("cone_images".into(), json!(regions.saturating_sub(1)));
             }
         }
     }
-    let manifest = json!({
-        "file": format!("{}.png", figure.stem),
-        "caption": figure.caption,
-        "width": w,
-        "height": h,
-        "samples_per_pixel": scene.settings.samples_per_pixel,
-        "seed": scene.settings.seed,
-        "renderer": format!("lumiere {}", crate::VERSION),
-        "pixel_hash": format!("fnv1a64:{:016x}", pixel_hash(&rgb)),
-        "render_seconds": (seconds * 1000.0).round() / 1000.0,
-        "rays": {
-            "camera": c.camera,
-            "shadow": c.shadow,
-            "reflection": c.reflection,
-            "refraction": c.refraction,
-            "total_internal_reflections": c.total_internal_reflections,
-            "adaptive_cutoffs": c.adaptive_cutoffs,
-            "non_finite_samples": c.non_finite,
-        },
-        "facts": facts,
-        "scene": scene,
-    });
-    let image = image::RgbImage::from_raw(w, h, rgb).expect("film size");
-    RenderedFigure {
-        figure,
-        image,
-        manifest,
-    }
+    facts
 }
 
 /// What one run of several sets shares between them. Figures that one run renders for an
 /// earlier set and uses again in a later one (light-shapes' sphere is soft-shadows'
-/// N = 100): same scene and seed, same bytes, so they are rendered once per run; only the
-/// figures a later set wants are kept. And figures of later sets that can join a family of
-/// an earlier set's (the reference scene's eleven lightings across five sets): rendered in
-/// its pass, and kept until their set is generated.
+/// N = 100): same scene and seed, same pixels, so they are rendered once per run. And
+/// figures of later sets that can join a family of an earlier set's (the reference scene's
+/// eleven lightings across five sets): rendered in its pass, and kept until their set is
+/// generated. What a set writes does not depend on it.
 #[derive(Default)]
 pub struct Reuse {
     /// Scenes that appear in more than one set of the run.
@@ -221,24 +257,23 @@ pub struct Reuse {
     /// Rendered figures of those scenes.
     kept: Vec<Kept>,
     /// The sets of the run not generated yet, in order, with their figures.
-    later: Vec<(&'static str, Vec<Figure>)>,
+    later: Vec<(String, Vec<Figure>)>,
     /// Figures of later sets rendered in an earlier set's pass: set name, scale, figure.
-    ahead: Vec<(&'static str, f64, RenderedFigure)>,
+    ahead: Vec<(String, f64, RenderedFigure)>,
 }
 
-/// A figure kept for later sets: its scene and scale, `set/file`, image and manifest entry.
+/// A figure kept for later sets: its scene and scale, image and ray counts.
 struct Kept {
     scene: Scene,
     scale: f64,
-    file: String,
     image: image::RgbImage,
-    manifest: Value,
+    counts: RayCounts,
 }
 
 impl Reuse {
     /// For a run over `sets`, in that order.
     pub fn for_sets(sets: &[&FigureSet]) -> Self {
-        let later: Vec<(&'static str, Vec<Figure>)> = sets.iter().map(|s| (s.name, (s.figures)())).collect();
+        let later: Vec<(String, Vec<Figure>)> = sets.iter().map(|s| (s.name.clone(), s.figures.clone())).collect();
         let mut wanted: Vec<Scene> = Vec::new();
         for (i, (_, own)) in later.iter().enumerate() {
             for scene in own.iter().map(|f| &f.scene) {
@@ -262,23 +297,21 @@ impl Reuse {
         self.kept.iter().find(|k| k.scene == *scene && k.scale == scale)
     }
 
-    /// Keeps `r` (of set `set`, rendered at `scale`) if a later set wants its scene.
-    fn offer(&mut self, set: &str, r: &RenderedFigure, scale: f64) {
+    /// Keeps `r` (rendered at `scale`) if a later set wants its scene.
+    fn offer(&mut self, r: &RenderedFigure, scale: f64) {
         if self.wanted.contains(&r.figure.scene) && self.find(&r.figure.scene, scale).is_none() {
-            let file = r.manifest["file"].as_str().unwrap_or_default();
             self.kept.push(Kept {
                 scene: r.figure.scene.clone(),
                 scale,
-                file: format!("{set}/{file}"),
                 image: r.image.clone(),
-                manifest: r.manifest.clone(),
+                counts: r.counts,
             });
         }
     }
 
     /// Marks `set` as being generated: from now on only the sets after it are later.
     fn start(&mut self, set: &str) {
-        if let Some(i) = self.later.iter().position(|(name, _)| *name == set) {
+        if let Some(i) = self.later.iter().position(|(name, _)| name == set) {
             self.later.drain(..=i);
         }
     }
@@ -286,8 +319,8 @@ impl Reuse {
     /// The figures of later sets that an earlier set's pass at `scale` may render: each of
     /// a scene that is not one of `own` nor an earlier candidate's, nor rendered ahead
     /// already, nor kept from an earlier set (its set will copy that image).
-    fn candidates(&self, own: &[&Scene], scale: f64) -> Vec<(&'static str, Figure)> {
-        let mut out: Vec<(&'static str, Figure)> = Vec::new();
+    fn candidates(&self, own: &[&Scene], scale: f64) -> Vec<(String, Figure)> {
+        let mut out: Vec<(String, Figure)> = Vec::new();
         for (set, figures) in &self.later {
             for f in figures {
                 let seen = own.contains(&&f.scene)
@@ -295,7 +328,7 @@ impl Reuse {
                     || self.ahead.iter().any(|(_, _, r)| r.figure.scene == f.scene)
                     || self.find(&f.scene, scale).is_some();
                 if !seen {
-                    out.push((set, f.clone()));
+                    out.push((set.clone(), f.clone()));
                 }
             }
         }
@@ -307,58 +340,33 @@ impl Reuse {
         let i = self
             .ahead
             .iter()
-            .position(|(s, at, r)| *s == set && *at == scale && r.figure.stem == stem)?;
+            .position(|(s, at, r)| s == set && *at == scale && r.figure.stem == stem)?;
         Some(self.ahead.remove(i).2)
-    }
-}
-
-/// The manifest entry and image of `figure`, a copy of the image `twin` (file name
-/// `same_as`) that was rendered with the same scene.
-fn copy_of(figure: Figure, image: &image::RgbImage, twin: &Value, same_as: &str) -> RenderedFigure {
-    let mut manifest = twin.clone();
-    manifest["file"] = json!(format!("{}.png", figure.stem));
-    manifest["caption"] = json!(figure.caption);
-    manifest["same_image_as"] = json!(same_as);
-    manifest["render_seconds"] = json!(0.0);
-    if let Some(m) = manifest.as_object_mut() {
-        m.remove("one_pass_with");
-    }
-    RenderedFigure {
-        figure,
-        image: image.clone(),
-        manifest,
     }
 }
 
 /// Renders every figure of `set` at `scale`, in the set's order: a figure whose scene is an
 /// earlier one's is rendered once (soft-shadows 02 is 07, shown beside the hard shadows:
-/// same scene and seed, same bytes), as is one an earlier set of the run rendered
+/// same scene and seed, same pixels), as is one an earlier set of the run rendered
 /// (`reuse`), and figures that differ only in depth, in an area light's count, in shading
 /// or (without area lights) in their lights are rendered in one pass ([`crate::family`]),
 /// with the figures of the run's later sets that can join that pass (kept in `reuse`).
 /// `None` if cancelled.
 pub fn render_set(set: &FigureSet, scale: f64, cancel: &AtomicBool, reuse: &mut Reuse) -> Option<Vec<RenderedFigure>> {
-    reuse.start(set.name);
-    let figures = (set.figures)();
-    // The first figure of each distinct scene, and which of them each figure is.
-    let mut firsts: Vec<usize> = Vec::new();
-    let twin_of: Vec<usize> = (0..figures.len())
-        .map(
-            |i| match firsts.iter().find(|&&f| figures[f].scene == figures[i].scene) {
-                Some(&f) => f,
-                None => {
-                    firsts.push(i);
-                    i
-                }
-            },
-        )
-        .collect();
+    reuse.start(&set.name);
+    let figures = &set.figures;
+    let twin_of = twins(figures);
+    let mut firsts: Vec<usize> = (0..figures.len()).filter(|&i| twin_of[i] == i).collect();
     let mut rendered: Vec<Option<RenderedFigure>> = (0..figures.len()).map(|_| None).collect();
     for &i in &firsts {
-        if let Some(r) = reuse.take_ahead(set.name, &figures[i].stem, scale) {
+        if let Some(r) = reuse.take_ahead(&set.name, &figures[i].stem, scale) {
             rendered[i] = Some(r);
         } else if let Some(k) = reuse.find(&figures[i].scene, scale) {
-            rendered[i] = Some(copy_of(figures[i].clone(), &k.image, &k.manifest, &k.file));
+            rendered[i] = Some(RenderedFigure {
+                figure: figures[i].clone(),
+                image: k.image.clone(),
+                counts: k.counts,
+            });
         }
     }
     firsts.retain(|&i| rendered[i].is_none());
@@ -374,35 +382,25 @@ pub fn render_set(set: &FigureSet, scale: f64, cancel: &AtomicBool, reuse: &mut 
         if group.iter().all(|&g| g >= own.len()) {
             continue;
         }
-        // Each member: the figure, its set (`None`: this one) and its label in manifests.
-        let members: Vec<(Figure, Option<&'static str>)> = group
+        // Each member: the figure and its set (`None`: this one).
+        let (members, sets): (Vec<Figure>, Vec<Option<String>>) = group
             .iter()
             .map(|&g| match g.checked_sub(own.len()) {
                 None => (figures[firsts[g]].clone(), None),
-                Some(c) => (candidates[c].1.clone(), Some(candidates[c].0)),
+                Some(c) => (candidates[c].1.clone(), Some(candidates[c].0.clone())),
             })
-            .collect();
-        let sets: Vec<Option<&'static str>> = members.iter().map(|m| m.1).collect();
+            .unzip();
         let done = if members.len() == 1 {
-            vec![render_figure_until(members[0].0.clone(), scale, cancel)?]
+            vec![render_figure_until(
+                members.into_iter().next().expect("one member"),
+                scale,
+                cancel,
+            )?]
         } else {
-            // A family over several sets names every file with its set (in each of its
-            // passes, should it need more than one).
-            let across = sets.iter().any(Option::is_some);
-            let labelled = members
-                .into_iter()
-                .map(|(f, other)| {
-                    let label = match across {
-                        false => format!("{}.png", f.stem),
-                        true => format!("{}/{}.png", other.unwrap_or(set.name), f.stem),
-                    };
-                    (f, label)
-                })
-                .collect();
-            render_family_until(labelled, scale, cancel)?
+            render_family_until(members, scale, cancel)?
         };
         for ((g, r), other) in group.into_iter().zip(done).zip(sets) {
-            reuse.offer(other.unwrap_or(set.name), &r, scale);
+            reuse.offer(&r, scale);
             match other {
                 None => rendered[firsts[g]] = Some(r),
                 Some(other) => reuse.ahead.push((other, scale, r)),
@@ -410,17 +408,28 @@ pub fn render_set(set: &FigureSet, scale: f64, cancel: &AtomicBool, reuse: &mut 
         }
     }
     let mut out: Vec<RenderedFigure> = Vec::new();
-    for (i, figure) in figures.into_iter().enumerate() {
-        if twin_of[i] == i {
-            out.push(rendered[i].take().expect("rendered"));
-            continue;
-        }
-        let twin = &out[twin_of[i]];
-        let same_as = twin.manifest["file"].as_str().unwrap_or_default().to_string();
-        let copy = copy_of(figure, &twin.image, &twin.manifest, &same_as);
-        out.push(copy);
+    for (i, figure) in figures.iter().enumerate() {
+        let r = match rendered[i].take() {
+            Some(r) => r,
+            None => {
+                let twin = &out[twin_of[i]];
+                RenderedFigure {
+                    figure: figure.clone(),
+                    image: twin.image.clone(),
+                    counts: twin.counts,
+                }
+            }
+        };
+        out.push(r);
     }
     Some(out)
+}
+
+/// For each figure, the first figure of the set with the same scene (itself if none).
+fn twins(figures: &[Figure]) -> Vec<usize> {
+    (0..figures.len())
+        .map(|i| (0..=i).find(|&f| figures[f].scene == figures[i].scene).unwrap_or(i))
+        .collect()
 }
 
 /// Why a set could not be generated.
@@ -434,165 +443,205 @@ pub enum FiguresError {
     Write(#[from] WriteError),
 }
 
+/// A set rendered and encoded in memory: what generating it writes, and what checking it
+/// compares with the files on disk.
+pub struct BuiltSet {
+    pub rendered: Vec<RenderedFigure>,
+    /// Each file of the set's folder by name, with its bytes: the figures in order, the
+    /// contact sheet, the manifest last.
+    pub files: Vec<(String, Vec<u8>)>,
+    pub manifest: Value,
+}
+
+/// The provenance of figure `figure` of `set`, as its PNG's `tEXt` chunks carry it.
+pub fn provenance_texts(set: &str, figure: &Figure, run: &Run) -> Vec<(&'static str, String)> {
+    let values = [
+        format!("{set}/{}", figure.stem),
+        format!("lumiere {}", crate::VERSION),
+        figure.scene_file.clone(),
+        format!("fnv1a64:{:016x}", figure.scene_hash),
+        figure.scene.settings.seed.to_string(),
+        conventions_of(&figure.scene),
+        run.command(set),
+    ];
+    provenance::KEYWORDS.into_iter().zip(values).collect()
+}
+
+/// PNG bytes of `img` with the `tEXt` chunks `texts`.
+fn png_bytes(img: &image::RgbImage, texts: &[(&str, String)]) -> Result<Vec<u8>, String> {
+    let png = crate::film::encode_png(img.width(), img.height(), img.as_raw()).map_err(|e| e.to_string())?;
+    let texts: Vec<(&str, &str)> = texts.iter().map(|(k, v)| (*k, v.as_str())).collect();
+    provenance::with_text(&png, &texts).ok_or_else(|| "the PNG encoder wrote no header chunk".to_string())
+}
+
+/// The manifest entry of figure `i` of `rendered` (rendered at `scale`): `family` are the
+/// files of the set's figures one pass can render with it, `same_as` the file of an earlier
+/// figure of the set with the same scene.
+fn entry(r: &RenderedFigure, scale: f64, family: Vec<String>, same_as: Option<String>) -> Value {
+    let scene = scaled(r.figure.scene.clone(), scale);
+    let s = &scene.settings;
+    let c = &r.counts;
+    let f = &r.figure;
+    let mut e = json!({
+        "file": format!("{}.png", f.stem),
+        "caption": f.caption,
+        "scene": f.scene_file,
+        "scene_hash": format!("fnv1a64:{:016x}", f.scene_hash),
+        "parameters": f.parameters.iter().cloned().collect::<Map<String, Value>>(),
+        "width": s.width,
+        "height": s.height,
+        "samples_per_pixel": s.samples_per_pixel,
+        "seed": s.seed,
+        "depth": s.depth,
+        "conventions": conventions_of(&scene),
+        "renderer": format!("lumiere {}", crate::VERSION),
+        "pixel_hash": format!("fnv1a64:{:016x}", pixel_hash(r.image.as_raw())),
+        "rays": {
+            "camera": c.camera,
+            "shadow": c.shadow,
+            "reflection": c.reflection,
+            "refraction": c.refraction,
+            "total_internal_reflections": c.total_internal_reflections,
+            "adaptive_cutoffs": c.adaptive_cutoffs,
+            "non_finite_samples": c.non_finite,
+        },
+        "facts": facts(f, &scene, r.image.as_raw()),
+    });
+    if !family.is_empty() {
+        e["family"] = json!(family);
+    }
+    if let Some(same_as) = same_as {
+        e["same_image_as"] = json!(same_as);
+    }
+    e
+}
+
+/// Renders `set` as `run` says and encodes every file of its folder in memory; `None` if
+/// cancelled.
+pub fn build_set(
+    set: &FigureSet,
+    run: &Run,
+    cancel: &AtomicBool,
+    reuse: &mut Reuse,
+) -> Result<Option<BuiltSet>, FiguresError> {
+    let Some(rendered) = render_set(set, run.scale, cancel, reuse) else {
+        return Ok(None);
+    };
+    let files_of =
+        |ids: &[usize]| -> Vec<String> { ids.iter().map(|&i| format!("{}.png", set.figures[i].stem)).collect() };
+    let scenes: Vec<&Scene> = set.figures.iter().map(|f| &f.scene).collect();
+    let groups = crate::family::group(&scenes);
+    let twin_of = twins(&set.figures);
+    // Facts, most of all the attenuation range's extra pass, on every core; the order, and
+    // so the bytes, are fixed.
+    let entries: Vec<Value> = rendered
+        .par_iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let group = groups.iter().find(|g| g.contains(&i)).map_or(&[][..], |g| &g[..]);
+            let others: Vec<usize> = group.iter().copied().filter(|&g| g != i).collect();
+            let same_as = (twin_of[i] != i).then(|| format!("{}.png", set.figures[twin_of[i]].stem));
+            entry(r, run.scale, files_of(&others), same_as)
+        })
+        .collect();
+    // Encoded on every core, the contact sheet beside them.
+    let sheet_items: Vec<(&image::RgbImage, &str)> =
+        rendered.iter().map(|r| (&r.image, r.figure.caption.as_str())).collect();
+    let (pngs, sheet) = rayon::join(
+        || {
+            rendered
+                .par_iter()
+                .map(|r| {
+                    let texts = provenance_texts(&set.name, &r.figure, run);
+                    Ok((format!("{}.png", r.figure.stem), png_bytes(&r.image, &texts)?))
+                })
+                .collect::<Result<Vec<_>, String>>()
+        },
+        || {
+            let img = sheet::contact_sheet(&set.title, &sheet_items);
+            let texts = [
+                ("Software", format!("lumiere {}", crate::VERSION)),
+                ("Command", run.command(&set.name)),
+            ];
+            png_bytes(&img, &texts)
+        },
+    );
+    let mut files = pngs.map_err(FiguresError::Encode)?;
+    files.push(("contact-sheet.png".to_string(), sheet.map_err(FiguresError::Encode)?));
+    let manifest = json!({
+        "set": set.name,
+        "title": set.title,
+        "definition": set.definition,
+        "documentation": "docs/figures.md",
+        "scale": run.scale,
+        "command": run.command(&set.name),
+        "conventions": set_conventions(&set.figures),
+        "renderer": format!("lumiere {}", crate::VERSION),
+        "pixel_hash": "FNV-1a 64 over the 8-bit RGB pixels, row 0 at the top",
+        "scene_hash": "FNV-1a 64 over the bytes of the scene file",
+        "family": "the files of this set that differ from the figure only in depth, lights, an area light's points or shading: one pass renders them",
+        "white_fraction": "the share of pixels whose three channels are all 255",
+        "images": entries,
+    });
+    let text = serde_json::to_string_pretty(&manifest).map_err(|e| FiguresError::Encode(e.to_string()))? + "\n";
+    files.push(("manifest.json".to_string(), text.into_bytes()));
+    Ok(Some(BuiltSet {
+        rendered,
+        files,
+        manifest,
+    }))
+}
+
 /// What generating a set wrote.
 pub struct SetReport {
-    pub name: &'static str,
+    pub name: String,
     pub images: usize,
+    /// Wall time of the set (with the figures of later sets rendered in its passes).
     pub seconds: f64,
     pub dir: PathBuf,
 }
 
-fn png_bytes(img: &image::RgbImage) -> Result<Vec<u8>, String> {
-    crate::film::encode_png(img.width(), img.height(), img.as_raw()).map_err(|e| e.to_string())
-}
-
-/// Renders every figure of `set` into `out/<set>/`, with its manifest and contact sheet.
-pub fn generate(set: &FigureSet, out: &Path, scale: f64) -> Result<SetReport, FiguresError> {
-    generate_until(set, out, scale, &AtomicBool::new(false), &mut Reuse::default()).map(|r| r.expect("never cancelled"))
+/// Renders every figure of `set` into `run.out/<set>/`, with its manifest and contact sheet.
+pub fn generate(set: &FigureSet, run: &Run) -> Result<SetReport, FiguresError> {
+    generate_until(set, run, &AtomicBool::new(false), &mut Reuse::default()).map(|r| r.expect("never cancelled"))
 }
 
 /// [`generate`], abandoned as soon as `cancel` is true (Ctrl-C or another signal): then it
 /// returns `Ok(None)` and the set's folder is as it was. Every image is rendered, and every
 /// file encoded, in memory before the first file is written, so a set on disk is wholly old
 /// or wholly new: the writes take milliseconds, and a signal only sets `cancel` (the
-/// caller's handler), which is looked at again after the set is written. Each file is written atomically, the
-/// manifest last.
+/// caller's handler), which is looked at again after the set is written. Each file is
+/// written atomically, the manifest last.
 pub fn generate_until(
     set: &FigureSet,
-    out: &Path,
-    scale: f64,
+    run: &Run,
     cancel: &AtomicBool,
     reuse: &mut Reuse,
 ) -> Result<Option<SetReport>, FiguresError> {
     let start = Instant::now();
-    let dir = out.join(set.name);
-    let Some(rendered) = render_set(set, scale, cancel, reuse) else {
+    let dir = run.out.join(&set.name);
+    let Some(built) = build_set(set, run, cancel, reuse)? else {
         return Ok(None);
     };
-    // Encoded on every core (about 10 ms an image), the contact sheet (about 0.1 s, most of
-    // it thumbnails) beside them; the order, and so the bytes, are fixed.
-    let sheet_items: Vec<(&image::RgbImage, &str)> =
-        rendered.iter().map(|r| (&r.image, r.figure.caption.as_str())).collect();
-    let (files, sheet) = rayon::join(
-        || {
-            rendered
-                .par_iter()
-                .map(|r| Ok((format!("{}.png", r.figure.stem), png_bytes(&r.image)?)))
-                .collect::<Result<Vec<_>, String>>()
-        },
-        || png_bytes(&sheet::contact_sheet(set.title, &sheet_items)),
-    );
-    let mut files = files.map_err(FiguresError::Encode)?;
-    files.push(("contact-sheet.png".to_string(), sheet.map_err(FiguresError::Encode)?));
-    let manifest = json!({
-        "set": set.name,
-        "title": set.title,
-        "scale": scale,
-        "specification": "shared/FIGURES.md",
-        "pixel_hash": "FNV-1a 64 over the 8-bit RGB pixels, row 0 at the top",
-        "images": rendered.iter().map(|r| r.manifest.clone()).collect::<Vec<_>>(),
-    });
-    let text = serde_json::to_string_pretty(&manifest).map_err(|e| FiguresError::Encode(e.to_string()))? + "\n";
-    files.push(("manifest.json".to_string(), text.into_bytes()));
     if cancel.load(Ordering::Relaxed) {
         return Ok(None);
     }
     std::fs::create_dir_all(&dir).map_err(|e| WriteError::new(&dir, "cannot create", e))?;
-    for (name, bytes) in &files {
+    for (name, bytes) in &built.files {
         let path = dir.join(name);
         write_atomic(&path, bytes).map_err(|e| WriteError::new(&path, "cannot write", e))?;
     }
     Ok(Some(SetReport {
-        name: set.name,
-        images: rendered.len(),
+        name: set.name.clone(),
+        images: built.rendered.len(),
         seconds: start.elapsed().as_secs_f64(),
         dir,
     }))
 }
 
-fn html_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-/// `out/index.html`: every set of the registry with its contact sheet and captioned images.
-pub fn write_index(out: &Path) -> Result<(), WriteError> {
-    let mut html = String::from(
-        "<!doctype html>\n<html lang=\"fr\">\n<head>\n<meta charset=\"utf-8\">\n<title>lumiere: figures du cours</title>\n\
-         <style>body{font-family:sans-serif;background:#202024;color:#eee;margin:2em}\
-         figure{display:inline-block;margin:0.5em;width:260px;vertical-align:top}\
-         img{max-width:100%}figcaption{font-size:0.85em}a{color:#9cf}</style>\n</head>\n<body>\n\
-         <h1>Figures du chapitre 7.4b et des diapositives IFT3355</h1>\n\
-         <p>Regenerated by <code>lumiere figures</code>; specifications in shared/FIGURES.md.</p>\n",
-    );
-    for set in registry() {
-        html += &format!(
-            "<h2 id=\"{0}\">{1} <small>(<a href=\"{0}/manifest.json\">manifest</a>, <a href=\"{0}/contact-sheet.png\">contact sheet</a>)</small></h2>\n",
-            set.name,
-            html_escape(set.title)
-        );
-        for f in (set.figures)() {
-            html += &format!(
-                "<figure><a href=\"{0}/{1}.png\"><img src=\"{0}/{1}.png\" alt=\"{2}\" loading=\"lazy\"></a><figcaption>{2}</figcaption></figure>\n",
-                set.name,
-                f.stem,
-                html_escape(&f.caption)
-            );
-        }
-    }
-    html += "</body>\n</html>\n";
+/// `out/index.html`: the gallery of the sets of `sets` whose manifest is in `out`.
+pub fn write_index(out: &Path, sets: &[FigureSet]) -> Result<(), WriteError> {
+    let html = gallery::index_html(out, sets, &[]);
     let path = out.join("index.html");
     write_atomic(&path, html.as_bytes()).map_err(|e| WriteError::new(&path, "cannot write", e))
-}
-
-/// A figure whose regenerated pixels differ from its committed manifest.
-#[derive(Debug, PartialEq)]
-pub struct Mismatch {
-    pub file: String,
-    pub expected: String,
-    pub actual: String,
-}
-
-/// Re-renders `set` at the scale recorded in `out/<set>/manifest.json` and compares every
-/// image's pixel hash with the manifest's. Renders in memory; writes nothing.
-pub fn check(set: &FigureSet, out: &Path, reuse: &mut Reuse) -> Result<Vec<Mismatch>, String> {
-    let path = out.join(set.name).join("manifest.json");
-    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-    let manifest: Value = serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", path.display()))?;
-    let scale = manifest["scale"].as_f64().unwrap_or(1.0);
-    let expected: Vec<(String, String)> = manifest["images"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .map(|i| {
-                    let s = |k: &str| i[k].as_str().unwrap_or_default().to_string();
-                    (s("file"), s("pixel_hash"))
-                })
-                .collect()
-        })
-        .unwrap_or_default();
-    let mut mismatches = Vec::new();
-    let figures = (set.figures)();
-    if figures.len() != expected.len() {
-        return Err(format!(
-            "{}: lists {} images, the set has {}",
-            path.display(),
-            expected.len(),
-            figures.len()
-        ));
-    }
-    let rendered = render_set(set, scale, &AtomicBool::new(false), reuse).expect("never cancelled");
-    for (r, (file, hash)) in rendered.into_iter().zip(expected) {
-        let actual = r.manifest["pixel_hash"].as_str().unwrap_or_default().to_string();
-        if actual != hash || r.manifest["file"] != file.as_str() {
-            mismatches.push(Mismatch {
-                file,
-                expected: hash,
-                actual,
-            });
-        }
-    }
-    Ok(mismatches)
 }

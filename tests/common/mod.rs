@@ -79,11 +79,18 @@ pub fn snapshot_settings() -> insta::Settings {
     s
 }
 
-/// Figure set `name` re-rendered at the scale of its committed manifest, and the images
-/// whose pixel hashes differ from `figures/<name>/manifest.json` (what `figures --check`
-/// does for one set).
-pub fn committed_set_mismatches(name: &str) -> Vec<lumiere::figures::Mismatch> {
-    use lumiere::figures;
-    let set = figures::registry().into_iter().find(|s| s.name == name).unwrap();
-    figures::check(&set, &repo("figures"), &mut figures::Reuse::default()).unwrap()
+/// Figure set `name` checked as `lumiere figures NAME --check` does, against the committed
+/// files of `figures/` (the working folder of the tests is the repository's root): one line
+/// per problem, none when every file is what a fresh render makes.
+pub fn committed_set_mismatches(name: &str) -> Vec<String> {
+    use lumiere::figures::{self, Reuse, Run, check};
+    let sets = figures::registry().expect("the figure files load");
+    let set = sets.iter().find(|s| s.name == name).expect("the set exists");
+    let run = Run {
+        scale: check::recorded_scale(Path::new(figures::DEFAULT_OUT), name, 1.0),
+        ..Run::default()
+    };
+    let review = temp_dir(&format!("committed-{name}"));
+    let checked = check::check_set(set, &run, &mut Reuse::default(), &review).expect("the set renders");
+    checked.problems.iter().map(|p| p.to_string()).collect()
 }

@@ -1,0 +1,422 @@
+//! `figures --check`: the files of a set on disk held to the set rendered again in memory.
+//! Each figure's PNG is decoded and compared with its manifest's pixel hash and with the
+//! fresh render, pixel by pixel, and its provenance and bytes with a fresh encoding; the
+//! contact sheet and manifest are compared byte for byte with their regenerated selves,
+//! and any file of the set's folder that the set does not make is reported. Differing
+//! figures get a heat-map and a labelled sheet (on disk, fresh render, difference) in the
+//! review folder, listed on its page ([`crate::review`]).
+
+use super::{BuiltSet, FigureSet, FiguresError, Reuse, Run, build_set, provenance};
+use crate::compare::{compare_rgb8, heat_map};
+use crate::film::pixel_hash;
+use crate::review::{self, HEAT_SCALE, PageItem, ReviewError, Rgb8};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+
+/// One thing wrong with a set's files.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Problem {
+    /// The file, `set/name` (or `index.html`, or a folder of the output).
+    pub file: String,
+    pub what: What,
+}
+
+/// What is wrong with a file.
+#[derive(Clone, Debug, PartialEq)]
+pub enum What {
+    /// The set makes this file, and it is not there.
+    Missing,
+    /// The file is there, and the set does not make it.
+    Extra,
+    /// The file cannot be read or decoded.
+    Unreadable(String),
+    /// Its pixels differ from the fresh render's.
+    Pixels {
+        differing: u64,
+        total: u64,
+        largest: u8,
+        heat_map: Option<PathBuf>,
+    },
+    /// Its size differs from the fresh render's.
+    Size { found: (u32, u32), fresh: (u32, u32) },
+    /// Its pixels' hash differs from the one its manifest on disk records (`None`: the
+    /// manifest does not list it).
+    ManifestHash { found: String, manifest: Option<String> },
+    /// A provenance text differs from a fresh encoding's (`None`: absent).
+    Provenance {
+        keyword: String,
+        found: Option<String>,
+        fresh: Option<String>,
+    },
+    /// Same pixels and provenance, other bytes than a fresh encoding.
+    Encoding,
+    /// A text file differs from its regenerated self from this line on (1-based).
+    Text { line: usize, found: String, fresh: String },
+    /// A binary file differs from its regenerated self.
+    Bytes,
+}
+
+impl std::fmt::Display for Problem {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let file = &self.file;
+        match &self.what {
+            What::Missing => write!(f, "{file}: missing"),
+            What::Extra => write!(f, "{file}: extra file: the set makes no such file"),
+            What::Unreadable(why) => write!(f, "{file}: cannot be read: {why}"),
+            What::Pixels {
+                differing,
+                total,
+                largest,
+                heat_map,
+            } => {
+                write!(
+                    f,
+                    "{file}: {differing} of {total} pixels differ from a fresh render, largest difference {largest} levels"
+                )?;
+                match heat_map {
+                    Some(p) => write!(f, "; heat map {}", p.display()),
+                    None => Ok(()),
+                }
+            }
+            What::Size { found, fresh } => write!(
+                f,
+                "{file}: {} x {} pixels, a fresh render has {} x {}",
+                found.0, found.1, fresh.0, fresh.1
+            ),
+            What::ManifestHash { found, manifest } => match manifest {
+                Some(m) => write!(f, "{file}: pixel hash {found}, its manifest says {m}"),
+                None => write!(f, "{file}: pixel hash {found}, its manifest does not list it"),
+            },
+            What::Provenance { keyword, found, fresh } => {
+                let show = |v: &Option<String>| v.as_ref().map_or("absent".to_string(), |s| format!("{s:?}"));
+                write!(
+                    f,
+                    "{file}: provenance {keyword:?} is {}, a fresh render's is {}",
+                    show(found),
+                    show(fresh)
+                )
+            }
+            What::Encoding => write!(
+                f,
+                "{file}: same pixels and provenance, other bytes than a fresh encoding"
+            ),
+            What::Text { line, found, fresh } => write!(
+                f,
+                "{file}: differs from its regenerated self at line {line}: {found:?}, regenerated {fresh:?}"
+            ),
+            What::Bytes => write!(f, "{file}: differs from its regenerated self"),
+        }
+    }
+}
+
+/// Why a check could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum CheckError {
+    /// The set could not be rendered or encoded.
+    #[error(transparent)]
+    Figures(#[from] FiguresError),
+    /// A heat-map, sheet or the review page could not be written.
+    #[error(transparent)]
+    Review(#[from] ReviewError),
+}
+
+/// A checked set: what is wrong, the review page's items, and the manifest regenerated
+/// (for the gallery's check).
+pub struct SetCheck {
+    pub problems: Vec<Problem>,
+    pub review: Vec<PageItem>,
+    pub manifest: Value,
+}
+
+/// The scale a set was generated at: its manifest's on disk, else `fallback`.
+pub fn recorded_scale(out: &Path, set: &str, fallback: f64) -> f64 {
+    std::fs::read_to_string(out.join(set).join("manifest.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<Value>(&t).ok())
+        .and_then(|m| m["scale"].as_f64())
+        .filter(|s| *s > 0.0 && *s <= 4.0)
+        .unwrap_or(fallback)
+}
+
+/// The first line where two texts differ (1-based) and that line of each.
+fn first_difference(found: &str, fresh: &str) -> (usize, String, String) {
+    let (mut a, mut b) = (found.lines(), fresh.lines());
+    let mut line = 1;
+    loop {
+        match (a.next(), b.next()) {
+            (Some(x), Some(y)) if x == y => line += 1,
+            (x, y) => {
+                let show = |s: Option<&str>| s.map_or("(end of file)".to_string(), str::to_string);
+                return (line, show(x), show(y));
+            }
+        }
+    }
+}
+
+/// The bytes of a file compared with its regenerated self.
+fn compare_file(file: String, found: &[u8], fresh: &[u8]) -> Option<Problem> {
+    if found == fresh {
+        return None;
+    }
+    let what = match (std::str::from_utf8(found), std::str::from_utf8(fresh)) {
+        (Ok(a), Ok(b)) => {
+            let (line, found, fresh) = first_difference(a, b);
+            What::Text { line, found, fresh }
+        }
+        _ => What::Bytes,
+    };
+    Some(Problem { file, what })
+}
+
+/// The pixel hashes the manifest on disk records, by file name.
+fn manifest_hashes(out: &Path, set: &str) -> Vec<(String, String)> {
+    let Some(m) = std::fs::read_to_string(out.join(set).join("manifest.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<Value>(&t).ok())
+    else {
+        return Vec::new();
+    };
+    m["images"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .map(|i| {
+                    let s = |k: &str| i[k].as_str().unwrap_or_default().to_string();
+                    (s("file"), s("pixel_hash"))
+                })
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// Checks set `set` in `run.out` (rendered at `run.scale`: see [`recorded_scale`]); heat
+/// maps and sheets of differing figures go into `review_dir/figures/<set>/`.
+pub fn check_set(set: &FigureSet, run: &Run, reuse: &mut Reuse, review_dir: &Path) -> Result<SetCheck, CheckError> {
+    let built = build_set(set, run, &AtomicBool::new(false), reuse)?.expect("never cancelled");
+    let dir = run.out.join(&set.name);
+    let hashes = manifest_hashes(&run.out, &set.name);
+    let mut problems = Vec::new();
+    let mut review_items = Vec::new();
+    let BuiltSet {
+        rendered,
+        files,
+        manifest,
+    } = built;
+    for (name, fresh) in &files {
+        let file = format!("{}/{name}", set.name);
+        let found = match std::fs::read(dir.join(name)) {
+            Ok(bytes) => bytes,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                problems.push(Problem {
+                    file: file.clone(),
+                    what: What::Missing,
+                });
+                if let Some(r) = rendered.iter().find(|r| format!("{}.png", r.figure.stem) == *name) {
+                    let fresh_img = rgb8(&r.image);
+                    let sheet = review_dir.join(review::FIGURES).join(&set.name).join(name);
+                    review::write_png(&sheet, &review::sheet(&[("fresh render", &fresh_img)]))?;
+                    review_items.push(PageItem {
+                        name: file.clone(),
+                        summary: format!("{file}: missing"),
+                        sheet: Some(format!("{}/{}/{name}", review::FIGURES, set.name)),
+                    });
+                }
+                continue;
+            }
+            Err(e) => {
+                problems.push(Problem {
+                    file,
+                    what: What::Unreadable(e.to_string()),
+                });
+                continue;
+            }
+        };
+        let Some(r) = rendered.iter().find(|r| format!("{}.png", r.figure.stem) == *name) else {
+            if let Some(p) = compare_file(file.clone(), &found, fresh) {
+                review_items.push(PageItem {
+                    name: file,
+                    summary: p.to_string(),
+                    sheet: None,
+                });
+                problems.push(p);
+            }
+            continue;
+        };
+        let before = problems.len();
+        let decoded = match image::load_from_memory(&found) {
+            Ok(img) => img.to_rgb8(),
+            Err(e) => {
+                problems.push(Problem {
+                    file,
+                    what: What::Unreadable(format!("not a PNG image: {e}")),
+                });
+                continue;
+            }
+        };
+        let found_hash = format!("fnv1a64:{:016x}", pixel_hash(decoded.as_raw()));
+        let recorded = hashes.iter().find(|(f, _)| f == name).map(|(_, h)| h.clone());
+        if recorded.as_ref() != Some(&found_hash) {
+            problems.push(Problem {
+                file: file.clone(),
+                what: What::ManifestHash {
+                    found: found_hash,
+                    manifest: recorded,
+                },
+            });
+        }
+        let fresh_img = rgb8(&r.image);
+        let disk_img = rgb8(&decoded);
+        if decoded.dimensions() != r.image.dimensions() {
+            problems.push(Problem {
+                file: file.clone(),
+                what: What::Size {
+                    found: decoded.dimensions(),
+                    fresh: r.image.dimensions(),
+                },
+            });
+        } else if decoded.as_raw() != r.image.as_raw() {
+            let c = compare_rgb8(&disk_img.data, &fresh_img.data, disk_img.width, disk_img.height, 0);
+            let heat = Rgb8 {
+                width: disk_img.width,
+                height: disk_img.height,
+                data: heat_map(&disk_img.data, &fresh_img.data, HEAT_SCALE),
+            };
+            let folder = review_dir.join(review::FIGURES).join(&set.name);
+            let heat_path = folder.join(format!("{}.heat.png", r.figure.stem));
+            review::write_png(&heat_path, &heat)?;
+            let sheet = review::sheet(&[
+                ("on disk", &disk_img),
+                ("fresh render", &fresh_img),
+                ("difference", &heat),
+            ]);
+            review::write_png(&folder.join(name), &sheet)?;
+            problems.push(Problem {
+                file: file.clone(),
+                what: What::Pixels {
+                    differing: c.differing_pixels,
+                    total: c.width as u64 * c.height as u64,
+                    largest: c.max_diff,
+                    heat_map: Some(heat_path),
+                },
+            });
+        }
+        problems.extend(provenance_problems(&file, &found, fresh));
+        if problems.len() == before && found != *fresh {
+            problems.push(Problem {
+                file: file.clone(),
+                what: What::Encoding,
+            });
+        }
+        if problems.len() > before {
+            let summary = problems[before..]
+                .iter()
+                .map(|p| p.to_string())
+                .collect::<Vec<_>>()
+                .join("; ");
+            let sheet = format!("{}/{}/{name}", review::FIGURES, set.name);
+            let has_sheet = review_dir.join(&sheet).is_file();
+            review_items.push(PageItem {
+                name: file,
+                summary,
+                sheet: has_sheet.then_some(sheet),
+            });
+        }
+    }
+    // Files of the folder that the set does not make.
+    if let Ok(entries) = std::fs::read_dir(&dir) {
+        let mut extra: Vec<String> = entries
+            .filter_map(Result::ok)
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| !files.iter().any(|(f, _)| f == n))
+            .collect();
+        extra.sort();
+        for name in extra {
+            let file = format!("{}/{name}", set.name);
+            review_items.push(PageItem {
+                name: file.clone(),
+                summary: format!("{file}: extra file: the set makes no such file"),
+                sheet: None,
+            });
+            problems.push(Problem {
+                file,
+                what: What::Extra,
+            });
+        }
+    }
+    Ok(SetCheck {
+        problems,
+        review: review_items,
+        manifest,
+    })
+}
+
+fn rgb8(img: &image::RgbImage) -> Rgb8 {
+    Rgb8 {
+        width: img.width(),
+        height: img.height(),
+        data: img.as_raw().clone(),
+    }
+}
+
+/// The provenance texts of a PNG on disk against a fresh encoding's.
+fn provenance_problems(file: &str, found: &[u8], fresh: &[u8]) -> Vec<Problem> {
+    let found = provenance::text_chunks(found).unwrap_or_default();
+    let fresh = provenance::text_chunks(fresh).unwrap_or_default();
+    let keywords: Vec<&String> = fresh.iter().chain(&found).map(|(k, _)| k).collect();
+    let mut seen: Vec<&String> = Vec::new();
+    let mut out = Vec::new();
+    for k in keywords {
+        if seen.contains(&k) {
+            continue;
+        }
+        seen.push(k);
+        let of = |list: &[(String, String)]| list.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone());
+        let (a, b) = (of(&found), of(&fresh));
+        if a != b {
+            out.push(Problem {
+                file: file.to_string(),
+                what: What::Provenance {
+                    keyword: k.clone(),
+                    found: a,
+                    fresh: b,
+                },
+            });
+        }
+    }
+    out
+}
+
+/// The gallery `out/index.html` against the one regenerated from `manifests` (set name,
+/// regenerated manifest) and, for the sets not checked, the manifests on disk.
+pub fn check_index(out: &Path, sets: &[FigureSet], manifests: &[(String, Value)]) -> Option<Problem> {
+    let fresh = super::gallery::index_html(out, sets, manifests);
+    match std::fs::read(out.join("index.html")) {
+        Ok(found) => compare_file("index.html".into(), &found, fresh.as_bytes()),
+        Err(_) => Some(Problem {
+            file: "index.html".into(),
+            what: What::Missing,
+        }),
+    }
+}
+
+/// Folders of `out` that are no set of `sets` (checked when every set is).
+pub fn extra_folders(out: &Path, sets: &[FigureSet]) -> Vec<Problem> {
+    let Ok(entries) = std::fs::read_dir(out) else {
+        return Vec::new();
+    };
+    let mut names: Vec<String> = entries
+        .filter_map(Result::ok)
+        .filter(|e| e.path().is_dir())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| !sets.iter().any(|s| s.name == *n))
+        .collect();
+    names.sort();
+    names
+        .into_iter()
+        .map(|n| Problem {
+            file: format!("{n}/"),
+            what: What::Extra,
+        })
+        .collect()
+}

@@ -1,0 +1,213 @@
+//! `lumiere figures --check` holds the files on disk to a fresh render: a swapped, an
+//! edited, a missing and an extra figure each fail with what differs, and the differing
+//! figures get a heat-map and a place on the review page.
+
+mod common;
+use common::*;
+use lumiere::figures::provenance;
+use lumiere::film::encode_png;
+use std::path::Path;
+use std::process::Output;
+
+/// Generates the lighting set at scale 0.05 (40 x 30) into `dir/figures`.
+fn generate(dir: &Path) {
+    let out = dir.join("figures");
+    let o = lumiere(&[
+        "figures",
+        "lighting",
+        "--scale",
+        "0.05",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// `lumiere figures lighting --check` on `dir/figures`, the review folder `dir/review`.
+fn check(dir: &Path) -> (Output, String) {
+    let (out, review) = (dir.join("figures"), dir.join("review"));
+    let o = lumiere(&[
+        "figures",
+        "lighting",
+        "--check",
+        "--out",
+        out.to_str().unwrap(),
+        "--review",
+        review.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+    (o, stdout)
+}
+
+/// A freshly generated set, changed by `tamper`, then checked: exit code and stdout with
+/// the folder's path replaced by `D`.
+fn tampered(name: &str, tamper: impl Fn(&Path)) -> (i32, String) {
+    let dir = temp_dir(name);
+    generate(&dir);
+    tamper(&dir.join("figures/lighting"));
+    let (o, stdout) = check(&dir);
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("problems: the figures on disk differ from their sets"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    (
+        o.status.code().unwrap(),
+        stdout.replace(&dir.display().to_string(), "D"),
+    )
+}
+
+#[test]
+fn an_untouched_set_passes() {
+    let dir = temp_dir("check-untouched");
+    generate(&dir);
+    let (o, stdout) = check(&dir);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{stdout}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(stdout, "lighting     ok\n");
+    // Nothing to review, so no review folder.
+    assert!(!dir.join("review").exists());
+}
+
+#[test]
+fn a_swapped_figure_fails() {
+    let (code, out) = tampered("check-swapped", |d| {
+        std::fs::copy(d.join("02-directional.png"), d.join("01-ambient.png")).unwrap();
+    });
+    assert_eq!(code, 1);
+    let lines: Vec<&str> = out.lines().collect();
+    assert!(
+        lines[0].starts_with("lighting/01-ambient.png: pixel hash fnv1a64:")
+            && lines[0].contains(", its manifest says fnv1a64:"),
+        "{out}"
+    );
+    assert!(
+        lines[1].starts_with("lighting/01-ambient.png: ")
+            && lines[1].contains(" of 1200 pixels differ from a fresh render, largest difference ")
+            && lines[1].ends_with("; heat map D/review/figures/lighting/01-ambient.heat.png"),
+        "{out}"
+    );
+    assert_eq!(
+        lines[2],
+        "lighting/01-ambient.png: provenance \"Title\" is \"lighting/02-directional\", a fresh render's is \"lighting/01-ambient\""
+    );
+    assert_eq!(
+        lines[lines.len() - 2..],
+        ["lighting     DIFFERS", "review page: D/review/index.html"]
+    );
+}
+
+#[test]
+fn an_edited_figure_fails_and_is_shown_on_the_review_page() {
+    let dir = temp_dir("check-edited");
+    generate(&dir);
+    // Pixel (3, 2) of the ambient figure gets 7 more levels of red; the provenance stays.
+    let path = dir.join("figures/lighting/01-ambient.png");
+    let png = std::fs::read(&path).unwrap();
+    let (w, h, mut rgb) = lumiere::compare::load_rgb8(&path).unwrap();
+    let at = ((2 * w + 3) * 3) as usize;
+    rgb[at] = if rgb[at] > 200 { rgb[at] - 7 } else { rgb[at] + 7 };
+    let texts = provenance::text_chunks(&png).unwrap();
+    let texts: Vec<(&str, &str)> = texts.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
+    std::fs::write(
+        &path,
+        provenance::with_text(&encode_png(w, h, &rgb).unwrap(), &texts).unwrap(),
+    )
+    .unwrap();
+    let (o, stdout) = check(&dir);
+    assert_eq!(o.status.code(), Some(1));
+    let d = dir.display().to_string();
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert!(lines[0].starts_with("lighting/01-ambient.png: pixel hash "), "{stdout}");
+    assert_eq!(
+        lines[1],
+        format!(
+            "lighting/01-ambient.png: 1 of 1200 pixels differ from a fresh render, largest difference 7 levels; heat map {d}/review/figures/lighting/01-ambient.heat.png"
+        )
+    );
+    assert_eq!(lines[2], "lighting     DIFFERS");
+    assert_eq!(lines[3], format!("review page: {d}/review/index.html"));
+    assert_eq!(lines.len(), 4);
+    // The heat-map: black but the edited pixel (7 of 16 levels: between blue and red).
+    let (hw, hh, heat) = lumiere::compare::load_rgb8(&dir.join("review/figures/lighting/01-ambient.heat.png")).unwrap();
+    assert_eq!((hw, hh), (40, 30));
+    let lit: Vec<usize> = (0..(hw * hh) as usize)
+        .filter(|&i| heat[i * 3..i * 3 + 3] != [0, 0, 0])
+        .collect();
+    assert_eq!(lit, [(2 * 40 + 3) as usize]);
+    // The sheet: on disk | fresh render | difference, each 40 x 30 enlarged 8 times.
+    let (sw, sh, _) = lumiere::compare::load_rgb8(&dir.join("review/figures/lighting/01-ambient.png")).unwrap();
+    assert_eq!((sw, sh), (8 + 3 * (320 + 8), 8 + 24 + 240 + 8));
+    let page = std::fs::read_to_string(dir.join("review/index.html")).unwrap();
+    assert!(
+        page.contains("<h2>Figures that differ from a fresh render (1)</h2>"),
+        "{page}"
+    );
+    assert!(page.contains("<img src=\"figures/lighting/01-ambient.png\""));
+    assert!(page.contains("1 of 1200 pixels differ"));
+    assert!(page.contains("Not reviewed yet: run <code>lumiere review-snapshots</code>"));
+    // Put back, the next check passes and empties the page's list.
+    std::fs::write(&path, &png).unwrap();
+    let (o, _) = check(&dir);
+    assert_eq!(o.status.code(), Some(0));
+    let page = std::fs::read_to_string(dir.join("review/index.html")).unwrap();
+    assert!(page.contains("<h2>Figures that differ from a fresh render (0)</h2>"));
+    assert!(!dir.join("review/figures/lighting/01-ambient.heat.png").exists());
+}
+
+#[test]
+fn a_missing_figure_fails() {
+    let (code, out) = tampered("check-missing", |d| {
+        std::fs::remove_file(d.join("03-ambient-directional.png")).unwrap();
+    });
+    assert_eq!(code, 1);
+    assert_eq!(
+        out,
+        "lighting/03-ambient-directional.png: missing\nlighting     DIFFERS\nreview page: D/review/index.html\n"
+    );
+}
+
+#[test]
+fn an_extra_figure_fails() {
+    let (code, out) = tampered("check-extra", |d| {
+        std::fs::copy(d.join("01-ambient.png"), d.join("04-extra.png")).unwrap();
+    });
+    assert_eq!(code, 1);
+    assert_eq!(
+        out,
+        "lighting/04-extra.png: extra file: the set makes no such file\nlighting     DIFFERS\nreview page: D/review/index.html\n"
+    );
+}
+
+#[test]
+fn an_edited_manifest_sheet_or_gallery_fails() {
+    let (code, out) = tampered("check-manifest", |d| {
+        let m = std::fs::read_to_string(d.join("manifest.json")).unwrap();
+        std::fs::write(d.join("manifest.json"), m.replace("\"seed\": 42", "\"seed\": 43")).unwrap();
+        std::fs::write(d.join("contact-sheet.png"), b"not a sheet").unwrap();
+        let index = d.parent().unwrap().join("index.html");
+        let html = std::fs::read_to_string(&index).unwrap();
+        std::fs::write(&index, html.replace("<h1>", "<h1>!")).unwrap();
+    });
+    assert_eq!(code, 1);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(
+        lines[0],
+        "lighting/contact-sheet.png: differs from its regenerated self"
+    );
+    assert!(
+        lines[1].starts_with("lighting/manifest.json: differs from its regenerated self at line ")
+            && lines[1].ends_with(": \"      \\\"seed\\\": 43,\", regenerated \"      \\\"seed\\\": 42,\""),
+        "{out}"
+    );
+    assert_eq!(lines[2], "lighting     DIFFERS");
+    assert!(
+        lines[3].starts_with("index.html: differs from its regenerated self at line 9"),
+        "{out}"
+    );
+}
