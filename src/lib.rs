@@ -7,7 +7,7 @@
 //! Module map, in layers from the maths up; a module imports only from its own layer or
 //! the ones below:
 //! 1. [`math`] (rays, frames, the laws of reflection and refraction, ray-origin offsets),
-//!    [`solve`] (the stable quadratic, the quartic root isolator), [`conventions`] (where
+//!    [`text`] (captions drawn into images), [`solve`] (the stable quadratic, the quartic root isolator), [`conventions`] (where
 //!    the course's two renderers disagree, as named switches), [`shading`] (the formulas
 //!    of the slides and the chapter, each once), [`material`], [`sampling`] (seeded random
 //!    streams), [`skips`] (the renderer's named shortcuts), [`limits`], [`film`],
@@ -86,6 +86,7 @@ pub mod skips;
 pub mod solve;
 pub mod stress;
 pub mod study;
+pub mod text;
 pub mod trace;
 pub mod world;
 

@@ -15,8 +15,8 @@
 //! wrote into `OUT`, each with its sheet ([`write_section`]).
 
 use crate::compare::{Comparison, compare_rgb8, heat_map, load_rgb8};
-use crate::figures::sheet::draw_text;
 use crate::film::{WriteError, encode_png, write_atomic};
+use crate::text::draw_text;
 use serde::{Deserialize, Serialize};
 use std::fs;
 use std::path::{Path, PathBuf};

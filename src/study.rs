@@ -19,13 +19,13 @@
 
 use crate::area_light::PointMode;
 use crate::compare::compare_rgb8;
-use crate::figures::sheet::draw_text;
 use crate::film::{Film, clamp_unit, encode_png};
 use crate::light::Light;
 use crate::limits;
 use crate::placement::Placement;
 use crate::render::render;
 use crate::scene::Scene;
+use crate::text::draw_text;
 use crate::world::World;
 use glam::DVec3;
 use image::{Rgb, RgbImage};
