@@ -150,7 +150,7 @@ impl<'s> World<'s> {
                     _ => PointSet::default(),
                 })
                 .collect(),
-            bounding_spheres: scene.objects.iter().map(|o| o.shape.bounding_ball()).collect(),
+            bounding_spheres: scene.objects.iter().map(|o| o.shape.bounding_sphere()).collect(),
             inner_balls: scene.objects.iter().map(|o| o.shape.inner_ball()).collect(),
             costly: scene
                 .objects

@@ -14,7 +14,7 @@ pub struct Cone {
     pub radius: f64,
     #[serde(skip)]
     frame: Frame,
-    /// The bounding ball ([`Cone::ball`]), tested before the quadric.
+    /// The bounding sphere ([`Cone::bounding_sphere`]), tested before the quadric.
     #[serde(skip)]
     ball: (DVec3, f64),
 }
@@ -56,7 +56,7 @@ impl Cone {
     }
 
     /// A ball around the whole cone (center, radius).
-    pub fn ball(&self) -> (DVec3, f64) {
+    pub fn bounding_sphere(&self) -> (DVec3, f64) {
         self.ball
     }
 
@@ -64,7 +64,7 @@ impl Cone {
     /// side `x^2 + y^2 = k^2 (h - z)^2` for `0 <= z <= h`; gradient `(x, y, k^2 (h - z))`.
     /// The base cap is the disk `z = 0`, radius `r`.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
-        if super::misses_ball(ray, t_min, t_max, self.ball) {
+        if super::misses_bounding_sphere(ray, t_min, t_max, self.ball) {
             return None;
         }
         let (o, d, shift) = self.local_ray(ray);
@@ -132,7 +132,7 @@ impl Cone {
     #[inline(always)]
     fn shadow_hit(&self, origin: DVec3, dir: DVec3, reach: f64) -> bool {
         let ray = Ray::new(origin, dir);
-        let missed = super::misses_ball(&ray, 0.0, reach, self.ball);
+        let missed = super::misses_bounding_sphere(&ray, 0.0, reach, self.ball);
         let (o, d, shift) = self.local_ray(&ray);
         let (side, base) = self.local_roots(o, d, 0.0 - shift);
         let t = if base < side { base } else { side };

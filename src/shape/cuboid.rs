@@ -15,7 +15,7 @@ pub struct Cuboid {
     /// World-space axes (columns), kept for the bounding box.
     #[serde(skip)]
     axes: DMat3,
-    /// The bounding ball ([`Cuboid::ball`]), tested before the slabs.
+    /// The bounding sphere ([`Cuboid::bounding_sphere`]), tested before the slabs.
     #[serde(skip)]
     ball: (DVec3, f64),
 }
@@ -46,14 +46,14 @@ impl Cuboid {
     }
 
     /// A ball around the whole box: its center and half-diagonal.
-    pub fn ball(&self) -> (DVec3, f64) {
+    pub fn bounding_sphere(&self) -> (DVec3, f64) {
         self.ball
     }
 
     /// Slab test in the box's frame; the face normal is the axis whose slab was entered
     /// (or, from inside, left) last.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
-        if super::misses_ball(ray, t_min, t_max, self.ball()) {
+        if super::misses_bounding_sphere(ray, t_min, t_max, self.bounding_sphere()) {
             return None;
         }
         let o = self.frame.to_local(ray.origin - self.center);
@@ -111,7 +111,7 @@ impl Cuboid {
     /// the box on `(0, reach)`: `intersect(..).is_some()`, without a branch.
     #[inline(always)]
     fn shadow_hit(&self, o: DVec3, origin: DVec3, dir: DVec3, reach: f64) -> bool {
-        let missed = super::misses_ball(&Ray::new(origin, dir), 0.0, reach, self.ball());
+        let missed = super::misses_bounding_sphere(&Ray::new(origin, dir), 0.0, reach, self.bounding_sphere());
         let slabs = self.slabs(o, self.frame.to_local(dir));
         !missed & (slabs.near_hit(0.0, reach) | slabs.far_hit(0.0, reach))
     }

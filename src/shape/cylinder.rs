@@ -18,7 +18,7 @@ pub struct Cylinder {
     pub open: bool,
     #[serde(skip)]
     frame: Frame,
-    /// The bounding ball ([`Cylinder::ball`]), tested before the quadric.
+    /// The bounding sphere ([`Cylinder::bounding_sphere`]), tested before the quadric.
     #[serde(skip)]
     ball: (DVec3, f64),
 }
@@ -58,7 +58,7 @@ impl Cylinder {
     }
 
     /// A ball around the whole cylinder: centerd half-way up the axis, through the rims.
-    pub fn ball(&self) -> (DVec3, f64) {
+    pub fn bounding_sphere(&self) -> (DVec3, f64) {
         self.ball
     }
 
@@ -69,7 +69,7 @@ impl Cylinder {
     /// In the local frame (axis = +z, base at the origin): side `x^2 + y^2 = r^2` for
     /// `0 <= z <= h`, and (unless open) the caps `z = 0`, `z = h` within radius `r`.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
-        if super::misses_ball(ray, t_min, t_max, self.ball()) {
+        if super::misses_bounding_sphere(ray, t_min, t_max, self.bounding_sphere()) {
             return None;
         }
         let o = self.frame.to_local(ray.origin - self.base);

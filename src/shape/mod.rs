@@ -164,19 +164,19 @@ impl Shape {
 
     /// A ball containing the whole shape (center, radius), as small as is simple to say;
     /// `None` for unbounded shapes. Shadow rays that miss it miss the shape.
-    pub fn bounding_ball(&self) -> Option<(DVec3, f64)> {
+    pub fn bounding_sphere(&self) -> Option<(DVec3, f64)> {
         let half_diagonal = |a: DVec3, b: DVec3| 0.5 * (a + b).length().max((a - b).length());
         Some(match self {
             Shape::Plane(_) => return None,
             Shape::Rectangle(r) => (r.corner + 0.5 * (r.edge1 + r.edge2), half_diagonal(r.edge1, r.edge2)),
             Shape::Disk(d) => (d.center, d.radius),
             Shape::Sphere(s) => (s.center, s.radius),
-            Shape::Cuboid(b) => b.ball(),
-            Shape::Cylinder(c) => c.ball(),
-            Shape::Cone(c) => c.ball(),
+            Shape::Cuboid(b) => b.bounding_sphere(),
+            Shape::Cylinder(c) => c.bounding_sphere(),
+            Shape::Cone(c) => c.bounding_sphere(),
             Shape::Torus(t) => (t.center, t.major + t.minor),
-            Shape::Triangle(t) => t.ball(),
-            Shape::Transformed(t) => return t.ball(),
+            Shape::Triangle(t) => t.bounding_sphere(),
+            Shape::Transformed(t) => return t.bounding_sphere(),
         })
     }
 
@@ -294,7 +294,7 @@ pub(crate) fn first_root((t0, t1): (f64, f64), t_min: f64, t_max: f64) -> f64 {
 /// run. The perpendicular distance uses `|f - (f.d) d|` (Ray Tracing Gems, ch. 7), accurate
 /// for far origins.
 #[inline(always)]
-pub(crate) fn misses_ball(ray: &Ray, t_min: f64, t_max: f64, (center, radius): (DVec3, f64)) -> bool {
+pub(crate) fn misses_bounding_sphere(ray: &Ray, t_min: f64, t_max: f64, (center, radius): (DVec3, f64)) -> bool {
     let f = ray.origin - center;
     let b = f.dot(ray.dir);
     let reach = radius * (1.0 + 1e-9) + 1e-9 * l1(f);
@@ -473,7 +473,7 @@ mod tests {
         // center at z0 = (6.25 - 1) / 5 = 1.05 and radius 2.5 - 1.05 = 1.45; the inscribed
         // ball has radius 2.5 / (1 + sqrt(7.25)) = 0.6771...
         let cone = Shape::Cone(Box::new(Cone::new(DVec3::ZERO, DVec3::Z, 2.5, 1.0)));
-        let (c, r) = cone.bounding_ball().unwrap();
+        let (c, r) = cone.bounding_sphere().unwrap();
         assert!((c - DVec3::new(0.0, 0.0, 1.05)).length() < 1e-15 && (r - 1.45).abs() < 1e-15);
         let (c, r) = cone.inner_ball().unwrap();
         let rho = 2.5 / (1.0 + 7.25f64.sqrt());
@@ -484,20 +484,20 @@ mod tests {
             DVec3::splat(2.0),
             DVec3::ZERO,
         )));
-        assert!((cube.bounding_ball().unwrap().1 - 3f64.sqrt()).abs() < 1e-15);
+        assert!((cube.bounding_sphere().unwrap().1 - 3f64.sqrt()).abs() < 1e-15);
         assert_eq!(cube.inner_ball().unwrap(), (DVec3::new(0.0, 0.0, 3.0), 1.0));
         let torus = Shape::Torus(Box::new(Torus::new(DVec3::ZERO, DVec3::Z, 1.5, 0.5)));
-        assert_eq!(torus.bounding_ball().unwrap().1, 2.0);
+        assert_eq!(torus.bounding_sphere().unwrap().1, 2.0);
         assert_eq!(torus.inner_ball(), None);
-        assert_eq!(Shape::Plane(Plane::new(DVec3::ZERO, DVec3::Z)).bounding_ball(), None);
+        assert_eq!(Shape::Plane(Plane::new(DVec3::ZERO, DVec3::Z)).bounding_sphere(), None);
     }
 
     #[test]
-    fn bounding_balls_hold_every_hit_and_inner_balls_are_inside() {
+    fn bounding_spheres_hold_every_hit_and_inner_balls_are_inside() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         let mut unit = move || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
         for shape in shapes() {
-            let (center, radius) = shape.bounding_ball().unwrap();
+            let (center, radius) = shape.bounding_sphere().unwrap();
             let mut direction = || {
                 let (z, phi) = (2.0 * unit() - 1.0, std::f64::consts::TAU * unit());
                 let s = (1.0 - z * z).sqrt();

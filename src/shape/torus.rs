@@ -129,9 +129,9 @@ impl Torus {
     /// in another visiting order (the linear scan and the BVH must agree to the bit).
     /// `t_max` only filters the roots.
     fn local_clip(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(DVec3, DVec3, (f64, f64))> {
-        // Most rays (a linear scan's camera rays) miss the bounding ball by far: rejected in
+        // Most rays (a linear scan's camera rays) miss the bounding sphere by far: rejected in
         // the world frame, before the two rotations into the local one.
-        if super::misses_ball(ray, t_min, t_max, (self.center, self.major + self.minor)) {
+        if super::misses_bounding_sphere(ray, t_min, t_max, (self.center, self.major + self.minor)) {
             return None;
         }
         let o = self.local_origin(ray.origin);

@@ -144,7 +144,7 @@ pub struct Transformed {
 impl Transformed {
     pub fn new(shape: Shape, transform: Transform) -> Self {
         let bounds = world_bounds(&shape, &transform);
-        let ball = shape.bounding_ball().map(|(c, r)| {
+        let ball = shape.bounding_sphere().map(|(c, r)| {
             // The image of the local ball, or the box's ball when that is smaller.
             let mapped = (transform.point(c), r * transform.stretch);
             match bounds {
@@ -175,7 +175,7 @@ impl Transformed {
     /// [`Shape::intersect`]).
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         if let Some(ball) = self.ball
-            && super::misses_ball(ray, t_min, t_max, ball)
+            && super::misses_bounding_sphere(ray, t_min, t_max, ball)
         {
             return None;
         }
@@ -217,7 +217,7 @@ impl Transformed {
         self.bounds
     }
 
-    pub fn ball(&self) -> Option<(DVec3, f64)> {
+    pub fn bounding_sphere(&self) -> Option<(DVec3, f64)> {
         self.ball
     }
 
@@ -391,7 +391,7 @@ mod tests {
     #[test]
     fn balls_bound_and_fit() {
         let e = ellipsoid();
-        let (c, r) = e.bounding_ball().unwrap();
+        let (c, r) = e.bounding_sphere().unwrap();
         assert_eq!(c, DVec3::new(1., 2., 3.));
         assert!((r - 2.0).abs() < 1e-9, "{r}");
         let (c, r) = e.inner_ball().unwrap();

@@ -111,7 +111,7 @@ impl Triangle {
 
     /// A ball around the triangle: the centroid and the farthest vertex from it, widened
     /// by a relative 1e-12 for the rounding of both.
-    pub fn ball(&self) -> (DVec3, f64) {
+    pub fn bounding_sphere(&self) -> (DVec3, f64) {
         let [p0, p1, p2] = self.points();
         let c = (p0 + p1 + p2) / 3.0;
         let r = (p0 - c).length().max((p1 - c).length()).max((p2 - c).length());
