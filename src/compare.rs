@@ -6,7 +6,8 @@
 //! - [`metrics`]: per-pixel differences in 8-bit levels and their statistics over a set of
 //!   pixels: max, RMS, PSNR, percentiles, the fraction beyond a tolerance, FLIP's mean.
 //! - [`flip`]: the perceptual metric FLIP per pixel, and its heat-map.
-//! - [`edges`]: with the scene, the pixels whose footprint spans an object boundary, so a
+//! - [`edges`]: with the scene, the pixels whose footprint spans an edge of what it shows
+//!   (an object's outline, a crease, a shadow's edge, also reflected or refracted), so a
 //!   sampling or anti-aliasing difference there is reported apart from shading errors.
 //! - Here: [`compare`], which judges two images by a [`Rule`] into a [`Report`] with the
 //!   worst pixels; and the plain statistics ([`compare_rgb8`]) and level heat-map
@@ -104,7 +105,7 @@ fn heat_color(d: u8, max: u8) -> [u8; 3] {
 /// When two images count as equal enough: at most `max_fraction` of the judged pixels
 /// differ by more than `tolerance` levels (pbrt's `imgtool diff --difftol` judges so too),
 /// and, when `max_flip` is set, their FLIP mean is at most it. The judged pixels are those
-/// off object edges when edges are known, else all.
+/// off edges when edges are known, else all.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Rule {
     pub tolerance: u8,
@@ -142,14 +143,14 @@ pub struct WorstPixel {
 pub enum Judged {
     /// Every pixel (no scene given).
     All,
-    /// The pixels off object edges.
+    /// The pixels off edges.
     OffEdges,
 }
 
-/// The metrics on and off object edges.
+/// The metrics on and off edges.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct EdgeReport {
-    /// Pixels spanning an object boundary.
+    /// Pixels spanning an edge.
     pub pixels: u64,
     /// The metrics of the pixels off edges (`None` when every pixel is an edge).
     pub off_edges: Option<Stats>,
@@ -180,7 +181,7 @@ pub struct Report {
 
 /// Compares `a` (yours) with `b` (the oracle), RGB8 of `width * height` pixels (at least
 /// one), by `rule`, judging the pixels off `edges` when given (a row-major mask, true on
-/// object edges), and lists the `worst` judged pixels.
+/// edges), and lists the `worst` judged pixels.
 pub fn compare(
     a: &[u8],
     b: &[u8],

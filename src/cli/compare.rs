@@ -3,7 +3,7 @@
 //! worst pixels as `lumiere probe` command lines, and with `--scene` the pixels on object
 //! edges reported apart. Exit 0 pass, 1 the images differ beyond the rule, 2 bad input.
 
-use super::{CliError, Overrides, check_output, load_scene};
+use super::{CliError, Overrides, check_output_path, load_scene};
 use clap::Args;
 use lumiere::compare::edges::edge_mask;
 use lumiere::compare::flip::flip_heat_map;
@@ -30,7 +30,8 @@ pub struct CompareArgs {
     /// Also fail when the FLIP mean of the judged pixels exceeds this (0 to 1).
     #[arg(long, value_name = "FLIP")]
     pub max_flip: Option<f64>,
-    /// The scene both images render: pixels spanning an object boundary are reported apart
+    /// The scene both images render: pixels spanning an edge (an object's outline, a crease,
+    /// a shadow's edge, also seen in a mirror or through glass) are reported apart
     /// and the rule judges the others. The scene is loaded at the images' size.
     #[arg(long, value_name = "SCENE")]
     pub scene: Option<PathBuf>,
@@ -43,7 +44,7 @@ pub struct CompareArgs {
     /// Write FLIP's heat-map (magma: black 0, purple, orange, pale yellow 1).
     #[arg(long, value_name = "PNG")]
     pub flip_heatmap: Option<PathBuf>,
-    /// Write the edge mask (white: pixels spanning an object boundary); needs --scene.
+    /// Write the edge mask (white: pixels spanning an edge); needs --scene.
     #[arg(long, value_name = "PNG")]
     pub edge_map: Option<PathBuf>,
     /// Print the result as JSON.
@@ -101,15 +102,17 @@ fn read(path: &Path) -> Result<Image, CliError> {
 
 /// Checks a heat-map's path: a PNG that overwrites neither input.
 fn check_png(path: &Path, inputs: [&Path; 2], option: &str) -> Result<(), CliError> {
-    for input in inputs {
-        if check_output(path, input)? != lumiere::output::Format::Png {
-            return Err(CliError::BadInput(format!(
-                "{}: {option} must be a .png",
-                path.display()
-            )));
-        }
+    let png = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !png {
+        return Err(CliError::BadInput(format!(
+            "{}: {option} must be a .png",
+            path.display()
+        )));
     }
-    Ok(())
+    inputs.into_iter().try_for_each(|input| check_output_path(path, input))
 }
 
 /// Whether any scene setting is given, which only --scene uses.
@@ -348,7 +351,7 @@ fn print_text(args: &CompareArgs, a: &Image, b: &Image, r: &Report, notes: &[Str
     println!("FLIP mean          {:.4} (max {:.4})", m.flip_mean, m.flip_max);
     if let (Some(e), Some(scene)) = (&r.edges, &args.scene) {
         println!(
-            "object edges       {} of {} pixels ({:.4} %) span an object boundary in {}",
+            "edges              {} of {} pixels ({:.4} %) span an edge (outline, crease, shadow) in {}",
             e.pixels,
             m.pixels,
             100.0 * e.pixels as f64 / m.pixels as f64,
@@ -366,7 +369,7 @@ fn print_text(args: &CompareArgs, a: &Image, b: &Image, r: &Report, notes: &[Str
     }
     let judged = match r.judged {
         Judged::All => "all pixels",
-        Judged::OffEdges => "the pixels off object edges",
+        Judged::OffEdges => "the pixels off edges",
     };
     let flip_rule = r
         .rule

@@ -54,6 +54,8 @@ pub fn decode(bytes: &[u8], extension: &str) -> Result<Image, String> {
             ));
         }
         let (rgb, non_finite) = quantize_floats(&pfm.rgb);
+        // A grey value stands in all three channels.
+        let non_finite = non_finite / (3 / pfm.channels as usize);
         if non_finite > 0 {
             notes.push(non_finite_note(non_finite));
         }
