@@ -1,7 +1,28 @@
 //! Image comparison for students checking their render against the oracle, and for
-//! reviews: per-channel 8-bit differences, their maximum and RMS, PSNR, the count of
-//! differing pixels, and a heat-map of the difference.
+//! reviews.
+//!
+//! - [`read`]: the image files read (PNG, PPM / PGM, PFM, EXR, JPEG, BMP, TGA) and what
+//!   each converts on the way to 8-bit RGB; [`pfm`] the PFM reader.
+//! - [`metrics`]: per-pixel differences in 8-bit levels and their statistics over a set of
+//!   pixels: max, RMS, PSNR, percentiles, the fraction beyond a tolerance, FLIP's mean.
+//! - [`flip`]: the perceptual metric FLIP per pixel, and its heat-map.
+//! - The edges a comparison may judge apart (the pixels whose footprint spans an outline, a
+//!   crease or a shadow's edge, so a sampling or anti-aliasing difference there is reported
+//!   apart from shading errors) come from the scene, through [`crate::edges`], which traces
+//!   it and so sits in a layer above this one.
+//! - Here: [`compare`], which judges two images by a [`Rule`] into a [`Report`] with the
+//!   worst pixels; and the plain statistics ([`compare_rgb8`]) and level heat-map
+//!   ([`heat_map`]) that reviews and studies use.
 
+pub mod flip;
+pub mod metrics;
+pub mod pfm;
+pub mod read;
+
+pub use metrics::{PixelDiffs, Psnr, Stats, stats};
+pub use read::{Image, read_image};
+
+use serde::Serialize;
 use std::path::Path;
 
 /// Differences between two images of the same size.
@@ -81,11 +102,167 @@ fn heat_color(d: u8, max: u8) -> [u8; 3] {
     [q(r), if g > 0.0 { q(g) } else { 0 }, if b > 0.0 { q(b) } else { 0 }]
 }
 
-/// Loads an image file as RGB8, with the path in the error.
+/// When two images count as equal enough: at most `max_fraction` of the judged pixels
+/// differ by more than `tolerance` levels (pbrt's `imgtool diff --difftol` judges so too),
+/// and, when `max_flip` is set, their FLIP mean is at most it. The judged pixels are those
+/// off edges when edges are known, else all.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Rule {
+    pub tolerance: u8,
+    pub max_fraction: f64,
+    pub max_flip: Option<f64>,
+}
+
+impl Default for Rule {
+    /// Any pixel beyond 0 levels fails: equal images only.
+    fn default() -> Self {
+        Rule {
+            tolerance: 0,
+            max_fraction: 0.0,
+            max_flip: None,
+        }
+    }
+}
+
+/// One of the worst pixels.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WorstPixel {
+    pub x: u32,
+    pub y: u32,
+    /// Its colour in the first image (yours) and in the second (the oracle).
+    pub a: [u8; 3],
+    pub b: [u8; 3],
+    /// Its largest channel difference, in levels.
+    pub difference: u8,
+    pub flip: f32,
+}
+
+/// The pixels judged by the rule.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Judged {
+    /// Every pixel (no scene given).
+    All,
+    /// The pixels off edges.
+    OffEdges,
+}
+
+/// The metrics on and off edges.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EdgeReport {
+    /// Pixels spanning an edge.
+    pub pixels: u64,
+    /// The metrics of the pixels off edges (`None` when every pixel is an edge).
+    pub off_edges: Option<Stats>,
+    /// The metrics of the edge pixels (`None` when there are none).
+    pub on_edges: Option<Stats>,
+}
+
+/// What [`compare`] found.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Report {
+    pub width: u32,
+    pub height: u32,
+    pub rule: Rule,
+    pub judged: Judged,
+    pub pass: bool,
+    /// Why the images fail (empty when they pass).
+    pub failures: Vec<String>,
+    /// The metrics of every pixel.
+    pub metrics: Stats,
+    pub edges: Option<EdgeReport>,
+    /// The judged pixels differing most, largest difference first (then top to bottom, left
+    /// to right); only pixels that differ.
+    pub worst: Vec<WorstPixel>,
+    /// Every pixel's FLIP value, row-major (for its heat-map).
+    #[serde(skip)]
+    pub flip: Vec<f32>,
+}
+
+/// Compares `a` (yours) with `b` (the oracle), RGB8 of `width * height` pixels (at least
+/// one), by `rule`, judging the pixels off `edges` when given (a row-major mask, true on
+/// edges), and lists the `worst` judged pixels.
+pub fn compare(
+    a: &[u8],
+    b: &[u8],
+    width: u32,
+    height: u32,
+    rule: &Rule,
+    edges: Option<&[bool]>,
+    worst: usize,
+) -> Report {
+    let diffs = PixelDiffs::new(a, b, width, height, flip::flip_map(b, a, width, height));
+    let all = stats(&diffs, rule.tolerance, |_| true).expect("at least one pixel");
+    let edge_report = edges.map(|e| EdgeReport {
+        pixels: e.iter().filter(|&&e| e).count() as u64,
+        off_edges: stats(&diffs, rule.tolerance, |i| !e[i]),
+        on_edges: stats(&diffs, rule.tolerance, |i| e[i]),
+    });
+    let judged_pixel = |i: usize| edges.is_none_or(|e| !e[i]);
+    let (judged, judged_stats) = match &edge_report {
+        Some(e) => (Judged::OffEdges, e.off_edges.as_ref()),
+        None => (Judged::All, Some(&all)),
+    };
+    let mut failures = Vec::new();
+    if let Some(s) = judged_stats {
+        let which = if judged == Judged::OffEdges { " non-edge" } else { "" };
+        if s.fraction_beyond_tolerance > rule.max_fraction {
+            failures.push(format!(
+                "{} of {}{which} pixels ({:.4} %) differ by more than {} levels; allowed: {} % (--max-fraction {})",
+                s.beyond_tolerance,
+                s.pixels,
+                100.0 * s.fraction_beyond_tolerance,
+                rule.tolerance,
+                100.0 * rule.max_fraction,
+                rule.max_fraction
+            ));
+        }
+        if let Some(max_flip) = rule.max_flip
+            && s.flip_mean > max_flip
+        {
+            failures.push(format!(
+                "the FLIP mean of the{which} pixels is {:.6}; allowed: {max_flip} (--max-flip)",
+                s.flip_mean
+            ));
+        }
+    }
+    let mut order: Vec<usize> = (0..diffs.max.len())
+        .filter(|&i| judged_pixel(i) && diffs.max[i] > 0)
+        .collect();
+    // Largest difference first; the row-major index breaks ties (top to bottom, left to right).
+    order.sort_by_key(|&i| (std::cmp::Reverse(diffs.max[i]), i));
+    let pixel = |rgb: &[u8], i: usize| [rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]];
+    let worst = order
+        .into_iter()
+        .take(worst)
+        .map(|i| WorstPixel {
+            x: (i % width as usize) as u32,
+            y: (i / width as usize) as u32,
+            a: pixel(a, i),
+            b: pixel(b, i),
+            difference: diffs.max[i],
+            flip: diffs.flip[i],
+        })
+        .collect();
+    Report {
+        width,
+        height,
+        rule: *rule,
+        judged,
+        pass: failures.is_empty(),
+        failures,
+        metrics: all,
+        edges: edge_report,
+        worst,
+        flip: diffs.flip,
+    }
+}
+
+/// Loads an image file as RGB8 (any format [`read_image`] reads, converted as it says),
+/// with the path in the error.
 pub fn load_rgb8(path: &Path) -> Result<(u32, u32, Vec<u8>), String> {
-    let img = image::open(path).map_err(|e| format!("{}: cannot read the image: {e}", path.display()))?;
-    let rgb = img.to_rgb8();
-    Ok((rgb.width(), rgb.height(), rgb.into_raw()))
+    let image = read_image(path)?;
+    Ok((image.width, image.height, image.rgb))
 }
 
 #[cfg(test)]

@@ -24,7 +24,8 @@
 //!    it renders ([`trace::fast`]), to the same bits.
 //! 9. [`render`]: pixels in parallel, deterministic for any thread count.
 //! 10. [`family`] (images that differ only in depth, lights, an area light's count or
-//!     shading, rendered in one pass), [`probe`] (the recorded ray tree of one pixel).
+//!     shading, rendered in one pass), [`probe`] (the recorded ray tree of one pixel),
+//!     [`edges`] (the pixels whose footprint spans a boundary, from the recorded paths).
 //! 11. [`figures`]: the course's figure sets, manifests, contact sheets and gallery.
 //! 12. [`study`]: render time against error of area lights.
 //!
@@ -65,6 +66,7 @@ pub mod area_light;
 pub mod camera;
 pub mod compare;
 pub mod conventions;
+pub mod edges;
 pub mod family;
 pub mod figures;
 pub mod film;

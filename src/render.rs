@@ -73,7 +73,7 @@ pub fn sample_position(world: &World, x: u32, y: u32, k: u32) -> (f64, f64) {
 
 /// The camera ray through image position `(px, py)`: from the eye, or from the image plane
 /// at the conventions' `near`.
-fn camera_ray(world: &World, (px, py): (f64, f64)) -> Ray {
+pub fn camera_ray(world: &World, (px, py): (f64, f64)) -> Ray {
     let s = &world.scene.settings;
     match s.conventions.ray_origin {
         RayOrigin::Eye => world.camera.ray(px, py, s.width, s.height),

@@ -429,9 +429,9 @@ fn compare_reports_differences_and_exits_by_tolerance() {
     let o = lumiere(&["compare", sa, sb, "--json", "--heatmap", heat.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(json["max_diff"], 4);
-    assert_eq!(json["differing_pixels"], 1);
-    assert!((json["rms"].as_f64().unwrap() - (25.0f64 / 6.0).sqrt()).abs() < 1e-12);
+    assert_eq!(json["metrics"]["max"], 4);
+    assert_eq!(json["metrics"]["beyond_tolerance"], 1);
+    assert!((json["metrics"]["rms"].as_f64().unwrap() - (25.0f64 / 6.0).sqrt()).abs() < 1e-12);
     let heat = image::open(&heat).unwrap().to_rgb8();
     assert_eq!(heat.get_pixel(0, 0).0, [0, 0, 0]);
     assert_ne!(heat.get_pixel(1, 0).0, [0, 0, 0]);

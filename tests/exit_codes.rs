@@ -252,7 +252,10 @@ fn images_differ() {
         out.contains("differing pixels   1 of 2 (50.0000 %) beyond 0 levels"),
         "{out}"
     );
-    assert_eq!(err, "lumiere: error: 1 pixels differ by more than 0 levels\n");
+    assert_eq!(
+        err,
+        "lumiere: error: 1 of 2 pixels (50.0000 %) differ by more than 0 levels; allowed: 0 % (--max-fraction 0)\n"
+    );
     let (code, _, _) = result(lumiere(&[
         "compare",
         a.to_str().unwrap(),

@@ -1,71 +1,404 @@
-//! `lumiere compare`: two images' differences, printed as text or JSON, an optional
-//! heat-map, and exit 1 when some pixel differs by more than the tolerance.
+//! `lumiere compare`: your image against the oracle's, by a rule (pixels beyond a
+//! tolerance, and optionally FLIP's mean), printed as text or JSON, with heat-maps, the
+//! worst pixels as `lumiere probe` command lines, and with `--scene` the pixels on object
+//! edges reported apart. Exit 0 pass, 1 the images differ beyond the rule, 2 bad input.
 
-use super::{CliError, check_output};
+use super::{CliError, Overrides, check_output_path, load_scene};
 use clap::Args;
-use lumiere::compare::{compare_rgb8, heat_map, load_rgb8};
-use lumiere::film::{WriteError, write_atomic};
-use std::path::PathBuf;
+use lumiere::compare::flip::flip_heat_map;
+use lumiere::compare::read::{Image, read_image};
+use lumiere::compare::{Judged, Report, Rule, Stats, compare, heat_map};
+use lumiere::edges::edge_mask;
+use lumiere::film::{WriteError, encode_png, write_atomic};
+use lumiere::world::World;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
 
 #[derive(Args, Debug)]
 pub struct CompareArgs {
-    /// Your image.
+    /// Your image: PNG, PPM / PGM / PBM, PFM, EXR, JPEG, BMP or TGA.
     pub a: PathBuf,
-    /// The reference image (same size).
+    /// The oracle's image (the same size).
     pub b: PathBuf,
     /// Largest per-channel difference (8-bit levels) that still counts as equal.
     #[arg(long, default_value_t = 0)]
     pub tolerance: u8,
-    /// Write a heat-map of the differences (black equal, blue small, red, white >= 16 levels).
-    #[arg(long)]
+    /// Largest fraction (0 to 1) of the judged pixels allowed beyond the tolerance
+    /// (0.001 = 0.1 %). The default 0 fails on any such pixel.
+    #[arg(long, default_value_t = 0.0, value_name = "FRACTION")]
+    pub max_fraction: f64,
+    /// Also fail when the FLIP mean of the judged pixels exceeds this (0 to 1).
+    #[arg(long, value_name = "FLIP")]
+    pub max_flip: Option<f64>,
+    /// The scene both images render: pixels spanning an edge (an object's outline, a crease,
+    /// a shadow's edge, also seen in a mirror or through glass) are reported apart
+    /// and the rule judges the others. The scene is loaded at the images' size.
+    #[arg(long, value_name = "SCENE")]
+    pub scene: Option<PathBuf>,
+    /// How many of the worst judged pixels to list, each with its `lumiere probe` line.
+    #[arg(long, default_value_t = 10, value_name = "N")]
+    pub worst: usize,
+    /// Write a heat-map of the level differences (black equal, blue small, red, white >= 16 levels).
+    #[arg(long, value_name = "PNG")]
     pub heatmap: Option<PathBuf>,
+    /// Write FLIP's heat-map (magma: black 0, purple, orange, pale yellow 1).
+    #[arg(long, value_name = "PNG")]
+    pub flip_heatmap: Option<PathBuf>,
+    /// Write the edge mask (white: pixels spanning an edge); needs --scene.
+    #[arg(long, value_name = "PNG")]
+    pub edge_map: Option<PathBuf>,
     /// Print the result as JSON.
     #[arg(long)]
     pub json: bool,
+    /// The scene's settings, as `render` takes them, for --scene (the size is the images').
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `compare --json`'s document.
+#[derive(Serialize)]
+struct Json<'a> {
+    a: String,
+    b: String,
+    width: u32,
+    height: u32,
+    verdict: &'static str,
+    failures: &'a [String],
+    rule: JsonRule,
+    metrics: &'a Stats,
+    edges: Option<JsonEdges<'a>>,
+    worst: Vec<JsonWorst<'a>>,
+    notes: &'a [String],
+}
+
+#[derive(Serialize)]
+struct JsonRule {
+    tolerance: u8,
+    max_fraction: f64,
+    max_flip: Option<f64>,
+    judged: Judged,
+}
+
+#[derive(Serialize)]
+struct JsonEdges<'a> {
+    scene: String,
+    pixels: u64,
+    fraction: f64,
+    off_edges: Option<&'a Stats>,
+    on_edges: Option<&'a Stats>,
+}
+
+#[derive(Serialize)]
+struct JsonWorst<'a> {
+    #[serde(flatten)]
+    pixel: &'a lumiere::compare::WorstPixel,
+    probe: String,
+}
+
+/// Reads an image; errors are bad input.
+fn read(path: &Path) -> Result<Image, CliError> {
+    read_image(path).map_err(CliError::BadInput)
+}
+
+/// Checks a heat-map's path: a PNG that overwrites neither input.
+fn check_png(path: &Path, inputs: [&Path; 2], option: &str) -> Result<(), CliError> {
+    let png = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !png {
+        return Err(CliError::BadInput(format!(
+            "{}: {option} must be a .png",
+            path.display()
+        )));
+    }
+    inputs.into_iter().try_for_each(|input| check_output_path(path, input))
+}
+
+/// Whether any scene setting is given, which only --scene uses.
+fn any_override(o: &Overrides) -> Option<&'static str> {
+    [
+        (o.width.is_some(), "--width"),
+        (o.height.is_some(), "--height"),
+        (o.spp.is_some(), "--spp"),
+        (o.seed.is_some(), "--seed"),
+        (o.depth.is_some(), "--depth"),
+        (o.adaptive_threshold.is_some(), "--adaptive-threshold"),
+        (o.conventions.is_some(), "--conventions"),
+        (!o.convention.is_empty(), "--convention"),
+    ]
+    .into_iter()
+    .find_map(|(given, name)| given.then_some(name))
+}
+
+/// Checks the options that need no file.
+fn check_args(args: &CompareArgs) -> Result<(), CliError> {
+    let bad = |m: String| Err(CliError::BadInput(m));
+    if !(0.0..=1.0).contains(&args.max_fraction) {
+        return bad(format!("--max-fraction: must be in [0, 1], got {}", args.max_fraction));
+    }
+    if let Some(f) = args.max_flip
+        && !(0.0..=1.0).contains(&f)
+    {
+        return bad(format!("--max-flip: must be in [0, 1], got {f}"));
+    }
+    if args.scene.is_none() {
+        if let Some(name) = any_override(&args.overrides) {
+            return bad(format!("{name} sets the scene of --scene, which is not given"));
+        }
+        if args.edge_map.is_some() {
+            return bad("--edge-map needs --scene (the edges are the scene's)".into());
+        }
+    }
+    Ok(())
+}
+
+/// The `lumiere probe` command line of pixel `(x, y)`: the scene with its settings, or a
+/// placeholder for it.
+fn probe_line(args: &CompareArgs, width: u32, height: u32, x: u32, y: u32) -> String {
+    let scene = args
+        .scene
+        .as_ref()
+        .map_or("SCENE.toml".to_string(), |s| s.display().to_string());
+    let mut line = format!("lumiere probe {scene} --pixel {x},{y} --width {width} --height {height}");
+    let o = &args.overrides;
+    let mut add = |name: &str, value: Option<String>| {
+        if let Some(v) = value {
+            line.push_str(&format!(" --{name} {v}"));
+        }
+    };
+    add("spp", o.spp.map(|v| v.to_string()));
+    add("seed", o.seed.map(|v| v.to_string()));
+    add("depth", o.depth.map(|v| v.to_string()));
+    add("adaptive-threshold", o.adaptive_threshold.map(|v| v.to_string()));
+    add("conventions", o.conventions.clone());
+    for c in &o.convention {
+        add("convention", Some(c.clone()));
+    }
+    line
+}
+
+/// The edge mask of `scene` at the images' size.
+fn edges_of(args: &CompareArgs, scene: &Path, width: u32, height: u32) -> Result<Vec<bool>, CliError> {
+    for (given, side, name) in [
+        (args.overrides.width, width, "width"),
+        (args.overrides.height, height, "height"),
+    ] {
+        if let Some(v) = given
+            && v != side
+        {
+            return Err(CliError::BadInput(format!(
+                "--{name} {v}: the images' {name} is {side}; the scene is loaded at the images' size"
+            )));
+        }
+    }
+    let overrides = Overrides {
+        width: Some(width),
+        height: Some(height),
+        ..args.overrides.clone()
+    };
+    let scene = load_scene(scene, &overrides)?;
+    let world = World::with_accel(&scene, args.overrides.accel);
+    Ok(edge_mask(&world))
 }
 
 pub fn run(args: &CompareArgs) -> Result<(), CliError> {
-    let (wa, ha, a) = load_rgb8(&args.a).map_err(CliError::BadInput)?;
-    let (wb, hb, b) = load_rgb8(&args.b).map_err(CliError::BadInput)?;
-    if (wa, ha) != (wb, hb) {
-        return Err(CliError::BadInput(format!(
-            "the images differ in size: {} is {wa} x {ha}, {} is {wb} x {hb}",
-            args.a.display(),
-            args.b.display()
-        )));
-    }
-    let c = compare_rgb8(&a, &b, wa, ha, args.tolerance);
-    if let Some(path) = &args.heatmap {
-        if check_output(path, &args.a)? != lumiere::output::Format::Png {
-            return Err(CliError::BadInput(format!(
-                "{}: the heat-map must be a .png",
-                path.display()
-            )));
+    check_args(args)?;
+    let inputs = [args.a.as_path(), args.b.as_path()];
+    for (path, option) in [
+        (&args.heatmap, "--heatmap"),
+        (&args.flip_heatmap, "--flip-heatmap"),
+        (&args.edge_map, "--edge-map"),
+    ] {
+        if let Some(path) = path {
+            check_png(path, inputs, option)?;
         }
-        let png = lumiere::film::encode_png(wa, ha, &heat_map(&a, &b, 16))
-            .map_err(|e| CliError::Failed(format!("cannot encode the heat-map: {e}")))?;
-        write_atomic(path, &png).map_err(|e| WriteError::new(path, "cannot write", e))?;
     }
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&c).unwrap_or_default());
-    } else {
-        let total = wa as u64 * ha as u64;
-        println!("size               {wa} x {ha}");
-        println!("max difference     {} levels", c.max_diff);
-        println!("RMS difference     {:.4} levels", c.rms);
-        println!("PSNR               {:.2} dB", c.psnr_db);
-        println!(
-            "differing pixels   {} of {total} ({:.4} %) beyond {} levels",
-            c.differing_pixels,
-            100.0 * c.differing_pixels as f64 / total as f64,
-            c.tolerance
-        );
-    }
-    if c.differing_pixels > 0 {
-        return Err(CliError::Failed(format!(
-            "{} pixels differ by more than {} levels",
-            c.differing_pixels, args.tolerance
+    let a = read(&args.a)?;
+    let b = read(&args.b)?;
+    if (a.width, a.height) != (b.width, b.height) {
+        return Err(CliError::BadInput(format!(
+            "the images differ in size: {} is {} x {}, {} is {} x {}",
+            args.a.display(),
+            a.width,
+            a.height,
+            args.b.display(),
+            b.width,
+            b.height
         )));
+    }
+    let (w, h) = (a.width, a.height);
+    let edges = match &args.scene {
+        Some(scene) => Some(edges_of(args, scene, w, h)?),
+        None => None,
+    };
+    let rule = Rule {
+        tolerance: args.tolerance,
+        max_fraction: args.max_fraction,
+        max_flip: args.max_flip,
+    };
+    let report = compare(&a.rgb, &b.rgb, w, h, &rule, edges.as_deref(), args.worst);
+    let notes: Vec<String> = [(&args.a, &a), (&args.b, &b)]
+        .iter()
+        .flat_map(|(path, img)| img.notes.iter().map(move |n| format!("{}: {n}", path.display())))
+        .collect();
+
+    let write_png = |path: &Option<PathBuf>, rgb: &dyn Fn() -> Vec<u8>| -> Result<(), CliError> {
+        if let Some(path) = path {
+            let png = encode_png(w, h, &rgb())
+                .map_err(|e| CliError::Failed(format!("cannot encode {}: {e}", path.display())))?;
+            write_atomic(path, &png).map_err(|e| WriteError::new(path, "cannot write", e))?;
+        }
+        Ok(())
+    };
+    write_png(&args.heatmap, &|| heat_map(&a.rgb, &b.rgb, 16))?;
+    write_png(&args.flip_heatmap, &|| flip_heat_map(&report.flip, w, h))?;
+    if let Some(mask) = &edges {
+        write_png(&args.edge_map, &|| {
+            mask.iter().flat_map(|&e| [if e { 255 } else { 0 }; 3]).collect()
+        })?;
+    }
+
+    if args.json {
+        print_json(args, &report, &notes)?;
+    } else {
+        print_text(args, &a, &b, &report, &notes);
+    }
+    if !report.pass {
+        return Err(CliError::Failed(report.failures.join("; ")));
     }
     Ok(())
+}
+
+fn print_json(args: &CompareArgs, r: &Report, notes: &[String]) -> Result<(), CliError> {
+    let json = Json {
+        a: args.a.display().to_string(),
+        b: args.b.display().to_string(),
+        width: r.width,
+        height: r.height,
+        verdict: if r.pass { "pass" } else { "fail" },
+        failures: &r.failures,
+        rule: JsonRule {
+            tolerance: r.rule.tolerance,
+            max_fraction: r.rule.max_fraction,
+            max_flip: r.rule.max_flip,
+            judged: r.judged,
+        },
+        metrics: &r.metrics,
+        edges: r.edges.as_ref().map(|e| JsonEdges {
+            scene: args.scene.as_ref().map(|s| s.display().to_string()).unwrap_or_default(),
+            pixels: e.pixels,
+            fraction: e.pixels as f64 / r.metrics.pixels as f64,
+            off_edges: e.off_edges.as_ref(),
+            on_edges: e.on_edges.as_ref(),
+        }),
+        worst: r
+            .worst
+            .iter()
+            .map(|p| JsonWorst {
+                pixel: p,
+                probe: probe_line(args, r.width, r.height, p.x, p.y),
+            })
+            .collect(),
+        notes,
+    };
+    let text =
+        serde_json::to_string_pretty(&json).map_err(|e| CliError::Failed(format!("cannot write the JSON: {e}")))?;
+    println!("{text}");
+    Ok(())
+}
+
+/// One line of a set's metrics, for the edge rows.
+fn summary(s: &Stats) -> String {
+    format!(
+        "{} pixels: max {}, RMS {:.4}, PSNR {}, p50 / p99 / p99.9 {} / {} / {}, beyond {} levels {} ({:.4} %), FLIP mean {:.4}",
+        s.pixels,
+        s.max,
+        s.rms,
+        s.psnr_db,
+        s.p50,
+        s.p99,
+        s.p999,
+        s.tolerance,
+        s.beyond_tolerance,
+        100.0 * s.fraction_beyond_tolerance,
+        s.flip_mean
+    )
+}
+
+fn print_text(args: &CompareArgs, a: &Image, b: &Image, r: &Report, notes: &[String]) {
+    let m = &r.metrics;
+    println!("yours              {} ({})", args.a.display(), a.format);
+    println!("oracle             {} ({})", args.b.display(), b.format);
+    for n in notes {
+        println!("note               {n}");
+    }
+    println!("size               {} x {}", r.width, r.height);
+    println!("max difference     {} levels", m.max);
+    println!("RMS difference     {:.4} levels", m.rms);
+    println!("PSNR               {}", m.psnr_db);
+    println!(
+        "percentiles        p50 {} / p99 {} / p99.9 {} levels",
+        m.p50, m.p99, m.p999
+    );
+    println!(
+        "differing pixels   {} of {} ({:.4} %) beyond {} levels",
+        m.beyond_tolerance,
+        m.pixels,
+        100.0 * m.fraction_beyond_tolerance,
+        m.tolerance
+    );
+    println!("FLIP mean          {:.4} (max {:.4})", m.flip_mean, m.flip_max);
+    if let (Some(e), Some(scene)) = (&r.edges, &args.scene) {
+        println!(
+            "edges              {} of {} pixels ({:.4} %) span an edge (outline, crease, shadow) in {}",
+            e.pixels,
+            m.pixels,
+            100.0 * e.pixels as f64 / m.pixels as f64,
+            scene.display()
+        );
+        let none = |what: &str| format!("no {what} pixels");
+        println!(
+            "  off edges        {}",
+            e.off_edges.as_ref().map_or_else(|| none("non-edge"), summary)
+        );
+        println!(
+            "  on edges         {}",
+            e.on_edges.as_ref().map_or_else(|| none("edge"), summary)
+        );
+    }
+    let judged = match r.judged {
+        Judged::All => "all pixels",
+        Judged::OffEdges => "the pixels off edges",
+    };
+    let flip_rule = r
+        .rule
+        .max_flip
+        .map_or(String::new(), |f| format!(" and FLIP mean <= {f}"));
+    println!(
+        "rule               at most {} % of {judged} beyond {} levels{flip_rule}",
+        100.0 * r.rule.max_fraction,
+        r.rule.tolerance
+    );
+    println!("verdict            {}", if r.pass { "pass" } else { "fail" });
+    if !r.worst.is_empty() {
+        let which = if r.judged == Judged::OffEdges { " off edges" } else { "" };
+        println!("worst pixels{which} (yours, oracle, largest channel difference, FLIP):");
+        for p in &r.worst {
+            println!(
+                "  {:>4},{:<4}  ({:>3}, {:>3}, {:>3})  ({:>3}, {:>3}, {:>3})  {:>3}  {:.4}  {}",
+                p.x,
+                p.y,
+                p.a[0],
+                p.a[1],
+                p.a[2],
+                p.b[0],
+                p.b[1],
+                p.b[2],
+                p.difference,
+                p.flip,
+                probe_line(args, r.width, r.height, p.x, p.y)
+            );
+        }
+    }
 }

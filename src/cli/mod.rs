@@ -74,9 +74,10 @@ pub enum Command {
         after_help = "Examples:\n  lumiere render scenes/reference.toml -o reference.png\n  lumiere render scenes/reference.toml -o small.png --width 200 --height 150 --spp 1 --stats\n  lumiere render scenes/prism.toml -o prism.exr --depth 20          # float radiance\n  lumiere render scenes/reference.toml -o part0.shard --shard 0/4    # a quarter, for merge\n  lumiere render scenes/reference.toml -o chapter.png --reference   # the chapter's tracer: same bytes\n\nExit codes: 0 ok, 1 the image could not be written (disk full), 2 bad input (scene, option, output path), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP (nothing written)."
     )]
     Render(render::RenderArgs),
-    /// Compare two images: max and RMS difference, PSNR, differing pixels, heat-map.
+    /// Compare your image with the oracle's: level differences and their percentiles, FLIP,
+    /// object edges apart (--scene), the worst pixels with their probe command.
     #[command(
-        after_help = "Examples:\n  lumiere compare mine.png figures/lighting/01-ambient.png\n  lumiere compare mine.png ref.png --tolerance 1 --heatmap diff.png --json\n\nExit codes: 0 within tolerance, 1 some pixel differs by more than the tolerance, 2 bad input (images, heat-map path)."
+        after_help = "Examples:\n  lumiere compare mine.png figures/lighting/01-ambient.png\n  lumiere compare mine.ppm oracle.png --scene scenes/reference.toml --tolerance 8 --max-fraction 0.001\n  lumiere compare mine.png ref.png --flip-heatmap flip.png --heatmap diff.png --json\n\nReads PNG, PPM / PGM / PBM, PFM, EXR, JPEG, BMP and TGA; PFM and EXR are clamped and quantised as lumiere's film does.\nExit codes: 0 the rule holds, 1 the images differ beyond the rule (--tolerance, --max-fraction, --max-flip), 2 bad input (images, sizes, options, scene, output paths)."
     )]
     Compare(compare::CompareArgs),
     /// Regenerate the course's figures (all sets when none is named).

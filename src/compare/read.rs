@@ -1,0 +1,260 @@
+//! Reading the images `compare` takes, as 8-bit RGB, with a note for every conversion.
+//!
+//! The format is told by the file's first bytes (the extension only for TGA, which has no
+//! signature). What each converts:
+//! - PNG, PPM / PGM / PBM (ASCII or binary), BMP, TGA, JPEG at 8 bits: as stored;
+//! - 16-bit PNG or PPM / PGM: each value `v` to `round(255 v / 65535)`;
+//! - grey (PGM, grey PNG, ...): the grey level in R, G and B;
+//! - alpha: dropped, the colour compared as stored (not composited);
+//! - PFM and EXR (float radiance, as `lumiere render -o X.pfm` writes): each channel clamped
+//!   to [0, 1] and quantised to 8 bits exactly as lumiere's film does
+//!   ([`crate::film::quantize`], no gamma), so a float image compares as the PNG it would
+//!   make.
+
+use super::pfm::{decode_pfm, looks_like_pfm};
+use crate::film::quantize;
+use image::{DynamicImage, ImageFormat};
+use std::path::Path;
+
+/// What `compare` reads, for messages.
+pub const ALLOWED: &str = "PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA";
+
+/// An image read for comparison.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    /// Interleaved 8-bit RGB, row 0 at the top.
+    pub rgb: Vec<u8>,
+    /// The format read (`PNG`, `PPM`, `PFM`, ...).
+    pub format: &'static str,
+    /// Every conversion made on the way to 8-bit RGB, in words.
+    pub notes: Vec<String>,
+}
+
+/// Reads an image file; errors name the file, what is wrong and what is read.
+pub fn read_image(path: &Path) -> Result<Image, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: cannot read the file: {e}", path.display()))?;
+    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    decode(&bytes, extension).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Decodes an image from its bytes; `extension` (without the dot) names TGA files.
+pub fn decode(bytes: &[u8], extension: &str) -> Result<Image, String> {
+    if looks_like_pfm(bytes) {
+        let pfm = decode_pfm(bytes)?;
+        let mut notes = vec![float_note("PFM")];
+        if pfm.channels == 1 {
+            notes.push("grey input (Pf): its value used for R, G and B".into());
+        }
+        if pfm.scale.abs() != 1.0 {
+            notes.push(format!(
+                "PFM scale {}: only its sign (the byte order) is used, the values are not multiplied",
+                pfm.scale
+            ));
+        }
+        let (rgb, non_finite) = quantize_floats(&pfm.rgb);
+        // A grey value stands in all three channels.
+        let non_finite = non_finite / (3 / pfm.channels as usize);
+        if non_finite > 0 {
+            notes.push(non_finite_note(non_finite));
+        }
+        return Ok(Image {
+            width: pfm.width,
+            height: pfm.height,
+            rgb,
+            format: "PFM",
+            notes,
+        });
+    }
+    let format = match image::guess_format(bytes) {
+        Ok(f) => f,
+        Err(_) if extension.eq_ignore_ascii_case("tga") => ImageFormat::Tga,
+        Err(_) => {
+            let ext = if extension.is_empty() {
+                "no extension".to_string()
+            } else {
+                format!("extension .{extension}")
+            };
+            return Err(format!(
+                "not an image compare reads (neither its first bytes nor its {ext} name a known format); it reads {ALLOWED}"
+            ));
+        }
+    };
+    let name = match format {
+        ImageFormat::Png => "PNG",
+        ImageFormat::Pnm => "PPM",
+        ImageFormat::OpenExr => "EXR",
+        ImageFormat::Jpeg => "JPEG",
+        ImageFormat::Bmp => "BMP",
+        ImageFormat::Tga => "TGA",
+        other => {
+            return Err(format!(
+                "a {} image, which compare does not read; it reads {ALLOWED}",
+                other
+                    .extensions_str()
+                    .first()
+                    .map_or("other".into(), |e| e.to_ascii_uppercase())
+            ));
+        }
+    };
+    let img = image::load_from_memory_with_format(bytes, format)
+        .map_err(|e| format!("cannot decode the {name} image: {e}"))?;
+    let mut notes = Vec::new();
+    if format == ImageFormat::Jpeg {
+        notes.push("JPEG is lossy: its compression alone changes pixels by a few levels".into());
+    }
+    let (width, height) = (img.width(), img.height());
+    let rgb = to_rgb8(img, name, &mut notes);
+    Ok(Image {
+        width,
+        height,
+        rgb,
+        format: name,
+        notes,
+    })
+}
+
+fn float_note(format: &str) -> String {
+    format!(
+        "{format}: read as float radiance, clamped to [0, 1] and quantised to 8 bits as lumiere's film does (no gamma): compared as the PNG it would make"
+    )
+}
+
+fn non_finite_note(n: usize) -> String {
+    format!("{n} channel values NaN or infinite: NaN read as 0, infinity clamped")
+}
+
+/// Each float clamped to [0, 1] and quantised as the film does, with the count of
+/// non-finite values.
+fn quantize_floats(values: &[f32]) -> (Vec<u8>, usize) {
+    let non_finite = values.iter().filter(|v| !v.is_finite()).count();
+    (values.iter().map(|&v| quantize(v as f64)).collect(), non_finite)
+}
+
+/// A 16-bit value to 8 bits, rounded to nearest: `round(255 v / 65535)`.
+pub fn level_from_16(v: u16) -> u8 {
+    ((v as u32 * 255 + 32767) / 65535) as u8
+}
+
+/// The note on a dropped alpha channel, `translucent` pixels of which were not opaque.
+fn alpha_note(translucent: usize) -> String {
+    if translucent == 0 {
+        "alpha channel dropped (every pixel opaque)".into()
+    } else {
+        format!(
+            "alpha channel dropped: {translucent} pixels not opaque, their colour compared as stored (not composited)"
+        )
+    }
+}
+
+/// The 8-bit RGB of a decoded image, noting each conversion.
+fn to_rgb8(img: DynamicImage, format: &str, notes: &mut Vec<String>) -> Vec<u8> {
+    let grey = "grey input: its level used for R, G and B";
+    let sixteen = "16-bit input converted to 8 bits (round(255 v / 65535))";
+    match img {
+        DynamicImage::ImageRgb8(i) => i.into_raw(),
+        DynamicImage::ImageRgba8(i) => {
+            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != u8::MAX).count()));
+            i.pixels().flat_map(|p| [p.0[0], p.0[1], p.0[2]]).collect()
+        }
+        DynamicImage::ImageLuma8(i) => {
+            notes.push(grey.into());
+            i.into_raw().into_iter().flat_map(|v| [v; 3]).collect()
+        }
+        DynamicImage::ImageLumaA8(i) => {
+            notes.push(grey.into());
+            notes.push(alpha_note(i.pixels().filter(|p| p.0[1] != u8::MAX).count()));
+            i.pixels().flat_map(|p| [p.0[0]; 3]).collect()
+        }
+        DynamicImage::ImageRgb16(i) => {
+            notes.push(sixteen.into());
+            i.into_raw().into_iter().map(level_from_16).collect()
+        }
+        DynamicImage::ImageRgba16(i) => {
+            notes.push(sixteen.into());
+            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != u16::MAX).count()));
+            i.pixels()
+                .flat_map(|p| [0, 1, 2].map(|c| level_from_16(p.0[c])))
+                .collect()
+        }
+        DynamicImage::ImageLuma16(i) => {
+            notes.push(sixteen.into());
+            notes.push(grey.into());
+            i.into_raw().into_iter().flat_map(|v| [level_from_16(v); 3]).collect()
+        }
+        DynamicImage::ImageLumaA16(i) => {
+            notes.push(sixteen.into());
+            notes.push(grey.into());
+            notes.push(alpha_note(i.pixels().filter(|p| p.0[1] != u16::MAX).count()));
+            i.pixels().flat_map(|p| [level_from_16(p.0[0]); 3]).collect()
+        }
+        DynamicImage::ImageRgb32F(i) => float_rgb(i.as_raw(), 3, format, notes),
+        DynamicImage::ImageRgba32F(i) => {
+            let rgb = float_rgb(i.as_raw(), 4, format, notes);
+            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != 1.0).count()));
+            rgb
+        }
+        other => {
+            notes.push(format!("{:?} pixels converted to 8-bit RGB", other.color()));
+            other.to_rgb8().into_raw()
+        }
+    }
+}
+
+/// Float pixels of `stride` channels (RGB first) clamped and quantised.
+fn float_rgb(values: &[f32], stride: usize, format: &str, notes: &mut Vec<String>) -> Vec<u8> {
+    notes.insert(0, float_note(format));
+    let rgb: Vec<f32> = values.chunks_exact(stride).flat_map(|p| [p[0], p[1], p[2]]).collect();
+    let (out, non_finite) = quantize_floats(&rgb);
+    if non_finite > 0 {
+        notes.push(non_finite_note(non_finite));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sixteen_bits_round_to_nearest() {
+        assert_eq!(level_from_16(0), 0);
+        assert_eq!(level_from_16(65535), 255);
+        // 257 = 65535 / 255 is one level; 128 / 257 = 0.498 rounds down, 129 / 257 up.
+        assert_eq!(level_from_16(257), 1);
+        assert_eq!(level_from_16(128), 0);
+        assert_eq!(level_from_16(129), 1);
+        assert_eq!(level_from_16(32896), 128);
+    }
+
+    #[test]
+    fn ascii_and_binary_pnm() {
+        let ascii = decode(b"P3\n2 1\n255\n10 20 30 40 50 60\n", "ppm").unwrap();
+        assert_eq!((ascii.width, ascii.height, ascii.format), (2, 1, "PPM"));
+        assert_eq!(ascii.rgb, [10, 20, 30, 40, 50, 60]);
+        assert!(ascii.notes.is_empty());
+        let binary = decode(b"P6\n2 1\n255\n\x0a\x14\x1e\x28\x32\x3c", "ppm").unwrap();
+        assert_eq!(binary.rgb, ascii.rgb);
+        let grey = decode(b"P2\n2 1\n255\n7 200\n", "pgm").unwrap();
+        assert_eq!(grey.rgb, [7, 7, 7, 200, 200, 200]);
+        assert_eq!(grey.notes, ["grey input: its level used for R, G and B"]);
+        // 16-bit binary PPM: big-endian values, maxval 65535.
+        let deep = decode(b"P6\n1 1\n65535\n\xff\xff\x01\x01\x00\x80", "ppm").unwrap();
+        assert_eq!(deep.rgb, [255, 1, 0]);
+        assert!(deep.notes[0].starts_with("16-bit input converted to 8 bits"));
+    }
+
+    #[test]
+    fn unknown_formats_are_named() {
+        let e = decode(b"hello, world", "txt").unwrap_err();
+        assert_eq!(
+            e,
+            "not an image compare reads (neither its first bytes nor its extension .txt name a known format); it reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA"
+        );
+        let e = decode(b"GIF89a\x01\x00\x01\x00", "gif").unwrap_err();
+        assert!(e.starts_with("a GIF image, which compare does not read"), "{e}");
+        let e = decode(b"\x89PNG\r\n\x1a\n", "png").unwrap_err();
+        assert!(e.starts_with("cannot decode the PNG image: "), "{e}");
+    }
+}
