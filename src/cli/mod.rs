@@ -4,6 +4,7 @@
 //! functions return data; these modules parse, print and choose exit codes.
 
 mod compare;
+mod convert;
 mod error;
 mod figures;
 mod lock;
@@ -104,6 +105,11 @@ pub enum Command {
         after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/review\n\nSheets go to <out>/snapshots/; <out>/index.html lists them with the figure changes of the last `lumiere figures --check --review <out>`.\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written (disk full), 2 bad input (folders, images)."
     )]
     ReviewSnapshots(review::ReviewArgs),
+    /// Translate a scene file between lumiere's TOML format and SIMRenderer's.
+    #[command(
+        after_help = "Examples:\n  lumiere convert scenes/reference.toml -o reference.txt      # to SIMRenderer\n  lumiere convert lab.txt -o lab.toml                          # to TOML\n  lumiere convert lab.txt -o lab.toml --lenient                # past SIMRenderer's soft errors\n\nThe output is TOML when its name ends in .toml, else SIMRenderer (or as --to says). What the output's format cannot say (a SIMRenderer file has no spot, area light or rectangle) is refused by name, and nothing is written. The output is read back: what does not give the same scene to the bit is named in a warning.\nExit codes: 0 ok, 1 the file could not be written (disk full), 2 bad input (scene, a thing the output's format cannot say, output path)."
+    )]
+    Convert(convert::ConvertArgs),
     /// Numerical stress campaign: hard rays against every shape, checked against double-double references.
     #[command(after_help = "Example:\n  lumiere stress --rays 2000 --seed 7")]
     Stress(stress::StressArgs),
@@ -234,6 +240,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
             Ok(())
         }
         Command::Probe(args) => probe::run(&args),
+        Command::Convert(args) => convert::run(&args, v),
         Command::ReviewSnapshots(args) => review::run(&args),
         Command::Stress(args) => stress::run(&args),
         Command::Study(args) => study::run(&args, v),
