@@ -1,5 +1,6 @@
 //! Every command README.md shows is run here, in order, in a scratch directory (with the
-//! repository's `scenes/` linked and `figures/lighting/` copied in), and must succeed.
+//! repository's `scenes/` and `tests/fixtures/` linked and `figures/lighting/` copied in),
+//! and must succeed.
 //! `cargo` lines are the build and test steps themselves; `parallel` lines are expanded as
 //! GNU parallel would. Only the commands in `SHRUNK` are changed, to keep the suite fast.
 //! A bare ``` block right after a ```sh block is an excerpt of the output of that block's
@@ -127,6 +128,8 @@ fn assert_excerpt(command: &str, output: &str, excerpt: &[String]) {
 fn every_readme_command_runs() {
     let dir = temp_dir("readme");
     std::os::unix::fs::symlink(repo("scenes"), dir.join("scenes")).unwrap();
+    std::fs::create_dir_all(dir.join("tests")).unwrap();
+    std::os::unix::fs::symlink(repo("tests/fixtures"), dir.join("tests/fixtures")).unwrap();
     let lighting = dir.join("figures/lighting");
     std::fs::create_dir_all(&lighting).unwrap();
     for f in std::fs::read_dir(repo("figures/lighting")).unwrap() {

@@ -10,8 +10,9 @@ use lumiere::figures::check::{Problem, check_index, check_set, extra_folders, re
 use lumiere::figures::{FigureSet, FiguresError, Reuse, Run, files, generate_until, write_index};
 use lumiere::film::{WriteError, write_atomic};
 use lumiere::review::{self, PageItem, Section};
+use lumiere::scene::{Format, simrenderer};
 use serde_json::json;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The file of the output folder that the last run's times go to (not a figure: the
 /// figures' own files hold no time, so that they change only when a pixel or a scene does).
@@ -46,6 +47,15 @@ pub struct FiguresArgs {
     /// Worker threads (default: all cores). The images do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Write each figure's scene into DIR/<set>/ (in --format), render nothing: a
+    /// student renders each figure with their own SIMRenderer lab. The figures SIMRenderer
+    /// cannot express are listed as skipped, with the reason.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["check", "list"])]
+    pub export_scenes: Option<PathBuf>,
+    /// The format of --export-scenes: `simrenderer` (NN-name.txt) or `toml` (the figure's
+    /// own file, NN-name.toml).
+    #[arg(long, value_parser = super::format_values(), default_value = "simrenderer", requires = "export_scenes")]
+    pub format: Format,
 }
 
 fn registry_error(e: files::RegistryError) -> CliError {
@@ -90,6 +100,9 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
         .collect();
     if args.check {
         return check(&all, &chosen, args, v);
+    }
+    if let Some(dir) = &args.export_scenes {
+        return export(&chosen, dir, args.format, v);
     }
     std::fs::create_dir_all(&args.out)
         .map_err(|e| WriteError::new(&args.out, "cannot create the output directory", e))?;
@@ -158,6 +171,46 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
             total,
             args.out.join("index.html").display()
         );
+    }
+    Ok(())
+}
+
+/// `--export-scenes`: each figure's scene into `dir/<set>/`, one line per set written and
+/// one per figure skipped.
+fn export(sets: &[&FigureSet], dir: &Path, format: Format, v: Verbosity) -> Result<(), CliError> {
+    for set in sets {
+        let folder = dir.join(&set.name);
+        let (mut written, mut skipped) = (0, 0);
+        for f in &set.figures {
+            let (name, bytes) = match format {
+                Format::Toml => {
+                    let bytes = std::fs::read(&f.scene_file).map_err(|e| {
+                        CliError::BadInput(format!("{}: cannot read the scene file: {e}", f.scene_file))
+                    })?;
+                    (format!("{}.toml", f.stem), bytes)
+                }
+                Format::SimRenderer => match simrenderer::to_simrenderer(&f.scene, &f.scene_file, &f.stem) {
+                    Ok(w) => (format!("{}.txt", f.stem), w.text.into_bytes()),
+                    Err(refused) => {
+                        println!("skipped {}/{}: {refused}", set.name, f.stem);
+                        skipped += 1;
+                        continue;
+                    }
+                },
+            };
+            std::fs::create_dir_all(&folder)
+                .map_err(|e| WriteError::new(&folder, "cannot create the output directory", e))?;
+            let path = folder.join(name);
+            write_atomic(&path, &bytes).map_err(|e| CliError::from(WriteError::new(&path, "cannot write", e)))?;
+            written += 1;
+        }
+        if v != Verbosity::Quiet {
+            println!(
+                "{:<12} {written:>3} scenes written, {skipped} skipped  {}",
+                set.name,
+                folder.display()
+            );
+        }
     }
     Ok(())
 }

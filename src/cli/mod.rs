@@ -4,6 +4,7 @@
 //! functions return data; these modules parse, print and choose exit codes.
 
 mod compare;
+mod convert;
 mod error;
 mod figures;
 mod lock;
@@ -20,7 +21,8 @@ pub use error::CliError;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 use lumiere::accel::AccelChoice;
-use lumiere::scene::{self, Scene};
+use lumiere::conventions::Conventions;
+use lumiere::scene::{self, Format, LoadOptions, Loaded, Scene};
 use lumiere::skips::Skip;
 use std::path::Path;
 use std::str::FromStr;
@@ -104,6 +106,11 @@ pub enum Command {
         after_help = "Examples:\n  lumiere review-snapshots\n  lumiere review-snapshots --dir snapshots --out target/review\n\nSheets go to <out>/snapshots/; <out>/index.html lists them with the figure changes of the last `lumiere figures --check --review <out>`.\nExit codes: 0 ok (whatever changed), 1 a sheet could not be written (disk full), 2 bad input (folders, images)."
     )]
     ReviewSnapshots(review::ReviewArgs),
+    /// Translate a scene file between lumiere's TOML format and SIMRenderer's.
+    #[command(
+        after_help = "Examples:\n  lumiere convert scenes/reference.toml -o reference.txt      # to SIMRenderer\n  lumiere convert lab.txt -o lab.toml                          # to TOML\n  lumiere convert lab.txt -o lab.toml --lenient                # past SIMRenderer's soft errors\n\nThe output is TOML when its name ends in .toml, else SIMRenderer (or as --to says). What the output's format cannot say (a SIMRenderer file has no spot, area light or rectangle) is refused by name, and nothing is written. The output is read back: what does not give the same scene to the bit is named in a warning.\nExit codes: 0 ok, 1 the file could not be written (disk full), 2 bad input (scene, a thing the output's format cannot say, output path)."
+    )]
+    Convert(convert::ConvertArgs),
     /// Numerical stress campaign: hard rays against every shape, checked against double-double references.
     #[command(after_help = "Example:\n  lumiere stress --rays 2000 --seed 7")]
     Stress(stress::StressArgs),
@@ -148,10 +155,25 @@ pub struct Overrides {
     /// One convention set after the preset, e.g. `shadow_filter=kt_color` (repeatable).
     #[arg(long, value_name = "KEY=VALUE")]
     pub convention: Vec<String>,
+    #[command(flatten)]
+    pub reading: Reading,
     /// Intersection core: the linear scan, the BVH, or auto (the BVH from a measured number
     /// of objects on). The image does not depend on it, only the time.
     #[arg(long, value_parser = accel_values(), default_value = "auto")]
     pub accel: AccelChoice,
+}
+
+/// How a scene file is read.
+#[derive(Args, Debug, Default, Clone)]
+pub struct Reading {
+    /// The scene file's format (default: TOML when its name ends in .toml, else
+    /// SIMRenderer when its first keyword opens one of SIMRenderer's blocks).
+    #[arg(long, value_parser = format_values())]
+    pub format: Option<Format>,
+    /// SIMRenderer files: go on past an error as SIMRenderer does (the line skipped, the
+    /// value before it kept, the object dropped), printing it as a warning.
+    #[arg(long)]
+    pub lenient: bool,
 }
 
 impl Overrides {
@@ -189,6 +211,14 @@ fn accel_values() -> impl TypedValueParser<Value = AccelChoice> {
     named(AccelChoice::ALL.map(|c| (c.name(), c.help())))
 }
 
+/// `--format`'s values.
+fn format_values() -> impl TypedValueParser<Value = Format> {
+    named([
+        ("toml", "lumiere's TOML scene format (scenes/README.md)"),
+        ("simrenderer", "SIMRenderer's keyword blocks (docs/simrenderer.md)"),
+    ])
+}
+
 /// `--no-skip`'s values.
 fn skip_values() -> impl TypedValueParser<Value = Skip> {
     named(Skip::ALL.map(|s| (s.name(), s.help())))
@@ -211,17 +241,48 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
             Ok(())
         }
         Command::Probe(args) => probe::run(&args),
+        Command::Convert(args) => convert::run(&args, v),
         Command::ReviewSnapshots(args) => review::run(&args),
         Command::Stress(args) => stress::run(&args),
         Command::Study(args) => study::run(&args, v),
     }
 }
 
-/// Loads a scene file and applies overrides; errors are bad input.
+/// Loads a scene file and applies overrides; errors are bad input. A SIMRenderer file's
+/// own settings (`pixel_coordinate`, the clipping planes) apply over `--conventions`'
+/// preset, then each `--convention`.
 fn load_scene(path: &Path, overrides: &Overrides) -> Result<Scene, CliError> {
-    let mut scene = scene::load(path).map_err(|e| CliError::BadInput(e.to_string()))?;
-    overrides.settings().apply(&mut scene).map_err(CliError::BadInput)?;
+    let mut settings = overrides.settings();
+    let preset = preset(settings.conventions.as_deref())?;
+    let loaded = read_scene(path, &overrides.reading, preset)?;
+    if loaded.format == Format::SimRenderer {
+        settings.conventions = None;
+    }
+    let mut scene = loaded.scene;
+    settings.apply(&mut scene).map_err(CliError::BadInput)?;
     Ok(scene)
+}
+
+/// The conventions preset named by `--conventions`, if any.
+fn preset(name: Option<&str>) -> Result<Option<Conventions>, CliError> {
+    name.map(Conventions::preset)
+        .transpose()
+        .map_err(|m| CliError::BadInput(format!("--conventions: {m}")))
+}
+
+/// Reads a scene file as `reading` says (SIMRenderer files over `conventions`), printing
+/// the reader's warnings on stderr; errors are bad input.
+fn read_scene(path: &Path, reading: &Reading, conventions: Option<Conventions>) -> Result<Loaded, CliError> {
+    let options = LoadOptions {
+        format: reading.format,
+        lenient: reading.lenient,
+        conventions,
+    };
+    let loaded = scene::load_with(path, &options).map_err(|e| CliError::BadInput(e.to_string()))?;
+    for w in &loaded.warnings {
+        eprintln!("lumiere: warning: {w}");
+    }
+    Ok(loaded)
 }
 
 /// Checks that `output` can be written in a known format without touching `input`.

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 #[derive(Args, Debug)]
 pub struct ProbeArgs {
-    /// The scene file (TOML; see scenes/README.md).
+    /// The scene file: TOML, or SIMRenderer's format (see scenes/README.md).
     pub scene: PathBuf,
     /// The pixel, `X,Y`, from the top-left corner (0,0) of the image.
     #[arg(long, value_parser = parse_pixel)]

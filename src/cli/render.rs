@@ -13,7 +13,7 @@ use std::path::PathBuf;
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// The scene file (TOML; see scenes/README.md).
+    /// The scene file: TOML, or SIMRenderer's format (see scenes/README.md).
     pub scene: PathBuf,
     /// Output image: .png (8-bit, clamped), .pfm or .exr (32-bit float radiance, unclamped).
     #[arg(short, long)]

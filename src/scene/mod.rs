@@ -1,14 +1,16 @@
 //! The in-memory scene: what a scene file describes, validated. [`crate::world::World`]
-//! builds what rendering needs from it.
+//! builds what rendering needs from it. Scene files are lumiere's TOML format ([`parse`])
+//! or SIMRenderer's keyword blocks ([`simrenderer`]); [`load`] tells them apart.
 
 mod file;
 pub mod generate;
 mod locate;
 mod overrides;
+pub mod simrenderer;
 mod tag;
 pub mod transform;
 
-pub use file::{SceneError, load, parse};
+pub use file::{SceneError, load as load_toml, parse};
 pub use overrides::Overrides;
 
 use crate::conventions::Conventions;
@@ -16,6 +18,171 @@ use crate::light::Light;
 use crate::material::Material;
 use crate::shape::Shape;
 use glam::DVec3;
+
+/// The two scene file formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// lumiere's TOML format (scenes/README.md).
+    Toml,
+    /// SIMRenderer's keyword blocks (docs/simrenderer.md).
+    SimRenderer,
+}
+
+impl Format {
+    /// The names the command line takes.
+    pub const NAMES: [&'static str; 2] = ["toml", "simrenderer"];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Toml => "toml",
+            Format::SimRenderer => "simrenderer",
+        }
+    }
+}
+
+impl std::str::FromStr for Format {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "toml" => Ok(Format::Toml),
+            "simrenderer" => Ok(Format::SimRenderer),
+            other => Err(format!("must be \"toml\" or \"simrenderer\", got {other:?}")),
+        }
+    }
+}
+
+/// How to read a scene file.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LoadOptions {
+    /// The format; `None`: told from the file ([`detect`]).
+    pub format: Option<Format>,
+    /// SIMRenderer files: go on past errors as SIMRenderer does, each reported as a
+    /// warning (TOML files have no such mode).
+    pub lenient: bool,
+    /// SIMRenderer files: the conventions under the file's own settings (default:
+    /// SIMRenderer's). TOML files say theirs in `[conventions]`.
+    pub conventions: Option<crate::conventions::Conventions>,
+}
+
+/// A loaded scene, the format it was read in, and the reader's warnings.
+#[derive(Clone, Debug)]
+pub struct Loaded {
+    pub scene: Scene,
+    pub format: Format,
+    pub warnings: Vec<simrenderer::Warning>,
+}
+
+/// Reads and validates a scene file in either format ([`detect`]), SIMRenderer files under
+/// SIMRenderer's conventions; warnings are dropped (see [`load_with`]).
+pub fn load(path: &std::path::Path) -> Result<Scene, SceneError> {
+    load_with(path, &LoadOptions::default()).map(|l| l.scene)
+}
+
+/// Reads and validates a scene file as `options` say.
+pub fn load_with(path: &std::path::Path, options: &LoadOptions) -> Result<Loaded, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let file = path.display().to_string();
+    let format = match options.format {
+        Some(f) => f,
+        None => detect(path, &text)?,
+    };
+    match format {
+        Format::Toml => match parse(&text, &file) {
+            Ok(scene) => Ok(Loaded {
+                scene,
+                format,
+                warnings: Vec::new(),
+            }),
+            // The wrong guess: a SIMRenderer file named .toml.
+            Err(SceneError::Invalid {
+                file,
+                line,
+                column,
+                field,
+                message,
+            }) if options.format.is_none() && first_keyword(&text).is_some_and(|(_, _, k)| is_block(&k)) => {
+                Err(SceneError::Invalid {
+                    file,
+                    line,
+                    column,
+                    field,
+                    message: format!(
+                        "{message} (the file starts like a SIMRenderer scene: read it with --format simrenderer, or name it other than .toml)"
+                    ),
+                })
+            }
+            Err(e) => Err(e),
+        },
+        Format::SimRenderer => {
+            let o = simrenderer::Options {
+                lenient: options.lenient,
+                conventions: options
+                    .conventions
+                    .unwrap_or(crate::conventions::Conventions::SIMRENDERER),
+            };
+            let parsed = simrenderer::parse(&text, &file, &o)?;
+            Ok(Loaded {
+                scene: parsed.scene,
+                format,
+                warnings: parsed.warnings,
+            })
+        }
+    }
+}
+
+/// The first keyword of a SIMRenderer file (its line and its lower-case text), comments
+/// and blank lines left out.
+fn first_keyword(text: &str) -> Option<(usize, usize, String)> {
+    simrenderer::lex::items(text).find_map(|i| match i {
+        simrenderer::lex::Item::Line(l) => Some((l.number, l.column, l.keyword)),
+        simrenderer::lex::Item::Note(_) => None,
+    })
+}
+
+/// Whether `keyword` opens a SIMRenderer top-level block (or ends the scene).
+fn is_block(keyword: &str) -> bool {
+    simrenderer::canonical(keyword).is_some_and(|k| k == "end" || simrenderer::TOP_BLOCKS.contains(&k))
+}
+
+/// The format of a scene file: TOML when its name ends in `.toml`; otherwise SIMRenderer
+/// when its first keyword (comments and blank lines left out) opens one of SIMRenderer's
+/// blocks or the file has none; otherwise an error at that keyword saying why.
+pub fn detect(path: &std::path::Path, text: &str) -> Result<Format, SceneError> {
+    let toml = path
+        .extension()
+        .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case("toml"));
+    if toml {
+        return Ok(Format::Toml);
+    }
+    let Some((line, column, keyword)) = first_keyword(text) else {
+        return Ok(Format::SimRenderer);
+    };
+    if is_block(&keyword) {
+        return Ok(Format::SimRenderer);
+    }
+    let looks_toml = keyword.starts_with('[')
+        || simrenderer::lex::split_lines(text)
+            .get(line - 1)
+            .is_some_and(|l| l.contains('='));
+    let hint = if looks_toml {
+        "it looks like TOML: name it .toml, or pass --format toml"
+    } else {
+        "pass --format toml or --format simrenderer"
+    };
+    Err(SceneError::Invalid {
+        file: path.display().to_string(),
+        line,
+        column,
+        field: "format".to_string(),
+        message: format!(
+            "cannot tell the scene's format: the file is not named .toml and its first keyword {keyword:?} opens none of SIMRenderer's blocks ({}); {hint}",
+            simrenderer::TOP_BLOCKS[..9].join(", ")
+        ),
+    })
+}
 
 /// Which specular term the local illumination model uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]

@@ -1,0 +1,1710 @@
+//! Reading a SIMRenderer scene file into a [`Scene`]: the blocks and keywords of its keyword
+//! table (with their French aliases), their defaults and ranges, and the mapping of each
+//! setting to lumiere's (docs/simrenderer.md lists them).
+//!
+//! SIMRenderer logs a bad line and goes on; lumiere stops at the first one with
+//! `file:line:column: block.keyword: message`. With [`Options::lenient`] it goes on as
+//! SIMRenderer does (the line skipped, the value before it kept, the object dropped) and
+//! returns each such error as a [`Warning`] that says what was done. What SIMRenderer does
+//! without complaint but may surprise (an unknown material name, a primitive without
+//! geometry, text after a top-level `end`) is a warning in both modes.
+
+use super::Warning;
+use super::lex::{self, Item, Line, Note, ValueError};
+use crate::conventions::{Conventions, SamplePosition};
+use crate::light::{Attenuation, Light, PointLight};
+use crate::limits;
+use crate::material::Material;
+use crate::scene::{CameraSpec, Object, Scene, SceneError, Settings, ShadingModel, Specular};
+use crate::shape::mesh::Mesh;
+use crate::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Shape, Sphere, Torus, Transform, Triangle};
+use glam::DVec3;
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+use std::sync::LazyLock;
+
+/// How to read a SIMRenderer file.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Go on after an error as SIMRenderer does, reporting it as a warning.
+    pub lenient: bool,
+    /// The conventions the file's own settings (`pixel_coordinate`, the clipping planes)
+    /// are applied over: SIMRenderer's, unless the command line names another preset.
+    pub conventions: Conventions,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            lenient: false,
+            conventions: Conventions::SIMRENDERER,
+        }
+    }
+}
+
+/// A scene read from a SIMRenderer file and the warnings met on the way.
+#[derive(Clone, Debug)]
+pub struct Parsed {
+    pub scene: Scene,
+    pub warnings: Vec<Warning>,
+}
+
+/// Reads a SIMRenderer scene file (a model's mesh file is found relative to it).
+pub fn load(path: &Path, options: &Options) -> Result<Parsed, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse(&text, &path.display().to_string(), options)
+}
+
+/// Reads SIMRenderer scene text; `file` names it in messages, and its folder is where a
+/// model's mesh file is looked for.
+pub fn parse(text: &str, file: &str, options: &Options) -> Result<Parsed, SceneError> {
+    let mut reader = Reader {
+        file,
+        dir: Path::new(file).parent().unwrap_or(Path::new("")),
+        lenient: options.lenient,
+        items: lex::items(text),
+        warnings: Vec::new(),
+        seed: None,
+        adaptive_threshold: None,
+        objects: 0,
+    };
+    let raw = reader.scene_body()?;
+    reader.build(raw, options.conventions)
+}
+
+/// Every keyword: its canonical name, then its aliases.
+const KEYWORDS: &[&[&str]] = &[
+    &["end", "fin"],
+    // Top-level blocks.
+    &["camera"],
+    &["viewport"],
+    &["raytracer"],
+    &["primitive"],
+    &["material", "blinn_material", "color_material", "materiel"],
+    &["texture_material", "texture_materiel"],
+    &["ambient_light", "lumiere_ambiante"],
+    &["directional_light", "lumiere_directionnelle"],
+    &["point_light", "lumiere_ponctuelle"],
+    &["linear_aperture_light"],
+    &["rectangular_aperture_light"],
+    &["elliptical_aperture_light"],
+    &["aperture_mask_light"],
+    &["model"],
+    // Geometries.
+    &["sphere"],
+    &["plane", "plan"],
+    &["disk", "disque"],
+    &["triangle"],
+    &["btriangle"],
+    &["tube"],
+    &["cylinder", "cylindre"],
+    &["cone"],
+    &["cube"],
+    &["torus", "tore"],
+    &["spherical_cap", "calotte_spherique"],
+    &["lens", "lentille"],
+    &["geometry", "geometrie"],
+    // Values.
+    &["position"],
+    &["look_at"],
+    &["up", "haut"],
+    &["angle"],
+    &["near_clipping_plane"],
+    &["far_clipping_plane"],
+    &["width", "largeur"],
+    &["height", "hauteur"],
+    &["image_file_name", "nom_fichier_image"],
+    &["task"],
+    &["sampling"],
+    &["recursive_level"],
+    &["reflexion_algorithm", "algorithme_reflexion"],
+    &["pixel_coordinate", "coordonnee_pixel"],
+    &["space", "espace"],
+    &["color_normalization"],
+    &["name", "nom"],
+    &["color", "couleur"],
+    &["ka"],
+    &["kd"],
+    &["ks"],
+    &["kr"],
+    &["kt"],
+    &["shininess", "brillance"],
+    &["plasticity", "p"],
+    &["refractive_index", "n"],
+    &["material_name", "nom_materiel"],
+    &["ray", "rayon"],
+    &["normal", "normale"],
+    &["point"],
+    &["size", "taille"],
+    &["major_radius"],
+    &["minor_radius"],
+    &["scale", "homothetie"],
+    &["rotation"],
+    &["translation"],
+    &["file", "fichier"],
+    &["uv_format"],
+    &["orientation"],
+    &["amplification"],
+    &["constant_attenuator"],
+    &["linear_attenuator"],
+    &["quadratic_attenuator"],
+    // Keywords of what lumiere does not model (interference lights, textures, caps, lenses).
+    &["wave_length", "longueur_onde"],
+    &["period_iteration"],
+    &["nb_oscillator"],
+    &["mask", "masque"],
+    &["curvature", "courbure"],
+    &["texture_ka"],
+    &["texture_kd"],
+    &["texture_ks"],
+];
+
+/// The canonical name of a keyword (lower case), or `None` when SIMRenderer has no such
+/// keyword.
+pub fn canonical(keyword: &str) -> Option<&'static str> {
+    static BY_NAME: LazyLock<HashMap<&'static str, &'static str>> = LazyLock::new(|| {
+        KEYWORDS
+            .iter()
+            .flat_map(|names| names.iter().map(|n| (*n, names[0])))
+            .collect()
+    });
+    BY_NAME.get(keyword).copied()
+}
+
+/// `name (alias, alias)` for each canonical keyword, as messages list them.
+fn listed(keywords: &[&str]) -> String {
+    keywords
+        .iter()
+        .map(|k| match KEYWORDS.iter().find(|names| names[0] == *k) {
+            Some(names) if names.len() > 1 => format!("{k} ({})", names[1..].join(", ")),
+            _ => k.to_string(),
+        })
+        .chain(std::iter::once("end (fin)".to_string()))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The blocks a scene file is made of; the last five are refused as not supported yet.
+pub const TOP_BLOCKS: &[&str] = &[
+    "camera",
+    "viewport",
+    "raytracer",
+    "primitive",
+    "material",
+    "ambient_light",
+    "directional_light",
+    "point_light",
+    "model",
+    "texture_material",
+    "linear_aperture_light",
+    "rectangular_aperture_light",
+    "elliptical_aperture_light",
+    "aperture_mask_light",
+];
+
+/// The geometry blocks of a primitive or a `geometry` wrapper; the last three are refused
+/// as not supported yet.
+const GEOMETRIES: &[&str] = &[
+    "sphere",
+    "plane",
+    "disk",
+    "triangle",
+    "tube",
+    "cylinder",
+    "cone",
+    "cube",
+    "torus",
+    "geometry",
+    "btriangle",
+    "spherical_cap",
+    "lens",
+];
+
+const CAMERA: &[&str] = &[
+    "position",
+    "look_at",
+    "up",
+    "angle",
+    "near_clipping_plane",
+    "far_clipping_plane",
+];
+const VIEWPORT: &[&str] = &["width", "height", "image_file_name"];
+const RAYTRACER: &[&str] = &[
+    "task",
+    "sampling",
+    "recursive_level",
+    "reflexion_algorithm",
+    "pixel_coordinate",
+    "space",
+    "color_normalization",
+];
+const MATERIAL: &[&str] = &[
+    "name",
+    "color",
+    "ka",
+    "kd",
+    "ks",
+    "kr",
+    "kt",
+    "shininess",
+    "plasticity",
+    "refractive_index",
+];
+const MODEL: &[&str] = &["file", "scale", "rotation", "translation", "uv_format"];
+const AMBIENT: &[&str] = &["color"];
+const DIRECTIONAL: &[&str] = &["color", "orientation"];
+const POINT: &[&str] = &[
+    "color",
+    "position",
+    "amplification",
+    "constant_attenuator",
+    "linear_attenuator",
+    "quadratic_attenuator",
+];
+
+/// `reflexion_algorithm`'s values, in SIMRenderer's order (the index is the number).
+pub const REFLEXION_ALGORITHMS: [&str; 8] = [
+    "no_light",
+    "ambient",
+    "diffuse",
+    "phong_specular",
+    "blinn_specular",
+    "no_specular",
+    "phong",
+    "blinn",
+];
+/// `pixel_coordinate`'s values.
+pub const PIXEL_COORDINATES: [&str; 6] = [
+    "top_left",
+    "top_right",
+    "bottom_left",
+    "bottom_right",
+    "center",
+    "random",
+];
+const SPACES: [&str; 3] = ["linear", "voxel", "multi_voxel"];
+const COLOR_NORMALIZATIONS: [&str; 2] = ["clamp_channel", "division_factor"];
+
+/// The shading model of each `reflexion_algorithm` lumiere renders (`no_light`, which draws
+/// the diffuse colour unlit, it does not).
+pub fn shading_of(algorithm: usize) -> Option<ShadingModel> {
+    let m = |ambient, diffuse, specular| {
+        Some(ShadingModel {
+            ambient,
+            diffuse,
+            specular,
+        })
+    };
+    match algorithm {
+        1 => m(true, false, Specular::None),
+        2 => m(false, true, Specular::None),
+        3 => m(false, false, Specular::Phong),
+        4 => m(false, false, Specular::Blinn),
+        5 => m(true, true, Specular::None),
+        6 => m(true, true, Specular::Phong),
+        7 => m(true, true, Specular::Blinn),
+        _ => None,
+    }
+}
+
+/// SIMRenderer's material for a name no material has: ambient 0.2, diffuse 0.6, specular
+/// 0.7 grey, shininess 20. As a lumiere material: white, `k_a` 0.2, `k_d` 0.6, `k_s` 0.7;
+/// with a white colour the metal factor changes nothing, and `m = 0` is given so that no
+/// convention changes it either.
+pub fn grey_default() -> Material {
+    Material {
+        color: DVec3::ONE,
+        ka: 0.2,
+        kd: 0.6,
+        ks: 0.7,
+        shininess: 20.0,
+        metal: 0.0,
+        kr: 0.0,
+        kt: 0.0,
+        ior: 1.0,
+    }
+}
+
+/// The seed of a file that gives none (lumiere's default, as in TOML files).
+pub const DEFAULT_SEED: u64 = 42;
+
+/// A place in the file and the field it concerns (`block.keyword`).
+#[derive(Clone, Debug)]
+struct At {
+    line: usize,
+    column: usize,
+    field: String,
+}
+
+/// What the file's blocks say, before the materials are bound.
+#[derive(Default)]
+struct Raw {
+    camera: Option<CameraBlock>,
+    viewport: Option<ViewportBlock>,
+    raytracer: Option<RaytracerBlock>,
+    materials: Vec<MaterialEntry>,
+    shapes: Vec<ShapeEntry>,
+    lights: Vec<(At, Light)>,
+}
+
+struct CameraBlock {
+    spec: CameraSpec,
+    near: Option<f64>,
+    far: Option<f64>,
+}
+
+impl Default for CameraBlock {
+    fn default() -> Self {
+        CameraBlock {
+            spec: CameraSpec {
+                position: DVec3::ZERO,
+                look_at: DVec3::Z,
+                up: DVec3::Y,
+                vfov_deg: 60.0,
+            },
+            near: None,
+            far: None,
+        }
+    }
+}
+
+struct ViewportBlock {
+    width: u32,
+    height: u32,
+    at: At,
+}
+
+#[derive(Default)]
+struct RaytracerBlock {
+    sampling: Option<(u32, At)>,
+    depth: Option<u32>,
+    shading: Option<ShadingModel>,
+    pixel_coordinate: Option<SamplePosition>,
+}
+
+struct MaterialEntry {
+    name: String,
+    at: At,
+    material: Material,
+    metal_given: bool,
+}
+
+/// A primitive (one shape) or a model (its triangles), with the material name it binds.
+struct ShapeEntry {
+    at: At,
+    /// The name of a `# lumiere: name` note.
+    name: Option<String>,
+    material: String,
+    material_at: At,
+    shapes: Vec<Shape>,
+    model: bool,
+}
+
+/// One entry of a block: a keyword of the block (canonical) with its line, or a note.
+enum Entry<'a> {
+    Key(&'static str, Line<'a>),
+    Note(Note<'a>),
+    /// A line refused (and reported under `lenient`).
+    Skip,
+}
+
+struct Reader<'a> {
+    file: &'a str,
+    dir: &'a Path,
+    lenient: bool,
+    items: lex::Items<'a>,
+    warnings: Vec<Warning>,
+    seed: Option<u64>,
+    adaptive_threshold: Option<f64>,
+    /// Objects read so far (a model's mesh may fill what the others leave of the limit).
+    objects: usize,
+}
+
+fn at(line: &Line, block: &str) -> At {
+    At {
+        line: line.number,
+        column: line.column,
+        field: format!("{block}.{}", line.keyword),
+    }
+}
+
+fn at_value(line: &Line, block: &str, column: usize) -> At {
+    At {
+        column,
+        ..at(line, block)
+    }
+}
+
+impl<'a> Reader<'a> {
+    /// A warning, in both modes.
+    fn warn(&mut self, at: &At, message: String) {
+        self.warnings.push(Warning {
+            file: self.file.to_string(),
+            line: at.line,
+            column: at.column,
+            field: at.field.clone(),
+            message,
+        });
+    }
+
+    /// An error; under `lenient`, a warning saying what is done instead (`then`).
+    fn problem(&mut self, at: &At, message: String, then: &str) -> Result<(), SceneError> {
+        if self.lenient {
+            self.warn(at, format!("{message}; {then}"));
+            Ok(())
+        } else {
+            Err(SceneError::Invalid {
+                file: self.file.to_string(),
+                line: at.line,
+                column: at.column,
+                field: at.field.clone(),
+                message,
+            })
+        }
+    }
+
+    fn next_item(&mut self) -> Option<Item<'a>> {
+        self.items.next()
+    }
+
+    /// The next item of the open block, `None` at its `end` (or the end of the file, which
+    /// SIMRenderer accepts as the end of every open block).
+    fn body(&mut self) -> Option<Item<'a>> {
+        match self.next_item()? {
+            Item::Line(l) if canonical(&l.keyword) == Some("end") => None,
+            item => Some(item),
+        }
+    }
+
+    /// Skips the rest of a block lumiere does not read, up to its `end`.
+    fn skip_block(&mut self) {
+        while self.body().is_some() {}
+    }
+
+    /// Sorts an item of block `block` (its keyword as written): a keyword of `keywords`, a
+    /// note, or a problem.
+    fn entry(&mut self, block: &str, item: Item<'a>, keywords: &[&'static str]) -> Result<Entry<'a>, SceneError> {
+        let l = match item {
+            Item::Note(n) => return Ok(Entry::Note(n)),
+            Item::Line(l) => l,
+        };
+        let place = at(&l, block);
+        match canonical(&l.keyword) {
+            Some(k) if keywords.contains(&k) => return Ok(Entry::Key(k, l)),
+            Some(_) => {
+                let message = format!(
+                    "{:?} is not a keyword of {block} (a forgotten `end` before it?); {block}'s keywords are {}",
+                    l.written,
+                    listed(keywords)
+                );
+                self.problem(&place, message, "the line is skipped")?;
+            }
+            None => {
+                let message = format!(
+                    "unknown keyword {:?}; {block}'s keywords are {}",
+                    l.written,
+                    listed(keywords)
+                );
+                self.problem(&place, message, "the line is skipped")?;
+            }
+        }
+        Ok(Entry::Skip)
+    }
+
+    /// A note outside a primitive or model: the seed or the adaptive threshold.
+    fn note(&mut self, n: &Note, block: &str, named: bool) -> Result<Option<String>, SceneError> {
+        let place = At {
+            line: n.number,
+            column: n.column,
+            field: format!("{block}.lumiere:{}", n.key),
+        };
+        let value_at = At {
+            column: n.value_column,
+            ..place.clone()
+        };
+        match n.key {
+            "name" if named => match serde_json::from_str::<String>(n.value) {
+                Ok(name) => return Ok(Some(name)),
+                Err(_) => {
+                    let m = format!("expects a quoted name such as \"floor\", got {:?}", n.value);
+                    self.problem(&value_at, m, "the note is skipped")?;
+                }
+            },
+            "name" => {
+                let m = "a name note belongs in a primitive or model block".to_string();
+                self.problem(&place, m, "the note is skipped")?;
+            }
+            "seed" => match n.value.parse::<u64>() {
+                Ok(seed) => self.seed = Some(seed),
+                Err(_) => {
+                    let m = format!("expects an integer in [0, {}], got {:?}", u64::MAX, n.value);
+                    self.problem(&value_at, m, "the note is skipped")?;
+                }
+            },
+            "adaptive_threshold" => match lex::java_double(n.value).filter(|t| (0.0..=255.0).contains(t)) {
+                Some(t) => self.adaptive_threshold = Some(t),
+                None => {
+                    let m = format!("expects a number of 8-bit levels in [0, 255], got {:?}", n.value);
+                    self.problem(&value_at, m, "the note is skipped")?;
+                }
+            },
+            other => {
+                let m = format!("unknown lumiere note {other:?}; the notes are name, seed, adaptive_threshold");
+                self.problem(&place, m, "the note is skipped")?;
+            }
+        }
+        Ok(None)
+    }
+
+    /// The value read from `line`, or `None` after a problem (under `lenient`, the value
+    /// before it stays).
+    fn value<T>(&mut self, block: &str, line: &Line, read: Result<T, ValueError>) -> Result<Option<T>, SceneError> {
+        match read {
+            Ok(v) => Ok(Some(v)),
+            Err(e) => {
+                let place = at_value(line, block, e.column);
+                self.problem(&place, e.message, "the value before it is kept")?;
+                Ok(None)
+            }
+        }
+    }
+
+    /// The top level of the file, up to a top-level `end` or the end of the file.
+    fn scene_body(&mut self) -> Result<Raw, SceneError> {
+        let mut raw = Raw::default();
+        while let Some(item) = self.next_item() {
+            let l = match item {
+                Item::Note(n) => {
+                    self.note(&n, "scene", false)?;
+                    continue;
+                }
+                Item::Line(l) => l,
+            };
+            let place = at(&l, "scene");
+            let keyword = canonical(&l.keyword);
+            if keyword == Some("end") {
+                if let Some(rest) = self.items.find_map(|i| match i {
+                    Item::Line(l) => Some(l),
+                    Item::Note(_) => None,
+                }) {
+                    let m = format!(
+                        "SIMRenderer stops reading the scene at this top-level end: everything after it is ignored, from line {} ({:?}) on",
+                        rest.number, rest.written
+                    );
+                    self.warn(&place, m);
+                }
+                break;
+            }
+            let block = l.keyword.clone();
+            match keyword {
+                Some("camera") => {
+                    if let Some(c) = self.camera(&l)? {
+                        raw.camera = Some(c);
+                    }
+                }
+                Some("viewport") => {
+                    if let Some(v) = self.viewport(&l)? {
+                        raw.viewport = Some(v);
+                    }
+                }
+                Some("raytracer") => raw.raytracer = Some(self.raytracer(&l)?),
+                Some("material") => {
+                    if let Some(m) = self.material(&l)? {
+                        raw.materials.push(m);
+                    }
+                }
+                Some("primitive") => {
+                    if let Some(p) = self.primitive(&l)? {
+                        raw.shapes.push(p);
+                    }
+                }
+                Some("model") => {
+                    if let Some(m) = self.model(&l)? {
+                        raw.shapes.push(m);
+                    }
+                }
+                Some(kind @ ("ambient_light" | "directional_light" | "point_light")) => {
+                    if let Some(light) = self.light(&l, kind)? {
+                        raw.lights.push((place, light));
+                    }
+                }
+                Some(kind) if TOP_BLOCKS.contains(&kind) => {
+                    let what = match kind {
+                        "texture_material" => "texture materials",
+                        "linear_aperture_light" => "linear aperture lights (SIMRenderer's interference lights)",
+                        "rectangular_aperture_light" => {
+                            "rectangular aperture lights (SIMRenderer's interference lights)"
+                        }
+                        "elliptical_aperture_light" => "elliptical aperture lights (SIMRenderer's interference lights)",
+                        _ => "aperture mask lights (SIMRenderer's interference lights)",
+                    };
+                    self.problem(
+                        &place,
+                        format!("{what} are not supported yet by lumiere"),
+                        "the block is skipped",
+                    )?;
+                    self.skip_block();
+                }
+                Some(_) => {
+                    let m = format!(
+                        "{:?} is not a top-level block; the blocks are {}",
+                        l.written,
+                        listed(&TOP_BLOCKS[..9])
+                    );
+                    self.problem(&place, m, "the line is skipped")?;
+                }
+                None => {
+                    let m = format!("unknown keyword {block:?}; the blocks are {}", listed(&TOP_BLOCKS[..9]));
+                    self.problem(&place, m, "the line is skipped")?;
+                }
+            }
+        }
+        Ok(raw)
+    }
+
+    fn camera(&mut self, open: &Line<'a>) -> Result<Option<CameraBlock>, SceneError> {
+        let block = open.keyword.clone();
+        let mut c = CameraBlock::default();
+        let mut lines: BTreeMap<&str, At> = BTreeMap::new();
+        while let Some(item) = self.body() {
+            let (k, l) = match self.entry(&block, item, CAMERA)? {
+                Entry::Key(k, l) => (k, l),
+                Entry::Note(n) => {
+                    self.note(&n, &block, false)?;
+                    continue;
+                }
+                Entry::Skip => continue,
+            };
+            let read = match k {
+                "position" | "look_at" => self.value(&block, &l, point(&l))?.map(|p| {
+                    if k == "position" {
+                        c.spec.position = p;
+                    } else {
+                        c.spec.look_at = p;
+                    }
+                }),
+                "up" => self.value(&block, &l, direction(&l))?.map(|d| c.spec.up = unit(d)),
+                "angle" => self
+                    .value(&block, &l, number_in(&l, 10.0, 170.0))?
+                    .map(|a| c.spec.vfov_deg = a),
+                "near_clipping_plane" => self
+                    .value(&block, &l, positive(&l, limits::MAX_COORDINATE))?
+                    .map(|x| c.near = Some(x)),
+                _ => self.value(&block, &l, far(&l))?.map(|x| c.far = Some(x)),
+            };
+            if read.is_some() {
+                lines.insert(k, at(&l, &block));
+            }
+        }
+        let place = |k: &str| lines.get(k).cloned().unwrap_or_else(|| at(open, "scene"));
+        let s = &c.spec;
+        let forward = s.look_at - s.position;
+        let problem = if forward.length() <= 1e-12 {
+            Some(("look_at", "must differ from the camera position".to_string()))
+        } else if forward.normalize().cross(s.up).length() < 1e-9 {
+            Some((
+                "up",
+                "must not be parallel to the viewing direction (look_at - position)".to_string(),
+            ))
+        } else {
+            let (near, far) = (c.near.unwrap_or(1.0), c.far.unwrap_or(100.0));
+            (far < near).then(|| {
+                (
+                    if c.far.is_some() {
+                        "far_clipping_plane"
+                    } else {
+                        "near_clipping_plane"
+                    },
+                    format!("far_clipping_plane ({far}) must be at least near_clipping_plane ({near})"),
+                )
+            })
+        };
+        if let Some((k, message)) = problem {
+            self.problem(&place(k), message, "the camera is dropped")?;
+            return Ok(None);
+        }
+        Ok(Some(c))
+    }
+
+    fn viewport(&mut self, open: &Line<'a>) -> Result<Option<ViewportBlock>, SceneError> {
+        let block = open.keyword.clone();
+        let mut v = ViewportBlock {
+            width: 500,
+            height: 500,
+            at: at(open, "scene"),
+        };
+        while let Some(item) = self.body() {
+            let (k, l) = match self.entry(&block, item, VIEWPORT)? {
+                Entry::Key(k, l) => (k, l),
+                Entry::Note(n) => {
+                    self.note(&n, &block, false)?;
+                    continue;
+                }
+                Entry::Skip => continue,
+            };
+            match k {
+                "width" | "height" => {
+                    let read = int_in(&l, 1, limits::MAX_DIMENSION as i32);
+                    if let Some(n) = self.value(&block, &l, read)? {
+                        if k == "width" {
+                            v.width = n as u32;
+                        } else {
+                            v.height = n as u32;
+                        }
+                        v.at = at(&l, &block);
+                    }
+                }
+                // The image is written where the command line says.
+                _ => {
+                    self.value(&block, &l, lex::name(l.value, l.value_column))?;
+                }
+            }
+        }
+        if let Err(m) = limits::check_pixel_count(v.width, v.height) {
+            self.problem(&v.at.clone(), m, "the viewport is dropped")?;
+            return Ok(None);
+        }
+        Ok(Some(v))
+    }
+
+    fn raytracer(&mut self, open: &Line<'a>) -> Result<RaytracerBlock, SceneError> {
+        let block = open.keyword.clone();
+        let mut r = RaytracerBlock::default();
+        while let Some(item) = self.body() {
+            let (k, l) = match self.entry(&block, item, RAYTRACER)? {
+                Entry::Key(k, l) => (k, l),
+                Entry::Note(n) => {
+                    self.note(&n, &block, false)?;
+                    continue;
+                }
+                Entry::Skip => continue,
+            };
+            let place = at_value(&l, &block, l.value_column);
+            let then = "the value before it is kept";
+            match k {
+                // lumiere picks its own threads and intersection structure.
+                "task" => {
+                    self.value(&block, &l, int_in(&l, 1, i32::MAX))?;
+                }
+                "space" => {
+                    self.value(&block, &l, lex::enumeration(l.value, l.value_column, &SPACES))?;
+                }
+                "sampling" => {
+                    if let Some(n) = self.value(&block, &l, int_in(&l, 1, i32::MAX))? {
+                        let n = n as u32;
+                        if limits::check_samples(n).is_ok() {
+                            r.sampling = Some((n, at(&l, &block)));
+                        } else {
+                            let m = format!(
+                                "lumiere averages a perfect square of samples (1, 4, 9, ..., {}), got {n}: other counts are not supported yet",
+                                limits::MAX_SAMPLES
+                            );
+                            self.problem(&place, m, then)?;
+                        }
+                    }
+                }
+                "recursive_level" => {
+                    if let Some(n) = self.value(&block, &l, int_in(&l, 1, limits::MAX_DEPTH as i32))? {
+                        r.depth = Some(n as u32);
+                    }
+                }
+                "reflexion_algorithm" => {
+                    let read = lex::enumeration(l.value, l.value_column, &REFLEXION_ALGORITHMS);
+                    if let Some(i) = self.value(&block, &l, read)? {
+                        match shading_of(i) {
+                            Some(s) => r.shading = Some(s),
+                            None => {
+                                let m =
+                                    "no_light (the diffuse colour, unlit) is not supported yet by lumiere".to_string();
+                                self.problem(&place, m, then)?;
+                            }
+                        }
+                    }
+                }
+                "pixel_coordinate" => {
+                    let read = lex::enumeration(l.value, l.value_column, &PIXEL_COORDINATES);
+                    if let Some(i) = self.value(&block, &l, read)? {
+                        match i {
+                            0 => r.pixel_coordinate = Some(SamplePosition::Corner),
+                            4 => r.pixel_coordinate = Some(SamplePosition::Center),
+                            5 => r.pixel_coordinate = Some(SamplePosition::Jittered),
+                            _ => {
+                                let m = format!(
+                                    "{} is not supported yet by lumiere (its samples are at the pixel's top_left corner, its center, or random)",
+                                    PIXEL_COORDINATES[i]
+                                );
+                                self.problem(&place, m, then)?;
+                            }
+                        }
+                    }
+                }
+                _ => {
+                    let read = lex::enumeration(l.value, l.value_column, &COLOR_NORMALIZATIONS);
+                    if let Some(1) = self.value(&block, &l, read)? {
+                        let m = "division_factor is not supported yet by lumiere, which clamps each channel (clamp_channel)"
+                            .to_string();
+                        self.problem(&place, m, then)?;
+                    }
+                }
+            }
+        }
+        Ok(r)
+    }
+
+    fn material(&mut self, open: &Line<'a>) -> Result<Option<MaterialEntry>, SceneError> {
+        let block = open.keyword.clone();
+        let mut m = Material::default();
+        let mut name: Option<(String, At)> = None;
+        let mut plasticity: Option<f64> = None;
+        // The line of the later of kr and kt, and which.
+        let mut last_weight: Option<(&str, At)> = None;
+        while let Some(item) = self.body() {
+            let (k, l) = match self.entry(&block, item, MATERIAL)? {
+                Entry::Key(k, l) => (k, l),
+                Entry::Note(n) => {
+                    self.note(&n, &block, false)?;
+                    continue;
+                }
+                Entry::Skip => continue,
+            };
+            match k {
+                "name" => {
+                    if let Some(n) = self.value(&block, &l, lex::name(l.value, l.value_column))? {
+                        name = Some((n, at(&l, &block)));
+                    }
+                }
+                "color" => {
+                    if let Some(c) = self.value(&block, &l, color(&l, 1.0))? {
+                        m.color = c;
+                    }
+                }
+                "shininess" => {
+                    if let Some(x) = self.value(&block, &l, number_in(&l, 0.0, 200.0))? {
+                        m.shininess = x;
+                    }
+                }
+                "refractive_index" => {
+                    if let Some(x) = self.value(&block, &l, number_in(&l, 0.0, limits::MAX_IOR))? {
+                        m.ior = x;
+                    }
+                }
+                _ => {
+                    let Some(x) = self.value(&block, &l, number_in(&l, 0.0, 1.0))? else {
+                        continue;
+                    };
+                    match k {
+                        "ka" => m.ka = x,
+                        "kd" => m.kd = x,
+                        "ks" => m.ks = x,
+                        "kr" | "kt" => {
+                            if k == "kr" {
+                                m.kr = x;
+                            } else {
+                                m.kt = x;
+                            }
+                            last_weight = Some((k, at(&l, &block)));
+                        }
+                        _ => plasticity = Some(x),
+                    }
+                }
+            }
+        }
+        if m.kr + m.kt > 1.0
+            && let Some((k, place)) = last_weight
+        {
+            let message = format!(
+                "kr + kt must be at most 1 in lumiere (no ray may carry more than its parent), got {} + {}",
+                m.kr, m.kt
+            );
+            self.problem(&place, message, &format!("{k} is set to 0"))?;
+            if k == "kr" {
+                m.kr = 0.0;
+            } else {
+                m.kt = 0.0;
+            }
+        }
+        if m.ior == 0.0 {
+            if m.kt > 0.0 {
+                let message = "n must be above 0 for a transparent material (kt > 0)".to_string();
+                let place = at(open, "scene");
+                self.problem(&place, message, "n = 1 is used")?;
+            }
+            // SIMRenderer uses 1 for a material that is not transparent.
+            m.ior = 1.0;
+        }
+        if let Some(p) = plasticity {
+            m.metal = 1.0 - p;
+        }
+        let (name, at) = name.unwrap_or_else(|| ("none".to_string(), at(open, "scene")));
+        Ok(Some(MaterialEntry {
+            name,
+            at,
+            material: m,
+            metal_given: plasticity.is_some(),
+        }))
+    }
+
+    fn primitive(&mut self, open: &Line<'a>) -> Result<Option<ShapeEntry>, SceneError> {
+        let block = open.keyword.clone();
+        let mut material = ("none".to_string(), at(open, "scene"));
+        let mut name = None;
+        let mut shape: Option<(Shape, At)> = None;
+        // The first geometry's keyword, as written.
+        let mut geometry_seen: Option<String> = None;
+        let mut keywords = vec!["material_name"];
+        keywords.extend_from_slice(GEOMETRIES);
+        while let Some(item) = self.body() {
+            let (k, l) = match self.entry(&block, item, &keywords)? {
+                Entry::Key(k, l) => (k, l),
+                Entry::Note(n) => {
+                    if let Some(n) = self.note(&n, &block, true)? {
+                        name = Some(n);
+                    }
+                    continue;
+                }
+                Entry::Skip => continue,
+            };
+            if k == "material_name" {
+                if let Some(n) = self.value(&block, &l, lex::name(l.value, l.value_column))? {
+                    material = (n, at(&l, &block));
+                }
+                continue;
+            }
+            let place = at(&l, &block);
+            if let Some(first) = &geometry_seen {
+                let m = format!("a primitive has one geometry; this is a second one (after a {first})");
+                self.problem(&place, m, "this geometry is skipped")?;
+                self.skip_geometry(k);
+                continue;
+            }
+            geometry_seen = Some(l.keyword.clone());
+            if let Some(s) = self.geometry(&block, &l, k)? {
+                shape = Some((s, place));
+            }
+        }
+        let place = at(open, "scene");
+        let Some((shape, _)) = shape else {
+            if geometry_seen.is_none() {
+                self.warn(&place, "a primitive without geometry draws nothing".to_string());
+            }
+            return Ok(None);
+        };
+        self.objects += 1;
+        Ok(Some(ShapeEntry {
+            at: place,
+            name,
+            material: material.0,
+            material_at: material.1,
+            shapes: vec![shape],
+            model: false,
+        }))
+    }
+
+    /// Skips a geometry block (with the blocks a `geometry` wrapper holds).
+    fn skip_geometry(&mut self, kind: &str) {
+        while let Some(item) = self.body() {
+            if kind == "geometry"
+                && let Item::Line(l) = item
+                && canonical(&l.keyword).is_some_and(|k| GEOMETRIES.contains(&k))
+            {
+                self.skip_geometry(canonical(&l.keyword).unwrap_or_default());
+            }
+        }
+    }
+
+    /// A geometry block opened by `open`, of canonical kind `kind`; `None` when it is
+    /// dropped.
+    fn geometry(&mut self, parent: &str, open: &Line<'a>, kind: &'static str) -> Result<Option<Shape>, SceneError> {
+        let block = open.keyword.clone();
+        let place = at(open, parent);
+        let what = match kind {
+            "btriangle" => Some("barycentric triangles (btriangle) are"),
+            "spherical_cap" => Some("spherical caps are"),
+            "lens" => Some("lenses are"),
+            _ => None,
+        };
+        if let Some(what) = what {
+            let m = format!("{what} not supported yet by lumiere");
+            self.problem(&place, m, "the geometry is skipped")?;
+            self.skip_geometry(kind);
+            return Ok(None);
+        }
+        let keywords: &[&'static str] = match kind {
+            "sphere" => &["position", "ray"],
+            "plane" => &["position", "normal"],
+            "disk" => &["position", "normal", "ray"],
+            "triangle" => &["point"],
+            "tube" | "cylinder" | "cone" => &["point", "position", "ray"],
+            "cube" => &["position", "size"],
+            "torus" => &["position", "normal", "major_radius", "minor_radius"],
+            _ => &[
+                "scale",
+                "rotation",
+                "translation",
+                "sphere",
+                "plane",
+                "disk",
+                "triangle",
+                "tube",
+                "cylinder",
+                "cone",
+                "cube",
+                "torus",
+                "geometry",
+                "btriangle",
+                "spherical_cap",
+                "lens",
+            ],
+        };
+        let mut position = DVec3::ZERO;
+        let mut normal = DVec3::Z;
+        let mut ray = 1.0;
+        let mut size = 1.0;
+        let (mut major, mut minor) = (1.0, 0.2);
+        let mut points: Vec<(DVec3, At)> = Vec::new();
+        let (mut scale, mut rotation, mut translation) = (DVec3::ONE, DVec3::ZERO, DVec3::ZERO);
+        let mut inner: Option<Shape> = None;
+        let mut inner_seen = false;
+        let mut lines: BTreeMap<&str, At> = BTreeMap::new();
+        while let Some(item) = self.body() {
+            let (k, l) = match self.entry(&block, item, keywords)? {
+                Entry::Key(k, l) => (k, l),
+                Entry::Note(n) => {
+                    self.note(&n, &block, false)?;
+                    continue;
+                }
+                Entry::Skip => continue,
+            };
+            let here = at(&l, &block);
+            match k {
+                "point" | "position" if kind == "triangle" || points_kind(kind) => {
+                    let most = if kind == "triangle" { 3 } else { 2 };
+                    if points.len() == most {
+                        let m = format!("a {kind} takes {most} points; this is one more");
+                        self.problem(&here, m, "the line is skipped")?;
+                    } else if let Some(p) = self.value(&block, &l, point(&l))? {
+                        points.push((p, here.clone()));
+                    }
+                }
+                "position" => {
+                    if let Some(p) = self.value(&block, &l, point(&l))? {
+                        position = p;
+                    }
+                }
+                "normal" => {
+                    if let Some(n) = self.value(&block, &l, direction(&l))? {
+                        normal = n;
+                    }
+                }
+                "ray" => {
+                    if let Some(r) = self.value(&block, &l, positive(&l, limits::MAX_COORDINATE))? {
+                        ray = r;
+                    }
+                }
+                "size" => {
+                    if let Some(s) = self.value(&block, &l, positive(&l, limits::MAX_COORDINATE))? {
+                        size = s;
+                    }
+                }
+                "major_radius" => {
+                    if let Some(r) = self.value(&block, &l, positive(&l, limits::MAX_COORDINATE))? {
+                        major = r;
+                    }
+                }
+                "minor_radius" => {
+                    if let Some(r) = self.value(&block, &l, positive(&l, limits::MAX_COORDINATE))? {
+                        minor = r;
+                    }
+                }
+                "scale" => {
+                    if let Some(s) = self.value(&block, &l, scale_factors(&l))? {
+                        scale = s;
+                    }
+                }
+                "rotation" => {
+                    if let Some(r) = self.value(&block, &l, angles(&l))? {
+                        rotation = r;
+                    }
+                }
+                "translation" => {
+                    if let Some(t) = self.value(&block, &l, point(&l))? {
+                        translation = t;
+                    }
+                }
+                geometry => {
+                    if inner_seen {
+                        let m = "a geometry block holds one geometry; this is a second one".to_string();
+                        self.problem(&here, m, "this geometry is skipped")?;
+                        self.skip_geometry(geometry);
+                        continue;
+                    }
+                    inner_seen = true;
+                    inner = self.geometry(&block, &l, geometry)?;
+                }
+            }
+            lines.insert(k, here);
+        }
+        let line = |k: &str| lines.get(k).cloned().unwrap_or_else(|| place.clone());
+        let dropped = "the geometry is dropped";
+        let shape = match kind {
+            "sphere" => Shape::Sphere(Sphere::new(position, ray)),
+            "plane" => Shape::Plane(Plane::new(position, unit(normal))),
+            "disk" => Shape::Disk(Disk::new(position, unit(normal), ray)),
+            "cube" => Shape::Cuboid(Box::new(Cuboid::new(position, DVec3::splat(size), DVec3::ZERO))),
+            "torus" => {
+                if minor > major {
+                    let m = format!(
+                        "must be at most major_radius ({major}) (a self-intersecting spindle torus is not supported), got {minor}"
+                    );
+                    self.problem(&line("minor_radius"), m, dropped)?;
+                    return Ok(None);
+                }
+                Shape::Torus(Box::new(Torus::new(position, unit(normal), major, minor)))
+            }
+            "triangle" => {
+                let defaults = [DVec3::ZERO, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)];
+                let p: Vec<DVec3> = (0..3).map(|i| points.get(i).map_or(defaults[i], |(p, _)| *p)).collect();
+                if let Some(why) = Triangle::degenerate(p[0], p[1], p[2]) {
+                    let m = format!(
+                        "the points {:?}, {:?} and {:?} make no triangle: {why}",
+                        p[0].to_array(),
+                        p[1].to_array(),
+                        p[2].to_array()
+                    );
+                    let here = points.last().map_or(place.clone(), |(_, a)| a.clone());
+                    self.problem(&here, m, dropped)?;
+                    return Ok(None);
+                }
+                Shape::Triangle(Triangle::new(p[0], p[1], p[2]))
+            }
+            "tube" | "cylinder" | "cone" => {
+                let from = points.first().map_or(DVec3::ZERO, |(p, _)| *p);
+                let to = points.get(1).map_or(DVec3::Z, |(p, _)| *p);
+                let height = (to - from).length();
+                let axis = (to - from) / height;
+                // Two different finite points differ by a vector of non-zero length unless
+                // it underflows.
+                if !axis.is_finite() {
+                    let m = format!(
+                        "the two points {:?} and {:?} must differ (a {kind} needs a length)",
+                        from.to_array(),
+                        to.to_array()
+                    );
+                    let here = points.last().map_or(place.clone(), |(_, a)| a.clone());
+                    self.problem(&here, m, dropped)?;
+                    return Ok(None);
+                }
+                match kind {
+                    "tube" => Shape::Cylinder(Box::new(Cylinder::tube(from, axis, height, ray))),
+                    "cylinder" => Shape::Cylinder(Box::new(Cylinder::new(from, axis, height, ray))),
+                    _ => Shape::Cone(Box::new(Cone::new(from, axis, height, ray))),
+                }
+            }
+            _ => {
+                let Some(inner) = inner else {
+                    if !inner_seen {
+                        let m = "a geometry block needs one geometry inside it (sphere, plane, ...)".to_string();
+                        self.problem(&place, m, dropped)?;
+                    }
+                    return Ok(None);
+                };
+                let t = Transform::from_parts(scale, rotation, translation);
+                if t.is_identity() {
+                    inner
+                } else {
+                    match moved(&t, inner) {
+                        Ok(s) => s,
+                        Err(m) => {
+                            self.problem(&place, m, dropped)?;
+                            return Ok(None);
+                        }
+                    }
+                }
+            }
+        };
+        Ok(Some(shape))
+    }
+
+    fn model(&mut self, open: &Line<'a>) -> Result<Option<ShapeEntry>, SceneError> {
+        let block = open.keyword.clone();
+        let place = at(open, "scene");
+        let mut file: Option<(String, At)> = None;
+        let mut name = None;
+        let (mut scale, mut rotation, mut translation) = (DVec3::ONE, DVec3::ZERO, DVec3::ZERO);
+        while let Some(item) = self.body() {
+            let (k, l) = match self.entry(&block, item, MODEL)? {
+                Entry::Key(k, l) => (k, l),
+                Entry::Note(n) => {
+                    if let Some(n) = self.note(&n, &block, true)? {
+                        name = Some(n);
+                    }
+                    continue;
+                }
+                Entry::Skip => continue,
+            };
+            match k {
+                "file" => {
+                    if let Some(f) = self.value(&block, &l, lex::name(l.value, l.value_column))? {
+                        file = Some((f, at_value(&l, &block, l.value_column)));
+                    }
+                }
+                "scale" => {
+                    if let Some(s) = self.value(&block, &l, scale_factors(&l))? {
+                        scale = s;
+                    }
+                }
+                "rotation" => {
+                    if let Some(r) = self.value(&block, &l, angles(&l))? {
+                        rotation = r;
+                    }
+                }
+                "translation" => {
+                    if let Some(t) = self.value(&block, &l, point(&l))? {
+                        translation = t;
+                    }
+                }
+                // Texture coordinates: lumiere draws no texture.
+                _ => {}
+            }
+        }
+        let dropped = "the model is dropped";
+        let Some((file, file_at)) = file else {
+            self.problem(&place, "a model needs a file (fichier)".to_string(), dropped)?;
+            return Ok(None);
+        };
+        let path = self.dir.join(&file);
+        let shown = path.display().to_string();
+        let room = limits::MAX_OBJECTS.saturating_sub(self.objects);
+        let mut mesh = match Mesh::read(&path, limits::MAX_MESH_TRIANGLES.min(room)) {
+            Ok(mesh) => mesh,
+            Err(e) => {
+                let m = match e.line {
+                    Some(line) => format!("{shown}:{line}: {}", e.message),
+                    None => format!("{shown}: {}", e.message),
+                };
+                self.problem(&file_at, m, dropped)?;
+                return Ok(None);
+            }
+        };
+        let t = Transform::from_parts(scale, rotation, translation);
+        if !t.is_identity() {
+            for v in &mut mesh.vertices {
+                *v = t.point(*v);
+            }
+            if mesh.vertices.iter().any(|v| !within_limits(*v)) {
+                let m = format!(
+                    "the transform moves a vertex of {shown} beyond the coordinates' range [-{c:e}, {c:e}]",
+                    c = limits::MAX_COORDINATE
+                );
+                self.problem(&place, m, dropped)?;
+                return Ok(None);
+            }
+            // A mirror turns the winding: swapped back, the normals stay outward.
+            if t.mirrors() {
+                for f in &mut mesh.faces {
+                    f.swap(1, 2);
+                }
+            }
+        }
+        for (k, f) in mesh.faces.iter().enumerate() {
+            let [a, b, c] = f.map(|i| mesh.vertices[i as usize]);
+            if let Some(why) = Triangle::degenerate(a, b, c) {
+                let m = format!("{shown}:{}: the face makes no triangle: {why}", mesh.lines[k]);
+                self.problem(&file_at, m, dropped)?;
+                return Ok(None);
+            }
+        }
+        self.warn(
+            &place,
+            "the model's triangles take the material of a primitive without material_name (\"none\"): lumiere does not read .mtl materials yet".to_string(),
+        );
+        let shapes: Vec<Shape> = mesh.triangles().into_iter().map(Shape::Triangle).collect();
+        self.objects += shapes.len();
+        Ok(Some(ShapeEntry {
+            at: place.clone(),
+            name,
+            material: "none".to_string(),
+            material_at: place,
+            shapes,
+            model: true,
+        }))
+    }
+
+    fn light(&mut self, open: &Line<'a>, kind: &str) -> Result<Option<Light>, SceneError> {
+        let block = open.keyword.clone();
+        let keywords = match kind {
+            "ambient_light" => AMBIENT,
+            "directional_light" => DIRECTIONAL,
+            _ => POINT,
+        };
+        let mut color = DVec3::ONE;
+        let mut orientation = DVec3::NEG_Z;
+        let mut position = DVec3::ZERO;
+        let mut amplification = 1.0;
+        let mut attenuation = Attenuation::NONE;
+        let mut lines: BTreeMap<&str, At> = BTreeMap::new();
+        while let Some(item) = self.body() {
+            let (k, l) = match self.entry(&block, item, keywords)? {
+                Entry::Key(k, l) => (k, l),
+                Entry::Note(n) => {
+                    self.note(&n, &block, false)?;
+                    continue;
+                }
+                Entry::Skip => continue,
+            };
+            let read = match k {
+                "color" => self
+                    .value(&block, &l, self::color(&l, limits::MAX_LIGHT))?
+                    .map(|c| color = c),
+                "orientation" => self.value(&block, &l, direction(&l))?.map(|d| orientation = d),
+                "position" => self.value(&block, &l, point(&l))?.map(|p| position = p),
+                "amplification" => self
+                    .value(&block, &l, number_in(&l, 0.0, limits::MAX_LIGHT))?
+                    .map(|a| amplification = a),
+                _ => self.value(&block, &l, number_in(&l, 0.0, 1e12))?.map(|x| match k {
+                    "constant_attenuator" => attenuation.constant = x,
+                    "linear_attenuator" => attenuation.linear = x,
+                    _ => attenuation.quadratic = x,
+                }),
+            };
+            if read.is_some() {
+                lines.insert(k, at(&l, &block));
+            }
+        }
+        let place = at(open, "scene");
+        let dropped = "the light is dropped";
+        Ok(Some(match kind {
+            "ambient_light" => Light::Ambient { color },
+            "directional_light" => Light::Directional {
+                direction: unit(orientation),
+                color,
+            },
+            _ => {
+                if attenuation.constant + attenuation.linear + attenuation.quadratic == 0.0 {
+                    let here = lines.get("constant_attenuator").cloned().unwrap_or(place);
+                    let m = "the constant, linear and quadratic attenuators cannot all be 0".to_string();
+                    self.problem(&here, m, dropped)?;
+                    return Ok(None);
+                }
+                // The amplification is folded into the colour.
+                let amplified = color * amplification;
+                if amplified.max_element() > limits::MAX_LIGHT {
+                    let here = lines.get("amplification").cloned().unwrap_or(place);
+                    let m = format!(
+                        "the colour times the amplification must stay at most {:e} per channel, got {:?}",
+                        limits::MAX_LIGHT,
+                        amplified.to_array()
+                    );
+                    self.problem(&here, m, dropped)?;
+                    return Ok(None);
+                }
+                Light::Point(PointLight {
+                    position,
+                    color: amplified,
+                    attenuation,
+                })
+            }
+        }))
+    }
+
+    /// The scene: materials bound by name, objects and lights in file order, the settings
+    /// over `base`'s conventions.
+    fn build(mut self, raw: Raw, base: Conventions) -> Result<Parsed, SceneError> {
+        let camera = raw.camera.unwrap_or_default();
+        let (width, height) = raw.viewport.map_or((500, 500), |v| (v.width, v.height));
+        let r = raw.raytracer.unwrap_or_default();
+        let mut conventions = base;
+        if let Some(p) = r.pixel_coordinate {
+            conventions.sample_position = p;
+        }
+        if let Some(near) = camera.near {
+            conventions.near = near;
+        }
+        if let Some(far) = camera.far {
+            conventions.far = far;
+        }
+        if let Some((n, place)) = &r.sampling
+            && *n > 1
+            && conventions.sample_position != SamplePosition::Jittered
+        {
+            self.warn(
+                place,
+                format!("sampling {n} without pixel_coordinate random traces the same ray {n} times"),
+            );
+        }
+        let settings = Settings {
+            width,
+            height,
+            samples_per_pixel: r.sampling.map_or(1, |(n, _)| n),
+            seed: self.seed.unwrap_or(DEFAULT_SEED),
+            depth: r.depth.unwrap_or(1),
+            shading: r.shading.unwrap_or_default(),
+            shadows: true,
+            background: DVec3::ZERO,
+            adaptive_threshold: self.adaptive_threshold.unwrap_or(0.0),
+            conventions,
+        };
+        let highlight = conventions.default_highlight.metal();
+        // The materials: the first definition of each name, then the names used but not
+        // defined (SIMRenderer's grey default), "default" first and the others sorted, as
+        // the TOML format orders them.
+        let mut defined: BTreeMap<String, (Material, bool)> = BTreeMap::new();
+        for entry in raw.materials {
+            if defined.contains_key(&entry.name) {
+                let m = format!(
+                    "a material named {:?} is already defined; SIMRenderer keeps the first",
+                    entry.name
+                );
+                self.problem(&entry.at, m, "this one is skipped")?;
+                continue;
+            }
+            let mut material = entry.material;
+            if !entry.metal_given {
+                material.metal = highlight;
+            }
+            defined.insert(entry.name, (material, entry.metal_given));
+        }
+        let mut named = defined.clone();
+        for s in &raw.shapes {
+            if !named.contains_key(&s.material) {
+                let hint = match defined.keys().find(|n| n.trim() == s.material.trim()) {
+                    Some(close) => format!(" (note the blanks: a material is named {close:?})"),
+                    None if s.model => String::new(),
+                    None if s.material == "none" => {
+                        " (a primitive without material_name takes the material named \"none\")".to_string()
+                    }
+                    None => String::new(),
+                };
+                self.warn(
+                    &s.material_at,
+                    format!(
+                        "no material is named {:?}{hint}; it gets SIMRenderer's grey default material (ambient 0.2, diffuse 0.6, specular 0.7)",
+                        s.material
+                    ),
+                );
+                named.insert(s.material.clone(), (grey_default(), true));
+            }
+        }
+        let mut materials = vec![Material {
+            metal: highlight,
+            ..Material::default()
+        }];
+        let mut material_names = vec!["default".to_string()];
+        let mut metal_given = vec![false];
+        for (name, (material, given)) in named {
+            if name == "default" {
+                materials[0] = material;
+                metal_given[0] = given;
+            } else {
+                materials.push(material);
+                material_names.push(name);
+                metal_given.push(given);
+            }
+        }
+        let mut objects = Vec::new();
+        for (i, s) in raw.shapes.into_iter().enumerate() {
+            let material = material_names.iter().position(|n| *n == s.material).unwrap_or(0);
+            if objects.len() + s.shapes.len() > limits::MAX_OBJECTS {
+                let m = format!("the scene would hold more than {} objects", limits::MAX_OBJECTS);
+                self.problem(&s.at, m, "the rest is dropped")?;
+                break;
+            }
+            if s.model {
+                let base = s.name.unwrap_or_else(|| format!("model#{i}"));
+                objects.extend(s.shapes.into_iter().enumerate().map(|(k, shape)| Object {
+                    name: format!("{base}/{k}"),
+                    shape,
+                    material,
+                }));
+            } else {
+                for shape in s.shapes {
+                    objects.push(Object {
+                        name: s.name.clone().unwrap_or_else(|| format!("{}#{i}", shape.kind())),
+                        shape,
+                        material,
+                    });
+                }
+            }
+        }
+        if raw.lights.len() > limits::MAX_LIGHTS {
+            let (place, _) = &raw.lights[limits::MAX_LIGHTS];
+            let m = format!("at most {} lights", limits::MAX_LIGHTS);
+            self.problem(&place.clone(), m, "the rest are dropped")?;
+        }
+        let lights = raw
+            .lights
+            .into_iter()
+            .take(limits::MAX_LIGHTS)
+            .map(|(_, l)| l)
+            .collect();
+        Ok(Parsed {
+            scene: Scene {
+                settings,
+                camera: camera.spec,
+                materials,
+                material_names,
+                metal_given,
+                objects,
+                lights,
+            },
+            warnings: self.warnings,
+        })
+    }
+}
+
+/// Whether a geometry of this kind takes its two points from `point` or `position` lines.
+fn points_kind(kind: &str) -> bool {
+    matches!(kind, "tube" | "cylinder" | "cone")
+}
+
+/// A direction made unit as the TOML format makes it (divided by its length).
+fn unit(v: DVec3) -> DVec3 {
+    v / v.length()
+}
+
+/// Whether every coordinate is within [`limits::MAX_COORDINATE`].
+fn within_limits(p: DVec3) -> bool {
+    p.is_finite() && p.abs().max_element() <= limits::MAX_COORDINATE
+}
+
+/// `shape` through `t`, refused when it leaves the coordinates' range or, for a triangle,
+/// when rounding made it degenerate.
+fn moved(t: &Transform, shape: Shape) -> Result<Shape, String> {
+    let out = t.apply(shape);
+    let reach = match &out {
+        Shape::Transformed(s) => match s.bounds() {
+            Some(b) => within_limits(b.min) && within_limits(b.max),
+            None => within_limits(t.point(match &s.shape {
+                Shape::Plane(p) => p.point,
+                _ => DVec3::ZERO,
+            })),
+        },
+        Shape::Triangle(tri) => tri.points().iter().all(|p| within_limits(*p)),
+        _ => true,
+    };
+    if !reach {
+        return Err(format!(
+            "the transform moves the shape beyond the coordinates' range [-{m:e}, {m:e}]",
+            m = limits::MAX_COORDINATE
+        ));
+    }
+    if let Shape::Triangle(tri) = &out
+        && let [a, b, c] = tri.points()
+        && let Some(why) = Triangle::degenerate(a, b, c)
+    {
+        return Err(format!("the transform makes the triangle degenerate: {why}"));
+    }
+    Ok(out)
+}
+
+fn value_error<T>(column: usize, message: String) -> Result<T, ValueError> {
+    Err(ValueError { column, message })
+}
+
+/// A point: finite coordinates of magnitude at most [`limits::MAX_COORDINATE`].
+fn point(l: &Line) -> Result<DVec3, ValueError> {
+    let v = lex::vector(l.value, l.value_column)?;
+    let m = limits::MAX_COORDINATE;
+    if v.iter().any(|c| !c.is_finite() || c.abs() > m) {
+        return value_error(
+            l.value_column,
+            format!("components must be finite numbers in [-{m:e}, {m:e}], got {v:?}"),
+        );
+    }
+    Ok(DVec3::from(v))
+}
+
+/// A direction: a point of non-zero length (not yet made unit).
+fn direction(l: &Line) -> Result<DVec3, ValueError> {
+    let d = point(l)?;
+    if d.length() <= 1e-12 {
+        return value_error(
+            l.value_column,
+            format!("must be a direction of non-zero length, got {:?}", d.to_array()),
+        );
+    }
+    Ok(d)
+}
+
+/// A number in `[lo, hi]`.
+fn number_in(l: &Line, lo: f64, hi: f64) -> Result<f64, ValueError> {
+    let x = lex::number(l.value, l.value_column)?;
+    if !x.is_finite() || x < lo || x > hi {
+        return value_error(
+            l.value_column,
+            format!("must be a finite number in [{lo}, {hi}], got {x}"),
+        );
+    }
+    Ok(x)
+}
+
+/// A number in `(0, hi]`.
+fn positive(l: &Line, hi: f64) -> Result<f64, ValueError> {
+    let x = lex::number(l.value, l.value_column)?;
+    if !x.is_finite() || x <= 0.0 || x > hi {
+        return value_error(l.value_column, format!("must be a finite number in (0, {hi}], got {x}"));
+    }
+    Ok(x)
+}
+
+/// The far clipping plane: a number above 0, `Infinity` for none.
+fn far(l: &Line) -> Result<f64, ValueError> {
+    let x = lex::number(l.value, l.value_column)?;
+    if x.is_nan() || x <= 0.0 {
+        return value_error(
+            l.value_column,
+            format!("must be a number above 0 (Infinity: no limit), got {x}"),
+        );
+    }
+    Ok(x)
+}
+
+/// An integer in `[lo, hi]`.
+fn int_in(l: &Line, lo: i32, hi: i32) -> Result<i32, ValueError> {
+    let n = lex::integer(l.value, l.value_column)?;
+    if n < lo || n > hi {
+        return value_error(l.value_column, format!("must be an integer in [{lo}, {hi}], got {n}"));
+    }
+    Ok(n)
+}
+
+/// A colour with each channel in `[0, hi]`.
+fn color(l: &Line, hi: f64) -> Result<DVec3, ValueError> {
+    let c = lex::color(l.value, l.value_column)?;
+    if c.iter().any(|x| !x.is_finite() || *x < 0.0 || *x > hi) {
+        return value_error(
+            l.value_column,
+            format!("each channel must be a finite number in [0, {hi}], got {c:?}"),
+        );
+    }
+    Ok(DVec3::from(c))
+}
+
+/// Scale factors of magnitude in [`limits::MIN_SCALE`, `limits::MAX_SCALE`] (negative ones
+/// mirror).
+fn scale_factors(l: &Line) -> Result<DVec3, ValueError> {
+    let s = lex::vector(l.value, l.value_column)?;
+    let (lo, hi) = (limits::MIN_SCALE, limits::MAX_SCALE);
+    if s.iter().any(|x| !x.is_finite() || x.abs() < lo || x.abs() > hi) {
+        return value_error(
+            l.value_column,
+            format!("each factor must be finite, of magnitude in [{lo:e}, {hi:e}] (negative mirrors), got {s:?}"),
+        );
+    }
+    Ok(DVec3::from(s))
+}
+
+/// Angles in degrees, each in [-360, 360].
+fn angles(l: &Line) -> Result<DVec3, ValueError> {
+    let a = lex::vector(l.value, l.value_column)?;
+    if a.iter().any(|x| !x.is_finite() || x.abs() > 360.0) {
+        return value_error(
+            l.value_column,
+            format!("angles must be finite numbers in [-360, 360] degrees, got {a:?}"),
+        );
+    }
+    Ok(DVec3::from(a))
+}

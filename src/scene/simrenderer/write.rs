@@ -1,0 +1,490 @@
+//! Writing a [`Scene`] as a SIMRenderer scene file: every setting, light, material and
+//! object it can say, in the blocks and keywords [`super::read`] reads back to the same
+//! scene; everything it cannot say refused by name ([`Refused`]). A scene under conventions
+//! SIMRenderer does not have gets a comment at the top listing them, and how lumiere
+//! renders the file as the original.
+
+use super::exact::{self, number, unit_once, unit_twice};
+use super::{DEFAULT_SEED, Refused, Written, object_label};
+use crate::conventions::{Conventions, SamplePosition};
+use crate::light::Light;
+use crate::material::Material;
+use crate::scene::{Scene, Specular};
+use crate::shape::{Cuboid, Shape};
+use glam::DVec3;
+
+/// The file's number for `x` (`Infinity` for an infinite one).
+fn num(x: f64) -> String {
+    number(x, "Infinity")
+}
+
+fn vec3(v: DVec3) -> String {
+    format!("{} {} {}", num(v.x), num(v.y), num(v.z))
+}
+
+/// `reflexion_algorithm`'s name for a shading model, if SIMRenderer has it.
+fn algorithm(ambient: bool, diffuse: bool, specular: Specular) -> Option<&'static str> {
+    Some(match (ambient, diffuse, specular) {
+        (true, false, Specular::None) => "ambient",
+        (false, true, Specular::None) => "diffuse",
+        (false, false, Specular::Phong) => "phong_specular",
+        (false, false, Specular::Blinn) => "blinn_specular",
+        (true, true, Specular::None) => "no_specular",
+        (true, true, Specular::Phong) => "phong",
+        (true, true, Specular::Blinn) => "blinn",
+        _ => return None,
+    })
+}
+
+/// The switches SIMRenderer has no keyword for, where `c` differs from SIMRenderer's, as
+/// `(key, value here, SIMRenderer's value)`.
+pub fn foreign_conventions(c: &Conventions) -> Vec<(&'static str, String, String)> {
+    let theirs = Conventions::SIMRENDERER.describe();
+    c.describe()
+        .into_iter()
+        .zip(theirs)
+        .filter(|((key, _), _)| !matches!(*key, "sample_position" | "near" | "far"))
+        .filter(|((_, mine), (_, theirs))| mine != theirs)
+        .map(|((key, mine), (_, theirs))| (key, mine, theirs))
+        .collect()
+}
+
+/// Why a material name cannot be written (SIMRenderer takes the rest of the line, leading
+/// blanks removed, as the name).
+fn bad_name(name: &str) -> Option<&'static str> {
+    if name.is_empty() {
+        Some("an empty name")
+    } else if name.starts_with(char::is_whitespace) {
+        Some("a name that starts with a blank (SIMRenderer removes it)")
+    } else if name.contains(['\n', '\r']) {
+        Some("a name with a line break")
+    } else {
+        None
+    }
+}
+
+/// The scene as a SIMRenderer file; `source` names where it came from (in the header
+/// comment) and `image` is the viewport's `image_file_name`.
+pub fn to_simrenderer(scene: &Scene, source: &str, image: &str) -> Result<Written, Refused> {
+    let mut w = Writer {
+        out: String::new(),
+        refused: Vec::new(),
+        notes: Vec::new(),
+    };
+    w.header(scene, source);
+    w.settings(scene, image);
+    w.lights(scene);
+    w.materials(scene);
+    w.objects(scene);
+    if !w.refused.is_empty() {
+        return Err(Refused {
+            format: "SIMRenderer",
+            reasons: w.refused,
+        });
+    }
+    Ok(Written {
+        text: w.out,
+        notes: w.notes,
+    })
+}
+
+struct Writer {
+    out: String,
+    refused: Vec<String>,
+    notes: Vec<String>,
+}
+
+impl Writer {
+    fn line(&mut self, text: impl AsRef<str>) {
+        self.out.push_str(text.as_ref());
+        self.out.push('\n');
+    }
+
+    /// A unit vector the reader rebuilds through `reads`; a note when it cannot to the bit.
+    fn direction(&mut self, what: impl FnOnce() -> String, v: DVec3, reads: fn(DVec3) -> DVec3) -> String {
+        let (w, exact) = exact::direction(v, reads);
+        if !exact {
+            self.notes
+                .push(format!("{}: reads back within rounding, not to the bit", what()));
+        }
+        vec3(w)
+    }
+
+    fn header(&mut self, scene: &Scene, source: &str) {
+        self.line(format!("# SIMRenderer scene written by lumiere from {source}."));
+        let foreign = foreign_conventions(&scene.settings.conventions);
+        if foreign.is_empty() {
+            self.line("");
+            return;
+        }
+        self.line("#");
+        self.line("# That scene follows conventions SIMRenderer does not have; SIMRenderer, and lumiere");
+        self.line("# reading this file, render it with SIMRenderer's:");
+        for (key, mine, theirs) in &foreign {
+            self.line(format!("#   {key}: {mine} in that scene, {theirs} in SIMRenderer"));
+        }
+        let mut chapter = Conventions::CHAPTER;
+        let c = &scene.settings.conventions;
+        (chapter.sample_position, chapter.near, chapter.far) = (c.sample_position, c.near, c.far);
+        let options = if chapter == *c {
+            "--conventions chapter".to_string()
+        } else {
+            foreign
+                .iter()
+                .map(|(key, mine, _)| format!("--convention {key}={mine}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        self.line(format!("# lumiere renders it as that scene with the options {options}"));
+        self.line("");
+    }
+
+    fn settings(&mut self, scene: &Scene, image: &str) {
+        let s = &scene.settings;
+        let c = &scene.camera;
+        let conv = &s.conventions;
+        if !(10.0..=170.0).contains(&c.vfov_deg) {
+            self.refused.push(format!(
+                "camera.vfov {}: SIMRenderer's angle is in [10, 170] degrees",
+                c.vfov_deg
+            ));
+        }
+        if conv.far < conv.near {
+            self.refused.push(format!(
+                "conventions far {} below near {}: SIMRenderer's far_clipping_plane is at least its near_clipping_plane",
+                conv.far, conv.near
+            ));
+        }
+        self.line("camera");
+        self.line(format!("position            {}", vec3(c.position)));
+        self.line(format!("look_at             {}", vec3(c.look_at)));
+        let up = self.direction(|| "camera.up".into(), c.up, unit_once);
+        self.line(format!("up                  {up}"));
+        self.line(format!("angle               {}", num(c.vfov_deg)));
+        self.line(format!("near_clipping_plane {}", num(conv.near)));
+        self.line(format!("far_clipping_plane  {}", num(conv.far)));
+        self.line("end");
+        self.line("");
+        self.line("viewport");
+        self.line(format!("width           {}", s.width));
+        self.line(format!("height          {}", s.height));
+        self.line(format!("image_file_name {image}"));
+        self.line("end");
+        self.line("");
+        let pixel = match conv.sample_position {
+            SamplePosition::Corner => "top_left",
+            SamplePosition::Center => "center",
+            SamplePosition::Jittered => "random",
+            SamplePosition::Regular => {
+                self.refused.push(
+                    "conventions sample_position regular: SIMRenderer places every sample at the pixel's top_left corner, its center, or at random (with 1 sample, center is the same ray)".to_string(),
+                );
+                "center"
+            }
+        };
+        let shading = algorithm(s.shading.ambient, s.shading.diffuse, s.shading.specular).unwrap_or_else(|| {
+            self.refused.push(format!(
+                "render shading (ambient {}, diffuse {}, specular {:?}): SIMRenderer's reflexion_algorithm keeps one term, ambient and diffuse (no_specular), or all three",
+                s.shading.ambient, s.shading.diffuse, s.shading.specular
+            ));
+            "blinn"
+        });
+        if !s.shadows {
+            self.refused
+                .push("render shadows = false: SIMRenderer always casts shadow rays".to_string());
+        }
+        if s.background != DVec3::ZERO {
+            self.refused.push(format!(
+                "render background {:?}: SIMRenderer's background is black",
+                s.background.to_array()
+            ));
+        }
+        self.line("raytracer");
+        self.line(format!("sampling            {}", s.samples_per_pixel));
+        self.line(format!("recursive_level     {}", s.depth));
+        self.line(format!("reflexion_algorithm {shading}"));
+        self.line(format!("pixel_coordinate    {pixel}"));
+        // What lumiere needs and SIMRenderer does not read, as comments it skips.
+        if s.seed != DEFAULT_SEED {
+            self.line(format!("# lumiere: seed {}", s.seed));
+        }
+        if s.adaptive_threshold != 0.0 {
+            self.line(format!("# lumiere: adaptive_threshold {}", num(s.adaptive_threshold)));
+        }
+        self.line("end");
+        self.line("");
+    }
+
+    fn lights(&mut self, scene: &Scene) {
+        for (i, light) in scene.lights.iter().enumerate() {
+            match light {
+                Light::Ambient { color } => {
+                    self.line("ambient_light");
+                    self.line(format!("color {}", vec3(*color)));
+                }
+                Light::Directional { direction, color } => {
+                    let d = self.direction(|| format!("lights[{i}] (directional)"), *direction, unit_once);
+                    self.line("directional_light");
+                    self.line(format!("color       {}", vec3(*color)));
+                    self.line(format!("orientation {d}"));
+                }
+                Light::Point(p) => {
+                    self.line("point_light");
+                    self.line(format!("color                {}", vec3(p.color)));
+                    self.line(format!("position             {}", vec3(p.position)));
+                    self.line(format!("constant_attenuator  {}", num(p.attenuation.constant)));
+                    self.line(format!("linear_attenuator    {}", num(p.attenuation.linear)));
+                    self.line(format!("quadratic_attenuator {}", num(p.attenuation.quadratic)));
+                }
+                Light::Spot(_) => {
+                    self.refused
+                        .push(format!("lights[{i}] (spot): SIMRenderer has no spot light"));
+                    continue;
+                }
+                Light::Area(_) => {
+                    self.refused
+                        .push(format!("lights[{i}] (area): SIMRenderer has no area light"));
+                    continue;
+                }
+            }
+            self.line("end");
+            self.line("");
+        }
+    }
+
+    fn materials(&mut self, scene: &Scene) {
+        let highlight = scene.settings.conventions.default_highlight.metal();
+        for (i, (name, m)) in scene.material_names.iter().zip(&scene.materials).enumerate() {
+            let given = scene.metal_given[i];
+            // The built-in default, when no object uses it, is the reader's own.
+            let builtin = Material {
+                metal: highlight,
+                ..Material::default()
+            };
+            if i == 0 && !given && *m == builtin && scene.objects.iter().all(|o| o.material != 0) {
+                continue;
+            }
+            if let Some(why) = bad_name(name) {
+                self.refused
+                    .push(format!("materials[{i}] {name:?}: SIMRenderer cannot read {why}"));
+                continue;
+            }
+            if m.shininess > 200.0 {
+                self.refused.push(format!(
+                    "materials[{i}] {name:?}: shininess {} (SIMRenderer's is in [0, 200])",
+                    m.shininess
+                ));
+            }
+            self.line("material");
+            self.line(format!("name      {name}"));
+            self.line(format!("color     {}", vec3(m.color)));
+            self.line(format!("ka        {}", num(m.ka)));
+            self.line(format!("kd        {}", num(m.kd)));
+            self.line(format!("ks        {}", num(m.ks)));
+            self.line(format!("shininess {}", num(m.shininess)));
+            if given {
+                let (p, exact) = exact::plasticity(m.metal);
+                if !exact {
+                    self.notes.push(format!(
+                        "materials[{i}] {name:?}: m = {} is written as p = 1 - m = {}, which reads back within rounding, not to the bit",
+                        m.metal,
+                        num(p)
+                    ));
+                }
+                self.line(format!("p         {}", num(p)));
+            }
+            self.line(format!("kr        {}", num(m.kr)));
+            self.line(format!("kt        {}", num(m.kt)));
+            self.line(format!("n         {}", num(m.ior)));
+            self.line("end");
+            self.line("");
+        }
+    }
+
+    fn objects(&mut self, scene: &Scene) {
+        for (i, o) in scene.objects.iter().enumerate() {
+            let label = object_label(scene, i);
+            let mut block = String::new();
+            if !self.shape(&label, &o.shape, &mut block) {
+                continue;
+            }
+            self.line("primitive");
+            if o.name != format!("{}#{i}", o.shape.kind()) {
+                let quoted = serde_json::to_string(&o.name).unwrap_or_default();
+                self.line(format!("# lumiere: name {quoted}"));
+            }
+            self.line(format!("material_name {}", scene.material_names[o.material]));
+            self.out.push_str(&block);
+            self.line("end");
+            self.line("");
+        }
+    }
+
+    /// The geometry block of `shape` into `out`; false when SIMRenderer cannot say it.
+    fn shape(&mut self, label: &str, shape: &Shape, out: &mut String) -> bool {
+        let mut put = |s: String| {
+            out.push_str(&s);
+            out.push('\n');
+        };
+        match shape {
+            Shape::Plane(p) => {
+                let n = self.direction(|| label.to_string(), p.normal, unit_twice);
+                put(format!("plane\nposition {}\nnormal   {n}\nend", vec3(p.point)));
+            }
+            Shape::Disk(d) => {
+                let n = self.direction(|| label.to_string(), d.normal, unit_twice);
+                put(format!(
+                    "disk\nposition {}\nnormal   {n}\nray      {}\nend",
+                    vec3(d.center),
+                    num(d.radius)
+                ));
+            }
+            Shape::Sphere(s) => put(format!(
+                "sphere\nposition {}\nray      {}\nend",
+                vec3(s.center),
+                num(s.radius)
+            )),
+            Shape::Cuboid(b) => self.cuboid(label, b, &mut put),
+            Shape::Cylinder(c) => {
+                let (end, exact) = exact::far_end(c.base, c.axis, c.height);
+                if !exact {
+                    self.notes
+                        .push(format!("{label}: its axis reads back within rounding, not to the bit"));
+                }
+                let kind = if c.open { "tube" } else { "cylinder" };
+                put(format!(
+                    "{kind}\npoint {}\npoint {}\nray   {}\nend",
+                    vec3(c.base),
+                    vec3(end),
+                    num(c.radius)
+                ));
+            }
+            Shape::Cone(c) => {
+                let (apex, exact) = exact::far_end(c.base, c.axis, c.height);
+                if !exact {
+                    self.notes
+                        .push(format!("{label}: its axis reads back within rounding, not to the bit"));
+                }
+                put(format!(
+                    "cone\npoint {}\npoint {}\nray   {}\nend",
+                    vec3(c.base),
+                    vec3(apex),
+                    num(c.radius)
+                ));
+            }
+            Shape::Torus(t) => {
+                let n = self.direction(|| label.to_string(), t.axis, unit_twice);
+                put(format!(
+                    "torus\nposition     {}\nnormal       {n}\nmajor_radius {}\nminor_radius {}\nend",
+                    vec3(t.center),
+                    num(t.major),
+                    num(t.minor)
+                ));
+            }
+            Shape::Triangle(t) => {
+                let [a, b, c] = t.points();
+                put(format!(
+                    "triangle\npoint {}\npoint {}\npoint {}\nend",
+                    vec3(a),
+                    vec3(b),
+                    vec3(c)
+                ));
+            }
+            Shape::Rectangle(_) => {
+                self.refused.push(format!(
+                    "{label}: SIMRenderer has no rectangle (a mirror pair is two rectangles)"
+                ));
+                return false;
+            }
+            Shape::Transformed(t) => {
+                let Some(p) = exact::parts(&t.transform) else {
+                    self.refused.push(format!(
+                        "{label}: its transform shears (a general matrix); SIMRenderer's geometry block scales, rotates and translates"
+                    ));
+                    return false;
+                };
+                if !p.exact {
+                    self.notes.push(format!(
+                        "{label}: its transform reads back within rounding, not to the bit"
+                    ));
+                }
+                let mut inner = String::new();
+                if !self.shape(label, &t.shape, &mut inner) {
+                    return false;
+                }
+                put(format!(
+                    "geometry\nscale       {}\nrotation    {}\ntranslation {}\n{inner}end",
+                    vec3(p.scale),
+                    vec3(p.rotation),
+                    vec3(p.translation)
+                ));
+            }
+        }
+        true
+    }
+
+    /// A box: SIMRenderer's `cube` when it is an axis-aligned cube, else a unit cube in a
+    /// `geometry` block that scales it to the box's sides, rotates and moves it (the same
+    /// box, which lumiere reads back as a transformed shape).
+    fn cuboid(&mut self, label: &str, b: &Cuboid, put: &mut impl FnMut(String)) {
+        let size = b.half_size * 2.0;
+        if size.x == size.y && size.y == size.z && Cuboid::new(b.center, size, DVec3::ZERO) == *b {
+            put(format!(
+                "cube\nposition {}\nsize     {}\nend",
+                vec3(b.center),
+                num(size.x)
+            ));
+            return;
+        }
+        let (rotation, exact) = exact::box_rotation(b);
+        self.notes.push(format!(
+            "{label}: SIMRenderer's cube is an axis-aligned cube; this box is written as a unit cube scaled, rotated{} and moved in a geometry block, the same box, which lumiere reads back as a transformed shape",
+            if exact { "" } else { " (within rounding)" }
+        ));
+        put(format!(
+            "# {label}: a unit cube scaled to the box's sides, rotated and moved\ngeometry\nscale       {}\nrotation    {}\ntranslation {}\ncube\nposition 0 0 0\nsize     1\nend\nend",
+            vec3(size),
+            vec3(rotation),
+            vec3(b.center)
+        ));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_reflexion_algorithm_but_no_light_has_its_model() {
+        for i in 1..8 {
+            let m = super::super::shading_of(i).unwrap();
+            assert_eq!(
+                algorithm(m.ambient, m.diffuse, m.specular),
+                Some(super::super::REFLEXION_ALGORITHMS[i])
+            );
+        }
+        assert_eq!(super::super::shading_of(0), None);
+        assert_eq!(algorithm(true, false, Specular::Blinn), None);
+        assert_eq!(algorithm(false, false, Specular::None), None);
+    }
+
+    #[test]
+    fn the_chapter_conventions_simrenderer_lacks() {
+        let keys: Vec<&str> = foreign_conventions(&Conventions::CHAPTER)
+            .into_iter()
+            .map(|(k, _, _)| k)
+            .collect();
+        assert_eq!(
+            keys,
+            [
+                "ray_origin",
+                "shadow_filter",
+                "transmission",
+                "refracting",
+                "total_internal_reflection",
+                "default_highlight"
+            ]
+        );
+        assert!(foreign_conventions(&Conventions::SIMRENDERER).is_empty());
+    }
+}

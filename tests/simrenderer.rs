@@ -1,0 +1,737 @@
+//! SIMRenderer scene files read by lumiere: every keyword and alias of the hand-written
+//! fixtures in tests/fixtures/simrenderer/ read to the values written there; the chapter's
+//! reference scene in SIMRenderer's format giving the scene and the bytes of its TOML twin;
+//! errors located and named, warnings under `--lenient`; the two formats told apart.
+
+mod common;
+use common::*;
+use glam::DVec3;
+use lumiere::conventions::{Conventions, SamplePosition};
+use lumiere::light::{Attenuation, Light, PointLight};
+use lumiere::material::Material;
+use lumiere::scene::simrenderer::{self, Options, Parsed};
+use lumiere::scene::{self, Format, LoadOptions, ShadingModel, Specular};
+use lumiere::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Shape, Sphere, Torus, Transform, Triangle};
+use std::path::PathBuf;
+
+fn fixture(name: &str) -> PathBuf {
+    repo("tests/fixtures/simrenderer").join(name)
+}
+
+fn read(name: &str) -> Parsed {
+    simrenderer::load(&fixture(name), &Options::default()).unwrap()
+}
+
+fn parse(text: &str) -> Result<Parsed, scene::SceneError> {
+    simrenderer::parse(text, "lab.txt", &Options::default())
+}
+
+/// The error of `text`, as printed.
+fn error(text: &str) -> String {
+    match parse(text) {
+        Ok(_) => panic!("no error for:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn lenient(text: &str) -> Parsed {
+    let options = Options {
+        lenient: true,
+        ..Options::default()
+    };
+    simrenderer::parse(text, "lab.txt", &options).unwrap()
+}
+
+fn warnings(p: &Parsed) -> Vec<String> {
+    p.warnings.iter().map(|w| w.to_string()).collect()
+}
+
+fn unit(v: [f64; 3]) -> DVec3 {
+    let v = DVec3::from(v);
+    v / v.length()
+}
+
+#[test]
+fn every_keyword_reads_to_the_value_written() {
+    let parsed = read("keywords.txt");
+    let s = &parsed.scene;
+    // camera: position, look_at, up (made unit), angle; the clipping planes are conventions.
+    assert_eq!(s.camera.position, DVec3::new(0.0, -8.0, 5.0));
+    assert_eq!(s.camera.look_at, DVec3::new(0.0, 1.0, 0.0));
+    assert_eq!(s.camera.up, DVec3::Z);
+    assert_eq!(s.camera.vfov_deg, 45.0);
+    // viewport, raytracer.
+    let t = &s.settings;
+    assert_eq!(
+        (t.width, t.height, t.samples_per_pixel, t.depth, t.seed),
+        (64, 48, 4, 5, 42)
+    );
+    assert_eq!(
+        t.shading,
+        ShadingModel {
+            ambient: true,
+            diffuse: true,
+            specular: Specular::Phong
+        }
+    );
+    assert!(t.shadows);
+    assert_eq!(t.background, DVec3::ZERO);
+    assert_eq!(t.adaptive_threshold, 0.0);
+    let mut conventions = Conventions::SIMRENDERER;
+    conventions.sample_position = SamplePosition::Jittered;
+    conventions.near = 0.5;
+    conventions.far = 250.0;
+    assert_eq!(t.conventions, conventions);
+    // Lights, in file order; the amplification folded into the point light's colour.
+    assert_eq!(
+        s.lights,
+        vec![
+            Light::Ambient {
+                color: DVec3::splat(0.2)
+            },
+            Light::Ambient { color: DVec3::ZERO },
+            Light::Directional {
+                direction: unit([1.0, 1.0, -1.0]),
+                color: DVec3::ONE
+            },
+            Light::Point(PointLight {
+                position: DVec3::new(0.0, 0.0, 10.0),
+                color: DVec3::new(1.0, 0.5, 2.0),
+                attenuation: Attenuation {
+                    constant: 1.0,
+                    linear: 0.1,
+                    quadratic: 0.01
+                }
+            }),
+        ]
+    );
+    // Materials: the built-in default first, then by name; "none" and "unknown" are
+    // SIMRenderer's grey default, a material without p takes the highlight of the
+    // conventions (SIMRenderer's: metal, m = 1).
+    assert_eq!(
+        s.material_names,
+        ["default", "blue tile", "glass", "leaf", "none", "red", "unknown"]
+    );
+    let metal = |color: [f64; 3]| Material {
+        color: DVec3::from(color),
+        metal: 1.0,
+        ..Material::default()
+    };
+    let glass = Material {
+        color: DVec3::new(0.9, 0.9, 1.0),
+        ka: 0.1,
+        kd: 0.3,
+        ks: 0.6,
+        shininess: 50.0,
+        metal: 0.75,
+        kr: 0.1,
+        kt: 0.8,
+        ior: 1.5,
+    };
+    let grey = Material {
+        color: DVec3::ONE,
+        ka: 0.2,
+        kd: 0.6,
+        ks: 0.7,
+        shininess: 20.0,
+        metal: 0.0,
+        kr: 0.0,
+        kt: 0.0,
+        ior: 1.0,
+    };
+    assert_eq!(
+        s.materials,
+        vec![
+            metal([1.0, 1.0, 1.0]),
+            metal([0.0, 0.0, 1.0]),
+            glass,
+            metal([0.0, 1.0, 0.0]),
+            grey.clone(),
+            metal([1.0, 0.0, 0.0]),
+            grey
+        ]
+    );
+    assert_eq!(s.metal_given, [false, false, true, false, true, false, true]);
+    // Objects: one per primitive, named <kind>#<index>; the model's 4 triangles.
+    let (glass, red, blue, none, unknown) = (2, 5, 1, 4, 6);
+    let v = DVec3::new;
+    let expected = [
+        ("sphere#0", Shape::Sphere(Sphere::new(v(1.0, -2.0, 1.0), 1.0)), glass),
+        ("plane#1", Shape::Plane(Plane::new(DVec3::ZERO, DVec3::Z)), red),
+        ("disk#2", Shape::Disk(Disk::new(v(0.0, 5.0, 0.01), DVec3::Z, 2.0)), blue),
+        (
+            "triangle#3",
+            Shape::Triangle(Triangle::new(v(-2.0, 2.0, 0.0), v(0.0, 2.0, 0.0), v(-1.0, 2.0, 2.0))),
+            red,
+        ),
+        (
+            "tube#4",
+            Shape::Cylinder(Box::new(Cylinder::tube(v(2.0, 2.0, 1.0), DVec3::X, 2.0, 0.5))),
+            glass,
+        ),
+        (
+            "cylinder#5",
+            Shape::Cylinder(Box::new(Cylinder::new(v(-5.0, 9.0, 0.0), DVec3::Z, 3.0, 1.0))),
+            red,
+        ),
+        (
+            "cone#6",
+            Shape::Cone(Box::new(Cone::new(v(-3.0, -3.0, 0.0), DVec3::Z, 2.5, 1.0))),
+            red,
+        ),
+        (
+            "box#7",
+            Shape::Cuboid(Box::new(Cuboid::new(v(0.0, 0.0, 3.0), DVec3::splat(2.0), DVec3::ZERO))),
+            red,
+        ),
+        (
+            "torus#8",
+            Shape::Torus(Box::new(Torus::new(v(4.0, 3.0, 2.0), DVec3::Z, 1.5, 0.5))),
+            red,
+        ),
+        (
+            "sphere#9",
+            Transform::from_parts(v(0.5, 1.0, 1.5), v(10.0, 20.0, 30.0), v(-2.0, -2.0, 1.5))
+                .apply(Shape::Sphere(Sphere::new(DVec3::ZERO, 1.0))),
+            glass,
+        ),
+        ("sphere#10", Shape::Sphere(Sphere::new(v(0.0, 0.0, 20.0), 1.0)), unknown),
+        ("sphere#11", Shape::Sphere(Sphere::new(v(0.0, 0.0, 30.0), 1.0)), none),
+    ];
+    assert_eq!(s.objects.len(), expected.len() + 4);
+    for (o, (name, shape, material)) in s.objects.iter().zip(expected) {
+        assert_eq!((o.name.as_str(), &o.shape, o.material), (name, &shape, material));
+    }
+    // The model: scaled by 2, turned 90 degrees about z (x -> y, y -> -x), moved by (1, 1, 0).
+    let corners = [v(1.0, 1.0, 0.0), v(1.0, 3.0, 0.0), v(-1.0, 1.0, 0.0), v(1.0, 1.0, 2.0)];
+    let faces = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+    for (k, face) in faces.iter().enumerate() {
+        let o = &s.objects[12 + k];
+        assert_eq!((o.name.clone(), o.material), (format!("model#12/{k}"), none));
+        let Shape::Triangle(t) = &o.shape else { panic!("{o:?}") };
+        for (p, i) in t.points().iter().zip(face) {
+            assert!((*p - corners[*i]).length() < 1e-14, "{p} {}", corners[*i]);
+        }
+    }
+    // What SIMRenderer accepts and logs: the undefined materials, the model's.
+    let shown = fixture("keywords.txt").display().to_string();
+    assert_eq!(
+        warnings(&parsed),
+        [
+            format!(
+                "{shown}:192:1: scene.model: the model's triangles take the material of a primitive without material_name (\"none\"): lumiere does not read .mtl materials yet"
+            ),
+            format!(
+                "{shown}:180:1: primitive.material_name: no material is named \"unknown\"; it gets SIMRenderer's grey default material (ambient 0.2, diffuse 0.6, specular 0.7)"
+            ),
+            format!(
+                "{shown}:186:1: scene.primitive: no material is named \"none\" (a primitive without material_name takes the material named \"none\"); it gets SIMRenderer's grey default material (ambient 0.2, diffuse 0.6, specular 0.7)"
+            ),
+        ]
+    );
+}
+
+#[test]
+fn every_french_alias_reads_as_its_keyword() {
+    let english = read("keywords.txt").scene;
+    let french = read("aliases.txt");
+    assert_eq!(french.scene, english);
+    assert_eq!(french.warnings.len(), 3);
+}
+
+#[test]
+fn the_reference_scene_gives_the_scene_and_bytes_of_its_toml_twin() {
+    let sim = read("reference.txt");
+    assert_eq!(sim.warnings, []);
+    let toml = scene::load(&fixture("reference-simrenderer.toml")).unwrap();
+    assert_eq!(sim.scene, toml);
+    // The same scene, so the same image; rendered anyway, at 80 x 60.
+    let a = render_small(&sim.scene, 80, 60, 1, 2).to_rgb8();
+    let b = render_small(&toml, 80, 60, 1, 2).to_rgb8();
+    assert_eq!(a, b);
+    // Lit: the floor under the directional light, the spheres, the cube.
+    assert!(a.iter().filter(|&&c| c > 100).count() > 1000);
+    // And scene::load tells the format by itself.
+    assert_eq!(scene::load(&fixture("reference.txt")).unwrap(), toml);
+}
+
+#[test]
+fn errors_name_the_line_column_keyword_and_range() {
+    for (text, expected) in [
+        (
+            "camera\nangle 5\nend",
+            "lab.txt:2:7: camera.angle: must be a finite number in [10, 170], got 5",
+        ),
+        (
+            "material\nka 1.5\nend",
+            "lab.txt:2:4: material.ka: must be a finite number in [0, 1], got 1.5",
+        ),
+        (
+            "materiel\nbrillance 250\nfin",
+            "lab.txt:2:11: materiel.brillance: must be a finite number in [0, 200], got 250",
+        ),
+        (
+            "material\ncolour 1 0 0\nend",
+            "lab.txt:2:1: material.colour: unknown keyword \"colour\"; material's keywords are name (nom), color (couleur), ka, kd, ks, kr, kt, shininess (brillance), plasticity (p), refractive_index (n), end (fin)",
+        ),
+        (
+            "material\nname red\ncamera\nend",
+            "lab.txt:3:1: material.camera: \"camera\" is not a keyword of material (a forgotten `end` before it?); material's keywords are name (nom), color (couleur), ka, kd, ks, kr, kt, shininess (brillance), plasticity (p), refractive_index (n), end (fin)",
+        ),
+        (
+            "kamera\n",
+            "lab.txt:1:1: scene.kamera: unknown keyword \"kamera\"; the blocks are camera, viewport, raytracer, primitive, material (blinn_material, color_material, materiel), ambient_light (lumiere_ambiante), directional_light (lumiere_directionnelle), point_light (lumiere_ponctuelle), model, end (fin)",
+        ),
+        (
+            "viewport\nwidth 800.0\nend",
+            "lab.txt:2:7: viewport.width: expects an integer, got \"800.0\"",
+        ),
+        (
+            "viewport\nwidth 0\nend",
+            "lab.txt:2:7: viewport.width: must be an integer in [1, 16384], got 0",
+        ),
+        (
+            "primitive\nsphere\nposition 1 2\nend\nend",
+            "lab.txt:3:13: sphere.position: expects 3 numbers x y z, got 2",
+        ),
+        (
+            "primitive\nsphere\nray -1\nend\nend",
+            "lab.txt:3:5: sphere.ray: must be a finite number in (0, 1000000000], got -1",
+        ),
+        (
+            "point_light\ncolor 1 -1 1\nend",
+            "lab.txt:2:7: point_light.color: each channel must be a finite number in [0, 1000000], got [1.0, -1.0, 1.0]",
+        ),
+        (
+            "material\ncolor 1.2 1 1\nend",
+            "lab.txt:2:7: material.color: each channel must be a finite number in [0, 1], got [1.2, 1.0, 1.0]",
+        ),
+        (
+            "raytracer\nrecursive_level 65\nend",
+            "lab.txt:2:17: raytracer.recursive_level: must be an integer in [1, 64], got 65",
+        ),
+        (
+            "raytracer\npixel_coordinate corner\nend",
+            "lab.txt:2:18: raytracer.pixel_coordinate: must be one of top_left (0), top_right (1), bottom_left (2), bottom_right (3), center (4), random (5), got \"corner\"",
+        ),
+        // What stops SIMRenderer from building an object.
+        (
+            "camera\nposition 0 0 1\nlook_at 0 0 1\nend",
+            "lab.txt:3:1: camera.look_at: must differ from the camera position",
+        ),
+        (
+            "camera\nlook_at 0 1 0\nend",
+            "lab.txt:1:1: scene.camera: must not be parallel to the viewing direction (look_at - position)",
+        ),
+        (
+            "camera\nnear_clipping_plane 200\nend",
+            "lab.txt:2:1: camera.near_clipping_plane: far_clipping_plane (100) must be at least near_clipping_plane (200)",
+        ),
+        (
+            "primitive\ntriangle\npoint 0 0 0\npoint 1 1 1\npoint 2 2 2\nend\nend",
+            "lab.txt:5:1: triangle.point: the points [0.0, 0.0, 0.0], [1.0, 1.0, 1.0] and [2.0, 2.0, 2.0] make no triangle: its points are on one line",
+        ),
+        (
+            "primitive\ncylinder\npoint 1 1 1\npoint 1 1 1\nend\nend",
+            "lab.txt:4:1: cylinder.point: the two points [1.0, 1.0, 1.0] and [1.0, 1.0, 1.0] must differ (a cylinder needs a length)",
+        ),
+        (
+            "primitive\ntube\npoint 0 0 0\npoint 0 0 1\npoint 0 0 2\nend\nend",
+            "lab.txt:5:1: tube.point: a tube takes 2 points; this is one more",
+        ),
+        (
+            "primitive\ntorus\nminor_radius 2\nend\nend",
+            "lab.txt:3:1: torus.minor_radius: must be at most major_radius (1) (a self-intersecting spindle torus is not supported), got 2",
+        ),
+        (
+            "primitive\nsphere\nend\nplane\nend\nend",
+            "lab.txt:4:1: primitive.plane: a primitive has one geometry; this is a second one (after a sphere)",
+        ),
+        (
+            "primitive\ngeometry\nscale 2 2 2\nend\nend",
+            "lab.txt:2:1: primitive.geometry: a geometry block needs one geometry inside it (sphere, plane, ...)",
+        ),
+        (
+            "primitive\ngeometry\nscale 0 1 1\nsphere\nend\nend\nend",
+            "lab.txt:3:7: geometry.scale: each factor must be finite, of magnitude in [1e-6, 1e6] (negative mirrors), got [0.0, 1.0, 1.0]",
+        ),
+        (
+            "point_light\nconstant_attenuator 0\nend",
+            "lab.txt:2:1: point_light.constant_attenuator: the constant, linear and quadratic attenuators cannot all be 0",
+        ),
+        (
+            "material\nkr 0.5\nkt 0.7\nend",
+            "lab.txt:3:1: material.kt: kr + kt must be at most 1 in lumiere (no ray may carry more than its parent), got 0.5 + 0.7",
+        ),
+        (
+            "material\nname glass\nend\nmaterial\nname glass\nend",
+            "lab.txt:5:1: material.name: a material named \"glass\" is already defined; SIMRenderer keeps the first",
+        ),
+        (
+            "model\nfile missing.obj\nend",
+            "lab.txt:2:6: model.file: missing.obj: cannot read the mesh file: No such file or directory (os error 2)",
+        ),
+        ("model\nend", "lab.txt:1:1: scene.model: a model needs a file (fichier)"),
+        // lumiere's notes.
+        (
+            "primitive\n# lumiere: name floor\nend",
+            "lab.txt:2:17: primitive.lumiere:name: expects a quoted name such as \"floor\", got \"floor\"",
+        ),
+        (
+            "# lumiere: colour 1\n",
+            "lab.txt:1:12: scene.lumiere:colour: unknown lumiere note \"colour\"; the notes are name, seed, adaptive_threshold",
+        ),
+    ] {
+        assert_eq!(error(text), expected, "{text}");
+    }
+}
+
+#[test]
+fn what_lumiere_does_not_model_is_refused_by_name() {
+    for (text, expected) in [
+        (
+            "texture_material\nname t\ntexture_kd t.png\nend",
+            "lab.txt:1:1: scene.texture_material: texture materials are not supported yet by lumiere",
+        ),
+        (
+            "texture_materiel\nend",
+            "lab.txt:1:1: scene.texture_materiel: texture materials are not supported yet by lumiere",
+        ),
+        (
+            "linear_aperture_light\nwave_length 650\nend",
+            "lab.txt:1:1: scene.linear_aperture_light: linear aperture lights (SIMRenderer's interference lights) are not supported yet by lumiere",
+        ),
+        (
+            "rectangular_aperture_light\nend",
+            "lab.txt:1:1: scene.rectangular_aperture_light: rectangular aperture lights (SIMRenderer's interference lights) are not supported yet by lumiere",
+        ),
+        (
+            "elliptical_aperture_light\nend",
+            "lab.txt:1:1: scene.elliptical_aperture_light: elliptical aperture lights (SIMRenderer's interference lights) are not supported yet by lumiere",
+        ),
+        (
+            "aperture_mask_light\nmasque m.png\nend",
+            "lab.txt:1:1: scene.aperture_mask_light: aperture mask lights (SIMRenderer's interference lights) are not supported yet by lumiere",
+        ),
+        (
+            "primitive\nbtriangle\nend\nend",
+            "lab.txt:2:1: primitive.btriangle: barycentric triangles (btriangle) are not supported yet by lumiere",
+        ),
+        (
+            "primitive\ncalotte_spherique\ncourbure 1\nend\nend",
+            "lab.txt:2:1: primitive.calotte_spherique: spherical caps are not supported yet by lumiere",
+        ),
+        (
+            "primitive\nlentille\nend\nend",
+            "lab.txt:2:1: primitive.lentille: lenses are not supported yet by lumiere",
+        ),
+        (
+            "raytracer\npixel_coordinate top_right\nend",
+            "lab.txt:2:18: raytracer.pixel_coordinate: top_right is not supported yet by lumiere (its samples are at the pixel's top_left corner, its center, or random)",
+        ),
+        (
+            "raytracer\ncoordonnee_pixel 2\nend",
+            "lab.txt:2:18: raytracer.coordonnee_pixel: bottom_left is not supported yet by lumiere (its samples are at the pixel's top_left corner, its center, or random)",
+        ),
+        (
+            "raytracer\npixel_coordinate bottom_right\nend",
+            "lab.txt:2:18: raytracer.pixel_coordinate: bottom_right is not supported yet by lumiere (its samples are at the pixel's top_left corner, its center, or random)",
+        ),
+        (
+            "raytracer\nreflexion_algorithm no_light\nend",
+            "lab.txt:2:21: raytracer.reflexion_algorithm: no_light (the diffuse colour, unlit) is not supported yet by lumiere",
+        ),
+        (
+            "raytracer\ncolor_normalization division_factor\nend",
+            "lab.txt:2:21: raytracer.color_normalization: division_factor is not supported yet by lumiere, which clamps each channel (clamp_channel)",
+        ),
+        (
+            "raytracer\nsampling 3\nend",
+            "lab.txt:2:10: raytracer.sampling: lumiere averages a perfect square of samples (1, 4, 9, ..., 1024), got 3: other counts are not supported yet",
+        ),
+    ] {
+        assert_eq!(error(text), expected, "{text}");
+    }
+}
+
+#[test]
+fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
+    let text = "camera\nangle 5\nposition 0 0 -5\nend\n\
+                material\nname red\ncolour 1 0 0\nka 2\nend\n\
+                linear_aperture_light\nposition 0 0 0\nend\n\
+                primitive\nmaterial_name red\nlens\nend\nsphere\nend\nend\n\
+                primitive\nsphere\nend\nplane\nend\nend\n\
+                raytracer\nsampling 2\npixel_coordinate random\nend\n";
+    let p = lenient(text);
+    assert_eq!(
+        warnings(&p),
+        [
+            "lab.txt:2:7: camera.angle: must be a finite number in [10, 170], got 5; the value before it is kept",
+            "lab.txt:7:1: material.colour: unknown keyword \"colour\"; material's keywords are name (nom), color (couleur), ka, kd, ks, kr, kt, shininess (brillance), plasticity (p), refractive_index (n), end (fin); the line is skipped",
+            "lab.txt:8:4: material.ka: must be a finite number in [0, 1], got 2; the value before it is kept",
+            "lab.txt:10:1: scene.linear_aperture_light: linear aperture lights (SIMRenderer's interference lights) are not supported yet by lumiere; the block is skipped",
+            "lab.txt:15:1: primitive.lens: lenses are not supported yet by lumiere; the geometry is skipped",
+            "lab.txt:17:1: primitive.sphere: a primitive has one geometry; this is a second one (after a lens); this geometry is skipped",
+            "lab.txt:23:1: primitive.plane: a primitive has one geometry; this is a second one (after a sphere); this geometry is skipped",
+            "lab.txt:27:10: raytracer.sampling: lumiere averages a perfect square of samples (1, 4, 9, ..., 1024), got 2: other counts are not supported yet; the value before it is kept",
+            "lab.txt:20:1: scene.primitive: no material is named \"none\" (a primitive without material_name takes the material named \"none\"); it gets SIMRenderer's grey default material (ambient 0.2, diffuse 0.6, specular 0.7)",
+        ]
+    );
+    let s = &p.scene;
+    // The defaults kept: angle 60, ka 0.2, one sample; the camera moved.
+    assert_eq!(
+        (s.camera.vfov_deg, s.camera.position),
+        (60.0, DVec3::new(0.0, 0.0, -5.0))
+    );
+    assert_eq!(s.materials[1].ka, 0.2);
+    assert_eq!(s.settings.samples_per_pixel, 1);
+    assert_eq!(s.settings.conventions.sample_position, SamplePosition::Jittered);
+    // The lens primitive is dropped with its geometry; the second keeps its sphere.
+    assert_eq!(s.objects.len(), 1);
+    assert_eq!(s.objects[0].name, "sphere#0");
+    // An object SIMRenderer cannot build is dropped with a warning.
+    let p = lenient("primitive\ntriangle\npoint 1 1 1\npoint 1 1 1\nend\nend\nprimitive\nsphere\nend\nend");
+    assert_eq!(p.scene.objects.len(), 1);
+    assert_eq!(
+        warnings(&p)[0],
+        "lab.txt:4:1: triangle.point: the points [1.0, 1.0, 1.0], [1.0, 1.0, 1.0] and [1.0, 1.0, 0.0] make no triangle: two of its points are equal; the geometry is dropped"
+    );
+}
+
+#[test]
+fn what_simrenderer_accepts_is_read_as_it_reads_it() {
+    // A missing `end` at the end of the file closes every block; a top-level `end` stops
+    // the scene; a name keeps its trailing blanks.
+    let p = parse("material\nname red \ncolor rouge\nprimitive\n").unwrap_err();
+    assert_eq!(
+        p.to_string(),
+        "lab.txt:4:1: material.primitive: \"primitive\" is not a keyword of material (a forgotten `end` before it?); material's keywords are name (nom), color (couleur), ka, kd, ks, kr, kt, shininess (brillance), plasticity (p), refractive_index (n), end (fin)"
+    );
+    let p = parse(
+        "material\nname red \ncolor rouge\nend\nprimitive\nmaterial_name red\nsphere\nend\nend\nend\nprimitive\nsphere",
+    )
+    .unwrap();
+    assert_eq!(p.scene.objects.len(), 1);
+    assert_eq!(p.scene.material_names, ["default", "red", "red "]);
+    assert_eq!(p.scene.objects[0].material, 1, "\"red\" is not \"red \"");
+    assert_eq!(
+        warnings(&p),
+        [
+            "lab.txt:10:1: scene.end: SIMRenderer stops reading the scene at this top-level end: everything after it is ignored, from line 11 (\"primitive\") on",
+            "lab.txt:6:1: primitive.material_name: no material is named \"red\" (note the blanks: a material is named \"red \"); it gets SIMRenderer's grey default material (ambient 0.2, diffuse 0.6, specular 0.7)",
+        ]
+    );
+    // Nothing but defaults: SIMRenderer's camera at the origin looking along +z with y up,
+    // 500 x 500, one sample, depth 1, Blinn.
+    let s = parse("").unwrap().scene;
+    assert_eq!(
+        (s.camera.position, s.camera.look_at, s.camera.up, s.camera.vfov_deg),
+        (DVec3::ZERO, DVec3::Z, DVec3::Y, 60.0)
+    );
+    assert_eq!((s.settings.width, s.settings.height), (500, 500));
+    assert_eq!((s.settings.samples_per_pixel, s.settings.depth), (1, 1));
+    assert_eq!(s.settings.shading, ShadingModel::default());
+    assert_eq!(s.settings.conventions, Conventions::SIMRENDERER);
+    // A second camera block replaces the first whole; a material without a name is "none".
+    let s = parse("camera\nangle 30\nposition 1 2 3\nend\ncamera\nangle 40\nend\nmaterial\nkd 0.5\nend\nprimitive\nsphere\nend\nend")
+        .unwrap();
+    assert_eq!((s.scene.camera.vfov_deg, s.scene.camera.position), (40.0, DVec3::ZERO));
+    assert_eq!(s.scene.material_names, ["default", "none"]);
+    assert_eq!(s.scene.materials[1].kd, 0.5);
+    assert_eq!(s.warnings, []);
+    // Sampling without random pixel coordinates: the same ray, as SIMRenderer warns.
+    let p = parse("raytracer\nsampling 4\nend").unwrap();
+    assert_eq!(p.scene.settings.samples_per_pixel, 4);
+    assert_eq!(
+        warnings(&p),
+        ["lab.txt:2:1: raytracer.sampling: sampling 4 without pixel_coordinate random traces the same ray 4 times"]
+    );
+    // Lone carriage returns end lines, as Java reads them.
+    let s = parse("camera\rangle 30\r\nend").unwrap().scene;
+    assert_eq!(s.camera.vfov_deg, 30.0);
+}
+
+#[test]
+fn lumiere_notes_name_objects_and_set_the_seed() {
+    let s = parse(
+        "raytracer\n# lumiere: seed 7\n# lumiere: adaptive_threshold 0.5\nend\nprimitive\n# lumiere: name \"the \\\"floor\\\"\"\nplane\nend\nend",
+    )
+    .unwrap()
+    .scene;
+    assert_eq!((s.settings.seed, s.settings.adaptive_threshold), (7, 0.5));
+    assert_eq!(s.objects[0].name, "the \"floor\"");
+}
+
+#[test]
+fn the_conventions_preset_goes_under_the_files_settings() {
+    let chapter = Options {
+        conventions: Conventions::CHAPTER,
+        ..Options::default()
+    };
+    let s = simrenderer::load(&fixture("reference.txt"), &chapter).unwrap().scene;
+    let mut expected = Conventions::CHAPTER;
+    expected.sample_position = SamplePosition::Center;
+    expected.far = 1000.0;
+    assert_eq!(s.settings.conventions, expected);
+    // A material without p takes the preset's highlight: plastic under the chapter's.
+    let s = simrenderer::parse("material\nname a\nend\nmaterial\nname b\np 0\nend", "lab.txt", &chapter)
+        .unwrap()
+        .scene;
+    assert_eq!((s.materials[1].metal, s.materials[2].metal), (0.0, 1.0));
+}
+
+#[test]
+fn the_format_is_told_by_name_then_by_first_keyword() {
+    let dir = temp_dir("simrenderer-format");
+    let write = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let load = |path: &PathBuf| scene::load_with(path, &LoadOptions::default());
+    // Any name: SIMRenderer when the first keyword opens a block (comments first are fine).
+    let lab = write("lab.scene", "# my lab\n\nCAMERA\nangle 30\nend\n");
+    assert_eq!(load(&lab).unwrap().format, Format::SimRenderer);
+    // A TOML scene not named .toml: the error says so.
+    let toml = write("scene.txt", "[image]\nwidth = 8\nheight = 6\n");
+    assert_eq!(
+        load(&toml).unwrap_err().to_string(),
+        format!(
+            "{}:1:1: format: cannot tell the scene's format: the file is not named .toml and its first keyword \"[image]\" opens none of SIMRenderer's blocks (camera, viewport, raytracer, primitive, material, ambient_light, directional_light, point_light, model); it looks like TOML: name it .toml, or pass --format toml",
+            toml.display()
+        )
+    );
+    let forced = LoadOptions {
+        format: Some(Format::Toml),
+        ..LoadOptions::default()
+    };
+    assert!(
+        scene::load_with(&toml, &forced)
+            .unwrap_err()
+            .to_string()
+            .contains("the file has no [camera] table")
+    );
+    // A SIMRenderer scene named .toml: TOML's error, and a hint.
+    let misnamed = write("lab.toml", "camera\nangle 30\nend\n");
+    let e = load(&misnamed).unwrap_err().to_string();
+    assert!(
+        e.ends_with(
+            "(the file starts like a SIMRenderer scene: read it with --format simrenderer, or name it other than .toml)"
+        ),
+        "{e}"
+    );
+    let forced = LoadOptions {
+        format: Some(Format::SimRenderer),
+        ..LoadOptions::default()
+    };
+    assert_eq!(
+        scene::load_with(&misnamed, &forced).unwrap().scene.camera.vfov_deg,
+        30.0
+    );
+}
+
+#[test]
+fn the_command_line_reads_simrenderer_files() {
+    let dir = temp_dir("simrenderer-cli");
+    let reference = fixture("reference.txt");
+    let png = dir.join("ref.png");
+    let out = lumiere(&[
+        "render",
+        reference.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--width",
+        "40",
+        "--height",
+        "30",
+        "-q",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.stderr.is_empty());
+    // The same bytes as the TOML twin.
+    let twin = dir.join("twin.png");
+    let toml = fixture("reference-simrenderer.toml");
+    let out = lumiere(&[
+        "render",
+        toml.to_str().unwrap(),
+        "-o",
+        twin.to_str().unwrap(),
+        "--width",
+        "40",
+        "--height",
+        "30",
+        "-q",
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(std::fs::read(&png).unwrap(), std::fs::read(&twin).unwrap());
+    // An error: exit 2, located; --lenient: a warning, and the render goes on.
+    let lab = dir.join("lab.txt");
+    std::fs::write(
+        &lab,
+        "camera\nangle 200\nend\nprimitive\nsphere\nposition 0 0 5\nend\nend\n",
+    )
+    .unwrap();
+    let args = |extra: &[&str]| {
+        let mut a = vec![
+            "render",
+            lab.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+            "--width",
+            "8",
+            "--height",
+            "6",
+        ];
+        a.extend_from_slice(extra);
+        lumiere(&a)
+    };
+    let out = args(&[]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr).trim(),
+        format!(
+            "lumiere: error: {}:2:7: camera.angle: must be a finite number in [10, 170], got 200",
+            lab.display()
+        )
+    );
+    let out = args(&["--lenient"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(
+        String::from_utf8_lossy(&out.stderr).starts_with(&format!(
+            "lumiere: warning: {}:2:7: camera.angle: must be a finite number in [10, 170], got 200; the value before it is kept\n",
+            lab.display()
+        )),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // --conventions chapter: the file's pixel_coordinate and far plane over the chapter's.
+    let out = lumiere(&[
+        "probe",
+        reference.to_str().unwrap(),
+        "--pixel",
+        "10,10",
+        "--width",
+        "20",
+        "--height",
+        "15",
+        "--conventions",
+        "chapter",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("conventions chapter with sample_position = center, far = 1000\n"),
+        "{text}"
+    );
+}
+
+#[test]
+fn the_grey_default_material_gives_simrenderers_greys() {
+    let m = simrenderer::grey_default();
+    // S_a = k_a S, S_d = k_d S, S_s = k_s [m S + (1 - m)] with S white, for any m.
+    assert_eq!(m.color * m.ka, DVec3::splat(0.2));
+    assert_eq!(m.color * m.kd, DVec3::splat(0.6));
+    for metal in [0.0, 0.5, 1.0] {
+        let tint = lumiere::shading::specular_tint(metal, m.color);
+        assert_eq!(tint * m.ks, DVec3::splat(0.7));
+    }
+}
