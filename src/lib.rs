@@ -16,7 +16,8 @@
 //!    [`placement`], [`output`], [`review`].
 //! 3. [`area_light`] (N-point area lights), [`stress`] (the numerical stress campaign).
 //! 4. [`light`] (ambient, directional, point, spot and area lights; what reaches a point).
-//! 5. [`scene`]: the scene model and its TOML file format with located errors.
+//! 5. [`scene`]: the scene model, its TOML file format and SIMRenderer's (read and written),
+//!    with located errors.
 //! 6. [`accel`] (closest-hit and any-hit queries over a scene's objects: the linear scan or
 //!    a BVH), [`shard`] (split renders and their bit-identical merge).
 //! 7. [`world`]: a scene ready to render (camera, intersection core, light points, bounds).
