@@ -45,10 +45,11 @@ fn jitter_stream(world: &World, x: u32, y: u32) -> Stream {
 /// (reading the stream's next two numbers); for `regular`, that cell's center; for
 /// `center`, the pixel's center; for `corner`, its top-left corner as SIMRenderer places it
 /// (the image's center measured with an integer division by 2: half a pixel right of or
-/// below the true corner along an odd width or height).
-fn sample_at(world: &World, rng: &mut Stream, x: u32, y: u32, k: u32) -> (f64, f64) {
+/// below the true corner along an odd width or height). `n` is the scene's
+/// [`grid_side`](crate::scene::Settings::grid_side), read once per pixel.
+#[inline]
+fn sample_at(world: &World, rng: &mut Stream, n: u32, x: u32, y: u32, k: u32) -> (f64, f64) {
     let s = &world.scene.settings;
-    let n = s.grid_side();
     let (cx, cy) = ((k % n) as f64, (k / n) as f64);
     let (x, y, n) = (x as f64, y as f64, n as f64);
     match s.conventions.sample_position {
@@ -68,7 +69,7 @@ fn sample_at(world: &World, rng: &mut Stream, x: u32, y: u32, k: u32) -> (f64, f
 /// Image position of sample `k` of pixel `(x, y)` (see `sample_at`).
 pub fn sample_position(world: &World, x: u32, y: u32, k: u32) -> (f64, f64) {
     let mut rng = jitter_stream(world, x, y).skip_words(4 * k as u128);
-    sample_at(world, &mut rng, x, y, k)
+    sample_at(world, &mut rng, world.scene.settings.grid_side(), x, y, k)
 }
 
 /// The camera ray through image position `(px, py)`: from the eye, or from the image plane
@@ -92,7 +93,8 @@ fn pixel_mean<const K: usize>(
     y: u32,
     mut trace: impl FnMut((f64, f64), SampleKey) -> [DVec3; K],
 ) -> [DVec3; K] {
-    let spp = world.scene.settings.samples_per_pixel;
+    let settings = &world.scene.settings;
+    let (spp, n) = (settings.samples_per_pixel, settings.grid_side());
     let mut rng = jitter_stream(world, x, y);
     let mut sum = [DVec3::ZERO; K];
     for k in 0..spp {
@@ -100,7 +102,7 @@ fn pixel_mean<const K: usize>(
             pixel: pixel_index(world, x, y),
             sample: k,
         };
-        let c = trace(sample_at(world, &mut rng, x, y, k), key);
+        let c = trace(sample_at(world, &mut rng, n, x, y, k), key);
         for j in 0..K {
             sum[j] += c[j];
         }

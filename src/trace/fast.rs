@@ -266,8 +266,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         if deeper != 0 {
             let mut kr = mat.kr;
             let mut refracted = None;
-            let closed = scene.objects[object].shape.is_closed();
-            if (mat.kt > 0.0 || all) && conventions.refracting.admits(closed) {
+            if (mat.kt > 0.0 || all) && conventions.refracting.admits(scene.objects[object].shape.is_closed()) {
                 match refract(ray.dir, surface.n, mat.eta(surface.entering)) {
                     Some(t) => refracted = Some(t.normalize()),
                     None => {

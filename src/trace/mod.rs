@@ -37,6 +37,7 @@ pub use reference::Reference;
 /// `L k_d S max(N.L, 0)` and `L k_s [m S + (1 - m)] spec`, `spec` Phong's or Blinn's term as
 /// `model` says, for the light `light` arriving through its shadow filter (`A C_theta L`
 /// times the filter) from direction `inc.to_light`. Both tracers shade every point light so.
+#[inline]
 pub(crate) fn point_light_terms(
     model: ShadingModel,
     mat: &Material,
@@ -185,6 +186,7 @@ impl Surface {
     /// The surface point where `ray` hits `object` (chapter 7.4b:
     /// `r_inter = r_0 + v t_inter`), with the bound on its rounding error: forming the point
     /// ([`hit_point_error`]) plus the shape's own ([`crate::shape::Shape::surface_error`]).
+    #[inline]
     pub(crate) fn hit(world: &World, ray: &Ray, object: usize, hit: &SurfaceHit) -> Surface {
         let point = ray.at(hit.t);
         let err = hit_point_error(ray, hit.t) + world.objects()[object].shape.surface_error(point);
