@@ -240,7 +240,7 @@ impl Recorder for TreeRecorder<'_> {
         let m = &scene.materials[o.material];
         self.top().hit = Some(Hit {
             object,
-            name: o.name.clone(),
+            name: o.name.to_string(),
             shape: o.shape.kind(),
             t,
             point: v3(point),
@@ -289,7 +289,10 @@ impl Recorder for TreeRecorder<'_> {
     }
 
     fn shadow_crossed(&mut self, objects: &[usize]) {
-        let names = objects.iter().map(|&i| self.scene.objects[i].name.clone()).collect();
+        let names = objects
+            .iter()
+            .map(|&i| self.scene.objects[i].name.to_string())
+            .collect();
         if let Some(s) = &mut self.shadow {
             s.filtered_by = names;
         }

@@ -98,9 +98,12 @@ pub struct World<'s> {
     pub remaining_bound: Vec<f64>,
     /// For each light, the points of a `fixed` area light (empty for other lights).
     pub light_points: Vec<PointSet>,
-    /// Bounding sphere (center, radius) of each object; `None` for unbounded ones.
+    /// Bounding sphere (center, radius) of each object; `None` for unbounded ones. Built only
+    /// for a scene that reads it: one with an area light ([`World::shadow_candidates`]) or a
+    /// costly object (the sphere test before its exact test); empty otherwise.
     pub bounding_spheres: Vec<Option<(DVec3, f64)>>,
-    /// A ball inside each object's solid ([`Shape::inner_ball`]).
+    /// A ball inside each object's solid ([`Shape::inner_ball`]); built only for a scene
+    /// with an area light, empty otherwise.
     pub inner_balls: Vec<Option<(DVec3, f64)>>,
     /// Whether an object's exact test costs more than a ray-sphere test (boxes, cylinders,
     /// cones, tori), so a bounding-sphere test first pays off.
@@ -130,6 +133,17 @@ impl<'s> World<'s> {
             .objects
             .iter()
             .any(|o| scene.materials[o.material].is_transparent());
+        let costly: Vec<bool> = scene
+            .objects
+            .iter()
+            .map(|o| {
+                matches!(
+                    o.shape,
+                    Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_) | Shape::Torus(_) | Shape::Transformed(_)
+                )
+            })
+            .collect();
+        let has_area_light = scene.lights.iter().any(|l| matches!(l, Light::Area(_)));
         let start = std::time::Instant::now();
         let accel = Accel::build_with(&scene.objects, choice);
         let accel_seconds = start.elapsed().as_secs_f64();
@@ -150,22 +164,17 @@ impl<'s> World<'s> {
                     _ => PointSet::default(),
                 })
                 .collect(),
-            bounding_spheres: scene.objects.iter().map(|o| o.shape.bounding_sphere()).collect(),
-            inner_balls: scene.objects.iter().map(|o| o.shape.inner_ball()).collect(),
-            costly: scene
-                .objects
-                .iter()
-                .map(|o| {
-                    matches!(
-                        o.shape,
-                        Shape::Cuboid(_)
-                            | Shape::Cylinder(_)
-                            | Shape::Cone(_)
-                            | Shape::Torus(_)
-                            | Shape::Transformed(_)
-                    )
-                })
-                .collect(),
+            bounding_spheres: if has_area_light || costly.contains(&true) {
+                scene.objects.iter().map(|o| o.shape.bounding_sphere()).collect()
+            } else {
+                Vec::new()
+            },
+            inner_balls: if has_area_light {
+                scene.objects.iter().map(|o| o.shape.inner_ball()).collect()
+            } else {
+                Vec::new()
+            },
+            costly,
             skips: Skips::all(),
         }
     }

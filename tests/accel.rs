@@ -18,7 +18,7 @@ use lumiere::world::World;
 
 fn object(shape: Shape) -> Object {
     Object {
-        name: String::new(),
+        name: Default::default(),
         shape,
         material: 0,
     }

@@ -207,7 +207,7 @@ fn every_keyword_reads_to_the_value_written() {
     let faces = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
     for (k, face) in faces.iter().enumerate() {
         let o = &s.objects[12 + k];
-        assert_eq!((o.name.clone(), o.material), (format!("model#12/{k}"), none));
+        assert_eq!((o.name.to_string(), o.material), (format!("model#12/{k}"), none));
         let Shape::Triangle(t) = &o.shape else { panic!("{o:?}") };
         for (p, i) in t.points().iter().zip(face) {
             assert!((*p - corners[*i]).length() < 1e-14, "{p} {}", corners[*i]);

@@ -674,8 +674,9 @@ impl FileScene {
             limits::MAX_OBJECTS as u64,
             "objects with this table",
         )?;
+        objects.reserve_exact(tables.iter().map(|g| g.count).sum());
         for (i, g) in tables.iter().enumerate() {
-            objects.extend(g.objects(i));
+            g.append_to(i, &mut objects);
         }
         let path = root.key("lights");
         if self.lights.len() > limits::MAX_LIGHTS {
@@ -1068,7 +1069,7 @@ impl FileShape {
         };
         let material_index = resolve_material(path, material, material_names)?;
         Ok(vec![Object {
-            name: name.unwrap_or_else(|| format!("{}#{index}", shape.kind())),
+            name: name.map_or_else(|| compact_str::format_compact!("{}#{index}", shape.kind()), Into::into),
             shape,
             material: material_index,
         }])
@@ -1153,7 +1154,7 @@ impl FileMesh {
             .into_iter()
             .enumerate()
             .map(|(k, t)| Object {
-                name: format!("{base}/{k}"),
+                name: compact_str::format_compact!("{base}/{k}"),
                 shape: Shape::Triangle(t),
                 material,
             })
@@ -1451,7 +1452,7 @@ fn mirror_pair(
     Ok([("A", sin), ("B", -sin)]
         .into_iter()
         .map(|(tag, s)| Object {
-            name: format!("{base} {tag}"),
+            name: compact_str::format_compact!("{base} {tag}"),
             shape: Shape::Rectangle(Box::new(Rectangle::new(hinge, side(s) * length, up))),
             material,
         })

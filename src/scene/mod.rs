@@ -17,6 +17,7 @@ use crate::conventions::Conventions;
 use crate::light::Light;
 use crate::material::Material;
 use crate::shape::Shape;
+use compact_str::CompactString;
 use glam::DVec3;
 
 /// The two scene file formats.
@@ -256,8 +257,9 @@ pub struct CameraSpec {
 /// One object: a shape with a material.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Object {
-    /// The name given in the file, or `<kind>#<index>`.
-    pub name: String,
+    /// The name given in the file, or `<kind>#<index>`: up to 24 bytes held inline (a
+    /// generated object's name costs no allocation).
+    pub name: CompactString,
     pub shape: Shape,
     /// Index into `Scene::materials`.
     pub material: usize,

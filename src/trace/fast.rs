@@ -549,9 +549,14 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         // the candidate's cone of directions, or a ray-sphere test for costly shapes.
         let sphere_rejects = std::cell::Cell::new(0);
         let cones = skips.on(Skip::BoundingSpheres);
-        let meets_sphere = |i: usize| match world.bounding_spheres[i] {
-            Some((center, radius)) if cones && world.costly[i] => segment_meets_sphere(&ray, t_max, center, radius),
-            _ => true,
+        let meets_sphere = |i: usize| {
+            if cones
+                && world.costly[i]
+                && let Some((center, radius)) = world.bounding_spheres[i]
+            {
+                return segment_meets_sphere(&ray, t_max, center, radius);
+            }
+            true
         };
         let meets = |i: usize| {
             if !meets_sphere(i) {

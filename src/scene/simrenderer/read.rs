@@ -1515,14 +1515,17 @@ impl<'a> Reader<'a> {
             if s.model {
                 let base = s.name.unwrap_or_else(|| format!("model#{i}"));
                 objects.extend(s.shapes.into_iter().enumerate().map(|(k, shape)| Object {
-                    name: format!("{base}/{k}"),
+                    name: compact_str::format_compact!("{base}/{k}"),
                     shape,
                     material,
                 }));
             } else {
                 for shape in s.shapes {
                     objects.push(Object {
-                        name: s.name.clone().unwrap_or_else(|| format!("{}#{i}", shape.kind())),
+                        name: s
+                            .name
+                            .clone()
+                            .map_or_else(|| compact_str::format_compact!("{}#{i}", shape.kind()), Into::into),
                         shape,
                         material,
                     });
