@@ -1,0 +1,271 @@
+//! lumiere's BVH against Embree 3 on the million spheres of scenes/spheres-1m.toml, with the
+//! same rays: 1000 x 1000 coherent camera rays of the scene's camera, and 1 000 000
+//! incoherent rays made as benches/intersect.rs makes them (origins in the slab grown by 2,
+//! directions uniform on the sphere). Closest hit and any hit (to infinity), on 1 and 2
+//! threads; Embree through its single-ray calls and, for coherent rays, 8-ray packets.
+//!
+//! Embree comes from Debian's libembree-dev (3.13.5) through the embree3 crate, behind the
+//! `embree` feature (off in CI):
+//!
+//! ```sh
+//! sudo apt-get install libembree-dev
+//! cargo bench --features embree --bench embree
+//! ```
+//!
+//! Embree's spheres are f32 (`RTC_GEOMETRY_TYPE_SPHERE_POINT`), lumiere's f64, so the hits
+//! are compared by object: the bench prints the share of rays on which both kernels report
+//! the same closest object (or both miss), and the same any-hit answer. Each timing is the
+//! median of 5 runs, the two kernels alternating; the table is printed as BENCHMARKS.md
+//! holds it.
+
+use embree3::{
+    BufferUsage, Device, Format, GeometryKind, Hit8, IntersectContext, Ray as EmbreeRay, Ray8, RayHit, RayHit8, Scene,
+    ValidMask, ValidMaskN,
+};
+use glam::DVec3;
+use lumiere::accel::{Accel, AccelChoice};
+use lumiere::camera::Camera;
+use lumiere::math::Ray;
+use lumiere::sampling::{Purpose, Stream};
+use lumiere::scene::Object;
+use lumiere::shape::Shape;
+use rayon::prelude::*;
+use std::path::Path;
+use std::time::Instant;
+
+const SIDE: u32 = 1000;
+const INCOHERENT: usize = 1_000_000;
+const RUNS: usize = 5;
+/// Rays a task traces in a row (a chunk of 8-ray packets for Embree's packet calls).
+const TASK: usize = 4096;
+const MISS: u32 = u32::MAX;
+
+/// The spheres of scenes/spheres-1m.toml (its floor plane left out: Embree gets spheres
+/// only) and its camera.
+fn spheres_and_camera() -> (Vec<Object>, Camera) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/spheres-1m.toml");
+    let scene = lumiere::scene::load(&path).expect("scenes/spheres-1m.toml loads");
+    let spheres: Vec<Object> = scene
+        .objects
+        .into_iter()
+        .filter(|o| matches!(o.shape, Shape::Sphere(_)))
+        .collect();
+    let c = &scene.camera;
+    (spheres, Camera::new(c.position, c.look_at, c.up, c.vfov_deg, 1.0))
+}
+
+fn coherent_rays(camera: &Camera) -> Vec<Ray> {
+    (0..SIDE * SIDE)
+        .map(|i| camera.ray((i % SIDE) as f64 + 0.5, (i / SIDE) as f64 + 0.5, SIDE, SIDE))
+        .collect()
+}
+
+/// As benches/intersect.rs: origins uniform in [-12, 12]^2 x [-2, 3], directions uniform.
+fn incoherent_rays() -> Vec<Ray> {
+    let mut s = Stream::new(17, Purpose::Generator, 0);
+    (0..INCOHERENT)
+        .map(|_| {
+            let mut u = || s.next_f64();
+            let o = DVec3::new(24.0 * u() - 12.0, 24.0 * u() - 12.0, 5.0 * u() - 2.0);
+            let z = 2.0 * u() - 1.0;
+            let phi = std::f64::consts::TAU * u();
+            let r = (1.0 - z * z).sqrt();
+            Ray::new(o, DVec3::new(r * libm::cos(phi), r * libm::sin(phi), z))
+        })
+        .collect()
+}
+
+fn embree_scene<'a>(device: &Device, spheres: &[Object]) -> Scene<'a> {
+    let mut scene = device.create_scene().expect("an Embree scene");
+    let mut geometry = device
+        .create_geometry(GeometryKind::SPHERE_POINT)
+        .expect("an Embree sphere geometry");
+    let points: Vec<[f32; 4]> = spheres
+        .iter()
+        .map(|o| match &o.shape {
+            Shape::Sphere(s) => [s.center.x as f32, s.center.y as f32, s.center.z as f32, s.radius as f32],
+            _ => unreachable!("spheres only"),
+        })
+        .collect();
+    geometry
+        .set_new_buffer::<[f32; 4]>(BufferUsage::VERTEX, 0, Format::FLOAT4, 16, points.len())
+        .expect("a vertex buffer")
+        .copy_from_slice(&points);
+    let geometry = geometry.commit();
+    scene.attach_geometry(&geometry);
+    scene.commit();
+    scene
+}
+
+fn f32x3(v: DVec3) -> [f32; 3] {
+    [v.x as f32, v.y as f32, v.z as f32]
+}
+
+/// What one kernel answers for one ray: the closest object (or [`MISS`]), or whether
+/// anything is hit.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Query {
+    Closest,
+    Any,
+}
+
+struct Kernels<'a, 's> {
+    spheres: &'a [Object],
+    accel: &'a Accel,
+    embree: &'a Scene<'s>,
+}
+
+impl Kernels<'_, '_> {
+    fn lumiere(&self, query: Query, rays: &[Ray], out: &mut [u32]) {
+        for (ray, out) in rays.iter().zip(out) {
+            *out = match query {
+                Query::Closest => self
+                    .accel
+                    .closest(self.spheres, ray, 0.0, f64::INFINITY)
+                    .map_or(MISS, |(i, _)| i as u32),
+                Query::Any => self.accel.any_hit(self.spheres, ray, 0.0, f64::INFINITY, &|_| true) as u32,
+            };
+        }
+    }
+
+    fn embree_single(&self, query: Query, coherent: bool, rays: &[Ray], out: &mut [u32]) {
+        let mut ctx = if coherent {
+            IntersectContext::coherent()
+        } else {
+            IntersectContext::incoherent()
+        };
+        for (ray, out) in rays.iter().zip(out) {
+            let mut r = EmbreeRay::segment(f32x3(ray.origin), f32x3(ray.dir), 0.0, f32::INFINITY);
+            *out = match query {
+                Query::Closest => {
+                    let mut hit = RayHit::from(r);
+                    self.embree.intersect(&mut ctx, &mut hit);
+                    if hit.hit.is_valid() { hit.hit.primID } else { MISS }
+                }
+                Query::Any => self.embree.occluded(&mut ctx, &mut r) as u32,
+            };
+        }
+    }
+
+    /// Closest hits by 8-ray packets (the rays of a task in consecutive groups of 8).
+    fn embree_packets(&self, rays: &[Ray], out: &mut [u32]) {
+        let mut ctx = IntersectContext::coherent();
+        for (rays, out) in rays.chunks(8).zip(out.chunks_mut(8)) {
+            let mut valid = AlignedMask(ValidMaskN::new([ValidMask::Invalid; 8]));
+            let mut packet = RayHit8 {
+                ray: Ray8::default(),
+                hit: Hit8::new(),
+            };
+            for (k, ray) in rays.iter().enumerate() {
+                valid.0.lanes_mut()[k] = ValidMask::Valid;
+                let (o, d) = (f32x3(ray.origin), f32x3(ray.dir));
+                let p = &mut packet.ray;
+                (p.org_x[k], p.org_y[k], p.org_z[k]) = (o[0], o[1], o[2]);
+                (p.dir_x[k], p.dir_y[k], p.dir_z[k]) = (d[0], d[1], d[2]);
+                (p.tnear[k], p.tfar[k], p.mask[k]) = (0.0, f32::INFINITY, u32::MAX);
+            }
+            self.embree.intersect8(&mut ctx, &mut packet, &valid.0);
+            for (k, out) in out.iter_mut().enumerate() {
+                *out = if packet.hit.geomID[k] == MISS {
+                    MISS
+                } else {
+                    packet.hit.primID[k]
+                };
+            }
+        }
+    }
+}
+
+/// Embree reads an 8-wide valid mask at 32-byte alignment.
+#[repr(C, align(32))]
+struct AlignedMask(ValidMaskN<8>);
+
+/// Wall time of `trace` over every ray on `pool`, one task per [`TASK`] rays.
+fn timed(pool: &rayon::ThreadPool, rays: &[Ray], out: &mut [u32], trace: &(dyn Fn(&[Ray], &mut [u32]) + Sync)) -> f64 {
+    let start = Instant::now();
+    pool.install(|| {
+        rays.par_chunks(TASK)
+            .zip(out.par_chunks_mut(TASK))
+            .for_each(|(rays, out)| trace(rays, out))
+    });
+    start.elapsed().as_secs_f64()
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn agreement(a: &[u32], b: &[u32]) -> f64 {
+    a.iter().zip(b).filter(|(a, b)| a == b).count() as f64 / a.len() as f64
+}
+
+fn main() {
+    // `cargo bench` passes `--bench`; this harness takes no options.
+    let (spheres, camera) = spheres_and_camera();
+    let start = Instant::now();
+    let accel = Accel::build_with(&spheres, AccelChoice::Bvh);
+    let lumiere_build = start.elapsed().as_secs_f64();
+    let device = Device::new().expect("an Embree device");
+    let start = Instant::now();
+    let embree = embree_scene(&device, &spheres);
+    let embree_build = start.elapsed().as_secs_f64();
+    let kernels = Kernels {
+        spheres: &spheres,
+        accel: &accel,
+        embree: &embree,
+    };
+    println!(
+        "{} spheres; build: lumiere {:.0} ms, Embree {:.0} ms",
+        spheres.len(),
+        lumiere_build * 1e3,
+        embree_build * 1e3
+    );
+    println!();
+    println!(
+        "| rays | query | Embree call | threads | lumiere (Mrays/s) | Embree (Mrays/s) | lumiere / Embree | same answer |"
+    );
+    println!("|---|---|---|---:|---:|---:|---:|---:|");
+    let sets = [
+        ("coherent", true, coherent_rays(&camera)),
+        ("incoherent", false, incoherent_rays()),
+    ];
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a thread pool");
+        for (name, coherent, rays) in &sets {
+            let mut calls = vec![
+                ("closest", "rtcIntersect1", Query::Closest, false),
+                ("any", "rtcOccluded1", Query::Any, false),
+            ];
+            if *coherent {
+                calls.push(("closest", "rtcIntersect8", Query::Closest, true));
+            }
+            for (query_name, call, query, packets) in calls {
+                let (mut ours, mut theirs) = (vec![0; rays.len()], vec![0; rays.len()]);
+                let (mut t_ours, mut t_theirs) = (Vec::new(), Vec::new());
+                for _ in 0..RUNS {
+                    t_ours.push(timed(&pool, rays, &mut ours, &|r, o| kernels.lumiere(query, r, o)));
+                    t_theirs.push(timed(&pool, rays, &mut theirs, &|r, o| {
+                        if packets {
+                            kernels.embree_packets(r, o)
+                        } else {
+                            kernels.embree_single(query, *coherent, r, o)
+                        }
+                    }));
+                }
+                let (a, b) = (median(t_ours), median(t_theirs));
+                let rate = |t: f64| rays.len() as f64 / t / 1e6;
+                println!(
+                    "| {name} | {query_name} | {call} | {threads} | {:.2} | {:.2} | {:.2} | {:.4} % |",
+                    rate(a),
+                    rate(b),
+                    b / a,
+                    100.0 * agreement(&ours, &theirs)
+                );
+            }
+        }
+    }
+}
