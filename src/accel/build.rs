@@ -415,12 +415,23 @@ struct Task {
     depth: usize,
 }
 
-/// Builds the tree over `refs` (reordered in place into leaf order). Returns the nodes (root
-/// at 0, index 1 unused so that sibling pairs start at even indices) and the depth of the
-/// deepest node (the root at 0).
-pub fn build(refs: &mut [PrimRef]) -> (Vec<Node>, usize) {
+/// A built binary tree.
+pub struct Built {
+    /// The nodes: root at 0, index 1 unused so that sibling pairs start at even indices.
+    pub nodes: Vec<Node>,
+    /// The objects' indices in leaf order: a leaf's `first .. first + count`.
+    pub order: Vec<u32>,
+}
+
+/// Builds the tree over `refs`. The boxes are freed once the subtrees are built, before
+/// they are spliced into one array, so a large tree's boxes, subtrees and final array are
+/// never all held at once.
+pub fn build(mut refs: Vec<PrimRef>) -> Built {
     if refs.is_empty() {
-        return (Vec::new(), 0);
+        return Built {
+            nodes: Vec::new(),
+            order: Vec::new(),
+        };
     }
     let (boxes, centroids) = refs.par_chunks(16 * 1024).map(Bounds::of).reduce(
         || (Bounds::EMPTY, Bounds::EMPTY),
@@ -429,17 +440,17 @@ pub fn build(refs: &mut [PrimRef]) -> (Vec<Node>, usize) {
     // Ranges up to this size are one task; it depends on the object count only.
     let policy = Policy::for_count(refs.len());
     let mut top = Builder::new(vec![Node::default(); 2], (refs.len() / 64).max(4096), policy);
-    top.grow(refs, 0, boxes, centroids, 0, 0);
+    top.grow(&mut refs, 0, boxes, centroids, 0, 0);
     let (mut nodes, tasks) = (top.nodes, top.tasks);
     // Build the tasks' subtrees in parallel, each in its own array with its root at 0.
     let mut slices = Vec::with_capacity(tasks.len());
-    let mut rest = refs;
+    let mut rest = &mut refs[..];
     for t in &tasks {
         let (head, tail) = rest.split_at_mut(t.len);
         slices.push(head);
         rest = tail;
     }
-    let subtrees: Vec<(Vec<Node>, usize)> = slices
+    let subtrees: Vec<Vec<Node>> = slices
         .into_par_iter()
         .zip(tasks.par_iter())
         .map(|(s, t)| {
@@ -448,20 +459,23 @@ pub fn build(refs: &mut [PrimRef]) -> (Vec<Node>, usize) {
             nodes.push(Node::default());
             let mut b = Builder::new(nodes, 0, policy);
             b.grow(s, t.start, t.boxes, t.centroids, t.depth, 0);
-            (b.nodes, b.deepest)
+            // Leaves hold two objects on average: a third of the reserve is spare.
+            b.nodes.shrink_to_fit();
+            b.nodes
         })
         .collect();
-    let depth = subtrees.iter().map(|s| s.1).fold(top.deepest, usize::max);
+    let order = refs.par_iter().map(|r| r.index).collect();
+    drop(refs);
     // Splice ([`global_index`]): the top part holds its root, the unused slot and pairs,
     // and each task adds pairs, so every offset is even.
     let mut offsets = Vec::with_capacity(tasks.len());
     let mut end = nodes.len();
-    for (local, _) in &subtrees {
+    for local in &subtrees {
         offsets.push(end);
         end += local.len() - 1;
     }
     debug_assert!(offsets.iter().all(|o| o % 2 == 0));
-    for ((t, (local, _)), &offset) in tasks.iter().zip(&subtrees).zip(&offsets) {
+    for ((t, local), &offset) in tasks.iter().zip(&subtrees).zip(&offsets) {
         nodes[t.slot] = relocated(local[0], t.slot, offset);
     }
     // The rest in parallel, written in place: the pages of a large tree's array are first
@@ -471,9 +485,9 @@ pub fn build(refs: &mut [PrimRef]) -> (Vec<Node>, usize) {
         // The last task starting at or before `k`.
         let task = offsets.partition_point(|&o| o <= k) - 1;
         let slot = tasks[task].slot;
-        relocated(subtrees[task].0[k - offsets[task] + 1], slot, offsets[task])
+        relocated(subtrees[task][k - offsets[task] + 1], slot, offsets[task])
     }));
-    (nodes, depth)
+    Built { nodes, order }
 }
 
 /// Where node `i` of a subtree built on its own (its root at 0) goes in the tree it joins:
@@ -499,8 +513,6 @@ struct Builder {
     task_size: usize,
     policy: Policy,
     scratch: Bins,
-    /// Depth of the deepest node built so far.
-    deepest: usize,
 }
 
 impl Builder {
@@ -511,7 +523,6 @@ impl Builder {
             task_size,
             policy,
             scratch: Bins::new(BINS),
-            deepest: 0,
         }
     }
 
@@ -525,7 +536,6 @@ impl Builder {
         depth: usize,
         slot: usize,
     ) {
-        self.deepest = self.deepest.max(depth);
         if refs.len() <= self.task_size {
             self.tasks.push(Task {
                 slot,
@@ -586,7 +596,6 @@ impl Builder {
             slot: global_index(t.slot, slot, offset),
             ..t
         }));
-        self.deepest = self.deepest.max(sub.deepest);
     }
 }
 
@@ -599,13 +608,13 @@ mod tests {
     /// axis and takes it.
     #[test]
     fn small_nodes_split_along_the_cheapest_axis() {
-        let mut refs: Vec<PrimRef> = (0..16)
+        let refs: Vec<PrimRef> = (0..16)
             .map(|i| {
                 let (x, y) = ((i % 8) as f32, if i < 8 { 0.0 } else { 3.0 });
                 PrimRef::new(i, [x - 0.1, y - 0.1, -0.1], [x + 0.1, y + 0.1, 0.1])
             })
             .collect();
-        let (nodes, _) = build(&mut refs);
+        let nodes = build(refs).nodes;
         let first = nodes[0].first as usize;
         let (a, b) = (&nodes[first], &nodes[first + 1]);
         let (low, high) = if a.min[1] < b.min[1] { (a, b) } else { (b, a) };

@@ -17,7 +17,7 @@
 //! box tests are conservative (see [`super::wide`]), so no object that holds the answer is
 //! ever skipped.
 
-use super::build::{MAX_SAH_DEPTH, PrimRef, build};
+use super::build::{Built, MAX_SAH_DEPTH, PrimRef, build};
 use super::node::stored_box;
 use super::wide::{F32_RANGE, F32Slots, F64Slots, Node4, SlotTest, WIDTH, collapse, unpack};
 use crate::math::Ray;
@@ -80,14 +80,14 @@ impl Bvh {
             unbounded.extend(next as u32..i as u32);
             next = i + 1;
         }
-        let (binary, _) = build(&mut refs);
+        let Built {
+            nodes: binary,
+            order: prims,
+            ..
+        } = build(refs);
         let fits_f32 = binary
             .first()
             .is_none_or(|root| (0..3).all(|a| root.min[a].abs().max(root.max[a].abs()) <= F32_RANGE));
-        // The leaf order, then the boxes freed before the wide nodes are made: a million
-        // objects' 32 MB of boxes and the wide nodes are never held at once.
-        let prims = refs.par_iter().map(|r| r.index).collect();
-        drop(refs);
         let (nodes, depth) = collapse(&binary);
         Bvh {
             depth,
