@@ -47,10 +47,10 @@ fn random_scene(seed: u64, n: usize, half: f64) -> Vec<Object> {
         let axis = unit(&mut s);
         let kind = (s.next_f64() * 10.0) as usize;
         let shape = match kind {
-            0 if i % 7 == 0 => Shape::Plane(Plane::new(c, axis)),
+            0 if i % 7 == 0 => Shape::Plane(Box::new(Plane::new(c, axis))),
             0 | 1 => Shape::Sphere(Sphere::new(c, r)),
             2 => Shape::Rectangle(Box::new(Rectangle::new(c, unit(&mut s) * r, unit(&mut s) * r))),
-            3 => Shape::Disk(Disk::new(c, axis, r)),
+            3 => Shape::Disk(Box::new(Disk::new(c, axis, r))),
             4 => Shape::Cuboid(Box::new(Cuboid::new(
                 c,
                 DVec3::new(r, 0.5 * r, 1.5 * r),
@@ -312,7 +312,7 @@ fn hand_checked_hits() {
     // A floor plane, a unit cube [0, 1]^3 on it, a sphere above, and 30 far spheres so the
     // BVH has a tree.
     let objects: Vec<Object> = [
-        Shape::Plane(Plane::new(DVec3::ZERO, DVec3::Z)),
+        Shape::Plane(Box::new(Plane::new(DVec3::ZERO, DVec3::Z))),
         Shape::Cuboid(Box::new(Cuboid::new(DVec3::splat(0.5), DVec3::ONE, DVec3::ZERO))),
         Shape::Sphere(Sphere::new(DVec3::new(0.5, 0.5, 3.0), 0.5)),
     ]
@@ -400,7 +400,7 @@ fn bvh_invariants_on_degenerate_inputs() {
             .collect()
     };
     let planes: Vec<Object> = (0..20)
-        .map(|i| object(Shape::Plane(Plane::new(DVec3::Z * i as f64, DVec3::Z))))
+        .map(|i| object(Shape::Plane(Box::new(Plane::new(DVec3::Z * i as f64, DVec3::Z)))))
         .collect();
     let line: Vec<Object> = (0..1000)
         .map(|i| object(Shape::Sphere(Sphere::new(DVec3::X * (1.5f64).powi(i % 60), 0.1))))

@@ -169,7 +169,7 @@ fn lit_scene(sphere: Material) -> Scene {
     scene.objects = vec![
         Object {
             name: "floor".into(),
-            shape: Shape::Plane(Plane::new(DVec3::ZERO, DVec3::Z)),
+            shape: Shape::Plane(Box::new(Plane::new(DVec3::ZERO, DVec3::Z))),
             material: 0,
         },
         Object {

@@ -157,8 +157,16 @@ fn every_keyword_reads_to_the_value_written() {
     let v = DVec3::new;
     let expected = [
         ("sphere#0", Shape::Sphere(Sphere::new(v(1.0, -2.0, 1.0), 1.0)), glass),
-        ("plane#1", Shape::Plane(Plane::new(DVec3::ZERO, DVec3::Z)), red),
-        ("disk#2", Shape::Disk(Disk::new(v(0.0, 5.0, 0.01), DVec3::Z, 2.0)), blue),
+        (
+            "plane#1",
+            Shape::Plane(Box::new(Plane::new(DVec3::ZERO, DVec3::Z))),
+            red,
+        ),
+        (
+            "disk#2",
+            Shape::Disk(Box::new(Disk::new(v(0.0, 5.0, 0.01), DVec3::Z, 2.0))),
+            blue,
+        ),
         (
             "triangle#3",
             Shape::Triangle(Triangle::new(v(-2.0, 2.0, 0.0), v(0.0, 2.0, 0.0), v(-1.0, 2.0, 2.0))),

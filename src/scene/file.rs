@@ -857,10 +857,10 @@ impl FileShape {
                 name,
                 transform,
             }) => (
-                Shape::Plane(Plane::new(
+                Shape::Plane(Box::new(Plane::new(
                     vec3(&path.key("point"), point)?,
                     direction(&path.key("normal"), normal)?,
-                )),
+                ))),
                 material,
                 name,
                 transform,
@@ -889,11 +889,11 @@ impl FileShape {
                 name,
                 transform,
             }) => (
-                Shape::Disk(Disk::new(
+                Shape::Disk(Box::new(Disk::new(
                     vec3(&path.key("center"), center)?,
                     direction(&path.key("normal"), normal)?,
                     size("radius", radius)?,
-                )),
+                ))),
                 material,
                 name,
                 transform,

@@ -55,13 +55,17 @@ impl Similarity {
     /// (a similarity does not rotate), so only their public position and sizes change.
     pub fn shape(&self, shape: &Shape) -> Shape {
         match shape {
-            Shape::Plane(p) => Shape::Plane(Plane::new(self.point(p.point), p.normal)),
+            Shape::Plane(p) => Shape::Plane(Box::new(Plane::new(self.point(p.point), p.normal))),
             Shape::Rectangle(r) => Shape::Rectangle(Box::new(Rectangle::new(
                 self.point(r.corner),
                 r.edge1 * self.scale,
                 r.edge2 * self.scale,
             ))),
-            Shape::Disk(d) => Shape::Disk(Disk::new(self.point(d.center), d.normal, self.length(d.radius))),
+            Shape::Disk(d) => Shape::Disk(Box::new(Disk::new(
+                self.point(d.center),
+                d.normal,
+                self.length(d.radius),
+            ))),
             Shape::Sphere(s) => Shape::Sphere(Sphere::new(self.point(s.center), self.length(s.radius))),
             Shape::Cuboid(b) => Shape::Cuboid(Box::new(b.resized(self.point(b.center), b.half_size * self.scale))),
             Shape::Cylinder(c) => Shape::Cylinder(Box::new(c.resized(

@@ -1151,8 +1151,8 @@ impl<'a> Reader<'a> {
         let dropped = "the geometry is dropped";
         let shape = match kind {
             "sphere" => Shape::Sphere(Sphere::new(position, ray)),
-            "plane" => Shape::Plane(Plane::new(position, unit(normal))),
-            "disk" => Shape::Disk(Disk::new(position, unit(normal), ray)),
+            "plane" => Shape::Plane(Box::new(Plane::new(position, unit(normal)))),
+            "disk" => Shape::Disk(Box::new(Disk::new(position, unit(normal), ray))),
             "cube" => Shape::Cuboid(Box::new(Cuboid::new(position, DVec3::splat(size), DVec3::ZERO))),
             "torus" => {
                 if minor > major {
