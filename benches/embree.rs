@@ -18,6 +18,9 @@
 //! median of 5 runs, the two kernels alternating; the table is printed as BENCHMARKS.md
 //! holds it.
 
+#[path = "common/rays.rs"]
+mod rays;
+
 use embree3::{
     BufferUsage, Device, Format, GeometryKind, Hit8, IntersectContext, Ray as EmbreeRay, Ray8, RayHit, RayHit8, Scene,
     ValidMask, ValidMaskN,
@@ -26,10 +29,10 @@ use glam::DVec3;
 use lumiere::accel::{Accel, AccelChoice};
 use lumiere::camera::Camera;
 use lumiere::math::Ray;
-use lumiere::sampling::{Purpose, Stream};
 use lumiere::scene::Object;
 use lumiere::shape::Shape;
 use rayon::prelude::*;
+use rays::incoherent_rays;
 use std::path::Path;
 use std::time::Instant;
 
@@ -57,21 +60,6 @@ fn spheres_and_camera() -> (Vec<Object>, Camera) {
 fn coherent_rays(camera: &Camera) -> Vec<Ray> {
     (0..SIDE * SIDE)
         .map(|i| camera.ray((i % SIDE) as f64 + 0.5, (i / SIDE) as f64 + 0.5, SIDE, SIDE))
-        .collect()
-}
-
-/// As benches/intersect.rs: origins uniform in [-12, 12]^2 x [-2, 3], directions uniform.
-fn incoherent_rays() -> Vec<Ray> {
-    let mut s = Stream::new(17, Purpose::Generator, 0);
-    (0..INCOHERENT)
-        .map(|_| {
-            let mut u = || s.next_f64();
-            let o = DVec3::new(24.0 * u() - 12.0, 24.0 * u() - 12.0, 5.0 * u() - 2.0);
-            let z = 2.0 * u() - 1.0;
-            let phi = std::f64::consts::TAU * u();
-            let r = (1.0 - z * z).sqrt();
-            Ray::new(o, DVec3::new(r * libm::cos(phi), r * libm::sin(phi), z))
-        })
         .collect()
 }
 
@@ -228,7 +216,7 @@ fn main() {
     println!("|---|---|---|---:|---:|---:|---:|---:|");
     let sets = [
         ("coherent", true, coherent_rays(&camera)),
-        ("incoherent", false, incoherent_rays()),
+        ("incoherent", false, incoherent_rays(INCOHERENT)),
     ];
     for threads in [1, 2] {
         let pool = rayon::ThreadPoolBuilder::new()

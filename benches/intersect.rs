@@ -13,17 +13,20 @@
 //! radii scaled by sqrt(1000 / N) so that a ray crosses about as many objects at every N.
 //! The linear scan at large N traces fewer rays (its throughput is still per ray).
 
+#[path = "common/rays.rs"]
+mod rays;
+
 use criterion::{BenchmarkId, Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
 use glam::{DVec3, Vec3A};
 use lumiere::accel::{Accel, AccelChoice, Bvh};
 use lumiere::camera::Camera;
 use lumiere::math::Ray;
-use lumiere::sampling::{Purpose, Stream};
 use lumiere::scene::Object;
 use lumiere::scene::generate::{Generate, GenerateKind};
 use lumiere::shape::{Plane, Shape, SurfaceHit};
 use obvhs::cwbvh::{CwBvh, builder::build_cwbvh};
 use obvhs::{Boundable, BvhBuildParams};
+use rays::incoherent_rays;
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -51,21 +54,6 @@ fn coherent_rays() -> Vec<Ray> {
     let cam = Camera::new(DVec3::new(0.0, -16.0, 8.0), DVec3::ZERO, DVec3::Z, 50.0, 1.0);
     (0..RAYS)
         .map(|i| cam.ray((i % 64) as f64 + 0.5, (i / 64) as f64 + 0.5, 64, 64))
-        .collect()
-}
-
-/// Origins uniform in the scene's box grown by 2, directions uniform on the sphere.
-fn incoherent_rays() -> Vec<Ray> {
-    let mut s = Stream::new(17, Purpose::Generator, 0);
-    (0..RAYS)
-        .map(|_| {
-            let mut u = || s.next_f64();
-            let o = DVec3::new(24.0 * u() - 12.0, 24.0 * u() - 12.0, 5.0 * u() - 2.0);
-            let z = 2.0 * u() - 1.0;
-            let phi = std::f64::consts::TAU * u();
-            let r = (1.0 - z * z).sqrt();
-            Ray::new(o, DVec3::new(r * libm::cos(phi), r * libm::sin(phi), z))
-        })
         .collect()
 }
 
@@ -153,7 +141,7 @@ fn agreement(label: &str, objects: &[Object], linear: &Accel, bvh: &Accel, peer:
 }
 
 fn cores(c: &mut Criterion) {
-    let ray_sets = [("coherent", coherent_rays()), ("incoherent", incoherent_rays())];
+    let ray_sets = [("coherent", coherent_rays()), ("incoherent", incoherent_rays(RAYS))];
     for kind in [GenerateKind::Spheres, GenerateKind::Mixed] {
         for n in SIZES {
             let objects = objects(kind, n);
