@@ -280,7 +280,7 @@ fn errors_name_the_line_column_keyword_and_range() {
         ),
         (
             "kamera\n",
-            "lab.txt:1:1: scene.kamera: unknown keyword \"kamera\"; the blocks are camera, viewport, raytracer, primitive, material (blinn_material, color_material, materiel), ambient_light (lumiere_ambiante), directional_light (lumiere_directionnelle), point_light (lumiere_ponctuelle), model, end (fin)",
+            "lab.txt:1:1: scene.kamera: unknown keyword \"kamera\"; the blocks are camera, viewport, raytracer, primitive, material (blinn_material, color_material, materiel), ambient_light (lumiere_ambiante), directional_light (lumiere_directionnelle), point_light (lumiere_ponctuelle), model, linear_aperture_light, rectangular_aperture_light, elliptical_aperture_light, aperture_mask_light, end (fin)",
         ),
         (
             "viewport\nwidth 800.0\nend",
@@ -581,7 +581,7 @@ fn the_format_is_told_by_name_then_by_first_keyword() {
     assert_eq!(
         load(&toml).unwrap_err().to_string(),
         format!(
-            "{}:1:1: format: cannot tell the scene's format: the file is not named .toml and its first keyword \"[image]\" opens none of SIMRenderer's blocks (camera, viewport, raytracer, primitive, material, ambient_light, directional_light, point_light, model); it looks like TOML: name it .toml, or pass --format toml",
+            "{}:1:1: format: cannot tell the scene's format: the file is not named .toml and its first keyword \"[image]\" opens none of SIMRenderer's blocks (camera, viewport, raytracer, primitive, material, ambient_light, directional_light, point_light, model, linear_aperture_light, rectangular_aperture_light, elliptical_aperture_light, aperture_mask_light); it looks like TOML: name it .toml, or pass --format toml",
             toml.display()
         )
     );
