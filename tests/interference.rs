@@ -101,15 +101,23 @@ fn assert_law(positions: &[f64], spacing: f64, what: &str) -> usize {
     let centre = (0..positions.len())
         .min_by(|&i, &j| positions[i].abs().total_cmp(&positions[j].abs()))
         .unwrap();
+    let mut worst: f64 = 0.0;
     for (i, y) in positions.iter().enumerate() {
         let m = i as f64 - centre as f64;
         let expected = m * spacing;
-        let tolerance = 0.01 * if m == 0.0 { spacing } else { expected.abs() };
+        let scale = if m == 0.0 { spacing } else { expected.abs() };
         assert!(
-            (y - expected).abs() <= tolerance,
+            (y - expected).abs() <= 0.01 * scale,
             "{what}: fringe m = {m} at {y:e} m, the law puts it at {expected:e} m"
         );
+        worst = worst.max((y - expected).abs() / scale);
     }
+    // Shown with --nocapture: how far the measured fringes are from the law.
+    eprintln!(
+        "{what}: {} fringes, at most {:.4} % from the law",
+        positions.len(),
+        worst * 100.0
+    );
     positions.len()
 }
 
@@ -159,6 +167,7 @@ fn single_slit_minima_are_where_a_sin_theta_equals_m_lambda() {
     // Sides: m < 0 left of the centre, m > 0 right, numbered outwards from the centre.
     let (left, right): (Vec<f64>, Vec<f64>) = minima.iter().partition(|y| **y < 0.0);
     assert!(left.len() >= 3 && right.len() >= 3, "{minima:?}");
+    let (mut worst_a, mut worst_strips): (f64, f64) = (0.0, 0.0);
     for (k, y) in left.iter().rev().enumerate().chain(right.iter().enumerate()) {
         let m = (k + 1) as f64;
         let sin_theta = y.abs() / y.hypot(L);
@@ -170,9 +179,20 @@ fn single_slit_minima_are_where_a_sin_theta_equals_m_lambda() {
         // Each oscillator stands for a strip a / (N - 1) wide: N of them span
         // N a / (N - 1), the width whose minima the discrete sum has exactly.
         let strips = f64::from(n) * a / f64::from(n - 1);
-        let ratio = strips * sin_theta / (m * lambda);
-        assert!((ratio - 1.0).abs() < 1e-3, "m = {m}: N s sin θ / m λ = {ratio}");
+        let ratio_strips = strips * sin_theta / (m * lambda);
+        assert!(
+            (ratio_strips - 1.0).abs() < 1e-3,
+            "m = {m}: N s sin θ / m λ = {ratio_strips}"
+        );
+        worst_a = worst_a.max((ratio - 1.0).abs());
+        worst_strips = worst_strips.max((ratio_strips - 1.0).abs());
     }
+    eprintln!(
+        "single slit: {} minima, a sin θ at most {:.4} % from m λ, N s sin θ at most {:.4} %",
+        minima.len(),
+        worst_a * 100.0,
+        worst_strips * 100.0
+    );
     // Between the first minima, one central maximum.
     let central = extrema(&r, true, |v| v > 0.5 * peak);
     assert_eq!(central.len(), 1);
