@@ -14,8 +14,11 @@
 //!    [`compare`].
 //! 2. [`shape`] (plane, rectangle, disk, sphere, box, cylinder, cone, torus), [`camera`],
 //!    [`placement`], [`output`], [`review`].
-//! 3. [`area_light`] (N-point area lights), [`stress`] (the numerical stress campaign).
-//! 4. [`light`] (ambient, directional, point, spot and area lights; what reaches a point).
+//! 3. [`area_light`] (N-point area lights), [`interference`] (aperture lights: coherent
+//!    oscillators, their relative intensity, a wavelength's colour), [`stress`] (the
+//!    numerical stress campaign).
+//! 4. [`light`] (ambient, directional, point, spot, area and aperture lights; what reaches
+//!    a point).
 //! 5. [`scene`]: the scene model, its TOML file format and SIMRenderer's (read and written),
 //!    with located errors.
 //! 6. [`accel`] (closest-hit and any-hit queries over a scene's objects: the linear scan or
@@ -71,6 +74,7 @@ pub mod edges;
 pub mod family;
 pub mod figures;
 pub mod film;
+pub mod interference;
 pub mod light;
 pub mod limits;
 pub mod material;

@@ -1,6 +1,8 @@
-//! Light sources of chapter 7.4b: ambient, directional, point and spotlight. For a shading
+//! Light sources of chapter 7.4b: ambient, directional, point and spotlight, with the area
+//! lights of N points and SIMRenderer's interference (aperture) lights. For a shading
 //! point each light yields the direction and distance to test with a shadow ray and the
-//! light colour arriving there before shadowing (colour x attenuation x spot factor).
+//! light colour arriving there before shadowing (colour x attenuation x spot factor; for an
+//! aperture light, colour x amplification x attenuation x relative intensity).
 
 use crate::math::length;
 pub use crate::shading::Attenuation;
@@ -71,6 +73,9 @@ pub enum Light {
     Spot(SpotLight),
     /// N point lights spread over a sphere, tube or window (see [`crate::area_light`]).
     Area(crate::area_light::AreaLight),
+    /// Coherent oscillators over an aperture (see [`crate::interference`]): shadowed from
+    /// its centre, it adds its arriving light whatever the material.
+    Aperture(crate::interference::ApertureLight),
 }
 
 /// What one light point sends towards a shading point, before the shadow test.
@@ -84,7 +89,8 @@ pub struct Incidence {
     pub attenuation: f64,
     /// Spot factor `C_theta` (1 for lights that are not spots).
     pub spot: f64,
-    /// `A C_theta L`, the colour reaching the point if nothing is in the way.
+    /// `A C_theta L`, the colour reaching the point if nothing is in the way (for an
+    /// aperture light, `L amplification A I`).
     pub color: DVec3,
 }
 
@@ -114,6 +120,19 @@ impl Light {
                 let c = spot_factor(s.orientation.dot(to_p / dist), s.cos_half, s.c_min, s.c_max);
                 point_incidence(s.position, s.color, &s.attenuation, p, c)
             }
+            Light::Aperture(a) => {
+                let (to_light, distance) = direction_to(a.aperture.center(), p);
+                if distance == 0.0 {
+                    return None;
+                }
+                Some(Incidence {
+                    to_light,
+                    distance,
+                    attenuation: a.attenuation.factor(distance),
+                    spot: 1.0,
+                    color: a.arriving(p, distance),
+                })
+            }
         }
     }
 
@@ -133,6 +152,16 @@ impl Light {
             Light::Spot(s) => (&s.color, Some(s.attenuation)),
             // N points of colour L / N: at most L in all.
             Light::Area(a) => (&a.color, Some(a.attenuation)),
+            // The relative intensity is at most 1 (N² / N² at an instant).
+            Light::Aperture(a) => {
+                let most = a.color.max_element() * a.amplification;
+                return most
+                    * if a.attenuation.constant > 0.0 {
+                        1.0 / a.attenuation.constant
+                    } else {
+                        f64::INFINITY
+                    };
+            }
         };
         let spot_max = match self {
             Light::Spot(s) => s.c_max.max(s.c_min),
@@ -178,6 +207,19 @@ pub fn direction_to(q: DVec3, p: DVec3) -> (DVec3, f64) {
     let to_light = q - p;
     let distance = length(to_light);
     (to_light * (1.0 / distance), distance)
+}
+
+/// What an aperture light of colour `color` adds at a point that faces its centre
+/// (`N.L > 0`) and whose shadow ray lets `filter` through: its `arriving` light whole, or
+/// nothing when the filtered colour `color × filter` is black. SIMRenderer counts such a
+/// point as in shadow only then: a transparent object in the way does not tint the light,
+/// and the material does not weigh it.
+pub fn aperture_share(color: DVec3, filter: DVec3, arriving: DVec3) -> DVec3 {
+    if color * filter == DVec3::ZERO {
+        DVec3::ZERO
+    } else {
+        arriving
+    }
 }
 
 /// The light arriving at a point before the shadow test (chapter 7.4b): `A C_theta L` for
@@ -231,6 +273,47 @@ mod tests {
         // 11 off-axis: o.d = 0.6727 < 0.7071, outside.
         let outside = s.incidence(DVec3::new(11., 0., 0.)).unwrap();
         assert_eq!((outside.spot, outside.color), (0.0, DVec3::ZERO));
+    }
+
+    #[test]
+    fn an_aperture_light_arrives_whole_unless_its_filtered_colour_is_black() {
+        let arriving = DVec3::new(0.25, 0.0, 0.0);
+        let red = DVec3::X;
+        assert_eq!(aperture_share(red, DVec3::ONE, arriving), arriving);
+        // Yellow glass (0.5 0.5 0) leaves some red: the light arrives untinted.
+        assert_eq!(aperture_share(red, DVec3::new(0.5, 0.5, 0.0), arriving), arriving);
+        // Green glass leaves none; an opaque object none of anything.
+        assert_eq!(aperture_share(red, DVec3::Y, arriving), DVec3::ZERO);
+        assert_eq!(aperture_share(red, DVec3::ZERO, arriving), DVec3::ZERO);
+    }
+
+    #[test]
+    fn an_aperture_light_incidence_is_from_its_centre() {
+        use crate::interference::{Aperture, ApertureLight};
+        // Two oscillators 0.1 mm apart at (0, 0, 1) +- 0.05 mm along x; the point below the
+        // middle is equidistant: in phase, I = 1/2. A = 1 / (1 + 1) at d = 1.
+        let a = ApertureLight::new(
+            Aperture::Linear {
+                start: DVec3::new(-5e-5, 0.0, 1.0),
+                end: DVec3::new(5e-5, 0.0, 1.0),
+            },
+            633.0,
+            2,
+            10,
+            3.0,
+            Attenuation {
+                constant: 1.0,
+                linear: 1.0,
+                quadratic: 0.0,
+            },
+        )
+        .unwrap();
+        let i = Light::Aperture(a.clone()).incidence(DVec3::ZERO).unwrap();
+        assert_eq!((i.to_light, i.distance, i.attenuation), (DVec3::Z, 1.0, 0.5));
+        let expected = a.color * (3.0 * 0.5 * 0.5);
+        assert!((i.color - expected).abs().max_element() < 1e-15, "{}", i.color);
+        // The largest channel of the colour (1.055 - 0.055, encoded red) times 3.
+        assert_eq!(Light::Aperture(a.clone()).max_intensity(), a.color.max_element() * 3.0);
     }
 
     #[test]

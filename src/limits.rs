@@ -19,6 +19,11 @@ pub const MAX_LIGHT_POINTS: u32 = 100_000;
 /// (24 bytes each, so 240 MB at the limit) and every point is a shadow ray per shading point.
 /// Without it, 10 000 lights of 100 000 points would ask for about 30 GB.
 pub const MAX_TOTAL_LIGHT_POINTS: u64 = 10_000_000;
+/// Most oscillators in one aperture light (each is a sine and a cosine per shading point);
+/// they count towards [`MAX_TOTAL_LIGHT_POINTS`] too.
+pub const MAX_OSCILLATORS: u64 = 100_000;
+/// Most instants in an aperture light's time average over one period.
+pub const MAX_PERIOD_ITERATION: u32 = 100_000;
 /// Largest coordinate magnitude (beyond it f64 hit points lose all sub-unit precision).
 pub const MAX_COORDINATE: f64 = 1e9;
 /// Most triangles in one mesh file (each is an object, so [`MAX_OBJECTS`] bounds the

@@ -184,6 +184,12 @@ fn light_kind(light: &Light) -> &'static str {
         Light::Point(_) => "point",
         Light::Spot(_) => "spot",
         Light::Area(_) => "area",
+        Light::Aperture(a) => match a.aperture {
+            crate::interference::Aperture::Linear { .. } => "linear_aperture",
+            crate::interference::Aperture::Rectangular(_) => "rectangular_aperture",
+            crate::interference::Aperture::Elliptical(_) => "elliptical_aperture",
+            crate::interference::Aperture::Mask { .. } => "aperture_mask",
+        },
     }
 }
 

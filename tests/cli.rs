@@ -124,7 +124,7 @@ fn misspelt_light_type_lists_the_types() {
         "type = \"spot\"",
         "type = \"spott\"",
         &[
-            "scene.toml:29:8: lights[0].type: must be \"ambient\", \"directional\", \"point\", \"spot\" or \"area\", got \"spott\"\n",
+            "scene.toml:29:8: lights[0].type: must be \"ambient\", \"directional\", \"point\", \"spot\", \"area\", \"linear_aperture\", \"rectangular_aperture\", \"elliptical_aperture\" or \"aperture_mask\", got \"spott\"\n",
         ],
     );
 }

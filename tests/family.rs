@@ -293,5 +293,9 @@ fn the_families_are_found_from_the_figure_files() {
     let prism: Vec<String> = (1..=20).map(|d| format!("prism/{:02}-depth-{d:02}", d + 1)).collect();
     let shading: Vec<String> = sets[8].figures.iter().map(|f| format!("shading/{}", f.stem)).collect();
     assert_eq!(shading.len(), 25);
-    assert_eq!(groups, [lightings, sphere, mirrors, prism, shading]);
+    // The slits: one screen under three lights.
+    let optique: Vec<String> = ["01-two-slits", "02-grating", "03-single-slit"]
+        .map(|f| format!("optique/{f}"))
+        .into();
+    assert_eq!(groups, [lightings, sphere, mirrors, prism, shading, optique]);
 }

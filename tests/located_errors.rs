@@ -126,8 +126,9 @@ fn misspelt_shape_type_lists_the_types() {
 fn misspelt_light_type_lists_the_types() {
     assert_eq!(
         error_after("type = \"spot\"", "type = \"spotlight\""),
-        "s.toml:42:8: lights[1].type: must be \"ambient\", \"directional\", \"point\", \"spot\" \
-         or \"area\", got \"spotlight\""
+        "s.toml:42:8: lights[1].type: must be \"ambient\", \"directional\", \"point\", \"spot\", \
+         \"area\", \"linear_aperture\", \"rectangular_aperture\", \"elliptical_aperture\" or \
+         \"aperture_mask\", got \"spotlight\""
     );
 }
 

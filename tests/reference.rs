@@ -68,7 +68,7 @@ fn every_course_figure_is_the_reference_image() {
             scenes += 1;
         }
     }
-    // 81 figures, some sharing a scene.
+    // 84 figures, some sharing a scene.
     assert!(scenes >= 70, "{scenes} scenes compared");
 }
 
@@ -137,6 +137,40 @@ fn per_sample_points_adaptive_depth_and_filters_agree() {
     let mut phong = sized(scene("reference.toml"), 40, 30, 1);
     phong.settings.shading.specular = lumiere::scene::Specular::Phong;
     assert_tracers_agree(&phong, "phong");
+}
+
+#[test]
+fn aperture_lights_agree() {
+    use lumiere::interference::{Aperture, ApertureLight, Planar};
+    use lumiere::light::{Attenuation, Light};
+    // The reference scene (opaque objects, two transparent spheres) under a slit, an
+    // ellipse and a rectangle of coherent oscillators, with and without shadows.
+    let mut s = sized(scene("reference.toml"), 48, 36, 2);
+    let planar = Planar {
+        center: DVec3::new(0.0, -2.0, 8.0),
+        front: DVec3::NEG_Z,
+        up: DVec3::Y,
+        width: 2e-4,
+        height: 1e-4,
+    };
+    let apertures = [
+        (
+            Aperture::Linear {
+                start: DVec3::new(-5e-5, 0.0, 9.0),
+                end: DVec3::new(5e-5, 0.0, 9.0),
+            },
+            2,
+        ),
+        (Aperture::Elliptical(planar.clone()), 6),
+        (Aperture::Rectangular(planar), 3),
+    ];
+    for (aperture, n) in apertures {
+        let light = ApertureLight::new(aperture, 600.0, n, 10, 1.0, Attenuation::NONE).unwrap();
+        s.lights.push(Light::Aperture(light));
+    }
+    assert!(assert_tracers_agree(&s, "aperture lights") > 100);
+    s.settings.shadows = false;
+    assert!(assert_tracers_agree(&s, "aperture lights without shadows") > 100);
 }
 
 #[test]

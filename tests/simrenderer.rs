@@ -288,7 +288,7 @@ fn errors_name_the_line_column_keyword_and_range() {
         ),
         (
             "kamera\n",
-            "lab.txt:1:1: scene.kamera: unknown keyword \"kamera\"; the blocks are camera, viewport, raytracer, primitive, material (blinn_material, color_material, materiel), ambient_light (lumiere_ambiante), directional_light (lumiere_directionnelle), point_light (lumiere_ponctuelle), model, end (fin)",
+            "lab.txt:1:1: scene.kamera: unknown keyword \"kamera\"; the blocks are camera, viewport, raytracer, primitive, material (blinn_material, color_material, materiel), ambient_light (lumiere_ambiante), directional_light (lumiere_directionnelle), point_light (lumiere_ponctuelle), model, linear_aperture_light, rectangular_aperture_light, elliptical_aperture_light, aperture_mask_light, end (fin)",
         ),
         (
             "viewport\nwidth 800.0\nend",
@@ -406,22 +406,6 @@ fn what_lumiere_does_not_model_is_refused_by_name() {
             "lab.txt:1:1: scene.texture_materiel: texture materials are not supported yet by lumiere",
         ),
         (
-            "linear_aperture_light\nwave_length 650\nend",
-            "lab.txt:1:1: scene.linear_aperture_light: linear aperture lights (SIMRenderer's interference lights) are not supported yet by lumiere",
-        ),
-        (
-            "rectangular_aperture_light\nend",
-            "lab.txt:1:1: scene.rectangular_aperture_light: rectangular aperture lights (SIMRenderer's interference lights) are not supported yet by lumiere",
-        ),
-        (
-            "elliptical_aperture_light\nend",
-            "lab.txt:1:1: scene.elliptical_aperture_light: elliptical aperture lights (SIMRenderer's interference lights) are not supported yet by lumiere",
-        ),
-        (
-            "aperture_mask_light\nmasque m.png\nend",
-            "lab.txt:1:1: scene.aperture_mask_light: aperture mask lights (SIMRenderer's interference lights) are not supported yet by lumiere",
-        ),
-        (
             "primitive\nbtriangle\nend\nend",
             "lab.txt:2:1: primitive.btriangle: barycentric triangles (btriangle) are not supported yet by lumiere",
         ),
@@ -466,7 +450,7 @@ fn what_lumiere_does_not_model_is_refused_by_name() {
 fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
     let text = "camera\nangle 5\nposition 0 0 -5\nend\n\
                 material\nname red\ncolour 1 0 0\nka 2\nend\n\
-                linear_aperture_light\nposition 0 0 0\nend\n\
+                linear_aperture_light\nwave_length 900\nend\n\
                 primitive\nmaterial_name red\nlens\nend\nsphere\nend\nend\n\
                 primitive\nsphere\nend\nplane\nend\nend\n\
                 raytracer\nsampling 2\npixel_coordinate random\nend\n";
@@ -477,7 +461,7 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
             "lab.txt:2:7: camera.angle: must be a finite number in [10, 170], got 5; the value before it is kept",
             "lab.txt:7:1: material.colour: unknown keyword \"colour\"; material's keywords are name (nom), color (couleur), ka, kd, ks, kr, kt, shininess (brillance), plasticity (p), refractive_index (n), end (fin); the line is skipped",
             "lab.txt:8:4: material.ka: must be a finite number in [0, 1], got 2; the value before it is kept",
-            "lab.txt:10:1: scene.linear_aperture_light: linear aperture lights (SIMRenderer's interference lights) are not supported yet by lumiere; the block is skipped",
+            "lab.txt:11:13: linear_aperture_light.wave_length: must be a finite number in [380, 780], got 900; the value before it is kept",
             "lab.txt:15:1: primitive.lens: lenses are not supported yet by lumiere; the geometry is skipped",
             "lab.txt:17:1: primitive.sphere: a primitive has one geometry; this is a second one (after a lens); this geometry is skipped",
             "lab.txt:23:1: primitive.plane: a primitive has one geometry; this is a second one (after a sphere); this geometry is skipped",
@@ -605,7 +589,7 @@ fn the_format_is_told_by_name_then_by_first_keyword() {
     assert_eq!(
         load(&toml).unwrap_err().to_string(),
         format!(
-            "{}:1:1: format: cannot tell the scene's format: the file is not named .toml and its first keyword \"[image]\" opens none of SIMRenderer's blocks (camera, viewport, raytracer, primitive, material, ambient_light, directional_light, point_light, model); it looks like TOML: name it .toml, or pass --format toml",
+            "{}:1:1: format: cannot tell the scene's format: the file is not named .toml and its first keyword \"[image]\" opens none of SIMRenderer's blocks (camera, viewport, raytracer, primitive, material, ambient_light, directional_light, point_light, model, linear_aperture_light, rectangular_aperture_light, elliptical_aperture_light, aperture_mask_light); it looks like TOML: name it .toml, or pass --format toml",
             toml.display()
         )
     );

@@ -77,8 +77,8 @@ fn the_figure_scenes_both_formats_can_say_come_back_to_the_bit() {
             }
         }
     }
-    // Every figure of lighting, directional, attenuation and shading (but exponents above
-    // SIMRenderer's 200), and the hard shadow.
+    // Every figure of lighting, directional, attenuation, shading (but exponents above
+    // SIMRenderer's 200) and optique, and the hard shadow.
     let count = |prefix: &str| exact.iter().filter(|n| n.starts_with(prefix)).count();
     assert_eq!(
         [
@@ -86,11 +86,12 @@ fn the_figure_scenes_both_formats_can_say_come_back_to_the_bit() {
             count("directional/"),
             count("attenuation/"),
             count("shading/"),
-            count("soft-shadows/")
+            count("soft-shadows/"),
+            count("optique/")
         ],
-        [3, 4, 2, 21, 1]
+        [3, 4, 2, 21, 1, 3]
     );
-    assert_eq!(exact.len(), 31);
+    assert_eq!(exact.len(), 34);
     let reasons: Vec<(String, String)> = refused.iter().map(|(n, e)| (n.clone(), e.clone())).collect();
     let reason_of = |name: &str| &reasons.iter().find(|(n, _)| n == name).unwrap().1;
     assert_eq!(

@@ -13,6 +13,7 @@ use super::tag;
 use super::{CameraSpec, Object, Scene, Settings, ShadingModel, Specular};
 use crate::area_light::{AreaLight, AreaShape, PointMode};
 use crate::conventions::{Conventions, Highlight};
+use crate::interference::{Aperture, ApertureLight, Invalid, Mask, Planar};
 use crate::light::{Attenuation, Light, PointLight, SpotLight};
 use crate::limits;
 use crate::material::Material;
@@ -545,7 +546,17 @@ struct FileAttenuation {
 }
 
 /// The values of `type` in `[[lights]]`, in the order of [`FileLight`]'s variants.
-const LIGHT_TYPES: &[&str] = &["ambient", "directional", "point", "spot", "area"];
+const LIGHT_TYPES: &[&str] = &[
+    "ambient",
+    "directional",
+    "point",
+    "spot",
+    "area",
+    "linear_aperture",
+    "rectangular_aperture",
+    "elliptical_aperture",
+    "aperture_mask",
+];
 
 /// One `[[lights]]` entry, tagged by its `type` (lifted to an outer key by `tag::lift`, so that
 /// errors keep their positions).
@@ -557,6 +568,10 @@ enum FileLight {
     Point(FilePointLight),
     Spot(FileSpotLight),
     Area(FileAreaLight),
+    LinearAperture(FileLinearAperture),
+    RectangularAperture(FilePlanarAperture),
+    EllipticalAperture(FilePlanarAperture),
+    ApertureMask(FilePlanarAperture),
 }
 
 #[derive(Deserialize)]
@@ -621,6 +636,83 @@ struct FileAreaLight {
     color: [f64; 3],
     #[serde(default)]
     attenuation: FileAttenuation,
+}
+
+/// SIMRenderer's slit (`linear_aperture_light`): oscillators from `start` to `end`, with
+/// SIMRenderer's defaults (`crate::interference`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileLinearAperture {
+    #[serde(default)]
+    start: [f64; 3],
+    #[serde(default = "slit_end")]
+    end: [f64; 3],
+    #[serde(default = "green_nm")]
+    wavelength: f64,
+    #[serde(default = "two")]
+    oscillators: u32,
+    #[serde(default = "ten")]
+    period_iteration: u32,
+    #[serde(default = "one_f")]
+    amplification: f64,
+    #[serde(default)]
+    attenuation: FileAttenuation,
+}
+
+/// SIMRenderer's planar apertures (rectangle, ellipse, mask), with its defaults; `mask`
+/// only for `aperture_mask`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FilePlanarAperture {
+    #[serde(default)]
+    center: [f64; 3],
+    #[serde(default = "plus_z")]
+    front: [f64; 3],
+    #[serde(default = "plus_y")]
+    up: [f64; 3],
+    #[serde(default = "millimetre")]
+    width: f64,
+    #[serde(default = "millimetre")]
+    height: f64,
+    mask: Option<String>,
+    #[serde(default = "green_nm")]
+    wavelength: f64,
+    #[serde(default = "two")]
+    oscillators: u32,
+    #[serde(default = "ten")]
+    period_iteration: u32,
+    #[serde(default = "one_f")]
+    amplification: f64,
+    #[serde(default)]
+    attenuation: FileAttenuation,
+}
+
+fn slit_end() -> [f64; 3] {
+    [0.0, 1e-4, 0.0]
+}
+
+fn green_nm() -> f64 {
+    550.0
+}
+
+fn two() -> u32 {
+    2
+}
+
+fn ten() -> u32 {
+    10
+}
+
+fn plus_z() -> [f64; 3] {
+    [0.0, 0.0, 1.0]
+}
+
+fn plus_y() -> [f64; 3] {
+    [0.0, 1.0, 0.0]
+}
+
+fn millimetre() -> f64 {
+    1e-3
 }
 
 fn chapter() -> String {
@@ -689,7 +781,7 @@ impl FileScene {
             .lights
             .into_iter()
             .enumerate()
-            .map(|(i, l)| l.validate(&path.index(i)))
+            .map(|(i, l)| l.validate(&path.index(i), dir))
             .collect::<Check<Vec<_>>>()?;
         // Each point of a fixed light is kept in memory and every point is a shadow ray per
         // shading point: bound the sum, not only each light.
@@ -699,6 +791,7 @@ impl FileScene {
             0,
             lights.iter().map(|l| match l {
                 Light::Area(a) => a.count as u64,
+                Light::Aperture(a) => a.oscillators.len() as u64,
                 _ => 0,
             }),
             limits::MAX_TOTAL_LIGHT_POINTS,
@@ -1477,7 +1570,8 @@ impl FileAttenuation {
 }
 
 impl FileLight {
-    fn validate(self, path: &FieldPath) -> Check<Light> {
+    /// The light; a mask image is read relative to `dir`, the scene file's folder.
+    fn validate(self, path: &FieldPath, dir: &Path) -> Check<Light> {
         let light_color = |c: [f64; 3]| color(&path.key("color"), c, limits::MAX_LIGHT);
         Ok(match self {
             FileLight::Ambient(FileAmbientLight { color }) => Light::Ambient {
@@ -1623,7 +1717,99 @@ impl FileLight {
                     attenuation: attenuation.validate(&path.key("attenuation"))?,
                 })
             }
+            FileLight::LinearAperture(f) => {
+                let (start, end) = (vec3(&path.key("start"), f.start)?, vec3(&path.key("end"), f.end)?);
+                if start == end {
+                    return fail(
+                        &path.key("end"),
+                        format!("must differ from start {:?} (a slit has two ends)", start.to_array()),
+                    );
+                }
+                let wave = Wave {
+                    wavelength: f.wavelength,
+                    oscillators: f.oscillators,
+                    period_iteration: f.period_iteration,
+                    amplification: f.amplification,
+                    attenuation: f.attenuation,
+                };
+                wave.light(path, Aperture::Linear { start, end })?
+            }
+            FileLight::RectangularAperture(f) => f.light(path, dir, "rectangular_aperture")?,
+            FileLight::EllipticalAperture(f) => f.light(path, dir, "elliptical_aperture")?,
+            FileLight::ApertureMask(f) => f.light(path, dir, "aperture_mask")?,
         })
+    }
+}
+
+/// The wave of an aperture light, as its table gives it.
+struct Wave {
+    wavelength: f64,
+    oscillators: u32,
+    period_iteration: u32,
+    amplification: f64,
+    attenuation: FileAttenuation,
+}
+
+impl Wave {
+    /// The light over `aperture`, each value checked and an error placed on its field.
+    fn light(self, path: &FieldPath, aperture: Aperture) -> Check<Light> {
+        let amplification = in_range(&path.key("amplification"), self.amplification, 0.0, limits::MAX_LIGHT)?;
+        let attenuation = self.attenuation.validate(&path.key("attenuation"))?;
+        match ApertureLight::new(
+            aperture,
+            self.wavelength,
+            self.oscillators,
+            self.period_iteration,
+            amplification,
+            attenuation,
+        ) {
+            Ok(light) => Ok(Light::Aperture(light)),
+            Err(Invalid::Wavelength(m)) => fail(&path.key("wavelength"), m),
+            Err(Invalid::Oscillators(m)) => fail(&path.key("oscillators"), m),
+            Err(Invalid::PeriodIteration(m)) => fail(&path.key("period_iteration"), m),
+            Err(Invalid::Up(m)) => fail(&path.key("up"), m),
+        }
+    }
+}
+
+impl FilePlanarAperture {
+    /// The light of type `kind`; its mask image read relative to `dir`.
+    fn light(self, path: &FieldPath, dir: &Path, kind: &str) -> Check<Light> {
+        let size = |key: &str, x: f64| positive(&path.key(key), x, limits::MAX_COORDINATE);
+        let planar = Planar {
+            center: vec3(&path.key("center"), self.center)?,
+            front: direction(&path.key("front"), self.front)?,
+            up: direction(&path.key("up"), self.up)?,
+            width: size("width", self.width)?,
+            height: size("height", self.height)?,
+        };
+        let aperture = match (kind, self.mask) {
+            ("rectangular_aperture", None) => Aperture::Rectangular(planar),
+            ("elliptical_aperture", None) => Aperture::Elliptical(planar),
+            (_, None) => Aperture::Mask { planar, mask: None },
+            ("aperture_mask", Some(file)) => {
+                let mask = if file == "none" {
+                    None
+                } else {
+                    Some(Mask::read(&dir.join(&file), &file).or_else(|m| fail(&path.key("mask"), m))?)
+                };
+                Aperture::Mask { planar, mask }
+            }
+            (_, Some(_)) => {
+                return fail(
+                    &path.key("mask"),
+                    format!("mask applies to an aperture_mask light only, not to a {kind} light"),
+                );
+            }
+        };
+        let wave = Wave {
+            wavelength: self.wavelength,
+            oscillators: self.oscillators,
+            period_iteration: self.period_iteration,
+            amplification: self.amplification,
+            attenuation: self.attenuation,
+        };
+        wave.light(path, aperture)
     }
 }
 

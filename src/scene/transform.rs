@@ -6,7 +6,8 @@
 //! points is unchanged: `A = 1 / (C_const + C_lin d + C_quad d^2)` with `d' = s d` needs
 //! `C_lin' = C_lin / s` and `C_quad' = C_quad / s^2`. Triangles' vertices move (a mesh's
 //! shared array once for the whole mesh); a transformed shape's map is followed by the
-//! similarity.
+//! similarity. An aperture light's oscillators move with it, but its wavelength is a length
+//! that does not scale: a scaled scene's fringes are not the original's.
 
 use super::{CameraSpec, Scene};
 use crate::light::{Attenuation, Light};
@@ -141,6 +142,25 @@ impl Similarity {
                 };
                 a.attenuation = self.attenuation(&a.attenuation);
                 Light::Area(a)
+            }
+            Light::Aperture(a) => {
+                use crate::interference::Aperture;
+                let mut a = a.clone();
+                let planar = |p: &mut crate::interference::Planar| {
+                    p.center = self.point(p.center);
+                    p.width = self.length(p.width);
+                    p.height = self.length(p.height);
+                };
+                match &mut a.aperture {
+                    Aperture::Linear { start, end } => {
+                        *start = self.point(*start);
+                        *end = self.point(*end);
+                    }
+                    Aperture::Rectangular(p) | Aperture::Elliptical(p) | Aperture::Mask { planar: p, .. } => planar(p),
+                }
+                a.oscillators = a.oscillators.iter().map(|&o| self.point(o)).collect();
+                a.attenuation = self.attenuation(&a.attenuation);
+                Light::Aperture(a)
             }
         }
     }

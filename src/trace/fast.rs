@@ -21,7 +21,7 @@
 
 use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface, point_light_terms};
 use crate::conventions::InternalReflection;
-use crate::light::{Incidence, Light};
+use crate::light::{Incidence, Light, aperture_share};
 use crate::material::Material;
 use crate::math::{Ray, offset_origin, reflect, refract};
 use crate::scene::ShadingModel;
@@ -385,6 +385,11 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             match light {
                 Light::Ambient { .. } => {}
                 Light::Area(area) => self.add_area_light(&mut color, lit, index, area, at, rec),
+                Light::Aperture(a) => {
+                    // Its share depends on no member's material or shading: one for all.
+                    let share = self.aperture_light(index, a.color, light.incidence(at.point), at, rec);
+                    members_of::<K>(lit).for_each(|j| color[j] += share);
+                }
                 _ => {
                     let share = self.light_share(index, light.incidence(at.point), at, None, lit, rec);
                     members_of::<K>(lit).for_each(|j| color[j] += share[j]);
@@ -439,6 +444,46 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             (_, facing) => self.not_facing(index, facing, inc.as_ref(), n_dot_l, at, candidates, rec),
         }
         shares
+    }
+
+    /// An aperture light's share at a surface point ([`super::Reference`]'s
+    /// `aperture_light`): its arriving light, whole, when the point faces the aperture's
+    /// centre and the shadow ray towards it does not blacken its colour `light`
+    /// ([`aperture_share`]).
+    fn aperture_light<R: Recorder>(
+        &mut self,
+        index: usize,
+        light: DVec3,
+        inc: Option<Incidence>,
+        at: &Surface,
+        rec: &mut R,
+    ) -> DVec3 {
+        let n_dot_l = inc.map_or(0.0, |inc| at.n.dot(inc.to_light));
+        match (inc, self.facing(inc.as_ref(), n_dot_l)) {
+            (Some(inc), Facing::Towards) => {
+                let shadows = self.world.scene.settings.shadows;
+                let filter = if shadows {
+                    self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, None, rec)
+                } else {
+                    DVec3::ONE
+                };
+                let share = aperture_share(light, filter, inc.color);
+                rec.light(&LightShare {
+                    light: index,
+                    incidence: inc,
+                    n_dot_l,
+                    shadow_ray: shadows,
+                    filter,
+                    diffuse: share,
+                    specular: DVec3::ZERO,
+                });
+                share
+            }
+            (_, facing) => {
+                self.not_facing(index, facing, inc.as_ref(), n_dot_l, at, None, rec);
+                DVec3::ZERO
+            }
+        }
     }
 
     /// How a light with incidence `inc` (`None`: no light) and `N.L = n_dot_l` stands

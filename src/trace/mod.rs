@@ -123,6 +123,7 @@ pub struct LightShare {
     pub shadow_ray: bool,
     /// Product of the transparent objects' colours crossed (0 if an opaque one blocks).
     pub filter: DVec3,
+    /// The diffuse term; for an aperture light, its whole share (it has no highlight).
     pub diffuse: DVec3,
     pub specular: DVec3,
 }

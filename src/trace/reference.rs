@@ -6,7 +6,8 @@
 //! 2. light the hit point locally: the ambient term once, then for each light (an area
 //!    light as its N point lights of colour `L / N`) the diffuse and specular shares of the
 //!    light that reaches the point through a shadow ray, filtered by the colours of the
-//!    transparent objects it crosses;
+//!    transparent objects it crosses; an aperture light adds its arriving light whole
+//!    unless its shadow ray is black;
 //! 3. below the scene's recursion depth, add `k_r` times the radiance of the reflected ray
 //!    and `k_t` times that of the refracted ray, whose energy goes to the reflection on
 //!    total internal reflection; adaptive depth control leaves out a secondary ray that
@@ -19,7 +20,7 @@
 
 use super::{SampleKey, Surface, point_light_terms};
 use crate::conventions::InternalReflection;
-use crate::light::{Incidence, Light, point_incidence};
+use crate::light::{Incidence, Light, aperture_share, point_incidence};
 use crate::math::{Ray, reflect, refract};
 use crate::shading::{ambient, beneath_notice, local_weight, shadow_filter, transmission_weight, transparent_filter};
 use crate::world::World;
@@ -114,10 +115,29 @@ impl<'w, 's> Reference<'w, 's> {
                         color += self.light_share(incidence, at);
                     }
                 }
+                Light::Aperture(a) => color += self.aperture_light(a.color, light.incidence(at.point), at),
                 _ => color += self.light_share(light.incidence(at.point), at),
             }
         }
         color
+    }
+
+    /// The share of an aperture light of colour `light` ([`aperture_share`]): nothing when
+    /// no light arrives or the surface faces away from the aperture's centre (`N.L <= 0`),
+    /// else its arriving light unless the shadow ray towards the centre blackens it.
+    fn aperture_light(&self, light: DVec3, incidence: Option<Incidence>, at: &Surface) -> DVec3 {
+        let Some(inc) = incidence else {
+            return DVec3::ZERO;
+        };
+        if at.n.dot(inc.to_light) <= 0.0 {
+            return DVec3::ZERO;
+        }
+        let filter = if self.world.scene.settings.shadows {
+            self.shadow_filter(at, &inc)
+        } else {
+            DVec3::ONE
+        };
+        aperture_share(light, filter, inc.color)
     }
 
     /// One point light's share, `A L filter [k_d S max(N.L, 0) + k_s [m S + (1 - m)] spec]`:

@@ -9,6 +9,7 @@ use super::exact::{self, number, unit_once, unit_twice};
 use super::{Refused, Written, object_label};
 use crate::area_light::AreaShape;
 use crate::conventions::Conventions;
+use crate::interference::Aperture;
 use crate::light::{Attenuation, Light};
 use crate::material::Material;
 use crate::scene::{Scene, Specular};
@@ -398,6 +399,49 @@ impl Writer {
                     self.line(format!("placement = \"{}\"", variant(&a.placement)));
                     self.line(format!("mode = \"{}\"", variant(&a.mode)));
                     self.line(format!("color = {}", vec3(a.color)));
+                    self.line(format!("attenuation = {}", attenuation(&a.attenuation)));
+                }
+                Light::Aperture(a) => {
+                    let planar = match &a.aperture {
+                        Aperture::Linear { start, end } => {
+                            self.line("type = \"linear_aperture\"");
+                            self.line(format!("start = {}", vec3(*start)));
+                            self.line(format!("end = {}", vec3(*end)));
+                            None
+                        }
+                        Aperture::Rectangular(p) => {
+                            self.line("type = \"rectangular_aperture\"");
+                            Some(p)
+                        }
+                        Aperture::Elliptical(p) => {
+                            self.line("type = \"elliptical_aperture\"");
+                            Some(p)
+                        }
+                        Aperture::Mask { planar, mask } => {
+                            self.line("type = \"aperture_mask\"");
+                            let file = mask.as_ref().map_or("none", |m| m.file.as_str());
+                            self.line(format!("mask = {}", quoted(file)));
+                            if mask.is_some() {
+                                self.notes.push(format!(
+                                    "lights[{i}] (aperture_mask): its mask {file:?} is named as the source names it, relative to the source's folder"
+                                ));
+                            }
+                            Some(planar)
+                        }
+                    };
+                    if let Some(p) = planar {
+                        let front = self.direction(|| format!("lights[{i}] (front)"), p.front, unit_once);
+                        let up = self.direction(|| format!("lights[{i}] (up)"), p.up, unit_once);
+                        self.line(format!("center = {}", vec3(p.center)));
+                        self.line(format!("front = {front}"));
+                        self.line(format!("up = {up}"));
+                        self.line(format!("width = {}", num(p.width)));
+                        self.line(format!("height = {}", num(p.height)));
+                    }
+                    self.line(format!("wavelength = {}", num(a.wavelength_nm)));
+                    self.line(format!("oscillators = {}", a.oscillator_count));
+                    self.line(format!("period_iteration = {}", a.period_iteration));
+                    self.line(format!("amplification = {}", num(a.amplification)));
                     self.line(format!("attenuation = {}", attenuation(&a.attenuation)));
                 }
             }

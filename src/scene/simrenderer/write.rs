@@ -7,6 +7,7 @@
 use super::exact::{self, number, unit_once, unit_twice};
 use super::{DEFAULT_SEED, Refused, Written, object_label};
 use crate::conventions::{Conventions, SamplePosition};
+use crate::interference::{Aperture, ApertureLight};
 use crate::light::Light;
 use crate::material::Material;
 use crate::scene::{Scene, Specular};
@@ -246,9 +247,51 @@ impl Writer {
                         .push(format!("lights[{i}] (area): SIMRenderer has no area light"));
                     continue;
                 }
+                Light::Aperture(a) => self.aperture_light(i, a),
             }
             self.line("end");
             self.line("");
+        }
+    }
+
+    /// An interference light's block, its keywords in SIMRenderer's order (the slit's two
+    /// ends as its two `position` lines).
+    fn aperture_light(&mut self, i: usize, a: &ApertureLight) {
+        let block = match &a.aperture {
+            Aperture::Linear { .. } => "linear_aperture_light",
+            Aperture::Rectangular(_) => "rectangular_aperture_light",
+            Aperture::Elliptical(_) => "elliptical_aperture_light",
+            Aperture::Mask { .. } => "aperture_mask_light",
+        };
+        self.line(block);
+        self.line(format!("amplification        {}", num(a.amplification)));
+        self.line(format!("constant_attenuator  {}", num(a.attenuation.constant)));
+        self.line(format!("linear_attenuator    {}", num(a.attenuation.linear)));
+        self.line(format!("quadratic_attenuator {}", num(a.attenuation.quadratic)));
+        self.line(format!("wave_length          {} nm", num(a.wavelength_nm)));
+        self.line(format!("period_iteration     {}", a.period_iteration));
+        self.line(format!("nb_oscillator        {}", a.oscillator_count));
+        match &a.aperture {
+            Aperture::Linear { start, end } => {
+                self.line(format!("position             {}", vec3(*start)));
+                self.line(format!("position             {}", vec3(*end)));
+            }
+            Aperture::Rectangular(p) | Aperture::Elliptical(p) | Aperture::Mask { planar: p, .. } => {
+                let front = self.direction(|| format!("lights[{i}] ({block}) front"), p.front, unit_once);
+                let up = self.direction(|| format!("lights[{i}] ({block}) up"), p.up, unit_once);
+                self.line(format!("position             {}", vec3(p.center)));
+                self.line(format!("front                {front}"));
+                self.line(format!("up                   {up}"));
+                self.line(format!("height               {}", num(p.height)));
+                self.line(format!("width                {}", num(p.width)));
+            }
+        }
+        if let Aperture::Mask { mask: Some(m), .. } = &a.aperture {
+            self.line(format!("mask                 {}", m.file));
+            self.notes.push(format!(
+                "lights[{i}] ({block}): its mask {:?} is named as the source names it, relative to the source's folder",
+                m.file
+            ));
         }
     }
 
