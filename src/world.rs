@@ -163,6 +163,8 @@ impl<'s> World<'s> {
                             | Shape::Cone(_)
                             | Shape::Torus(_)
                             | Shape::Transformed(_)
+                            | Shape::SphericalCap(_)
+                            | Shape::Lens(_)
                     )
                 })
                 .collect(),
