@@ -153,3 +153,13 @@ fn materials_without_images_keep_their_serialised_bytes() {
         r#"[{"color":[1.0,1.0,1.0],"ka":0.2,"kd":0.8,"ks":0.5,"shininess":20.0,"metal":0.0,"kr":0.0,"kt":0.0,"ior":1.0},{"color":[1.0,1.0,1.0],"ka":0.2,"kd":0.5,"ks":0.5,"shininess":20.0,"metal":0.0,"kr":0.0,"kt":0.0,"ior":1.0}]"#
     );
 }
+
+#[test]
+fn textured_renders_are_the_same_bytes_for_any_thread_count() {
+    let s = scene("optique/textured-sphere.toml");
+    let one = render_small(&s, 64, 48, 4, 1);
+    let three = render_small(&s, 64, 48, 4, 3);
+    assert_eq!(one.encode_png().unwrap(), three.encode_png().unwrap());
+    // The image shows the texture: the blue cap's texel (40, 70, 200) lit, bluer than red.
+    assert!(one.pixels.iter().any(|p| p.z > 2.0 * p.x && p.z > 0.2));
+}

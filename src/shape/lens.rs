@@ -67,7 +67,7 @@ impl Lens {
     /// `|C| - sqrt(C^2 - R^2)` at most the edge's length (SIMRenderer's checks).
     pub fn check(thickness: f64, radius: f64, curvature1: f64, curvature2: f64) -> Option<(usize, String)> {
         for (i, c) in [curvature1, curvature2].into_iter().enumerate() {
-            if !(c.abs() >= radius) {
+            if c.is_nan() || c.abs() < radius {
                 return Some((
                     i,
                     format!(

@@ -53,7 +53,7 @@ impl SphericalCap {
     /// Why a cap of this rim radius and curvature cannot be built, if it cannot: SIMRenderer
     /// refuses `|C| < R` (no sphere of that radius passes through the rim).
     pub fn check(radius: f64, curvature: f64) -> Option<String> {
-        (!(curvature.abs() >= radius)).then(|| {
+        (curvature.is_nan() || curvature.abs() < radius).then(|| {
             format!(
                 "the radius of curvature must be at least the rim's radius {radius} in absolute value, got {curvature}"
             )
