@@ -224,3 +224,48 @@ fn simrenderer_errors_on_lenses_and_caps_name_the_line() {
         }
     }
 }
+
+#[test]
+fn the_optique_lens_figure_images_its_arrow_where_the_thick_lens_equations_say() {
+    // The lens of scenes/optique/lens.toml alone: axis +y, edge 0.1, radius 1.2, caps of
+    // curvature 3, glass n = 1.5; the arrow's foot on the axis at p = 9 before its center.
+    let mut s = scene::load(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/optique/lens.toml"
+    )))
+    .unwrap();
+    s.objects.retain(|o| o.name == "lens");
+    let Shape::Lens(lens) = &s.objects[0].shape else {
+        panic!("a lens")
+    };
+    let n = 1.5;
+    let f = lens.focal_length(n);
+    // Thickness on the axis d = 0.1 + 2 (3 - sqrt(9 - 1.44)); the principal planes (Hecht,
+    // "Optics", 6.2) at h1 = -f (n - 1) d / (n R2) from the first vertex and
+    // h2 = -f (n - 1) d / (n R1) from the second, along the light, R1 = 3, R2 = -3; p and q
+    // are measured from them.
+    let cap = 3.0 - (9.0f64 - 1.44).sqrt();
+    let d = 0.1 + 2.0 * cap;
+    let (v1, v2) = (-0.05 - cap, 0.05 + cap);
+    let (h1, h2) = (v1 - f * (n - 1.0) * d / (n * -3.0), v2 - f * (n - 1.0) * d / (n * 3.0));
+    let p = h1 + 9.0;
+    let image = h2 + 1.0 / (1.0 / f - 1.0 / p);
+    assert!(
+        (f - 3.1036).abs() < 1e-4 && (image - 4.8567).abs() < 1e-4,
+        "f {f}, image at y = {image}"
+    );
+    let world = World::new(&s);
+    let source = DVec3::new(0.0, -9.0, 0.0);
+    let mut crossings = Vec::new();
+    for k in 1..=5 {
+        let aim = DVec3::new(0.0, 0.0, 0.01 * k as f64);
+        let out = through(&world, Ray::new(source, (aim - source).normalize())).unwrap();
+        crossings.push(out.origin.y - out.origin.z * out.dir.y / out.dir.z);
+    }
+    let y = crossings.iter().sum::<f64>() / crossings.len() as f64;
+    println!("optique lens: image at y = {y:.6}, thick-lens equations {image:.6}");
+    assert!(
+        (y - image).abs() / image < 0.005,
+        "image at {y}, expected {image}: {crossings:?}"
+    );
+}
