@@ -9,10 +9,12 @@
 //! 1. [`math`] (rays, frames, the laws of reflection and refraction, ray-origin offsets),
 //!    [`text`] (captions drawn into images), [`solve`] (the stable quadratic, the quartic root isolator), [`conventions`] (where
 //!    the course's two renderers disagree, as named switches), [`shading`] (the formulas
-//!    of the slides and the chapter, each once), [`material`], [`sampling`] (seeded random
+//!    of the slides and the chapter, each once), [`material`], [`texture`] (image textures
+//!    of texture materials), [`sampling`] (seeded random
 //!    streams), [`skips`] (the renderer's named shortcuts), [`limits`], [`film`],
 //!    [`compare`].
-//! 2. [`shape`] (plane, rectangle, disk, sphere, box, cylinder, cone, torus), [`camera`],
+//! 2. [`shape`] (plane, rectangle, disk, sphere, box, cylinder, cone, torus, triangle,
+//!    spherical cap, lens, transformed; each with its texture coordinates), [`camera`],
 //!    [`placement`], [`output`], [`review`].
 //! 3. [`area_light`] (N-point area lights), [`interference`] (aperture lights: coherent
 //!    oscillators, their relative intensity, a wavelength's colour), [`stress`] (the
@@ -94,6 +96,7 @@ pub mod solve;
 pub mod stress;
 pub mod study;
 pub mod text;
+pub mod texture;
 pub mod trace;
 pub mod world;
 

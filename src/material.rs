@@ -1,6 +1,8 @@
 //! Surface materials with the course's parameters. Ranges are checked where scenes are
 //! built (see `scene::file`); this type only holds valid values.
 
+use crate::shading::specular_tint;
+use crate::texture::SharedMaps;
 use glam::DVec3;
 
 /// The course's material parameters (slides IFT3355 and chapter 7.4b).
@@ -25,6 +27,28 @@ pub struct Material {
     pub kt: f64,
     /// Index of refraction of the object's interior (the outside is air, n = 1).
     pub ior: f64,
+    /// SIMRenderer's texture material: images that give the ambient, diffuse and specular
+    /// colours at each point ([`Material::reflectance`]). Absent, the material is
+    /// serialised as it always was.
+    #[serde(skip_serializing_if = "Option::is_none", serialize_with = "maps")]
+    pub texture: Option<SharedMaps>,
+}
+
+fn maps<S: serde::Serializer>(m: &Option<SharedMaps>, s: S) -> Result<S::Ok, S::Error> {
+    serde::Serialize::serialize(&m.as_deref(), s)
+}
+
+/// What a surface point reflects: each term's coefficient and colour, as the shading
+/// formulas take them (`L_a k_a C_a`, `L k_d C_d max(N.L, 0)`, `L k_s C_s spec`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reflectance {
+    pub ka: f64,
+    pub ambient: DVec3,
+    pub kd: f64,
+    pub diffuse: DVec3,
+    pub ks: f64,
+    /// The highlight's colour `C_s`.
+    pub tint: DVec3,
 }
 
 impl Material {
@@ -49,11 +73,43 @@ impl Default for Material {
             kr: 0.0,
             kt: 0.0,
             ior: 1.0,
+            texture: None,
         }
     }
 }
 
 impl Material {
+    /// The coefficients and colours of the shading terms at a point whose texture
+    /// coordinates `uv` gives (asked only of a textured material). Without a texture:
+    /// `k_a S`, `k_d S` and `k_s [m S + (1 - m)]` (slides). With one, SIMRenderer's texture
+    /// material (`SBlinnTextureMaterial`): each term that has an image takes the texel's
+    /// colour as its whole colour, the coefficient not applied (white times the texel), and
+    /// a term without an image keeps the material's own.
+    pub fn reflectance(&self, uv: impl FnOnce() -> (f64, f64)) -> Reflectance {
+        let plain = Reflectance {
+            ka: self.ka,
+            ambient: self.color,
+            kd: self.kd,
+            diffuse: self.color,
+            ks: self.ks,
+            tint: specular_tint(self.metal, self.color),
+        };
+        let Some(maps) = &self.texture else {
+            return plain;
+        };
+        let uv = uv();
+        let texel = |t: &Option<crate::texture::Texture>| t.as_ref().map(|t| t.color(uv, maps.uv_format));
+        let (a, d, s) = (texel(&maps.ambient), texel(&maps.diffuse), texel(&maps.specular));
+        Reflectance {
+            ka: if a.is_some() { 1.0 } else { plain.ka },
+            ambient: a.unwrap_or(plain.ambient),
+            kd: if d.is_some() { 1.0 } else { plain.kd },
+            diffuse: d.unwrap_or(plain.diffuse),
+            ks: if s.is_some() { 1.0 } else { plain.ks },
+            tint: s.unwrap_or(plain.tint),
+        }
+    }
+
     /// Transparent for shadow rays: the chapter's "géométrie strictement transparente".
     pub fn is_transparent(&self) -> bool {
         self.kt > 0.0

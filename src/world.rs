@@ -93,6 +93,8 @@ pub struct World<'s> {
     pub ambient: DVec3,
     /// Whether any object is transparent (else shadow rays need no filtered walk).
     pub has_transparent: bool,
+    /// Whether any material has images (else no hit needs texture coordinates).
+    pub has_textures: bool,
     /// `remaining_bound[level]`: the most (largest channel) a ray traced at `level` can
     /// return, counting every level it may still recurse to; used by adaptive depth control.
     pub remaining_bound: Vec<f64>,
@@ -139,11 +141,18 @@ impl<'s> World<'s> {
             .map(|o| {
                 matches!(
                     o.shape,
-                    Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_) | Shape::Torus(_) | Shape::Transformed(_)
+                    Shape::Cuboid(_)
+                        | Shape::Cylinder(_)
+                        | Shape::Cone(_)
+                        | Shape::Torus(_)
+                        | Shape::Transformed(_)
+                        | Shape::SphericalCap(_)
+                        | Shape::Lens(_)
                 )
             })
             .collect();
         let has_area_light = scene.lights.iter().any(|l| matches!(l, Light::Area(_)));
+        let has_textures = scene.materials.iter().any(|m| m.texture.is_some());
         let start = std::time::Instant::now();
         let accel = Accel::build_with(&scene.objects, choice);
         let accel_seconds = start.elapsed().as_secs_f64();
@@ -154,6 +163,7 @@ impl<'s> World<'s> {
             accel_seconds,
             ambient,
             has_transparent,
+            has_textures,
             remaining_bound: remaining_bounds(scene, ambient),
             light_points: scene
                 .lights

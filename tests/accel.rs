@@ -13,7 +13,9 @@ use lumiere::math::Ray;
 use lumiere::render::render;
 use lumiere::sampling::{Purpose, Stream};
 use lumiere::scene::Object;
-use lumiere::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus, Transform, Triangle};
+use lumiere::shape::{
+    Cone, Cuboid, Cylinder, Disk, Lens, Plane, Rectangle, Shape, Sphere, SphericalCap, Torus, Transform, Triangle,
+};
 use lumiere::world::World;
 
 fn object(shape: Shape) -> Object {
@@ -104,6 +106,52 @@ fn random_new_shapes(seed: u64, n: usize, half: f64) -> Vec<Object> {
                 Transform::from_rows(rows).unwrap().apply(local)
             }
             4 if i > 0 => objects[(s.next_f64() * i as f64) as usize % i].shape.clone(),
+            _ => Shape::Sphere(Sphere::new(c, r)),
+        };
+        objects.push(object(shape));
+    }
+    objects
+}
+
+/// `n` random spherical caps (convex and concave) and lenses (caps of either sign, with and
+/// without an edge, some of them turned by a transform) among spheres, in a cube of
+/// half-side `half`, with copies of earlier objects.
+fn random_caps_and_lenses(seed: u64, n: usize, half: f64) -> Vec<Object> {
+    let mut s = Stream::new(seed, Purpose::Generator, 6);
+    let mut objects: Vec<Object> = Vec::new();
+    for i in 0..n {
+        let c = point(&mut s, half);
+        let r = 0.05 + 0.6 * s.next_f64();
+        let axis = unit(&mut s);
+        let kind = (s.next_f64() * 5.0) as usize;
+        let curvature = |s: &mut Stream| {
+            let sign = if s.next_f64() < 0.3 { -1.0 } else { 1.0 };
+            sign * r * (1.0 + 2.0 * s.next_f64())
+        };
+        let shape = match kind {
+            0 => Shape::SphericalCap(Box::new(SphericalCap::new(c, axis, r, curvature(&mut s)))),
+            1 | 2 => {
+                let (c1, c2) = (curvature(&mut s), curvature(&mut s));
+                let hollow = |k: f64| {
+                    if k < 0.0 {
+                        k.abs() - ((k - r) * (k + r)).max(0.0).sqrt()
+                    } else {
+                        0.0
+                    }
+                };
+                let e = if kind == 2 && c1 > 0.0 && c2 > 0.0 {
+                    0.0
+                } else {
+                    hollow(c1) + hollow(c2) + r * s.next_f64()
+                };
+                let lens = Shape::Lens(Box::new(Lens::new(c, axis, e, r, c1, c2)));
+                if i % 3 == 0 {
+                    Transform::from_parts(DVec3::new(1.0, 0.5, 1.5), point(&mut s, 180.0), DVec3::ZERO).apply(lens)
+                } else {
+                    lens
+                }
+            }
+            3 if i > 0 => objects[(s.next_f64() * i as f64) as usize % i].shape.clone(),
             _ => Shape::Sphere(Sphere::new(c, r)),
         };
         objects.push(object(shape));
@@ -277,6 +325,14 @@ fn cores_agree_on_triangles_tubes_and_transformed_shapes() {
 }
 
 #[test]
+fn cores_agree_on_spherical_caps_and_lenses() {
+    for (seed, n) in [(41, 3), (42, 17), (43, 150), (44, 600)] {
+        let half = 2.0 + (n as f64).cbrt();
+        check_objects(seed, &random_caps_and_lenses(seed, n, half), half);
+    }
+}
+
+#[test]
 fn cores_agree_on_larger_random_scenes() {
     for (seed, n) in [(7, 150), (8, 600)] {
         check_scene(seed, n);
@@ -444,8 +500,9 @@ fn every_shape_honours_the_t_max_contract() {
     // hit to the bit.
     let mut objects = random_scene(13, 400, 4.0);
     objects.extend(random_new_shapes(14, 200, 4.0));
+    objects.extend(random_caps_and_lenses(15, 200, 4.0));
     let rays = random_rays(13, &objects, 1200, 4.0);
-    let mut checked = [0usize; 10];
+    let mut checked = [0usize; 12];
     for o in &objects {
         for r in &rays {
             let Some(full) = o.shape.intersect(r, 0.0, f64::INFINITY) else {
@@ -462,6 +519,8 @@ fn every_shape_honours_the_t_max_contract() {
                 "torus",
                 "triangle",
                 "tube",
+                "spherical_cap",
+                "lens",
             ]
             .iter()
             .position(|k| *k == o.shape.kind())

@@ -26,9 +26,9 @@ fn every_figure_matches_its_snapshot() {
         }
     }
     // lighting 3 + directional 4 + attenuation 2 + spotlight 2 + soft-shadows 8 +
-    // light-shapes 3 + mirrors 13 + prism 21 + shading 25 + optique 3: every figure of the
+    // light-shapes 3 + mirrors 13 + prism 21 + shading 25 + optique 5: every figure of the
     // course.
-    assert_eq!(count, 84);
+    assert_eq!(count, 86);
 }
 
 #[test]

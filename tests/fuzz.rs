@@ -1,4 +1,5 @@
-//! Hostile input, as a proptest harness: mutated scene files (of a scene with every shape,
+//! Hostile input, as a proptest harness: mutated scene files (of a scene with every shape
+//! (spherical cap and lens included),
 //! a transform in each of its forms, a mesh, every light kind including area lights, and
 //! `[[generate]]` tables) and random text must
 //! give a scene, a located error, or (a required table deleted or cut off) an error naming
@@ -126,6 +127,24 @@ minor_radius = 0.25
 
 [shapes.transform]
 matrix = [[1, 0.5, 0, 3], [0, 1, 0, -3], [0, 0, 2, 1]]
+
+[[shapes]]
+type = "spherical_cap"
+center = [-6, 0, 2]
+normal = [0, -1, 0.5]
+radius = 1
+curvature = -1.5
+material = "glass"
+
+[[shapes]]
+type = "lens"
+base = [5, -4, 1]
+axis = [0, 1, 0.2]
+thickness = 0.5
+radius = 1
+curvature1 = 2
+curvature2 = -3
+material = "glass"
 
 [[shapes]]
 type = "mesh"
@@ -387,8 +406,8 @@ fn render_tiny(mut s: scene::Scene) {
 #[test]
 fn the_fuzz_seed_scene_is_valid() {
     let s = scene::parse(VALID, "fuzz.toml").unwrap();
-    // 9 entries of one object, a mirror pair, 20 mesh triangles and 5 + 5 generated.
-    assert_eq!((s.objects.len(), s.lights.len()), (44, 8));
+    // 11 entries of one object, a mirror pair, 20 mesh triangles and 5 + 5 generated.
+    assert_eq!((s.objects.len(), s.lights.len()), (46, 8));
     render_tiny(s);
 }
 
@@ -437,7 +456,7 @@ proptest! {
         centers in prop::collection::vec((-50.0..50.0f64, -50.0..50.0f64, -5.0..20.0f64), 1..6),
         sizes in prop::collection::vec(1e-3..10.0f64, 6),
         axis in (-1.0..1.0f64, -1.0..1.0f64, 0.05..1.0f64),
-        kind in prop::collection::vec(0usize..9, 6),
+        kind in prop::collection::vec(0usize..11, 6),
         kr in 0.0..0.5f64,
         kt in 0.0..0.5f64,
         n in 0.2..3.0f64,
@@ -463,6 +482,8 @@ proptest! {
                 4 => format!("[[shapes]]\ntype = \"torus\"\ncenter = [{x}, {y}, {z}]\naxis = [{ax}, {ay}, {az}]\nmajor_radius = {}\nminor_radius = {}\nmaterial = \"m\"\n", r.max(h), r.min(h)),
                 6 => format!("[[shapes]]\ntype = \"triangle\"\np0 = [{x}, {y}, {z}]\np1 = [{}, {y}, {z}]\np2 = [{}, {}, {}]\nmaterial = \"m\"\n", x + r, x + ax, y + h, z + az),
                 7 => format!("[[shapes]]\ntype = \"tube\"\nstart = [{x}, {y}, {z}]\nend = [{}, {}, {}]\nradius = {r}\nmaterial = \"m\"\n", x + ax * h, y + ay * h, z + az * h),
+                9 => format!("[[shapes]]\ntype = \"spherical_cap\"\ncenter = [{x}, {y}, {z}]\nnormal = [{ax}, {ay}, {az}]\nradius = {r}\ncurvature = {}\nmaterial = \"m\"\n", if kt > 0.25 { -r - h } else { r + h }),
+                10 => format!("[[shapes]]\ntype = \"lens\"\nbase = [{x}, {y}, {z}]\naxis = [{ax}, {ay}, {az}]\nthickness = {}\nradius = {r}\ncurvature1 = {}\ncurvature2 = {}\nmaterial = \"m\"\n", h + r, r + h, if kr > 0.25 { -r - h } else { r }),
                 8 => format!("[[shapes]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\ntransform = {{ scale = [{r}, {h}, 1], rotation = [{x}, {y}, {z}], translation = [{x}, {y}, {z}] }}\n"),
                 _ => format!("[[shapes]]\ntype = \"disk\"\ncenter = [{x}, {y}, {z}]\nnormal = [{ax}, {ay}, {az}]\nradius = {r}\nmaterial = \"m\"\n"),
             };

@@ -75,6 +75,49 @@ fn hits_by_hand_through_the_format() {
 }
 
 #[test]
+fn caps_and_lenses_by_hand_through_the_format() {
+    // A convex cap over the disk of radius 3 at z = 1 (curvature 5: its sphere's center at
+    // z = -3, its apex at z = 2), a lens along x from x = 10 (edge 2, radius 3, a convex cap
+    // of curvature 5 at x = 10 and a concave one of curvature -5 at x = 12, 1 deep), and the
+    // same cap turned by a transform.
+    let s = scene_of(
+        "[[shapes]]\ntype = \"spherical_cap\"\ncenter = [0, 0, 1]\nradius = 3\ncurvature = 5\n\
+         [[shapes]]\ntype = \"lens\"\nbase = [10, 0, 0]\naxis = [1, 0, 0]\nthickness = 2\nradius = 3\n\
+         curvature1 = 5\ncurvature2 = -5\n\
+         [[shapes]]\ntype = \"spherical_cap\"\ncenter = [0, 0, 0]\nradius = 3\ncurvature = 5\n\
+         transform = { rotation = [90, 0, 0], translation = [0, 20, 0] }\n",
+    );
+    assert_eq!(
+        s.objects.iter().map(|o| o.shape.kind()).collect::<Vec<_>>(),
+        ["spherical_cap", "lens", "spherical_cap"]
+    );
+    let world = World::new(&s);
+    let hit = |o: [f64; 3], d: [f64; 3]| {
+        world
+            .closest(&Ray::new(DVec3::from(o), DVec3::from(d).normalize()))
+            .map(|(i, h)| (i, h.t, h.normal))
+    };
+    // The cap's apex from above; from below, the open rim lets the ray through to the
+    // dome's inside, the same point and normal.
+    assert_eq!(hit([0., 0., 9.], [0., 0., -1.]), Some((0, 7.0, DVec3::Z)));
+    assert_eq!(hit([0., 0., -2.], [0., 0., 1.]), Some((0, 4.0, DVec3::Z)));
+    // The lens along its axis from x = 5: cap 1's apex at x = 9 (normal -x, its sphere's
+    // center at x = 14); from inside at x = 10.5, the hollow's bottom at x = 11 (its sphere's
+    // center at x = 16), the normal out of the lens into the hollow, +x.
+    assert_eq!(hit([5., 0., 0.], [1., 0., 0.]), Some((1, 4.0, -DVec3::X)));
+    let (i, t, n) = hit([10.5, 0., 0.], [1., 0., 0.]).unwrap();
+    assert_eq!((i, n), (1, DVec3::X));
+    assert!((t - 0.5).abs() < 1e-12, "{t}");
+    // The edge at y = 3 from above (x = 11, z = 0 is inside the edge's length): t = 7.
+    assert_eq!(hit([11., 10., 0.], [0., -1., 0.]), Some((1, 7.0, DVec3::Y)));
+    // The turned cap bulges along -y (the normal +z turned 90 degrees about x): its apex at
+    // y = 20 - 1 seen from y = 10.
+    let (i, t, n) = hit([0., 10., 0.], [0., 1., 0.]).unwrap();
+    assert_eq!(i, 2);
+    assert!((t - 9.0).abs() < 1e-12 && (n + DVec3::Y).length() < 1e-12, "{t} {n}");
+}
+
+#[test]
 fn new_fields_give_located_errors() {
     let sphere = "[[shapes]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\n";
     let cases = [

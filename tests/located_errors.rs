@@ -117,7 +117,7 @@ fn misspelt_shape_type_lists_the_types() {
     assert_eq!(
         error_after("type = \"sphere\"", "type = \"sphear\""),
         "s.toml:19:8: shapes[1].type: must be \"plane\", \"rectangle\", \"disk\", \"sphere\", \
-         \"box\", \"cylinder\", \"cone\", \"mirror_pair\", \"torus\", \"triangle\", \"tube\" or \"mesh\", \
+         \"box\", \"cylinder\", \"cone\", \"mirror_pair\", \"torus\", \"triangle\", \"tube\", \"mesh\", \"spherical_cap\" or \"lens\", \
          got \"sphear\""
     );
 }
@@ -138,12 +138,12 @@ fn missing_type_points_at_the_entry() {
         error_after("type = \"torus\"\n", ""),
         "s.toml:24:1: shapes[2].type: missing; must be \"plane\", \"rectangle\", \"disk\", \
          \"sphere\", \"box\", \"cylinder\", \"cone\", \"mirror_pair\", \"torus\", \"triangle\", \
-         \"tube\" or \"mesh\""
+         \"tube\", \"mesh\", \"spherical_cap\" or \"lens\""
     );
     assert_eq!(
         error_after("type = \"torus\"", "type = 3"),
         "s.toml:25:8: shapes[2].type: must be \"plane\", \"rectangle\", \"disk\", \"sphere\", \
-         \"box\", \"cylinder\", \"cone\", \"mirror_pair\", \"torus\", \"triangle\", \"tube\" or \"mesh\", \
+         \"box\", \"cylinder\", \"cone\", \"mirror_pair\", \"torus\", \"triangle\", \"tube\", \"mesh\", \"spherical_cap\" or \"lens\", \
          got integer"
     );
 }

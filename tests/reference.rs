@@ -111,6 +111,44 @@ fn the_scene_files_are_the_reference_images() {
 }
 
 #[test]
+fn textured_scenes_and_lenses_are_the_reference_images() {
+    use lumiere::area_light::{AreaLight, AreaShape, PointMode};
+    use lumiere::light::{Attenuation, Light};
+    use lumiere::placement::Placement;
+    use std::sync::Arc;
+    let textured = sized(scene("figures/optique/05-textured-sphere.toml"), 48, 36, 4);
+    assert!(assert_tracers_agree(&textured, "textured sphere") > 100);
+    // Every term from an image (the specular one too), under an area light whose points
+    // the fast tracer shades in lanes, and a point light.
+    let mut all = textured.clone();
+    for m in &mut all.materials {
+        if let Some(maps) = &m.texture {
+            let mut maps = (**maps).clone();
+            maps.specular = maps.diffuse.clone();
+            m.texture = Some(Arc::new(maps));
+        }
+    }
+    all.lights.push(Light::Area(AreaLight {
+        shape: AreaShape::Sphere {
+            center: DVec3::new(-2.0, -3.0, 4.0),
+            radius: 0.5,
+        },
+        count: 8,
+        placement: Placement::parse("fibonacci").unwrap(),
+        mode: PointMode::Fixed,
+        color: DVec3::splat(0.6),
+        attenuation: Attenuation {
+            constant: 1.0,
+            linear: 0.0,
+            quadratic: 0.0,
+        },
+    }));
+    assert!(assert_tracers_agree(&all, "textured sphere, every term, area light") > 100);
+    let lens = sized(scene("figures/optique/04-lens.toml"), 48, 36, 4);
+    assert!(assert_tracers_agree(&lens, "lens") > 100);
+}
+
+#[test]
 fn per_sample_points_adaptive_depth_and_filters_agree() {
     use lumiere::area_light::PointMode;
     use lumiere::light::Light;

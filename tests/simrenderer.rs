@@ -127,6 +127,7 @@ fn every_keyword_reads_to_the_value_written() {
         kr: 0.1,
         kt: 0.8,
         ior: 1.5,
+        texture: None,
     };
     let grey = Material {
         color: DVec3::ONE,
@@ -138,6 +139,7 @@ fn every_keyword_reads_to_the_value_written() {
         kr: 0.0,
         kt: 0.0,
         ior: 1.0,
+        texture: None,
     };
     assert_eq!(
         s.materials,
@@ -288,7 +290,7 @@ fn errors_name_the_line_column_keyword_and_range() {
         ),
         (
             "kamera\n",
-            "lab.txt:1:1: scene.kamera: unknown keyword \"kamera\"; the blocks are camera, viewport, raytracer, primitive, material (blinn_material, color_material, materiel), ambient_light (lumiere_ambiante), directional_light (lumiere_directionnelle), point_light (lumiere_ponctuelle), model, linear_aperture_light, rectangular_aperture_light, elliptical_aperture_light, aperture_mask_light, end (fin)",
+            "lab.txt:1:1: scene.kamera: unknown keyword \"kamera\"; the blocks are camera, viewport, raytracer, primitive, material (blinn_material, color_material, materiel), texture_material (texture_materiel), ambient_light (lumiere_ambiante), directional_light (lumiere_directionnelle), point_light (lumiere_ponctuelle), model, linear_aperture_light, rectangular_aperture_light, elliptical_aperture_light, aperture_mask_light, end (fin)",
         ),
         (
             "viewport\nwidth 800.0\nend",
@@ -398,24 +400,8 @@ fn errors_name_the_line_column_keyword_and_range() {
 fn what_lumiere_does_not_model_is_refused_by_name() {
     for (text, expected) in [
         (
-            "texture_material\nname t\ntexture_kd t.png\nend",
-            "lab.txt:1:1: scene.texture_material: texture materials are not supported yet by lumiere",
-        ),
-        (
-            "texture_materiel\nend",
-            "lab.txt:1:1: scene.texture_materiel: texture materials are not supported yet by lumiere",
-        ),
-        (
             "primitive\nbtriangle\nend\nend",
             "lab.txt:2:1: primitive.btriangle: barycentric triangles (btriangle) are not supported yet by lumiere",
-        ),
-        (
-            "primitive\ncalotte_spherique\ncourbure 1\nend\nend",
-            "lab.txt:2:1: primitive.calotte_spherique: spherical caps are not supported yet by lumiere",
-        ),
-        (
-            "primitive\nlentille\nend\nend",
-            "lab.txt:2:1: primitive.lentille: lenses are not supported yet by lumiere",
         ),
         (
             "raytracer\npixel_coordinate top_right\nend",
@@ -451,7 +437,7 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
     let text = "camera\nangle 5\nposition 0 0 -5\nend\n\
                 material\nname red\ncolour 1 0 0\nka 2\nend\n\
                 linear_aperture_light\nwave_length 900\nend\n\
-                primitive\nmaterial_name red\nlens\nend\nsphere\nend\nend\n\
+                primitive\nmaterial_name red\nbtriangle\nend\nsphere\nend\nend\n\
                 primitive\nsphere\nend\nplane\nend\nend\n\
                 raytracer\nsampling 2\npixel_coordinate random\nend\n";
     let p = lenient(text);
@@ -462,8 +448,8 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
             "lab.txt:7:1: material.colour: unknown keyword \"colour\"; material's keywords are name (nom), color (couleur), ka, kd, ks, kr, kt, shininess (brillance), plasticity (p), refractive_index (n), end (fin); the line is skipped",
             "lab.txt:8:4: material.ka: must be a finite number in [0, 1], got 2; the value before it is kept",
             "lab.txt:11:13: linear_aperture_light.wave_length: must be a finite number in [380, 780], got 900; the value before it is kept",
-            "lab.txt:15:1: primitive.lens: lenses are not supported yet by lumiere; the geometry is skipped",
-            "lab.txt:17:1: primitive.sphere: a primitive has one geometry; this is a second one (after a lens); this geometry is skipped",
+            "lab.txt:15:1: primitive.btriangle: barycentric triangles (btriangle) are not supported yet by lumiere; the geometry is skipped",
+            "lab.txt:17:1: primitive.sphere: a primitive has one geometry; this is a second one (after a btriangle); this geometry is skipped",
             "lab.txt:23:1: primitive.plane: a primitive has one geometry; this is a second one (after a sphere); this geometry is skipped",
             "lab.txt:27:10: raytracer.sampling: lumiere averages a perfect square of samples (1, 4, 9, ..., 1024), got 2: other counts are not supported yet; the value before it is kept",
             "lab.txt:20:1: scene.primitive: no material is named \"none\" (a primitive without material_name takes the material named \"none\"); it gets SIMRenderer's grey default material (ambient 0.2, diffuse 0.6, specular 0.7)",
@@ -478,7 +464,7 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
     assert_eq!(s.materials[1].ka, 0.2);
     assert_eq!(s.settings.samples_per_pixel, 1);
     assert_eq!(s.settings.conventions.sample_position, SamplePosition::Jittered);
-    // The lens primitive is dropped with its geometry; the second keeps its sphere.
+    // The btriangle primitive is dropped with its geometry; the second keeps its sphere.
     assert_eq!(s.objects.len(), 1);
     assert_eq!(s.objects[0].name, "sphere#0");
     // An object SIMRenderer cannot build is dropped with a warning.
@@ -589,7 +575,7 @@ fn the_format_is_told_by_name_then_by_first_keyword() {
     assert_eq!(
         load(&toml).unwrap_err().to_string(),
         format!(
-            "{}:1:1: format: cannot tell the scene's format: the file is not named .toml and its first keyword \"[image]\" opens none of SIMRenderer's blocks (camera, viewport, raytracer, primitive, material, ambient_light, directional_light, point_light, model, linear_aperture_light, rectangular_aperture_light, elliptical_aperture_light, aperture_mask_light); it looks like TOML: name it .toml, or pass --format toml",
+            "{}:1:1: format: cannot tell the scene's format: the file is not named .toml and its first keyword \"[image]\" opens none of SIMRenderer's blocks (camera, viewport, raytracer, primitive, material, texture_material, ambient_light, directional_light, point_light, model, linear_aperture_light, rectangular_aperture_light, elliptical_aperture_light, aperture_mask_light); it looks like TOML: name it .toml, or pass --format toml",
             toml.display()
         )
     );

@@ -11,9 +11,9 @@ const RAYS: usize = 300;
 #[test]
 fn campaign_meets_the_thresholds() {
     let rows = campaign(RAYS, 7);
-    // 11 shapes (triangle, tube and ellipsoid among them) x 4 common families + 3 torus-only
-    // families.
-    assert_eq!(rows.len(), 11 * 4 + 3);
+    // 13 shapes (triangle, tube, ellipsoid, spherical cap and lens among them) x 4 common
+    // families + 3 torus-only families.
+    assert_eq!(rows.len(), 13 * 4 + 3);
     for r in &rows {
         let cell = format!("{} / {}: {r:?}", r.shape, r.family);
         assert_eq!(r.rays, RAYS, "{cell}");

@@ -19,7 +19,9 @@ use crate::limits;
 use crate::material::Material;
 use crate::placement::Placement;
 use crate::shape::mesh::Mesh;
-use crate::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus, Transform, Triangle};
+use crate::shape::{
+    Cone, Cuboid, Cylinder, Disk, Lens, Plane, Rectangle, Shape, Sphere, SphericalCap, Torus, Transform, Triangle,
+};
 use glam::DVec3;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -359,6 +361,52 @@ struct FileMaterial {
     kr: Option<f64>,
     kt: Option<f64>,
     n: Option<f64>,
+    /// SIMRenderer's texture material: image files (relative to the scene file) for the
+    /// ambient, diffuse and specular colours, and where their coordinates' origin is.
+    texture_ka: Option<String>,
+    texture_kd: Option<String>,
+    texture_ks: Option<String>,
+    uv_format: Option<String>,
+}
+
+impl FileMaterial {
+    /// The texture maps of a texture material, `None` when it names no image (a
+    /// `uv_format` alone is refused: it would say nothing).
+    fn textures(&self, path: &FieldPath, dir: &Path) -> Check<Option<crate::texture::SharedMaps>> {
+        use crate::texture::{Texture, TextureMaps, UvFormat};
+        let load = |key: &str, file: &Option<String>| -> Check<Option<Texture>> {
+            file.as_ref()
+                .map(|f| Texture::load(&dir.join(f), f).or_else(|m| fail(&path.key(key), m)))
+                .transpose()
+        };
+        let maps = TextureMaps {
+            ambient: load("texture_ka", &self.texture_ka)?,
+            diffuse: load("texture_kd", &self.texture_kd)?,
+            specular: load("texture_ks", &self.texture_ks)?,
+            uv_format: match &self.uv_format {
+                None => UvFormat::default(),
+                Some(name) => UvFormat::parse(name).map_or_else(
+                    || {
+                        fail(
+                            &path.key("uv_format"),
+                            format!("must be \"origin_uv_top_left\" or \"origin_uv_bottom_left\", got {name:?}"),
+                        )
+                    },
+                    Ok,
+                )?,
+            },
+        };
+        if maps.ambient.is_none() && maps.diffuse.is_none() && maps.specular.is_none() {
+            if self.uv_format.is_some() {
+                return fail(
+                    &path.key("uv_format"),
+                    "applies to a material's textures: give texture_ka, texture_kd or texture_ks",
+                );
+            }
+            return Ok(None);
+        }
+        Ok(Some(std::sync::Arc::new(maps)))
+    }
 }
 
 /// The values of `type` in `[[shapes]]`, in the order of [`FileShape`]'s variants.
@@ -375,6 +423,8 @@ const SHAPE_TYPES: &[&str] = &[
     "triangle",
     "tube",
     "mesh",
+    "spherical_cap",
+    "lens",
 ];
 
 /// One `[[shapes]]` entry, tagged by its `type` (lifted to an outer key by `tag::lift`, so that
@@ -394,6 +444,8 @@ enum FileShape {
     Triangle(FileTriangle),
     Tube(FileTube),
     Mesh(FileMesh),
+    SphericalCap(FileSphericalCap),
+    Lens(FileLens),
 }
 
 #[derive(Deserialize)]
@@ -499,6 +551,39 @@ struct FileTriangle {
     p0: [f64; 3],
     p1: [f64; 3],
     p2: [f64; 3],
+    material: Option<String>,
+    name: Option<String>,
+    transform: Option<FileTransform>,
+}
+
+/// SIMRenderer's spherical cap: the disk (`center`, `normal`, `radius`) and the signed
+/// radius of curvature (positive: bulging along the normal).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileSphericalCap {
+    center: [f64; 3],
+    #[serde(default = "z_up")]
+    normal: [f64; 3],
+    radius: f64,
+    curvature: f64,
+    material: Option<String>,
+    name: Option<String>,
+    transform: Option<FileTransform>,
+}
+
+/// SIMRenderer's lens: the edge from `base` along `axis` for `thickness` (0: none), of
+/// radius `radius`, closed by caps of signed radii of curvature `curvature1` (at `base`)
+/// and `curvature2` (at the far end); positive is convex.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileLens {
+    base: [f64; 3],
+    #[serde(default = "z_up")]
+    axis: [f64; 3],
+    thickness: f64,
+    radius: f64,
+    curvature1: f64,
+    curvature2: f64,
     material: Option<String>,
     name: Option<String>,
     transform: Option<FileTransform>,
@@ -737,7 +822,7 @@ impl FileScene {
         let settings = self.settings(&root)?;
         let camera = self.camera(&root.key("camera"))?;
         let highlight = settings.conventions.default_highlight;
-        let (materials, material_names, metal_given) = self.materials(&root.key("materials"), highlight)?;
+        let (materials, material_names, metal_given) = self.materials(&root.key("materials"), highlight, dir)?;
         let path = root.key("shapes");
         if self.shapes.len() > limits::MAX_OBJECTS {
             return fail(
@@ -881,7 +966,12 @@ impl FileScene {
 
     /// The materials, their names and whether each gives its metal factor (the others take
     /// `highlight`'s).
-    fn materials(&self, path: &FieldPath, highlight: Highlight) -> Check<(Vec<Material>, Vec<String>, Vec<bool>)> {
+    fn materials(
+        &self,
+        path: &FieldPath,
+        highlight: Highlight,
+        dir: &Path,
+    ) -> Check<(Vec<Material>, Vec<String>, Vec<bool>)> {
         let mut materials = vec![Material {
             metal: highlight.metal(),
             ..Material::default()
@@ -907,6 +997,7 @@ impl FileScene {
                 kr: unit("kr", m.kr, d.kr)?,
                 kt: unit("kt", m.kt, d.kt)?,
                 ior: positive(&p.key("n"), m.n.unwrap_or(d.ior), limits::MAX_IOR)?,
+                texture: m.textures(&p, dir)?,
             };
             if mat.kr + mat.kt > 1.0 {
                 return fail(
@@ -1155,6 +1246,73 @@ impl FileShape {
                 )
             }
             FileShape::Mesh(m) => return m.validate(path, index, material_names, dir, room),
+            FileShape::SphericalCap(FileSphericalCap {
+                center,
+                normal,
+                radius,
+                curvature,
+                material,
+                name,
+                transform,
+            }) => {
+                let radius = size("radius", radius)?;
+                let curvature = in_range(
+                    &path.key("curvature"),
+                    curvature,
+                    -limits::MAX_COORDINATE,
+                    limits::MAX_COORDINATE,
+                )?;
+                if let Some(why) = SphericalCap::check(radius, curvature) {
+                    return fail(&path.key("curvature"), why);
+                }
+                (
+                    Shape::SphericalCap(Box::new(SphericalCap::new(
+                        vec3(&path.key("center"), center)?,
+                        direction(&path.key("normal"), normal)?,
+                        radius,
+                        curvature,
+                    ))),
+                    material,
+                    name,
+                    transform,
+                )
+            }
+            FileShape::Lens(FileLens {
+                base,
+                axis,
+                thickness,
+                radius,
+                curvature1,
+                curvature2,
+                material,
+                name,
+                transform,
+            }) => {
+                let thickness = in_range(&path.key("thickness"), thickness, 0.0, limits::MAX_COORDINATE)?;
+                let radius = size("radius", radius)?;
+                let curvature =
+                    |key: &str, c: f64| in_range(&path.key(key), c, -limits::MAX_COORDINATE, limits::MAX_COORDINATE);
+                let (c1, c2) = (
+                    curvature("curvature1", curvature1)?,
+                    curvature("curvature2", curvature2)?,
+                );
+                if let Some((i, why)) = Lens::check(thickness, radius, c1, c2) {
+                    return fail(&path.key(["curvature1", "curvature2"][i]), why);
+                }
+                (
+                    Shape::Lens(Box::new(Lens::new(
+                        vec3(&path.key("base"), base)?,
+                        direction(&path.key("axis"), axis)?,
+                        thickness,
+                        radius,
+                        c1,
+                        c2,
+                    ))),
+                    material,
+                    name,
+                    transform,
+                )
+            }
         };
         let shape = match transform_of(&path.key("transform"), transform)? {
             Some(t) => moved(&path.key("transform"), &t, shape)?,

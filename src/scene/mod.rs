@@ -180,7 +180,7 @@ pub fn detect(path: &std::path::Path, text: &str) -> Result<Format, SceneError> 
         field: "format".to_string(),
         message: format!(
             "cannot tell the scene's format: the file is not named .toml and its first keyword {keyword:?} opens none of SIMRenderer's blocks ({}); {hint}",
-            simrenderer::TOP_BLOCKS[..simrenderer::READ_BLOCKS].join(", ")
+            simrenderer::TOP_BLOCKS.join(", ")
         ),
     })
 }

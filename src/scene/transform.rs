@@ -11,7 +11,7 @@
 
 use super::{CameraSpec, Scene};
 use crate::light::{Attenuation, Light};
-use crate::shape::{Disk, Plane, Rectangle, Shape, Sphere, Transformed, Triangle};
+use crate::shape::{Disk, Lens, Plane, Rectangle, Shape, Sphere, SphericalCap, Transformed, Triangle};
 use glam::DVec3;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -90,6 +90,20 @@ impl Similarity {
                 let [p0, p1, p2] = t.points().map(|p| self.point(p));
                 Shape::Triangle(Triangle::new(p0, p1, p2))
             }
+            Shape::SphericalCap(c) => Shape::SphericalCap(Box::new(SphericalCap::new(
+                self.point(c.center),
+                c.normal,
+                self.length(c.radius),
+                self.length(c.curvature),
+            ))),
+            Shape::Lens(l) => Shape::Lens(Box::new(Lens::new(
+                self.point(l.base),
+                l.axis,
+                self.length(l.thickness),
+                self.length(l.radius),
+                self.length(l.curvature1),
+                self.length(l.curvature2),
+            ))),
             Shape::Transformed(t) => Shape::Transformed(Box::new(Transformed::new(
                 t.shape.clone(),
                 t.transform.then_similarity(self.scale, self.offset),

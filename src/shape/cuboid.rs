@@ -21,6 +21,11 @@ pub struct Cuboid {
 }
 
 impl Cuboid {
+    /// The box's local frame: its edges along the frame's axes.
+    pub(crate) fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
     /// `rotation_deg` rotates about x, then y, then z (degrees), around the center.
     pub fn new(center: DVec3, size: DVec3, rotation_deg: DVec3) -> Self {
         let r = rotation_deg * (std::f64::consts::PI / 180.0);

@@ -3,29 +3,35 @@
 //! range (shadow rays: cheaper, may stop at the first root), and its bounding box when it
 //! is finite. Normals are unit length and point outward; the tracer decides which side the
 //! ray is on. Rays that start inside a shape get the exit hit. Open surfaces (plane,
-//! rectangle, disk, triangle, tube) bound no solid.
+//! rectangle, disk, triangle, tube, spherical cap) bound no solid. Each shape also has
+//! texture coordinates ([`Shape::uv`], in `uv`).
 
 mod cone;
 mod cuboid;
 mod cylinder;
 mod disk;
 mod fan;
+mod lens;
 pub mod mesh;
 mod plane;
 mod rectangle;
 mod sphere;
+mod spherical_cap;
 mod torus;
 mod transformed;
 mod triangle;
+mod uv;
 
 pub use cone::Cone;
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use fan::{Fan, Verdict, fan_verdicts};
+pub use lens::Lens;
 pub use plane::Plane;
 pub use rectangle::Rectangle;
 pub use sphere::Sphere;
+pub use spherical_cap::SphericalCap;
 pub use torus::{QuarticMethod, Torus};
 pub use transformed::{Transform, Transformed};
 pub use triangle::Triangle;
@@ -108,6 +114,10 @@ pub enum Shape {
     Triangle(Triangle),
     /// Any shape through an affine map.
     Transformed(Box<Transformed>),
+    /// SIMRenderer's spherical cap: an open piece of a sphere over a disk.
+    SphericalCap(Box<SphericalCap>),
+    /// SIMRenderer's lens: an edge closed by two spherical caps.
+    Lens(Box<Lens>),
 }
 
 macro_rules! dispatch {
@@ -123,6 +133,8 @@ macro_rules! dispatch {
             Shape::Torus($s) => $e,
             Shape::Triangle($s) => $e,
             Shape::Transformed($s) => $e,
+            Shape::SphericalCap($s) => $e,
+            Shape::Lens($s) => $e,
         }
     };
 }
@@ -178,6 +190,8 @@ impl Shape {
             Shape::Torus(t) => (t.center, t.major + t.minor),
             Shape::Triangle(t) => t.bounding_sphere(),
             Shape::Transformed(t) => return t.bounding_sphere(),
+            Shape::SphericalCap(c) => c.bounding_sphere(),
+            Shape::Lens(l) => l.bounding_sphere(),
         })
     }
 
@@ -187,6 +201,8 @@ impl Shape {
     pub fn inner_ball(&self) -> Option<(DVec3, f64)> {
         match self {
             Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Torus(_) | Shape::Triangle(_) => None,
+            // The lens's thinnest place depends on its caps: no ball is claimed.
+            Shape::SphericalCap(_) | Shape::Lens(_) => None,
             Shape::Sphere(s) => Some((s.center, s.radius)),
             Shape::Cuboid(b) => Some((b.center, b.half_size.min_element())),
             Shape::Cylinder(c) if c.open => None,
@@ -202,11 +218,13 @@ impl Shape {
     }
 
     /// Whether a ray leaving the surface outward can never meet it again: true of convex
-    /// solids, of flat shapes and of the tube (outward is away from its axis), false of the
-    /// torus. An affine map keeps it.
+    /// solids, of flat shapes, of the tube (outward is away from its axis) and of the
+    /// spherical cap (outward is away from its sphere's center), false of the torus and of
+    /// a lens with a concave cap. An affine map keeps it.
     pub fn is_convex(&self) -> bool {
         match self {
             Shape::Torus(_) => false,
+            Shape::Lens(l) => l.is_convex(),
             Shape::Transformed(t) => t.shape.is_convex(),
             _ => true,
         }
@@ -219,20 +237,24 @@ impl Shape {
         match self {
             Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cone(_) => true,
             Shape::Cylinder(c) => !c.open,
+            Shape::Lens(l) => l.is_convex(),
             Shape::Transformed(t) => t.shape.is_convex_solid(),
             _ => false,
         }
     }
 
-    /// Whether the shape bounds a solid (sphere, box, capped cylinder and cone, torus, and
-    /// any of them transformed): it has an inside, which a refracted ray can enter. Planes,
-    /// rectangles, disks, triangles and tubes are open surfaces.
+    /// Whether the shape bounds a solid (sphere, box, capped cylinder and cone, torus, lens,
+    /// and any of them transformed): it has an inside, which a refracted ray can enter.
+    /// Planes, rectangles, disks, triangles, tubes and spherical caps are open surfaces (as
+    /// SIMRenderer's cap, a disk geometry, does not close its rim).
     pub fn is_closed(&self) -> bool {
         match self {
-            Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Triangle(_) => false,
+            Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Triangle(_) | Shape::SphericalCap(_) => {
+                false
+            }
             Shape::Cylinder(c) => !c.open,
             Shape::Transformed(t) => t.shape.is_closed(),
-            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cone(_) | Shape::Torus(_) => true,
+            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cone(_) | Shape::Torus(_) | Shape::Lens(_) => true,
         }
     }
 
@@ -249,6 +271,8 @@ impl Shape {
             Shape::Cone(_) => "cone",
             Shape::Torus(_) => "torus",
             Shape::Triangle(_) => "triangle",
+            Shape::SphericalCap(_) => "spherical_cap",
+            Shape::Lens(_) => "lens",
             // Written as the inner shape's table with a `transform`.
             Shape::Transformed(t) => t.shape.kind(),
         }
@@ -456,6 +480,24 @@ mod tests {
             Transform::from_parts(DVec3::new(1.0, 3.0, 0.5), DVec3::new(-40.0, 0.0, 15.0), DVec3::ONE).apply(
                 Shape::Cuboid(Box::new(Cuboid::new(DVec3::ZERO, DVec3::ONE, DVec3::ZERO))),
             ),
+            Shape::SphericalCap(Box::new(SphericalCap::new(DVec3::new(1.0, 2.0, 0.0), tilt, 1.5, 2.0))),
+            Shape::SphericalCap(Box::new(SphericalCap::new(DVec3::new(1.0, 2.0, 0.0), tilt, 1.5, -1.5))),
+            Shape::Lens(Box::new(Lens::new(
+                DVec3::new(-1.0, 0.0, 2.0),
+                tilt,
+                0.5,
+                1.0,
+                1.5,
+                3.0,
+            ))),
+            Shape::Lens(Box::new(Lens::new(
+                DVec3::new(-1.0, 0.0, 2.0),
+                -tilt,
+                0.8,
+                1.0,
+                -2.0,
+                1.0,
+            ))),
         ]
     }
 

@@ -6,6 +6,29 @@ use crate::math::Ray;
 use crate::solve::quadratic;
 use glam::DVec3;
 
+/// Roots of `|o + t v - c|^2 = r^2` for unit `v`: `t^2 + 2 b t + c = 0` with
+/// `b = (o - c).v`. The discriminant is computed as `r^2 - |f - b v|^2` with `f = o - c`
+/// (Haines et al., Ray Tracing Gems ch. 7), which keeps precision for far-away origins.
+/// Shared by the sphere and the shapes cut from spheres (spherical cap, lens).
+#[inline]
+pub(crate) fn sphere_roots(center: DVec3, radius: f64, ray: &Ray) -> Option<(f64, f64)> {
+    let f = ray.origin - center;
+    let b = f.dot(ray.dir);
+    let perp = f - b * ray.dir;
+    let disc = radius * radius - perp.length_squared();
+    if disc < 0.0 {
+        return None;
+    }
+    let c = f.length_squared() - radius * radius;
+    // Equivalent to the stable quadratic with a = 1, using the accurate discriminant.
+    let q = -b - b.signum() * disc.sqrt();
+    if q == 0.0 {
+        return quadratic(1.0, 2.0 * b, c);
+    }
+    let (t0, t1) = (q, c / q);
+    Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+}
+
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Sphere {
     pub center: DVec3,
@@ -17,25 +40,9 @@ impl Sphere {
         Sphere { center, radius }
     }
 
-    /// Roots of `|o + t v - c|^2 = r^2` for unit `v`: `t^2 + 2 b t + c = 0` with
-    /// `b = (o - c).v`. The discriminant is computed as `r^2 - |f - b v|^2` with `f = o - c`
-    /// (Haines et al., Ray Tracing Gems ch. 7), which keeps precision for far-away origins.
+    /// The two roots of the sphere's equation ([`sphere_roots`]).
     fn roots(&self, ray: &Ray) -> Option<(f64, f64)> {
-        let f = ray.origin - self.center;
-        let b = f.dot(ray.dir);
-        let perp = f - b * ray.dir;
-        let disc = self.radius * self.radius - perp.length_squared();
-        if disc < 0.0 {
-            return None;
-        }
-        let c = f.length_squared() - self.radius * self.radius;
-        // Equivalent to the stable quadratic with a = 1, using the accurate discriminant.
-        let q = -b - b.signum() * disc.sqrt();
-        if q == 0.0 {
-            return quadratic(1.0, 2.0 * b, c);
-        }
-        let (t0, t1) = (q, c / q);
-        Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+        sphere_roots(self.center, self.radius, ray)
     }
 
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {

@@ -11,9 +11,10 @@
 //! there are counted apart (`band`); every other disagreement is a missed or a false hit.
 //! A hit whose relative error exceeds 1e-6 and is not explained by the band counts as false.
 //!
-//! The triangle, the open tube and the ellipsoid (the unit sphere through a random scale,
-//! rotation and translation: the instance transform) meet the same four families as every
-//! shape.
+//! The triangle, the open tube, the ellipsoid (the unit sphere through a random scale,
+//! rotation and translation: the instance transform), the spherical cap (convex or
+//! concave) and the lens (caps of either sign, with or without an edge) meet the same four
+//! families as every shape.
 
 pub mod dd;
 pub mod reference;
@@ -26,7 +27,7 @@ use glam::DVec3;
 use reference::Spec;
 
 /// The shapes, in table order (a shape's place keys its random streams: new ones go last).
-pub const SHAPES: [&str; 11] = [
+pub const SHAPES: [&str; 13] = [
     "sphere",
     "box",
     "cylinder",
@@ -38,6 +39,8 @@ pub const SHAPES: [&str; 11] = [
     "triangle",
     "tube",
     "ellipsoid",
+    "spherical_cap",
+    "lens",
 ];
 
 /// A family of rays.
@@ -198,6 +201,35 @@ fn random_spec(shape: &str, s: f64, spread: f64, g: &mut Gen) -> Spec {
                 transform: Transform::from_parts(scale, rotation, c),
             }
         }
+        "spherical_cap" => {
+            let r = s * g.uniform(0.5, 1.5);
+            let sign = if g.0.next_f64() < 0.5 { -1.0 } else { 1.0 };
+            Spec::cap(c, r, sign * r * g.uniform(1.0, 3.0))
+        }
+        "lens" => {
+            let r = s * g.uniform(0.5, 1.5);
+            let mut curvature = || {
+                let sign = if g.0.next_f64() < 0.3 { -1.0 } else { 1.0 };
+                sign * r * g.uniform(1.0, 3.0)
+            };
+            let curvatures = [curvature(), curvature()];
+            // The concave caps' depths, then an edge of up to 1.5 sizes beyond them; a
+            // quarter of the biconvex lenses have none.
+            let hollow = |c: f64| {
+                if c < 0.0 {
+                    c.abs() - ((c - r) * (c + r)).max(0.0).sqrt()
+                } else {
+                    0.0
+                }
+            };
+            let convex = curvatures[0] > 0.0 && curvatures[1] > 0.0;
+            let e = if convex && g.0.next_f64() < 0.25 {
+                0.0
+            } else {
+                hollow(curvatures[0]) + hollow(curvatures[1]) + s * g.uniform(0.05, 1.5)
+            };
+            Spec::lens(c, e, r, curvatures)
+        }
         _ => Spec::Plane { p: c },
     }
 }
@@ -275,6 +307,30 @@ fn silhouette_point(spec: &Spec, g: &mut Gen) -> (DVec3, Option<DVec3>) {
                 (base + radial * r + DVec3::Z * g.uniform(0.0, h), Some(radial))
             } else {
                 let z = if g.0.next_f64() < 0.5 { 0.0 } else { h };
+                (base + radial * r + DVec3::Z * z, None)
+            }
+        }
+        Spec::Cap {
+            c,
+            r,
+            curvature,
+            sphere,
+        } => {
+            if rim_or_side {
+                // A point of the cap, tangent rays: the sphere's normal there.
+                let bulge = DVec3::Z * curvature.signum();
+                let theta = g.uniform(0.0, libm::asin(r / curvature.abs()));
+                let n = radial * libm::sin(theta) + bulge * libm::cos(theta);
+                (sphere + n * curvature.abs(), Some(n))
+            } else {
+                (c + radial * r, None)
+            }
+        }
+        Spec::Lens { base, e, r, .. } => {
+            if rim_or_side && e > 0.0 {
+                (base + radial * r + DVec3::Z * g.uniform(0.0, e), Some(radial))
+            } else {
+                let z = if g.0.next_f64() < 0.5 { 0.0 } else { e };
                 (base + radial * r + DVec3::Z * z, None)
             }
         }
@@ -562,11 +618,12 @@ mod tests {
 
     #[test]
     fn table_lists_every_cell() {
-        // 4 shared families x 11 shapes + 3 torus-only families.
+        // 4 shared families x 13 shapes + 3 torus-only families.
         let rows = campaign(2, 1);
-        assert_eq!(rows.len(), 47);
+        assert_eq!(rows.len(), 55);
         let t = table(&rows);
-        assert_eq!(t.lines().count(), 2 + 47);
+        assert_eq!(t.lines().count(), 2 + 55);
+        assert!(t.contains("| lens | grazing | 2 |"));
         assert!(t.contains("| ellipsoid | far | 2 |"));
         assert!(t.contains("| torus | torus-equator | 2 |"));
     }

@@ -15,7 +15,9 @@
 //! parameter.
 
 use super::dd::{Dd, Dd3};
-use crate::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Rectangle, Shape, Sphere, Torus, Transform, Triangle};
+use crate::shape::{
+    Cone, Cuboid, Cylinder, Disk, Lens, Plane, Rectangle, Shape, Sphere, SphericalCap, Torus, Transform, Triangle,
+};
 use glam::DVec3;
 
 /// A campaign shape, axis-aligned, with its exact parameters.
@@ -72,6 +74,50 @@ pub enum Spec {
     Ellipsoid {
         transform: Transform,
     },
+    /// A spherical cap over the disk of center `c`, normal +z, radius `r`, signed curvature
+    /// `curvature`; `sphere` is the f64 shape's own sphere center (so both sides have the
+    /// same sphere).
+    Cap {
+        c: DVec3,
+        r: f64,
+        curvature: f64,
+        sphere: DVec3,
+    },
+    /// A lens from `base` along +z: edge `e`, radius `r`, curvatures; `spheres` the f64
+    /// shape's own caps' sphere centers.
+    Lens {
+        base: DVec3,
+        e: f64,
+        r: f64,
+        curvatures: [f64; 2],
+        spheres: [DVec3; 2],
+    },
+}
+
+impl Spec {
+    /// The cap over the disk (`c`, +z, `r`) with its sphere as the f64 shape computes it.
+    pub fn cap(c: DVec3, r: f64, curvature: f64) -> Spec {
+        let sphere = SphericalCap::new(c, DVec3::Z, r, curvature).sphere().0;
+        Spec::Cap {
+            c,
+            r,
+            curvature,
+            sphere,
+        }
+    }
+
+    /// The lens from `base` along +z with its spheres as the f64 shape computes them.
+    pub fn lens(base: DVec3, e: f64, r: f64, curvatures: [f64; 2]) -> Spec {
+        let l = Lens::new(base, DVec3::Z, e, r, curvatures[0], curvatures[1]);
+        let [(s1, _), (s2, _)] = l.cap_spheres();
+        Spec::Lens {
+            base,
+            e,
+            r,
+            curvatures,
+            spheres: [s1, s2],
+        }
+    }
 }
 
 fn dd(x: f64) -> Dd {
@@ -97,6 +143,12 @@ impl Spec {
             Spec::Triangle { p } => Shape::Triangle(Triangle::new(p[0], p[1], p[2])),
             Spec::Tube { base, h, r } => Shape::Cylinder(Box::new(Cylinder::tube(base, DVec3::Z, h, r))),
             Spec::Ellipsoid { transform } => transform.apply(Shape::Sphere(Sphere::new(DVec3::ZERO, 1.0))),
+            Spec::Cap { c, r, curvature, .. } => {
+                Shape::SphericalCap(Box::new(SphericalCap::new(c, DVec3::Z, r, curvature)))
+            }
+            Spec::Lens {
+                base, e, r, curvatures, ..
+            } => Shape::Lens(Box::new(Lens::new(base, DVec3::Z, e, r, curvatures[0], curvatures[1]))),
         }
     }
 
@@ -111,6 +163,7 @@ impl Spec {
             Spec::Plane { p } => p,
             Spec::Triangle { p } => (p[0] + p[1] + p[2]) / 3.0,
             Spec::Ellipsoid { transform } => transform.to_world.translation,
+            Spec::Cap { .. } | Spec::Lens { .. } => self.shape().bounding_sphere().map_or(DVec3::ZERO, |b| b.0),
         }
     }
 
@@ -131,6 +184,7 @@ impl Spec {
                 p.iter().map(|v| (*v - c).length()).fold(0.0, f64::max)
             }
             Spec::Ellipsoid { transform } => transform.stretch,
+            Spec::Cap { .. } | Spec::Lens { .. } => self.shape().bounding_sphere().map_or(1.0, |b| b.1),
         }
     }
 
@@ -232,8 +286,49 @@ impl Spec {
                 );
                 first(&mut quadratic_dd(ld.dot(ld), lo.dot(ld), lo.dot(lo) - Dd::new(1.0)))
             }
+            Spec::Cap {
+                c, curvature, sphere, ..
+            } => {
+                // The sphere's roots whose points are on the bulge's side of the disk's plane.
+                let mut ts = sphere_roots_dd(o, d, sphere, curvature);
+                ts.retain(|t| (o.along(d, *t).z - dd(c.z)) * dd(curvature.signum()) >= Dd::ZERO);
+                first(&mut ts)
+            }
+            Spec::Lens {
+                base,
+                e,
+                r,
+                curvatures,
+                spheres,
+            } => {
+                let l = o - Dd3::from_f64(base);
+                let mut ts = Vec::new();
+                // The edge: the tube's side for 0 <= z <= e.
+                let a = d.x.sqr() + d.y.sqr();
+                if e > 0.0 && a.hi > 0.0 {
+                    let cands = quadratic_dd(a, l.x * d.x + l.y * d.y, l.x.sqr() + l.y.sqr() - dd(r).sqr());
+                    ts.extend(cands.into_iter().filter(|t| within(l.z + d.z * *t, e)));
+                }
+                // Cap 1 below z = 0 (convex) or above it (concave); cap 2 beyond z = e or short of it.
+                for (i, plane) in [(0, 0.0), (1, e)] {
+                    let outward = if i == 0 { -1.0 } else { 1.0 } * curvatures[i].signum();
+                    let roots = sphere_roots_dd(o, d, spheres[i], curvatures[i]);
+                    ts.extend(
+                        roots
+                            .into_iter()
+                            .filter(|t| (l.z + d.z * *t - dd(plane)) * dd(outward) >= Dd::ZERO),
+                    );
+                }
+                first(&mut ts)
+            }
         }
     }
+}
+
+/// The roots of the sphere of center `c` and radius `|curvature|` met by `o + t d`.
+fn sphere_roots_dd(o: Dd3, d: Dd3, c: DVec3, curvature: f64) -> Vec<Dd> {
+    let f = o - Dd3::from_f64(c);
+    quadratic_dd(d.dot(d), f.dot(d), f.dot(f) - dd(curvature.abs()).sqr())
 }
 
 /// The plane of `p` met by `o + t d`, kept when the point is inside every edge (on an edge

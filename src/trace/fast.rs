@@ -370,7 +370,8 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         for j in members_of::<K>(mask) {
             let (model, mat) = self.member_shading(j, at.object);
             if model.ambient {
-                let a = ambient(self.members[j].ambient, mat.ka, mat.color);
+                let r = at.reflectance(mat);
+                let a = ambient(self.members[j].ambient, r.ka, r.ambient);
                 rec.ambient(a);
                 color[j] += a;
             }

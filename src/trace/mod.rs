@@ -18,10 +18,10 @@
 //! its one definition in [`crate::shading`], [`crate::light`] and [`crate::math`].
 
 use crate::light::Incidence;
-use crate::material::Material;
+use crate::material::{Material, Reflectance};
 use crate::math::{Ray, hit_point_error, offset_origin};
 use crate::scene::{ShadingModel, Specular};
-use crate::shading::{blinn, diffuse, phong, specular, specular_tint};
+use crate::shading::{blinn, diffuse, phong, specular};
 use crate::shape::SurfaceHit;
 use crate::skips::Saved;
 use crate::world::World;
@@ -36,7 +36,8 @@ pub use reference::Reference;
 /// One point light's diffuse and specular shares at `at` (slides, full model):
 /// `L k_d S max(N.L, 0)` and `L k_s [m S + (1 - m)] spec`, `spec` Phong's or Blinn's term as
 /// `model` says, for the light `light` arriving through its shadow filter (`A C_theta L`
-/// times the filter) from direction `inc.to_light`. Both tracers shade every point light so.
+/// times the filter) from direction `inc.to_light`; a texture material's images give the
+/// point's colours ([`Surface::reflectance`]). Both tracers shade every point light so.
 #[inline]
 pub(crate) fn point_light_terms(
     model: ShadingModel,
@@ -51,10 +52,11 @@ pub(crate) fn point_light_terms(
         Specular::Phong => phong(at.n, to_light, at.eye, mat.shininess),
         Specular::Blinn => blinn(at.n, to_light, at.eye, mat.shininess),
     };
-    let kd = if model.diffuse { mat.kd } else { 0.0 };
+    let r = at.reflectance(mat);
+    let kd = if model.diffuse { r.kd } else { 0.0 };
     (
-        diffuse(light, kd, mat.color, n_dot_l),
-        specular(light, mat.ks, specular_tint(mat.metal, mat.color), spec),
+        diffuse(light, kd, r.diffuse, n_dot_l),
+        specular(light, r.ks, r.tint, spec),
     )
 }
 
@@ -170,7 +172,7 @@ impl Recorder for NoRecord {
 
 /// A shaded surface point: position, shading normal `n` (facing the incoming ray), outward
 /// normal and rounding-error bound (for the origins of the rays that leave it), direction
-/// to the eye, object.
+/// to the eye, object, and texture coordinates when its material has images.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Surface {
     pub(crate) point: DVec3,
@@ -181,6 +183,9 @@ pub(crate) struct Surface {
     pub(crate) object: usize,
     /// Whether the ray arrives from the outside (against the outward normal).
     pub(crate) entering: bool,
+    /// The point's texture coordinates ([`crate::shape::Shape::uv`]); `(0, 0)`, unused,
+    /// on an object whose material has no images.
+    pub(crate) uv: (f64, f64),
 }
 
 impl Surface {
@@ -192,6 +197,13 @@ impl Surface {
         let point = ray.at(hit.t);
         let err = hit_point_error(ray, hit.t) + world.objects()[object].shape.surface_error(point);
         let entering = ray.dir.dot(hit.normal) < 0.0;
+        // A family's members share the scene's textures (their keys hold them), so the
+        // world's material says whether the point needs coordinates.
+        let uv = if world.has_textures && world.material_of(object).texture.is_some() {
+            world.objects()[object].shape.uv(point)
+        } else {
+            (0.0, 0.0)
+        };
         Surface {
             point,
             n: if entering { hit.normal } else { -hit.normal },
@@ -200,7 +212,15 @@ impl Surface {
             eye: -ray.dir,
             object,
             entering,
+            uv,
         }
+    }
+
+    /// The colours `mat` reflects at this point: the one texture lookup of both tracers
+    /// ([`Material::reflectance`] at the point's coordinates).
+    #[inline]
+    pub(crate) fn reflectance(&self, mat: &Material) -> Reflectance {
+        mat.reflectance(|| self.uv)
     }
 
     /// A ray leaving this point along `dir` (a shadow, reflected or refracted ray): from the

@@ -104,7 +104,8 @@ impl<'w, 's> Reference<'w, 's> {
         let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
         let mut color = DVec3::ZERO;
         if model.ambient {
-            color += ambient(world.ambient, mat.ka, mat.color);
+            let r = at.reflectance(mat);
+            color += ambient(world.ambient, r.ka, r.ambient);
         }
         for (index, light) in world.scene.lights.iter().enumerate() {
             match light {

@@ -13,8 +13,8 @@ mod toml;
 mod write;
 
 pub use read::{
-    DEFAULT_SEED, Options, PIXEL_COORDINATES, Parsed, READ_BLOCKS, REFLEXION_ALGORITHMS, TOP_BLOCKS, canonical,
-    grey_default, load, parse, shading_of,
+    DEFAULT_SEED, Options, PIXEL_COORDINATES, Parsed, REFLEXION_ALGORITHMS, TOP_BLOCKS, canonical, grey_default, load,
+    parse, shading_of,
 };
 pub use toml::to_toml;
 pub use write::to_simrenderer;

@@ -18,7 +18,9 @@ use crate::limits;
 use crate::material::Material;
 use crate::scene::{CameraSpec, Object, Scene, SceneError, Settings, ShadingModel, Specular};
 use crate::shape::mesh::Mesh;
-use crate::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Shape, Sphere, Torus, Transform, Triangle};
+use crate::shape::{
+    Cone, Cuboid, Cylinder, Disk, Lens, Plane, Shape, Sphere, SphericalCap, Torus, Transform, Triangle,
+};
 use glam::DVec3;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
@@ -189,13 +191,14 @@ fn listed(keywords: &[&str]) -> String {
         .join(", ")
 }
 
-/// The blocks a scene file is made of; the last one is refused as not supported yet.
+/// The blocks a scene file is made of, every one read.
 pub const TOP_BLOCKS: &[&str] = &[
     "camera",
     "viewport",
     "raytracer",
     "primitive",
     "material",
+    "texture_material",
     "ambient_light",
     "directional_light",
     "point_light",
@@ -204,14 +207,10 @@ pub const TOP_BLOCKS: &[&str] = &[
     "rectangular_aperture_light",
     "elliptical_aperture_light",
     "aperture_mask_light",
-    "texture_material",
 ];
 
-/// How many of [`TOP_BLOCKS`] lumiere reads.
-pub const READ_BLOCKS: usize = 13;
-
-/// The geometry blocks of a primitive or a `geometry` wrapper; the last three are refused
-/// as not supported yet.
+/// The geometry blocks of a primitive or a `geometry` wrapper; `btriangle` is refused as not
+/// supported yet.
 const GEOMETRIES: &[&str] = &[
     "sphere",
     "plane",
@@ -257,6 +256,22 @@ const MATERIAL: &[&str] = &[
     "shininess",
     "plasticity",
     "refractive_index",
+];
+/// A texture material's keywords: a material's and its three images.
+const TEXTURE_MATERIAL: &[&str] = &[
+    "name",
+    "color",
+    "ka",
+    "kd",
+    "ks",
+    "kr",
+    "kt",
+    "shininess",
+    "plasticity",
+    "refractive_index",
+    "texture_ka",
+    "texture_kd",
+    "texture_ks",
 ];
 const MODEL: &[&str] = &["file", "scale", "rotation", "translation", "uv_format"];
 const AMBIENT: &[&str] = &["color"];
@@ -376,6 +391,7 @@ pub fn grey_default() -> Material {
         kr: 0.0,
         kt: 0.0,
         ior: 1.0,
+        texture: None,
     }
 }
 
@@ -530,11 +546,6 @@ impl<'a> Reader<'a> {
         }
     }
 
-    /// Skips the rest of a block lumiere does not read, up to its `end`.
-    fn skip_block(&mut self) {
-        while self.body().is_some() {}
-    }
-
     /// Sorts an item of block `block` (its keyword as written): a keyword of `keywords`, a
     /// note, or a problem.
     fn entry(&mut self, block: &str, item: Item<'a>, keywords: &[&'static str]) -> Result<Entry<'a>, SceneError> {
@@ -662,8 +673,8 @@ impl<'a> Reader<'a> {
                     }
                 }
                 Some("raytracer") => raw.raytracer = Some(self.raytracer(&l)?),
-                Some("material") => {
-                    if let Some(m) = self.material(&l)? {
+                Some(kind @ ("material" | "texture_material")) => {
+                    if let Some(m) = self.material(&l, kind == "texture_material")? {
                         raw.materials.push(m);
                     }
                 }
@@ -692,27 +703,16 @@ impl<'a> Reader<'a> {
                         raw.lights.push((place, light));
                     }
                 }
-                Some(kind) if TOP_BLOCKS.contains(&kind) => {
-                    self.problem(
-                        &place,
-                        "texture materials are not supported yet by lumiere".to_string(),
-                        "the block is skipped",
-                    )?;
-                    self.skip_block();
-                }
                 Some(_) => {
                     let m = format!(
                         "{:?} is not a top-level block; the blocks are {}",
                         l.written,
-                        listed(&TOP_BLOCKS[..READ_BLOCKS])
+                        listed(TOP_BLOCKS)
                     );
                     self.problem(&place, m, "the line is skipped")?;
                 }
                 None => {
-                    let m = format!(
-                        "unknown keyword {block:?}; the blocks are {}",
-                        listed(&TOP_BLOCKS[..READ_BLOCKS])
-                    );
+                    let m = format!("unknown keyword {block:?}; the blocks are {}", listed(TOP_BLOCKS));
                     self.problem(&place, m, "the line is skipped")?;
                 }
             }
@@ -909,15 +909,24 @@ impl<'a> Reader<'a> {
         Ok(r)
     }
 
-    fn material(&mut self, open: &Line<'a>) -> Result<Option<MaterialEntry>, SceneError> {
+    /// A `material` block, or with `textured` a `texture_material` block (a material and
+    /// its images, SIMRenderer's `SBlinnTextureMaterial`).
+    fn material(&mut self, open: &Line<'a>, textured: bool) -> Result<Option<MaterialEntry>, SceneError> {
         let block = open.keyword.clone();
         let mut m = Material::default();
+        let mut maps = crate::texture::TextureMaps {
+            ambient: None,
+            diffuse: None,
+            specular: None,
+            uv_format: crate::texture::UvFormat::default(),
+        };
         let mut name: Option<(String, At)> = None;
         let mut plasticity: Option<f64> = None;
         // The line of the later of kr and kt, and which.
         let mut last_weight: Option<(&str, At)> = None;
         while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, MATERIAL)? {
+            let keywords = if textured { TEXTURE_MATERIAL } else { MATERIAL };
+            let (k, l) = match self.entry(&block, item, keywords)? {
                 Entry::Key(k, l) => (k, l),
                 Entry::Note(n) => {
                     self.note(&n, &block, false)?;
@@ -944,6 +953,29 @@ impl<'a> Reader<'a> {
                 "refractive_index" => {
                     if let Some(x) = self.value(&block, &l, number_in(&l, 0.0, limits::MAX_IOR))? {
                         m.ior = x;
+                    }
+                }
+                "texture_ka" | "texture_kd" | "texture_ks" => {
+                    let Some(file) = self.value(&block, &l, lex::name(l.value, l.value_column))? else {
+                        continue;
+                    };
+                    // SIMRenderer's name for no image.
+                    let texture = if file == "none" {
+                        None
+                    } else {
+                        match crate::texture::Texture::load(&self.dir.join(&file), &file) {
+                            Ok(t) => Some(t),
+                            Err(message) => {
+                                let here = at_value(&l, &block, l.value_column);
+                                self.problem(&here, message, "the material keeps its own colour for this term")?;
+                                continue;
+                            }
+                        }
+                    };
+                    match k {
+                        "texture_ka" => maps.ambient = texture,
+                        "texture_kd" => maps.diffuse = texture,
+                        _ => maps.specular = texture,
                     }
                 }
                 _ => {
@@ -992,6 +1024,9 @@ impl<'a> Reader<'a> {
         }
         if let Some(p) = plasticity {
             m.metal = 1.0 - p;
+        }
+        if maps.ambient.is_some() || maps.diffuse.is_some() || maps.specular.is_some() {
+            m.texture = Some(std::sync::Arc::new(maps));
         }
         let (name, at) = name.unwrap_or_else(|| ("none".to_string(), at(open, "scene")));
         Ok(Some(MaterialEntry {
@@ -1077,8 +1112,6 @@ impl<'a> Reader<'a> {
         let place = at(open, parent);
         let what = match kind {
             "btriangle" => Some("barycentric triangles (btriangle) are"),
-            "spherical_cap" => Some("spherical caps are"),
-            "lens" => Some("lenses are"),
             _ => None,
         };
         if let Some(what) = what {
@@ -1095,6 +1128,8 @@ impl<'a> Reader<'a> {
             "tube" | "cylinder" | "cone" => &["point", "position", "ray"],
             "cube" => &["position", "size"],
             "torus" => &["position", "normal", "major_radius", "minor_radius"],
+            "spherical_cap" => &["position", "normal", "ray", "curvature"],
+            "lens" => &["point", "position", "ray", "curvature"],
             _ => &[
                 "scale",
                 "rotation",
@@ -1119,6 +1154,9 @@ impl<'a> Reader<'a> {
         let mut ray = 1.0;
         let mut size = 1.0;
         let (mut major, mut minor) = (1.0, 0.2);
+        // A cap's curvature, or a lens's two (cap 1's then cap 2's); SIMRenderer's default
+        // is the default radius, 1.
+        let mut curvatures: Vec<(f64, At)> = Vec::new();
         let mut points: Vec<(DVec3, At)> = Vec::new();
         let (mut scale, mut rotation, mut translation) = (DVec3::ONE, DVec3::ZERO, DVec3::ZERO);
         let mut inner: Option<Shape> = None;
@@ -1172,6 +1210,24 @@ impl<'a> Reader<'a> {
                 "minor_radius" => {
                     if let Some(r) = self.value(&block, &l, positive(&l, limits::MAX_COORDINATE))? {
                         minor = r;
+                    }
+                }
+                "curvature" => {
+                    let most = if kind == "lens" { 2 } else { 1 };
+                    let c = self.value(
+                        &block,
+                        &l,
+                        number_in(&l, -limits::MAX_COORDINATE, limits::MAX_COORDINATE),
+                    )?;
+                    if let Some(c) = c {
+                        if kind == "lens" && curvatures.len() == most {
+                            let m = "a lens takes 2 curvatures (cap 1's, then cap 2's); this is one more".to_string();
+                            self.problem(&here, m, "the line is skipped")?;
+                        } else {
+                            // A cap's second curvature replaces the first, as any value does.
+                            curvatures.truncate(most - 1);
+                            curvatures.push((c, here.clone()));
+                        }
                     }
                 }
                 "scale" => {
@@ -1235,7 +1291,15 @@ impl<'a> Reader<'a> {
                 }
                 Shape::Triangle(Triangle::new(p[0], p[1], p[2]))
             }
-            "tube" | "cylinder" | "cone" => {
+            "spherical_cap" => {
+                let (curvature, curvature_at) = curvatures.pop().unwrap_or((1.0, place.clone()));
+                if let Some(why) = SphericalCap::check(ray, curvature) {
+                    self.problem(&curvature_at, why, dropped)?;
+                    return Ok(None);
+                }
+                Shape::SphericalCap(Box::new(SphericalCap::new(position, unit(normal), ray, curvature)))
+            }
+            "tube" | "cylinder" | "cone" | "lens" => {
                 let from = points.first().map_or(DVec3::ZERO, |(p, _)| *p);
                 let to = points.get(1).map_or(DVec3::Z, |(p, _)| *p);
                 let height = (to - from).length();
@@ -1251,6 +1315,17 @@ impl<'a> Reader<'a> {
                     let here = points.last().map_or(place.clone(), |(_, a)| a.clone());
                     self.problem(&here, m, dropped)?;
                     return Ok(None);
+                }
+                if kind == "lens" {
+                    let curvature = |i: usize| curvatures.get(i).map_or((1.0, place.clone()), |(c, a)| (*c, a.clone()));
+                    let (c1, c2) = (curvature(0), curvature(1));
+                    if let Some((i, why)) = Lens::check(height, ray, c1.0, c2.0) {
+                        self.problem(&[c1.1, c2.1][i], why, dropped)?;
+                        return Ok(None);
+                    }
+                    return Ok(Some(Shape::Lens(Box::new(Lens::new(
+                        from, axis, height, ray, c1.0, c2.0,
+                    )))));
                 }
                 match kind {
                     "tube" => Shape::Cylinder(Box::new(Cylinder::tube(from, axis, height, ray))),
@@ -1774,7 +1849,7 @@ impl<'a> Reader<'a> {
 
 /// Whether a geometry of this kind takes its two points from `point` or `position` lines.
 fn points_kind(kind: &str) -> bool {
-    matches!(kind, "tube" | "cylinder" | "cone")
+    matches!(kind, "tube" | "cylinder" | "cone" | "lens")
 }
 
 /// A direction made unit as the TOML format makes it (divided by its length).

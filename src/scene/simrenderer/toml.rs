@@ -193,6 +193,23 @@ impl Writer {
             self.line(format!("kr = {}", num(m.kr)));
             self.line(format!("kt = {}", num(m.kt)));
             self.line(format!("n = {}", num(m.ior)));
+            if let Some(maps) = &m.texture {
+                for (key, t) in [
+                    ("texture_ka", &maps.ambient),
+                    ("texture_kd", &maps.diffuse),
+                    ("texture_ks", &maps.specular),
+                ] {
+                    if let Some(t) = t {
+                        self.line(format!("{key} = {}", quoted(&t.file)));
+                    }
+                }
+                if maps.uv_format != crate::texture::UvFormat::OriginUvTopLeft {
+                    self.line(format!("uv_format = \"{}\"", maps.uv_format.name()));
+                }
+                self.notes.push(format!(
+                    "materials[{i}] {name:?}: its images are named as the source names them: keep them in the same place beside the written file"
+                ));
+            }
             self.line("");
         }
     }
@@ -296,6 +313,20 @@ impl Writer {
                     format!("p2 = {}", vec3(c)),
                 ]
             }
+            Shape::SphericalCap(c) => vec![
+                format!("center = {}", vec3(c.center)),
+                format!("normal = {}", self.direction(what, c.normal, unit_twice)),
+                format!("radius = {}", num(c.radius)),
+                format!("curvature = {}", num(c.curvature)),
+            ],
+            Shape::Lens(l) => vec![
+                format!("base = {}", vec3(l.base)),
+                format!("axis = {}", self.direction(what, l.axis, unit_twice)),
+                format!("thickness = {}", num(l.thickness)),
+                format!("radius = {}", num(l.radius)),
+                format!("curvature1 = {}", num(l.curvature1)),
+                format!("curvature2 = {}", num(l.curvature2)),
+            ],
             // Refused by the caller.
             Shape::Transformed(_) => Vec::new(),
         }

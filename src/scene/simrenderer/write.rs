@@ -318,7 +318,11 @@ impl Writer {
                     m.shininess
                 ));
             }
-            self.line("material");
+            self.line(if m.texture.is_some() {
+                "texture_material"
+            } else {
+                "material"
+            });
             self.line(format!("name      {name}"));
             self.line(format!("color     {}", vec3(m.color)));
             self.line(format!("ka        {}", num(m.ka)));
@@ -339,6 +343,24 @@ impl Writer {
             self.line(format!("kr        {}", num(m.kr)));
             self.line(format!("kt        {}", num(m.kt)));
             self.line(format!("n         {}", num(m.ior)));
+            if let Some(maps) = &m.texture {
+                if maps.uv_format != crate::texture::UvFormat::OriginUvTopLeft {
+                    self.refused.push(format!(
+                        "materials[{i}] {name:?}: uv_format {} (SIMRenderer's texture materials read their images from the top-left corner; only a model sets another format)",
+                        maps.uv_format.name()
+                    ));
+                }
+                for (key, t) in [
+                    ("texture_ka", &maps.ambient),
+                    ("texture_kd", &maps.diffuse),
+                    ("texture_ks", &maps.specular),
+                ] {
+                    self.line(format!("{key} {}", t.as_ref().map_or("none", |t| t.file.as_str())));
+                }
+                self.notes.push(format!(
+                    "materials[{i}] {name:?}: its images are named as the source names them: keep them in the same place beside the written file"
+                ));
+            }
             self.line("end");
             self.line("");
         }
@@ -388,6 +410,36 @@ impl Writer {
                 num(s.radius)
             )),
             Shape::Cuboid(b) => self.cuboid(label, b, &mut put),
+            Shape::SphericalCap(c) => {
+                let n = self.direction(|| label.to_string(), c.normal, unit_twice);
+                put(format!(
+                    "spherical_cap\nposition  {}\nnormal    {n}\nray       {}\ncurvature {}\nend",
+                    vec3(c.center),
+                    num(c.radius),
+                    num(c.curvature)
+                ));
+            }
+            Shape::Lens(l) => {
+                if l.thickness == 0.0 {
+                    self.refused.push(format!(
+                        "{label}: a lens without an edge (SIMRenderer's lens runs between two different points)"
+                    ));
+                    return false;
+                }
+                let (end, exact) = exact::far_end(l.base, l.axis, l.thickness);
+                if !exact {
+                    self.notes
+                        .push(format!("{label}: its axis reads back within rounding, not to the bit"));
+                }
+                put(format!(
+                    "lens\npoint     {}\npoint     {}\nray       {}\ncurvature {}\ncurvature {}\nend",
+                    vec3(l.base),
+                    vec3(end),
+                    num(l.radius),
+                    num(l.curvature1),
+                    num(l.curvature2)
+                ));
+            }
             Shape::Cylinder(c) => {
                 let (end, exact) = exact::far_end(c.base, c.axis, c.height);
                 if !exact {

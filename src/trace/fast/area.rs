@@ -33,11 +33,11 @@
 use super::{Facing, LightShare, Recorder, Surface, Tracer, below_horizon, members_of};
 use crate::area_light::{AreaLight, PointSet};
 use crate::light::{Attenuation, Incidence, arriving, direction_to};
-use crate::material::Material;
+use crate::material::{Material, Reflectance};
 use crate::scene::{ShadingModel, Specular};
 use crate::shading::{
     blinn_cosine, blinn_cosine_squared, blinn_defined, diffuse, half_of_even, half_vector_test_needed, phong_cosine,
-    pow_each, specular, specular_tint,
+    pow_each, specular,
 };
 use crate::shape::Verdict;
 use crate::skips::Skip;
@@ -242,9 +242,9 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
     }
 }
 
-/// What the diffuse and specular shares of one material and shading model take, by
-/// channel: the point's colour `L / N`, `k_d` (0 without the diffuse term), `S`, `k_s` and
-/// the tint `m S + (1 - m)`.
+/// What the diffuse and specular shares of one surface point's reflectance and shading
+/// model take, by channel: the point's colour `L / N`, `k_d` (0 without the diffuse term),
+/// `S`, `k_s` and the tint `m S + (1 - m)` ([`Material::reflectance`]).
 struct ShareFactors {
     point: [f64; 3],
     kd: f64,
@@ -254,13 +254,13 @@ struct ShareFactors {
 }
 
 impl ShareFactors {
-    fn new(point_color: DVec3, mat: &Material, model: ShadingModel) -> Self {
+    fn new(point_color: DVec3, refl: &Reflectance, model: ShadingModel) -> Self {
         ShareFactors {
             point: point_color.to_array(),
-            kd: if model.diffuse { mat.kd } else { 0.0 },
-            color: mat.color.to_array(),
-            ks: mat.ks,
-            tint: specular_tint(mat.metal, mat.color).to_array(),
+            kd: if model.diffuse { refl.kd } else { 0.0 },
+            color: refl.diffuse.to_array(),
+            ks: refl.ks,
+            tint: refl.tint.to_array(),
         }
     }
 
@@ -280,7 +280,14 @@ impl ShareFactors {
 /// `point_color`, `A L filter [k_d S N.L]` and `A L filter [k_s [m S + (1 - m)] spec]` by
 /// channel ([`ShareFactors::terms`]). Values for points that do not face the surface are
 /// computed and ignored.
-fn shares(lanes: &mut Lanes, len: usize, point_color: DVec3, filter: &[DVec3], mat: &Material, model: ShadingModel) {
+fn shares(
+    lanes: &mut Lanes,
+    len: usize,
+    point_color: DVec3,
+    filter: &[DVec3],
+    refl: &Reflectance,
+    model: ShadingModel,
+) {
     let Lanes {
         atten,
         n_dot_l,
@@ -289,7 +296,7 @@ fn shares(lanes: &mut Lanes, len: usize, point_color: DVec3, filter: &[DVec3], m
         specular,
         ..
     } = lanes;
-    let factors = ShareFactors::new(point_color, mat, model);
+    let factors = ShareFactors::new(point_color, refl, model);
     for i in 0..len {
         for c in 0..3 {
             (diffuse[c][i], specular[c][i]) = factors.terms(c, atten[i], filter[i][c], n_dot_l[i], spec[i]);
@@ -314,11 +321,11 @@ fn lane_sum(
     point_color: DVec3,
     filter: Option<&[DVec3]>,
     adds: &[bool],
-    mat: &Material,
+    refl: &Reflectance,
     model: ShadingModel,
 ) -> DVec3 {
     let len = adds.len();
-    let factors = ShareFactors::new(point_color, mat, model);
+    let factors = ShareFactors::new(point_color, refl, model);
     let (atten, n_dot_l, spec) = (&lanes.atten[..len], &lanes.n_dot_l[..len], &lanes.spec[..len]);
     let mut sum = color;
     let terms = SumTerms {
@@ -482,7 +489,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
                         speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
                         speculars_for = Some(exponent);
                     }
-                    color[j] = lane_sum(color[j], &s.lanes, member_color, filter, &s.adds[..count], mat, model);
+                    let refl = at.reflectance(mat);
+                    color[j] = lane_sum(color[j], &s.lanes, member_color, filter, &s.adds[..count], &refl, model);
                 }
                 done[j] = Some((key, color[j]));
                 if K > 1 && count < len {
@@ -506,7 +514,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         let (model, mat) = self.member_shading(0, at.object);
         s.ensure_filter(len);
         speculars(&mut s.lanes, len, at.n, at.eye, mat, model);
-        shares(&mut s.lanes, len, point_color, &s.filter, mat, model);
+        shares(&mut s.lanes, len, point_color, &s.filter, &at.reflectance(mat), model);
         for i in 0..len {
             let n_dot_l = s.lanes.n_dot_l[i];
             if s.facing[i] != Facing::Towards {
@@ -653,7 +661,7 @@ type MemberKey = (usize, usize, [u64; 3]);
 mod tests {
     use super::*;
     use crate::light::point_incidence;
-    use crate::shading::{blinn, phong};
+    use crate::shading::{blinn, phong, specular_tint};
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
 
@@ -700,7 +708,14 @@ mod tests {
             lanes.resize(points.len());
             incidences(&set, p, n, &att, &mut lanes);
             speculars(&mut lanes, points.len(), n, eye, &mat, model);
-            shares(&mut lanes, points.len(), point_color, &filter, &mat, model);
+            shares(
+                &mut lanes,
+                points.len(),
+                point_color,
+                &filter,
+                &mat.reflectance(|| (0.0, 0.0)),
+                model,
+            );
             for (i, &q) in points.iter().enumerate() {
                 let inc = point_incidence(q, point_color, &att, p, 1.0).unwrap();
                 assert_eq!(lanes.incidence(i, point_color), inc, "point {i}");
@@ -762,14 +777,29 @@ mod tests {
         let start = DVec3::new(0.25, 0.125, 0.0);
         for filter in [Some(&tinted[..]), None] {
             let ones = vec![DVec3::ONE; len];
-            shares(&mut lanes, len, point_color, filter.unwrap_or(&ones), &mat, model);
+            shares(
+                &mut lanes,
+                len,
+                point_color,
+                filter.unwrap_or(&ones),
+                &mat.reflectance(|| (0.0, 0.0)),
+                model,
+            );
             let [dr, dg, db] = &lanes.diffuse;
             let [sr, sg, sb] = &lanes.specular;
             let mut want = start;
             for i in (0..len).filter(|&i| adds[i]) {
                 want += DVec3::new(dr[i] + sr[i], dg[i] + sg[i], db[i] + sb[i]);
             }
-            let got = lane_sum(start, &lanes, point_color, filter, &adds, &mat, model);
+            let got = lane_sum(
+                start,
+                &lanes,
+                point_color,
+                filter,
+                &adds,
+                &mat.reflectance(|| (0.0, 0.0)),
+                model,
+            );
             assert_eq!(got.to_array().map(f64::to_bits), want.to_array().map(f64::to_bits));
             assert!(got.x > start.x + 1e-3, "the points add light: {got}");
         }
