@@ -105,7 +105,9 @@ pub struct Emitters {
 }
 
 impl Emitters {
-    /// The emitters of `scene`, in light order then object order.
+    /// The emitters of `scene`: the point-like lights' (points, spots, each point of an area
+    /// light) in light order, then the directional lights'; each light's by target in object
+    /// order.
     pub fn of(scene: &Scene) -> Emitters {
         let targets: Vec<(usize, DVec3, f64)> = scene
             .objects

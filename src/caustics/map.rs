@@ -4,8 +4,8 @@
 //! on the side of the surface the shading normal faces, `w` the filter's weight at distance
 //! `d_p` and `c pi r^2` its integral over the disk.
 //!
-//! The cells are at least `2 r` wide, so the ball of radius `r` about a point meets at most
-//! two cells along each axis. Photons are sorted by cell then by their index, and a cell's
+//! The cells are `2 r` wide, so the ball of radius `r` about a point meets at most two cells
+//! along each axis; only the occupied cells are kept (hashed), however far apart. Photons are sorted by cell then by their index, and a cell's
 //! photons are read in that order: the sum is the same bits however the map was filled.
 
 use crate::scene::PhotonFilter;
@@ -66,8 +66,9 @@ impl PhotonFilter {
     }
 }
 
-/// A hasher for cell keys: one multiplication (Fibonacci hashing). Lookups only, never an
-/// iteration, so the table's order never reaches a result.
+/// A hasher for cell keys: a rotation, an exclusive or and a multiplication per coordinate
+/// (as rustc's FxHash). The table is only looked up, never iterated for a result, so its
+/// order never reaches one.
 #[derive(Default)]
 struct CellHasher(u64);
 
@@ -78,15 +79,18 @@ impl Hasher for CellHasher {
         }
     }
     fn write_u64(&mut self, x: u64) {
-        self.0 = (self.0 ^ x).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7C_C1_B7_27_22_0A_95);
+    }
+    fn write_i64(&mut self, x: i64) {
+        self.write_u64(x as u64);
     }
     fn finish(&self) -> u64 {
-        self.0.rotate_left(29)
+        self.0
     }
 }
 
-/// Cells per axis at most: keys pack three cell coordinates of 21 bits in a `u64`.
-const CELLS_PER_AXIS: f64 = (1u64 << 21) as f64;
+/// A cell's integer coordinates.
+type Cell = (i64, i64, i64);
 
 /// What a density estimate found at a point.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -102,12 +106,12 @@ pub struct Estimate {
 pub struct PhotonMap {
     photons: Vec<Photon>,
     /// Each occupied cell's range in `photons`.
-    cells: HashMap<u64, (u32, u32), BuildHasherDefault<CellHasher>>,
+    cells: HashMap<Cell, (u32, u32), BuildHasherDefault<CellHasher>>,
     /// The least corner of the photons' bounding box, the cells' origin.
     origin: DVec3,
     /// The greatest corner of the photons' bounding box.
     top: DVec3,
-    /// Cell side, at least `2 r`.
+    /// Cell side, `2 r`.
     side: f64,
     radius: f64,
     filter: PhotonFilter,
@@ -125,12 +129,7 @@ impl PhotonMap {
             (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
             |(lo, hi), p| (lo.min(p.position), hi.max(p.position)),
         );
-        let extent = if photons.is_empty() {
-            0.0
-        } else {
-            (top - origin).max_element()
-        };
-        let side = (2.0 * radius).max(extent / (CELLS_PER_AXIS - 2.0));
+        let side = 2.0 * radius;
         let mut map = PhotonMap {
             photons: Vec::new(),
             cells: HashMap::default(),
@@ -142,10 +141,7 @@ impl PhotonMap {
             emitted,
             irradiance_bound: 0.0,
         };
-        let mut keyed: Vec<(u64, Photon)> = photons
-            .into_iter()
-            .map(|p| (map.key(map.cell(p.position)), p))
-            .collect();
+        let mut keyed: Vec<(Cell, Photon)> = photons.into_iter().map(|p| (map.cell(p.position), p)).collect();
         // Stable: within a cell, photons stay in index order.
         keyed.sort_by_key(|&(k, _)| k);
         let mut start = 0;
@@ -165,27 +161,18 @@ impl PhotonMap {
     /// photons' weights are at most 1. The largest flux of such a block, over `c pi r^2`,
     /// widened by a relative 1e-9 for rounding.
     fn bound(&self) -> f64 {
-        let mask = (1u64 << 21) - 1;
-        let flux_of = |key: u64| {
-            self.cells.get(&key).map_or(DVec3::ZERO, |&(s, e)| {
+        let flux_of = |cell: Cell| {
+            self.cells.get(&cell).map_or(DVec3::ZERO, |&(s, e)| {
                 self.photons[s as usize..e as usize].iter().map(Photon::flux).sum()
             })
         };
         let mut most: f64 = 0.0;
-        for &key in self.cells.keys() {
-            let (x, y, z) = (key >> 42, (key >> 21) & mask, key & mask);
+        for &(x, y, z) in self.cells.keys() {
             let mut block = DVec3::ZERO;
-            for dx in 0..3 {
-                for dy in 0..3 {
-                    for dz in 0..3 {
-                        let (Some(a), Some(b), Some(c)) = (
-                            (x + dx).checked_sub(1),
-                            (y + dy).checked_sub(1),
-                            (z + dz).checked_sub(1),
-                        ) else {
-                            continue;
-                        };
-                        block += flux_of(self.key([a, b, c]));
+            for dx in -1..=1 {
+                for dy in -1..=1 {
+                    for dz in -1..=1 {
+                        block += flux_of((x + dx, y + dy, z + dz));
                     }
                 }
             }
@@ -200,14 +187,10 @@ impl PhotonMap {
         self.irradiance_bound
     }
 
-    /// The cell coordinates of `p`, clamped to the grid.
-    fn cell(&self, p: DVec3) -> [u64; 3] {
+    /// The cell of `p`.
+    fn cell(&self, p: DVec3) -> Cell {
         let c = ((p - self.origin) / self.side).floor();
-        c.to_array().map(|x| x.clamp(0.0, CELLS_PER_AXIS - 1.0) as u64)
-    }
-
-    fn key(&self, [x, y, z]: [u64; 3]) -> u64 {
-        (x << 42) | (y << 21) | z
+        (c.x as i64, c.y as i64, c.z as i64)
     }
 
     /// The photons stored, sorted by cell.
@@ -236,10 +219,10 @@ impl PhotonMap {
         let r2 = r * r;
         let mut sum = DVec3::ZERO;
         let mut count = 0;
-        for x in a[0]..=b[0] {
-            for y in a[1]..=b[1] {
-                for z in a[2]..=b[2] {
-                    let Some(&(s, e)) = self.cells.get(&self.key([x, y, z])) else {
+        for x in a.0..=b.0 {
+            for y in a.1..=b.1 {
+                for z in a.2..=b.2 {
+                    let Some(&(s, e)) = self.cells.get(&(x, y, z)) else {
                         continue;
                     };
                     for p in &self.photons[s as usize..e as usize] {
