@@ -160,7 +160,6 @@ impl Emitters {
         let mut directional = Vec::new();
         for (index, light) in scene.lights.iter().enumerate() {
             match light {
-                Light::Ambient { .. } => {}
                 Light::Point(p) => point(p.position, p.color, p.attenuation, None),
                 Light::Spot(s) => point(
                     s.position,
@@ -179,6 +178,8 @@ impl Emitters {
                     }
                 }
                 Light::Directional { direction, color } => directional.push((*direction, *color)),
+                // The ambient light has no position or direction to send photons from.
+                _ => {}
             }
         }
         for (direction, color) in directional {
