@@ -143,7 +143,9 @@ pub fn group(scenes: &[&Scene]) -> Vec<Vec<usize>> {
         for g in &mut groups {
             let mut members: Vec<&Scene> = g.iter().map(|&m| scenes[m]).collect();
             members.push(scenes[i]);
-            if keys[g[0]] == keys[i] && plan(&members).is_ok() {
+            // A scene with caustics renders alone: its photons depend on its lights.
+            let alone = members.iter().any(|m| m.settings.caustics.is_some());
+            if !alone && keys[g[0]] == keys[i] && plan(&members).is_ok() {
                 g.push(i);
                 continue 'next;
             }

@@ -24,7 +24,9 @@
 //! 5. [`scene`]: the scene model, its TOML file format and SIMRenderer's (read and written),
 //!    with located errors.
 //! 6. [`accel`] (closest-hit and any-hit queries over a scene's objects: the linear scan or
-//!    a BVH), [`shard`] (split renders and their bit-identical merge).
+//!    a BVH), [`shard`] (split renders and their bit-identical merge), [`caustics`] (the
+//!    photon pass: emission, specular paths through the intersection core, the photon map and
+//!    its density estimate).
 //! 7. [`world`]: a scene ready to render (camera, intersection core, light points, bounds).
 //! 8. [`trace`]: the Whitted recursion, as the chapter reads ([`trace::reference`]) and as
 //!    it renders ([`trace::fast`]), to the same bits.
@@ -33,7 +35,8 @@
 //!     shading, rendered in one pass), [`probe`] (the recorded ray tree of one pixel),
 //!     [`edges`] (the pixels whose footprint spans a boundary, from the recorded paths).
 //! 11. [`figures`]: the course's figure sets, manifests, contact sheets and gallery.
-//! 12. [`study`]: render time against error of area lights.
+//! 12. [`study`]: render time against error of area lights; [`caustic_study`]: of the
+//!     caustic pass, over photon counts and estimate radii.
 //!
 //! The command line (clap's options, printing, progress bars, exit codes, Ctrl-C) lives in
 //! the binary, `src/main.rs` and `src/cli/`: the library's functions return data and errors,
@@ -70,6 +73,8 @@
 pub mod accel;
 pub mod area_light;
 pub mod camera;
+pub mod caustic_study;
+pub mod caustics;
 pub mod compare;
 pub mod conventions;
 pub mod edges;

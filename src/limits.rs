@@ -42,6 +42,15 @@ pub const MAX_LIGHT: f64 = 1e6;
 pub const MAX_SHININESS: f64 = 1e6;
 /// Largest index of refraction.
 pub const MAX_IOR: f64 = 10.0;
+/// Most photons of a caustic pass (each is stored in 48 bytes: 480 MB at the limit).
+pub const MAX_PHOTONS: u64 = 10_000_000;
+/// Most specular bounces of a photon.
+pub const MAX_PHOTON_BOUNCES: u32 = 64;
+/// Default number of specular bounces of a photon.
+pub const DEFAULT_PHOTON_BOUNCES: u32 = 8;
+/// Default radius of the caustic estimate (scene units: a tenth of the reference scene's
+/// spheres' radius).
+pub const DEFAULT_PHOTON_RADIUS: f64 = 0.075;
 /// Default adaptive depth control threshold, in 8-bit levels.
 pub const DEFAULT_ADAPTIVE_THRESHOLD: f64 = 0.25;
 

@@ -114,4 +114,11 @@ impl Material {
     pub fn is_transparent(&self) -> bool {
         self.kt > 0.0
     }
+
+    /// Transparent with an index other than the air's: it bends the light it lets through
+    /// (a lens, a prism). With caustics on, its light arrives as photons, and it receives
+    /// none itself ([`crate::scene::CausticSettings`]).
+    pub fn bends_light(&self) -> bool {
+        self.kt > 0.0 && self.ior != 1.0
+    }
 }

@@ -8,6 +8,7 @@
 //! uses, so the probe never recomputes anything the tracer computed.
 
 use crate::accel::AccelChoice;
+use crate::caustics::Estimate;
 use crate::film::{clamp_unit, quantize};
 use crate::light::Light;
 use crate::math::Ray;
@@ -23,6 +24,9 @@ use std::fmt::Write as _;
 #[derive(Clone, Debug, Serialize)]
 pub struct PixelProbe {
     pub pixel: [u32; 2],
+    /// Caustic photons stored, out of those emitted, when the scene has caustics.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub photons: Option<PhotonCount>,
     pub width: u32,
     pub height: u32,
     pub samples_per_pixel: u32,
@@ -37,6 +41,13 @@ pub struct PixelProbe {
     pub color: FinalColor,
     /// Rays traced for this probe, by kind.
     pub counts: RayCounts,
+}
+
+/// The caustic pass behind a probe.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct PhotonCount {
+    pub emitted: u64,
+    pub stored: usize,
 }
 
 /// One sample: its jittered image position, its camera ray's tree and its radiance.
@@ -77,7 +88,12 @@ pub struct RayNode {
     pub ambient: Option<[f64; 3]>,
     /// Every non-ambient light, in scene order.
     pub lights: Vec<LightRecord>,
-    /// Local illumination: ambient plus every light's diffuse and specular shares.
+    /// The caustic share at the hit, when the scene has caustics and the surface a diffuse
+    /// term.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub caustic: Option<CausticRecord>,
+    /// Local illumination: ambient plus every light's diffuse and specular shares (and the
+    /// caustic share).
     pub local: Option<[f64; 3]>,
     /// The refracted ray was impossible: its weight `k_t` went to the reflected ray.
     pub total_internal_reflection: bool,
@@ -143,6 +159,19 @@ pub struct Share {
     pub specular: [f64; 3],
 }
 
+/// The caustic photons' share at a hit.
+#[derive(Clone, Debug, Serialize)]
+pub struct CausticRecord {
+    /// The irradiance `E` of the density estimate.
+    pub irradiance: [f64; 3],
+    /// The photons in the estimate (within the radius, arriving on the lit side).
+    pub photons: usize,
+    /// The radius of the estimate.
+    pub radius: f64,
+    /// The term added to the local illumination, `E k_d S`.
+    pub term: [f64; 3],
+}
+
 /// A shadow ray towards a light.
 #[derive(Clone, Debug, Serialize)]
 pub struct ShadowRay {
@@ -197,6 +226,8 @@ fn light_kind(light: &Light) -> &'static str {
 /// its parent (or, for the camera ray, into the sample).
 pub struct TreeRecorder<'s> {
     scene: &'s Scene,
+    /// The caustic estimate's radius (0 without caustics).
+    radius: f64,
     stack: Vec<RayNode>,
     root: Option<RayNode>,
     sample: Option<(u32, [f64; 2])>,
@@ -208,6 +239,7 @@ impl<'s> TreeRecorder<'s> {
     pub fn new(scene: &'s Scene) -> Self {
         TreeRecorder {
             scene,
+            radius: scene.settings.caustics.map_or(0.0, |c| c.radius),
             stack: Vec::new(),
             root: None,
             sample: None,
@@ -232,6 +264,7 @@ impl Recorder for TreeRecorder<'_> {
             hit: None,
             ambient: None,
             lights: Vec::new(),
+            caustic: None,
             local: None,
             total_internal_reflection: false,
             children: Vec::new(),
@@ -336,6 +369,16 @@ impl Recorder for TreeRecorder<'_> {
         });
     }
 
+    fn caustic(&mut self, term: DVec3, estimate: &Estimate) {
+        let radius = self.radius;
+        self.top().caustic = Some(CausticRecord {
+            irradiance: v3(estimate.irradiance),
+            photons: estimate.photons,
+            radius,
+            term: v3(term),
+        });
+    }
+
     fn local(&mut self, color: DVec3) {
         self.top().local = Some(v3(color));
     }
@@ -419,6 +462,10 @@ pub fn probe_with(
     let c = &tracer.counts;
     Ok(PixelProbe {
         pixel: [x, y],
+        photons: world.photons.as_ref().map(|m| PhotonCount {
+            emitted: m.emitted(),
+            stored: m.photons().len(),
+        }),
         width: s.width,
         height: s.height,
         samples_per_pixel: s.samples_per_pixel,
@@ -469,6 +516,9 @@ pub fn format_text(p: &PixelProbe) -> String {
         num(p.adaptive_threshold)
     );
     let _ = writeln!(o, "conventions {}", p.conventions);
+    if let Some(n) = &p.photons {
+        let _ = writeln!(o, "caustics: {} photon(s) stored of {} emitted", n.stored, n.emitted);
+    }
     for s in &p.samples {
         let _ = writeln!(o, "sample {} at image position {}", s.index, vec(&s.position));
         write_ray(o, &s.ray, 1);
@@ -519,6 +569,16 @@ fn write_ray(o: &mut String, r: &RayNode, depth: usize) {
     }
     for l in &r.lights {
         write_light(o, l, &pad);
+    }
+    if let Some(c) = &r.caustic {
+        let _ = writeln!(
+            o,
+            "{pad}  caustic: {} photon(s) within {}, irradiance E {}, E k_d S {}",
+            c.photons,
+            num(c.radius),
+            vec(&c.irradiance),
+            vec(&c.term)
+        );
     }
     if let Some(l) = &r.local {
         let _ = writeln!(o, "{pad}  local {}", vec(l));

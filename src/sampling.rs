@@ -16,6 +16,9 @@ pub enum Purpose {
     LightPoints = 2,
     /// Anything a test or a generator draws.
     Generator = 3,
+    /// Caustic photons: index = photon number; the emitter, the direction, then one number
+    /// per bounce ([`crate::caustics`]).
+    Photons = 4,
 }
 
 /// One random stream.

@@ -187,6 +187,14 @@ pub fn specular<C: Channels>(light: C, ks: f64, tint: C, spec: f64) -> C {
     light * (tint * ks * spec)
 }
 
+/// The caustic share at a point of a diffuse surface: `E k_d S`, the diffuse term of the
+/// slides with the light's `L max(N.L, 0)` replaced by the irradiance `E` the caustic
+/// photons bring (their density already counts the cosine: a beam of cross-section `A` spreads
+/// over `A / cos(theta)`).
+pub fn caustic(irradiance: DVec3, kd: f64, color: DVec3) -> DVec3 {
+    irradiance * (color * kd)
+}
+
 /// Shadow filter of chapter 7.4b: `L = L_lum prod_g S_g` over the transparent geometries
 /// the shadow ray crosses (each counted once, in ascending object order so the bits do
 /// not depend on the order they are found in); an empty product is 1.

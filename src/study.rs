@@ -506,10 +506,10 @@ fn speedups(study: &Study, what: &str, cost: &dyn Fn(&Row) -> f64, show: &dyn Fn
 // The plot.
 // ---------------------------------------------------------------------------------------
 
-const WHITE: Rgb<u8> = Rgb([255, 255, 255]);
-const BLACK: Rgb<u8> = Rgb([0, 0, 0]);
-const GRID: Rgb<u8> = Rgb([225, 225, 225]);
-const MINOR: Rgb<u8> = Rgb([242, 242, 242]);
+pub(crate) const WHITE: Rgb<u8> = Rgb([255, 255, 255]);
+pub(crate) const BLACK: Rgb<u8> = Rgb([0, 0, 0]);
+pub(crate) const GRID: Rgb<u8> = Rgb([225, 225, 225]);
+pub(crate) const MINOR: Rgb<u8> = Rgb([242, 242, 242]);
 
 /// Colour of a placement's lines.
 fn placement_color(p: Placement) -> Rgb<u8> {
@@ -522,7 +522,7 @@ fn placement_color(p: Placement) -> Rgb<u8> {
 }
 
 /// Draws a 2-pixel-wide line; `dash` = (on, off) lengths in pixels for dashed lines.
-fn line(img: &mut RgbImage, a: (f64, f64), b: (f64, f64), color: Rgb<u8>, dash: Option<(f64, f64)>) {
+pub(crate) fn line(img: &mut RgbImage, a: (f64, f64), b: (f64, f64), color: Rgb<u8>, dash: Option<(f64, f64)>) {
     let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
     let steps = (len * 2.0).ceil().max(1.0) as usize;
     for i in 0..=steps {
@@ -538,7 +538,7 @@ fn line(img: &mut RgbImage, a: (f64, f64), b: (f64, f64), color: Rgb<u8>, dash: 
 }
 
 /// A filled square of half-side `r` around `(x, y)`.
-fn dot(img: &mut RgbImage, x: f64, y: f64, r: i64, color: Rgb<u8>) {
+pub(crate) fn dot(img: &mut RgbImage, x: f64, y: f64, r: i64, color: Rgb<u8>) {
     let (cx, cy) = (x.round() as i64, y.round() as i64);
     for dy in -r..=r {
         for dx in -r..=r {
@@ -551,7 +551,7 @@ fn dot(img: &mut RgbImage, x: f64, y: f64, r: i64, color: Rgb<u8>) {
 }
 
 /// A decade's label: 0.001 ... 1000, else 1e-5 style.
-fn decade_label(e: i32) -> String {
+pub(crate) fn decade_label(e: i32) -> String {
     if (-3..=3).contains(&e) {
         let v = 10f64.powi(e);
         if e < 0 {
@@ -561,6 +561,84 @@ fn decade_label(e: i32) -> String {
         }
     } else {
         format!("1e{e}")
+    }
+}
+
+/// The frame of a log-log plot: whole decades around the points, mapped onto the pixels
+/// `left..right` and `bottom..top`.
+pub(crate) struct LogLog {
+    x0: i32,
+    x1: i32,
+    y0: i32,
+    y1: i32,
+    frame: (f64, f64, f64, f64),
+}
+
+impl LogLog {
+    /// Draws the grid (minor lines at 2..9 of each decade, decades labelled) and the frame
+    /// that hold `pts` (positive `(x, y)`) into `img`, inside `(left, right, top, bottom)`.
+    pub(crate) fn draw(img: &mut RgbImage, pts: &[(f64, f64)], frame: (f64, f64, f64, f64)) -> LogLog {
+        let (left, right, top, bottom) = frame;
+        let span = |v: &mut dyn Iterator<Item = f64>| {
+            let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+            if lo.is_finite() {
+                let (a, b) = (libm::floor(libm::log10(lo)), libm::ceil(libm::log10(hi)));
+                (a as i32, (b as i32).max(a as i32 + 1))
+            } else {
+                (-1, 1)
+            }
+        };
+        let (x0, x1) = span(&mut pts.iter().map(|p| p.0));
+        let (y0, y1) = span(&mut pts.iter().map(|p| p.1));
+        let axes = LogLog { x0, x1, y0, y1, frame };
+        let (px, py) = (|t: f64| axes.x(t), |e: f64| axes.y(e));
+        for d in x0..x1 {
+            for k in 2..10 {
+                let x = px(k as f64 * 10f64.powi(d));
+                line(img, (x, top), (x, bottom), MINOR, None);
+            }
+        }
+        for d in y0..y1 {
+            for k in 2..10 {
+                let y = py(k as f64 * 10f64.powi(d));
+                line(img, (left, y), (right, y), MINOR, None);
+            }
+        }
+        for d in x0..=x1 {
+            let x = px(10f64.powi(d));
+            line(img, (x, top), (x, bottom), GRID, None);
+            let label = decade_label(d);
+            let lx = (x - 4.0 * label.len() as f64).max(0.0) as u32;
+            draw_text(img, lx, bottom as u32 + 8, &label, 1, BLACK);
+        }
+        for d in y0..=y1 {
+            let y = py(10f64.powi(d));
+            line(img, (left, y), (right, y), GRID, None);
+            let label = decade_label(d);
+            let lx = (left as u32).saturating_sub(8 * label.len() as u32 + 8);
+            draw_text(img, lx, (y - 4.0).max(0.0) as u32, &label, 1, BLACK);
+        }
+        for (a, b) in [
+            ((left, top), (right, top)),
+            ((left, bottom), (right, bottom)),
+            ((left, top), (left, bottom)),
+            ((right, top), (right, bottom)),
+        ] {
+            line(img, a, b, BLACK, None);
+        }
+        axes
+    }
+
+    /// The pixel column of `t`.
+    pub(crate) fn x(&self, t: f64) -> f64 {
+        let (left, right, _, _) = self.frame;
+        left + (libm::log10(t) - self.x0 as f64) / (self.x1 - self.x0) as f64 * (right - left)
+    }
+
+    /// The pixel row of `e`.
+    pub(crate) fn y(&self, e: f64) -> f64 {
+        let (_, _, top, bottom) = self.frame;
+        bottom - (libm::log10(e) - self.y0 as f64) / (self.y1 - self.y0) as f64 * (bottom - top)
     }
 }
 
@@ -576,55 +654,8 @@ pub fn plot(study: &Study) -> RgbImage {
         .filter(|r| r.error.rmse > 0.0 && r.seconds > 0.0)
         .map(|r| (r.seconds, r.error.rmse))
         .collect();
-    let span = |v: &mut dyn Iterator<Item = f64>| {
-        let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
-        if lo.is_finite() {
-            let (a, b) = (libm::floor(libm::log10(lo)), libm::ceil(libm::log10(hi)));
-            (a as i32, (b as i32).max(a as i32 + 1))
-        } else {
-            (-1, 1)
-        }
-    };
-    let (x0, x1) = span(&mut pts.iter().map(|p| p.0));
-    let (y0, y1) = span(&mut pts.iter().map(|p| p.1));
-    let px = |t: f64| left + (libm::log10(t) - x0 as f64) / (x1 - x0) as f64 * (right - left);
-    let py = |e: f64| bottom - (libm::log10(e) - y0 as f64) / (y1 - y0) as f64 * (bottom - top);
-    // Minor grid (2..9 x each decade), then decades with labels.
-    for d in x0..x1 {
-        for k in 2..10 {
-            let x = px(k as f64 * 10f64.powi(d));
-            line(&mut img, (x, top), (x, bottom), MINOR, None);
-        }
-    }
-    for d in y0..y1 {
-        for k in 2..10 {
-            let y = py(k as f64 * 10f64.powi(d));
-            line(&mut img, (left, y), (right, y), MINOR, None);
-        }
-    }
-    for d in x0..=x1 {
-        let x = px(10f64.powi(d));
-        line(&mut img, (x, top), (x, bottom), GRID, None);
-        let label = decade_label(d);
-        let lx = (x - 4.0 * label.len() as f64).max(0.0) as u32;
-        draw_text(&mut img, lx, bottom as u32 + 8, &label, 1, BLACK);
-    }
-    for d in y0..=y1 {
-        let y = py(10f64.powi(d));
-        line(&mut img, (left, y), (right, y), GRID, None);
-        let label = decade_label(d);
-        let lx = (left as u32).saturating_sub(8 * label.len() as u32 + 8);
-        draw_text(&mut img, lx, (y - 4.0).max(0.0) as u32, &label, 1, BLACK);
-    }
-    // Frame.
-    for (a, b) in [
-        ((left, top), (right, top)),
-        ((left, bottom), (right, bottom)),
-        ((left, top), (left, bottom)),
-        ((right, top), (right, bottom)),
-    ] {
-        line(&mut img, a, b, BLACK, None);
-    }
+    let axes = LogLog::draw(&mut img, &pts, (left, right, top, bottom));
+    let (px, py) = (|t: f64| axes.x(t), |e: f64| axes.y(e));
     let title = format!(
         "Soft shadows: RMSE against render time ({} x {}, {} spp; reference {} {} N = {})",
         study.width,

@@ -6,6 +6,7 @@
 use crate::accel::{Accel, AccelChoice};
 use crate::area_light::{PointMode, PointSet};
 use crate::camera::Camera;
+use crate::caustics::{self, PhotonMap};
 use crate::light::Light;
 use crate::material::Material;
 use crate::math::Ray;
@@ -112,6 +113,13 @@ pub struct World<'s> {
     pub costly: Vec<bool>,
     /// The shortcuts switched on (all by default; tests switch them off one at a time).
     pub skips: Skips,
+    /// The caustic photons, when the scene has a `[caustics]` table.
+    pub photons: Option<PhotonMap>,
+    /// Wall time of tracing the photons and building their map, in seconds.
+    pub photon_seconds: f64,
+    /// Per object, whether it lets shadow rays through, filtering them by its colour
+    /// ([`World::filters_shadows`]).
+    see_through: Vec<bool>,
 }
 
 impl<'s> World<'s> {
@@ -131,10 +139,12 @@ impl<'s> World<'s> {
             s.width as f64 / s.height as f64,
         );
         let ambient = scene.ambient();
-        let has_transparent = scene
+        let see_through: Vec<bool> = scene
             .objects
             .iter()
-            .any(|o| scene.materials[o.material].is_transparent());
+            .map(|o| lets_shadows_through(scene, &scene.materials[o.material]))
+            .collect();
+        let has_transparent = see_through.iter().any(|&t| t);
         let costly: Vec<bool> = scene
             .objects
             .iter()
@@ -156,7 +166,14 @@ impl<'s> World<'s> {
         let start = std::time::Instant::now();
         let accel = Accel::build_with(&scene.objects, choice);
         let accel_seconds = start.elapsed().as_secs_f64();
+        let start = std::time::Instant::now();
+        let photons = s.caustics.as_ref().map(|c| caustics::build(scene, &accel, c));
+        let photon_seconds = start.elapsed().as_secs_f64();
+        let caustic_bound = photons.as_ref().map(PhotonMap::irradiance_bound);
         World {
+            photons,
+            photon_seconds,
+            see_through,
             scene,
             camera,
             accel,
@@ -164,7 +181,7 @@ impl<'s> World<'s> {
             ambient,
             has_transparent,
             has_textures,
-            remaining_bound: remaining_bounds(scene, ambient),
+            remaining_bound: remaining_bounds(scene, ambient, caustic_bound),
             light_points: scene
                 .lights
                 .iter()
@@ -229,9 +246,19 @@ impl<'s> World<'s> {
         }
     }
 
-    /// [`World::remaining_bound`] of `scene`, without building its world.
+    /// [`World::remaining_bound`] of `scene`, without building its world (for a scene with
+    /// caustics, whose photons are not traced here, no bound: every ray is traced).
     pub fn remaining_bounds_of(scene: &Scene) -> Vec<f64> {
-        remaining_bounds(scene, scene.ambient())
+        remaining_bounds(scene, scene.ambient(), None)
+    }
+
+    /// Whether object `object` lets shadow rays through, filtering their light by its
+    /// colour (chapter 7.4b): a transparent object (`k_t > 0`), except, when the scene has
+    /// caustics, one whose index is not 1. Light bent by such an object arrives as caustic
+    /// photons; letting the shadow ray through too would count it twice. An object of index
+    /// 1 bends nothing and keeps the chapter's colour filter.
+    pub fn filters_shadows(&self, object: usize) -> bool {
+        self.see_through[object]
     }
 
     pub fn material_of(&self, object: usize) -> &Material {
@@ -283,10 +310,16 @@ impl<'s> World<'s> {
     }
 }
 
+/// [`World::filters_shadows`] for an object of material `m` in `scene`.
+fn lets_shadows_through(scene: &Scene, m: &Material) -> bool {
+    m.is_transparent() && (scene.settings.caustics.is_none() || !m.bends_light())
+}
+
 /// Upper bound of what a ray at each level (1-based, index 0 unused) can return: a local
 /// bound `B = max(L_a) max(k_a) + sum_i max(L_i) max(k_d + k_s)` (or the background if
 /// larger) plus `K = max(k_r + k_t)` times the bound one level deeper.
-fn remaining_bounds(scene: &Scene, ambient: DVec3) -> Vec<f64> {
+/// With caustics, `caustic_bound` bounds the irradiance of the photon map's estimates.
+fn remaining_bounds(scene: &Scene, ambient: DVec3, caustic_bound: Option<f64>) -> Vec<f64> {
     let mats = &scene.materials;
     let max_of = |f: &dyn Fn(&Material) -> f64| mats.iter().map(f).fold(0.0, f64::max);
     let direct: f64 = scene
@@ -299,6 +332,14 @@ fn remaining_bounds(scene: &Scene, ambient: DVec3) -> Vec<f64> {
         .max(scene.settings.background.max_element());
     let k = max_of(&|m| m.kr + m.kt);
     let depth = scene.settings.depth as usize;
+    let local = match (scene.settings.caustics, caustic_bound) {
+        (None, _) => local,
+        // The caustic share `E k_d S` is at most the map's bound on `E` times the largest
+        // `k_d S`.
+        (Some(_), Some(e)) => local + e * max_of(&|m| m.kd * m.color.max_element()),
+        // Not known before the photons are traced: adaptive depth control cuts no ray.
+        (Some(_), None) => f64::INFINITY,
+    };
     let mut bound = vec![0.0; depth + 2];
     for level in (1..=depth).rev() {
         bound[level] = local + k * bound[level + 1];

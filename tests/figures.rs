@@ -26,9 +26,10 @@ fn every_figure_matches_its_snapshot() {
         }
     }
     // lighting 3 + directional 4 + attenuation 2 + spotlight 2 + soft-shadows 8 +
-    // light-shapes 3 + mirrors 13 + prism 21 + shading 25 + optique 5: every figure of the
-    // course.
-    assert_eq!(count, 86);
+    // light-shapes 3 + mirrors 13 + prism 21 + shading 25: every figure of the course; and
+    // what SIMRenderer adds for the optics labs (optique 5) and what it cannot do
+    // (caustics 6).
+    assert_eq!(count, 92);
 }
 
 #[test]
@@ -374,13 +375,21 @@ fn no_committed_figure_is_washed_out_unless_its_manifest_says_why() {
         }
     }
     assert_eq!(intended, ["attenuation/01-no-attenuation.png"]);
-    assert_eq!(kept, ["spotlight/02-theta-120.png", "prism/01-top-depth-01.png"]);
+    assert_eq!(
+        kept,
+        [
+            "spotlight/02-theta-120.png",
+            "prism/01-top-depth-01.png",
+            "caustics/04-ball-lens-1e4.png"
+        ]
+    );
     // Those are saturated indeed (no figure is excused for nothing), and some other figure
     // has white highlights: the count sees white where there is some.
     for (set, file, at_least) in [
         ("attenuation", "01-no-attenuation.png", 0.10),
         ("spotlight", "02-theta-120.png", 0.04),
         ("prism", "01-top-depth-01.png", 0.015),
+        ("caustics", "04-ball-lens-1e4.png", 0.011),
     ] {
         let (w, h, rgb) = committed_rgb(set, file);
         let white = rgb.chunks(3).filter(|p| p == &[255, 255, 255]).count() as f64;

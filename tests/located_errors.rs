@@ -197,7 +197,7 @@ fn errors_in_top_level_tables() {
     assert_eq!(
         error_after("[camera]", "[kamera]"),
         "s.toml:6:2: kamera: unknown field `kamera`, expected one of `image`, `camera`, \
-         `render`, `conventions`, `materials`, `shapes`, `lights`, `generate`"
+         `render`, `conventions`, `caustics`, `materials`, `shapes`, `lights`, `generate`"
     );
     assert_eq!(
         error_after("height = 12", "height = 12.5"),

@@ -114,9 +114,9 @@ pub enum Command {
     /// Numerical stress campaign: hard rays against every shape, checked against double-double references.
     #[command(after_help = "Example:\n  lumiere stress --rays 2000 --seed 7")]
     Stress(stress::StressArgs),
-    /// Measurement studies: soft shadows' render time against error (N, placement, mode).
+    /// Measurement studies: render time against error of soft shadows (N, placement, mode) and of caustics (photons, radius).
     #[command(
-        after_help = "Example:\n  lumiere study soft-shadows --width 200 --height 150 --out /tmp/study\n\nSee `lumiere study soft-shadows --help`."
+        after_help = "Examples:\n  lumiere study soft-shadows --width 200 --height 150 --out /tmp/study\n  lumiere study caustics --out /tmp/study-caustics\n\nSee `lumiere study soft-shadows --help` and `lumiere study caustics --help`."
     )]
     Study(study::StudyArgs),
 }

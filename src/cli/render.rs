@@ -123,6 +123,10 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
         load: loaded.as_secs_f64(),
         build: (built - loaded).as_secs_f64(),
         accel: AccelReport::of(&world),
+        photons: world
+            .photons
+            .as_ref()
+            .map(|m| (m.emitted(), m.photons().len(), world.photon_seconds)),
         render: stats.elapsed.as_secs_f64(),
         write: (start.elapsed() - built - stats.elapsed).as_secs_f64(),
     };
@@ -156,6 +160,9 @@ struct Phases {
     build: f64,
     /// The acceleration structure, part of `build`.
     accel: AccelReport,
+    /// With caustics: photons emitted, photons stored, and the seconds of the photon pass
+    /// (part of `build`).
+    photons: Option<(u64, usize, f64)>,
     /// Tracing every pixel.
     render: f64,
     /// Encoding and writing the output.
@@ -193,7 +200,7 @@ fn skipped_json(c: &lumiere::trace::RayCounts) -> serde_json::Value {
 /// The statistics as JSON, for programs.
 fn stats_json(stats: &RenderStats, phases: &Phases) -> String {
     let c = &stats.counts;
-    serde_json::json!({
+    let mut json = serde_json::json!({
         "seconds": stats.elapsed.as_secs_f64(),
         "phases": { "load": phases.load, "build": phases.build, "render": phases.render, "write": phases.write },
         "accel": {
@@ -213,8 +220,11 @@ fn stats_json(stats: &RenderStats, phases: &Phases) -> String {
         "total_internal_reflections": c.total_internal_reflections,
         "adaptive_cutoffs": c.adaptive_cutoffs,
         "non_finite_samples": c.non_finite,
-    })
-    .to_string()
+    });
+    if let Some((emitted, stored, seconds)) = phases.photons {
+        json["caustics"] = serde_json::json!({ "emitted": emitted, "stored": stored, "seconds": seconds });
+    }
+    json.to_string()
 }
 
 /// Human-readable ray counts, skipped work and time by phase.
@@ -225,6 +235,9 @@ fn stats_report(stats: &RenderStats, phases: &Phases) -> String {
         skipped += &format!("  {:<18} {:>14}  {}\n", s.name(), c.saved.get(s), s.unit());
     }
     let a = &phases.accel;
+    let caustics = phases.photons.map_or(String::new(), |(emitted, stored, seconds)| {
+        format!("caustic photons: {emitted} emitted, {stored} stored, in {seconds:.3} s (part of build)\n")
+    });
     let phases = format!(
         "time by phase: load {:.3} s, build {:.3} s, render {:.3} s, write {:.3} s\n\
          intersection core: {} over {} objects, {} bytes ({:.1} bytes/object), built in {:.3} s\n",
@@ -239,6 +252,7 @@ fn stats_report(stats: &RenderStats, phases: &Phases) -> String {
         a.seconds
     );
     phases
+        + &caustics
         + &skipped
         + &format!(
             "time          {:.3} s\ncamera rays   {}\nshadow rays   {}\nreflection    {}\nrefraction    {}\ntotal rays    {}\ntotal internal reflections {}\nadaptive cutoffs {}\nnon-finite samples {}\n",

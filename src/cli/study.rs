@@ -25,6 +25,48 @@ pub enum StudyKind {
         after_help = "Examples:\n  lumiere study soft-shadows                       # scenes/soft-shadows.toml, 200 x 150, into study/\n  lumiere study soft-shadows --points 1,16,256 --placements uniform,fibonacci --modes per_sample\n  lumiere study soft-shadows scenes/soft-shadows.toml --width 400 --height 300 --repeats 3 --check-reference --out /tmp/study\n\nWrites <out>/study.csv, study.png (log-log RMSE against time), study.md (tables), reference.png.\nExit codes: 0 ok, 1 an output could not be written (disk full), 2 bad input (no area light, bad list, output folder)."
     )]
     SoftShadows(SoftShadowArgs),
+    /// Time against error of the caustic pass for photon counts x estimate radii.
+    #[command(
+        after_help = "Examples:\n  lumiere study caustics                           # scenes/figures/caustics/01-reference-glass.toml, 200 x 150, into study-caustics/\n  lumiere study caustics --photons 10000,100000,1000000 --radii 0.025,0.05,0.1 --reference-photons 10000000\n\nWrites <out>/study.csv, study.png (log-log RMSE against time, a line per radius), study.md (tables), reference.png.\nExit codes: 0 ok, 1 an output could not be written (disk full), 2 bad input (no [caustics] table, bad list, output folder)."
+    )]
+    Caustics(CausticStudyArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct CausticStudyArgs {
+    /// The scene file; it must have a `[caustics]` table (its filter and bounces are kept).
+    #[arg(default_value = "scenes/figures/caustics/01-reference-glass.toml")]
+    pub scene: PathBuf,
+    /// Photon counts, comma-separated, each in [1, 10000000].
+    #[arg(long, default_value = "10000,30000,100000,300000,1000000")]
+    pub photons: String,
+    /// Estimate radii, comma-separated, each > 0.
+    #[arg(long, default_value = "0.025,0.05,0.1")]
+    pub radii: String,
+    /// Photons of the reference.
+    #[arg(long, default_value_t = 10_000_000)]
+    pub reference_photons: u64,
+    /// Radius of the reference's estimate.
+    #[arg(long, default_value_t = 0.025)]
+    pub reference_radius: f64,
+    /// Image width in pixels.
+    #[arg(long, default_value_t = 200)]
+    pub width: u32,
+    /// Image height in pixels.
+    #[arg(long, default_value_t = 150)]
+    pub height: u32,
+    /// Samples per pixel (a perfect square); default: the scene's.
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Renders per configuration; the median time is reported (the images are identical).
+    #[arg(long, default_value_t = 1)]
+    pub repeats: u32,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Output directory (created if missing).
+    #[arg(long, default_value = "study-caustics")]
+    pub out: PathBuf,
 }
 
 #[derive(Args, Debug)]
@@ -79,7 +121,97 @@ pub struct SoftShadowArgs {
 pub fn run(args: &StudyArgs, v: Verbosity) -> Result<(), CliError> {
     match &args.kind {
         StudyKind::SoftShadows(a) => soft_shadows(a, v),
+        StudyKind::Caustics(a) => caustics(a, v),
     }
+}
+
+/// A comma-separated list of `what` (named `flag` in messages), each checked by `check`.
+fn parse_numbers<T: std::str::FromStr + PartialOrd + Copy>(
+    flag: &str,
+    text: &str,
+    check: &dyn Fn(T) -> Result<(), String>,
+) -> Result<Vec<T>, String> {
+    let mut out: Vec<T> = Vec::new();
+    for item in text.split(',').map(str::trim) {
+        let x: T = item
+            .parse()
+            .map_err(|_| format!("--{flag}: {item:?} is not a number"))?;
+        check(x).map_err(|m| format!("--{flag}: {m}"))?;
+        if !out.contains(&x) {
+            out.push(x);
+        }
+    }
+    Ok(out)
+}
+
+fn caustics(args: &CausticStudyArgs, v: Verbosity) -> Result<(), CliError> {
+    let bad = CliError::BadInput;
+    let mut scene = scene::load(&args.scene).map_err(|e| bad(e.to_string()))?;
+    if scene.settings.caustics.is_none() {
+        return Err(bad(format!(
+            "{}: the scene has no [caustics] table to study",
+            args.scene.display()
+        )));
+    }
+    let max = limits::MAX_PHOTONS;
+    let count = |n: u64| {
+        if n == 0 || n > max {
+            Err(format!("each count must be in [1, {max}], got {n}"))
+        } else {
+            Ok(())
+        }
+    };
+    let radius = |r: f64| {
+        if r.is_finite() && r > 0.0 && r <= limits::MAX_COORDINATE {
+            Ok(())
+        } else {
+            Err(format!(
+                "each radius must be in (0, {}], got {r}",
+                limits::MAX_COORDINATE
+            ))
+        }
+    };
+    let photons = parse_numbers("photons", &args.photons, &count).map_err(bad)?;
+    let radii = parse_numbers("radii", &args.radii, &radius).map_err(bad)?;
+    count(args.reference_photons).map_err(|m| bad(format!("--reference-photons: {m}")))?;
+    radius(args.reference_radius).map_err(|m| bad(format!("--reference-radius: {m}")))?;
+    if args.repeats == 0 || args.repeats > 100 {
+        return Err(bad(format!("--repeats: must be in [1, 100], got {}", args.repeats)));
+    }
+    let size = scene::Overrides {
+        width: Some(args.width),
+        height: Some(args.height),
+        spp: args.spp,
+        ..scene::Overrides::default()
+    };
+    size.apply(&mut scene).map_err(bad)?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| WriteError::new(&args.out, "cannot create the output directory", e))?;
+    let plan = lumiere::caustic_study::Plan {
+        photons,
+        radii,
+        repeats: args.repeats,
+        reference: lumiere::caustic_study::Config {
+            photons: args.reference_photons,
+            radius: args.reference_radius,
+        },
+    };
+    let quiet = v == Verbosity::Quiet;
+    let (study, reference_film) = with_threads(args.threads, || {
+        lumiere::caustic_study::run(&scene, &plan, &mut |line| {
+            if !quiet {
+                eprintln!("lumiere: {line}");
+            }
+        })
+    })?
+    .map_err(bad)?;
+    let files = lumiere::caustic_study::outputs(&study, &reference_film).map_err(CliError::Failed)?;
+    for (name, bytes) in files {
+        let path = args.out.join(name);
+        write_atomic(&path, &bytes).map_err(|e| WriteError::new(&path, "cannot write", e))?;
+    }
+    print!("{}", lumiere::caustic_study::report(&study));
+    Ok(())
 }
 
 fn soft_shadows(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {

@@ -10,7 +10,7 @@
 use super::generate::{Generate, GenerateKind};
 use super::locate::{FieldError, FieldPath, line_col, locate, path_at};
 use super::tag;
-use super::{CameraSpec, Object, Scene, Settings, ShadingModel, Specular};
+use super::{CameraSpec, CausticSettings, Object, PhotonFilter, Scene, Settings, ShadingModel, Specular};
 use crate::area_light::{AreaLight, AreaShape, PointMode};
 use crate::conventions::{Conventions, Highlight};
 use crate::interference::{Aperture, ApertureLight, Invalid, Mask, Planar};
@@ -54,11 +54,12 @@ pub enum SceneError {
 }
 
 /// The top-level keys of the format: the fields of [`FileScene`].
-const TOP_LEVEL: [&str; 8] = [
+const TOP_LEVEL: [&str; 9] = [
     "image",
     "camera",
     "render",
     "conventions",
+    "caustics",
     "materials",
     "shapes",
     "lights",
@@ -206,6 +207,7 @@ struct FileScene {
     render: FileRender,
     #[serde(default)]
     conventions: FileConventions,
+    caustics: Option<FileCaustics>,
     #[serde(default)]
     materials: BTreeMap<String, FileMaterial>,
     #[serde(default)]
@@ -291,6 +293,68 @@ impl Default for FileRender {
             background: [0.0; 3],
             adaptive_threshold: limits::DEFAULT_ADAPTIVE_THRESHOLD,
         }
+    }
+}
+
+/// The `[caustics]` table (scenes/README.md): `photons` is required, the estimate's
+/// parameters have defaults.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileCaustics {
+    photons: u64,
+    #[serde(default = "default_photon_radius")]
+    radius: f64,
+    #[serde(default = "default_photon_filter")]
+    filter: String,
+    #[serde(default = "default_photon_bounces")]
+    bounces: u32,
+    seed: Option<u64>,
+}
+
+fn default_photon_radius() -> f64 {
+    limits::DEFAULT_PHOTON_RADIUS
+}
+fn default_photon_filter() -> String {
+    "cone".to_string()
+}
+fn default_photon_bounces() -> u32 {
+    limits::DEFAULT_PHOTON_BOUNCES
+}
+
+impl FileCaustics {
+    fn validate(&self, path: &FieldPath) -> Check<CausticSettings> {
+        let max = limits::MAX_PHOTONS;
+        if self.photons == 0 || self.photons > max {
+            return fail(
+                &path.key("photons"),
+                format!("must be a whole number in [1, {max}], got {}", self.photons),
+            );
+        }
+        let filter = match self.filter.as_str() {
+            "flat" => PhotonFilter::Flat,
+            "cone" => PhotonFilter::Cone,
+            "epanechnikov" => PhotonFilter::Epanechnikov,
+            other => {
+                return fail(
+                    &path.key("filter"),
+                    format!("must be one of {:?}, got {other:?}", PhotonFilter::NAMES),
+                );
+            }
+        };
+        let most = limits::MAX_PHOTON_BOUNCES;
+        if self.bounces == 0 || self.bounces > most {
+            return fail(
+                &path.key("bounces"),
+                format!("must be a whole number in [1, {most}], got {}", self.bounces),
+            );
+        }
+        Ok(CausticSettings {
+            photons: self.photons,
+            radius: positive(&path.key("radius"), self.radius, limits::MAX_COORDINATE)?,
+            filter,
+            bounces: self.bounces,
+            seed: self.seed,
+        })
     }
 }
 
@@ -934,6 +998,11 @@ impl FileScene {
             background: color(&r.key("background"), self.render.background, limits::MAX_LIGHT)?,
             adaptive_threshold: in_range(&r.key("adaptive_threshold"), self.render.adaptive_threshold, 0.0, 255.0)?,
             conventions: self.conventions.validate(&root.key("conventions"))?,
+            caustics: self
+                .caustics
+                .as_ref()
+                .map(|c| c.validate(&root.key("caustics")))
+                .transpose()?,
         })
     }
 

@@ -236,6 +236,47 @@ pub struct Settings {
     pub adaptive_threshold: f64,
     /// Where the chapter's and SIMRenderer's conventions differ, which this scene follows.
     pub conventions: Conventions,
+    /// The caustic pass (the `[caustics]` table); `None`, the default, is the chapter's
+    /// Whitted tracer alone.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub caustics: Option<CausticSettings>,
+}
+
+/// The opt-in caustic pass of the `[caustics]` table (see [`crate::caustics`]): photons
+/// leave the lights towards the objects that reflect or refract, bounce off and through
+/// them, and are stored where they land on diffuse surfaces; at each hit of a camera path
+/// their density is read back as light.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct CausticSettings {
+    /// Photons emitted in all, shared among the lights by the power their specular targets
+    /// intercept.
+    pub photons: u64,
+    /// Radius of the density estimate's disk around a shading point (scene units).
+    pub radius: f64,
+    /// How a photon's flux is weighed by its distance from the shading point.
+    pub filter: PhotonFilter,
+    /// Most specular bounces a photon makes before it is dropped.
+    pub bounces: u32,
+    /// The seed of the photons' streams; `None`: the image's seed.
+    pub seed: Option<u64>,
+}
+
+/// The density estimate's filter (Jensen, "Realistic Image Synthesis Using Photon Mapping",
+/// 2001, section 7.2): the weight of a photon at distance `d` within the radius `r`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PhotonFilter {
+    /// Every photon in the disk weighs 1.
+    Flat,
+    /// Jensen's cone filter with `k = 1`: `1 - d / r`.
+    Cone,
+    /// Epanechnikov's kernel: `1 - d^2 / r^2`.
+    Epanechnikov,
+}
+
+impl PhotonFilter {
+    /// The names the `[caustics]` table takes.
+    pub const NAMES: [&'static str; 3] = ["flat", "cone", "epanechnikov"];
 }
 
 impl Settings {

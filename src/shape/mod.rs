@@ -170,6 +170,15 @@ impl Shape {
         dispatch!(self, s => s.surface_error(p))
     }
 
+    /// The point `r_0 + v t` where `ray` hits this shape at `t` (chapter 7.4b:
+    /// `r_inter = r_0 + v t_inter`), with the bound on its rounding error: forming the point
+    /// ([`crate::math::hit_point_error`]) plus the shape's own ([`Shape::surface_error`]).
+    /// Camera paths and photons both leave their hits from it.
+    pub fn hit_point(&self, ray: &Ray, t: f64) -> (DVec3, f64) {
+        let point = ray.at(t);
+        (point, crate::math::hit_point_error(ray, t) + self.surface_error(point))
+    }
+
     /// Bounding box, `None` for unbounded shapes (planes).
     pub fn bounds(&self) -> Option<Aabb> {
         dispatch!(self, s => s.bounds())

@@ -19,7 +19,7 @@
 //!
 //! [`Reference`]: super::Reference
 
-use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface, point_light_terms};
+use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface, caustic_share, point_light_terms};
 use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, aperture_share};
 use crate::material::Material;
@@ -362,8 +362,8 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
 
     /// Local illumination at a hit (slides' full model), with shadow rays:
     /// `L = L_a k_a S + sum_i A_i L_i [k_d S max(N.L_i, 0) + k_s [m S + (1 - m)] spec_i]`,
-    /// where an area light counts as its N points of colour `L / N`; for every member of
-    /// `mask`, each summing in the same order.
+    /// where an area light counts as its N points of colour `L / N`, then the caustic share
+    /// ([`caustic_share`]); for every member of `mask`, each summing in the same order.
     fn local<R: Recorder>(&mut self, at: &Surface, mask: u32, rec: &mut R) -> [DVec3; K] {
         let scene = self.world.scene;
         let mut color = [DVec3::ZERO; K];
@@ -399,6 +399,15 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             if lit != mask {
                 let cast = self.counts.shadow - shadow_before;
                 members_of::<K>(mask & !lit).for_each(|j| self.shadow_excess[j] += cast);
+            }
+        }
+        if self.world.photons.is_some() {
+            for j in members_of::<K>(mask) {
+                let (model, mat) = self.member_shading(j, at.object);
+                if let Some((term, estimate)) = caustic_share(self.world, model, mat, at) {
+                    rec.caustic(term, &estimate);
+                    color[j] += term;
+                }
             }
         }
         color
@@ -585,8 +594,8 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         let t_max = inc.distance;
         rec.shadow_ray(&ray, t_max);
         let skips = world.skips;
-        let opaque = |i: usize| !world.material_of(i).is_transparent();
-        let transparent = |i: usize| world.material_of(i).is_transparent();
+        let opaque = |i: usize| !world.filters_shadows(i);
+        let transparent = |i: usize| world.filters_shadows(i);
         if let Some(c) = candidates {
             let not_tested = (objects.len() - c.len()) as u64;
             self.counts.saved.count(Skip::ShadowCandidates, not_tested);

@@ -17,11 +17,12 @@
 //! whole ray tree, so both see the same numbers. Both tracers evaluate every formula through
 //! its one definition in [`crate::shading`], [`crate::light`] and [`crate::math`].
 
+use crate::caustics::Estimate;
 use crate::light::Incidence;
 use crate::material::{Material, Reflectance};
-use crate::math::{Ray, hit_point_error, offset_origin};
+use crate::math::{Ray, offset_origin};
 use crate::scene::{ShadingModel, Specular};
-use crate::shading::{blinn, diffuse, phong, specular};
+use crate::shading::{blinn, caustic, diffuse, phong, specular};
 use crate::shape::SurfaceHit;
 use crate::skips::Saved;
 use crate::world::World;
@@ -58,6 +59,25 @@ pub(crate) fn point_light_terms(
         diffuse(light, kd, r.diffuse, n_dot_l),
         specular(light, r.ks, r.tint, spec),
     )
+}
+
+/// The caustic share at a hit of a camera path, `E k_d S` ([`caustic`]) for the irradiance
+/// `E` of the photon map's estimate there, with the estimate; `None` when the scene has no
+/// caustics, the model no diffuse term, or the surface no `k_d` or bends light (no photon is
+/// stored on it: [`crate::caustics::path`]). Both tracers add it to the
+/// local illumination, after every light's share.
+pub(crate) fn caustic_share(
+    world: &World,
+    model: ShadingModel,
+    mat: &Material,
+    at: &Surface,
+) -> Option<(DVec3, Estimate)> {
+    let map = world.photons.as_ref()?;
+    if !model.diffuse || mat.kd <= 0.0 || mat.bends_light() {
+        return None;
+    }
+    let estimate = map.estimate(at.point, at.n);
+    Some((caustic(estimate.irradiance, mat.kd, mat.color), estimate))
 }
 
 /// Which pixel sample a ray belongs to: the pixel's index (row-major) and the sample's.
@@ -152,6 +172,9 @@ pub trait Recorder {
     /// The transparent objects (indices, ascending) whose colours filter the last shadow
     /// ray; not reported when an opaque object blocks it or nothing is transparent.
     fn shadow_crossed(&mut self, _objects: &[usize]) {}
+    /// The caustic share of the current hit ([`caustic_share`]): the term added, and the
+    /// estimate (irradiance, photons) it comes from.
+    fn caustic(&mut self, _term: DVec3, _estimate: &Estimate) {}
     /// The local illumination of the current hit (ambient + every light's share).
     fn local(&mut self, _color: DVec3) {}
     fn cutoff(&mut self, _kind: RayKind, _weight: f64) {}
@@ -194,8 +217,7 @@ impl Surface {
     /// ([`hit_point_error`]) plus the shape's own ([`crate::shape::Shape::surface_error`]).
     #[inline]
     pub(crate) fn hit(world: &World, ray: &Ray, object: usize, hit: &SurfaceHit) -> Surface {
-        let point = ray.at(hit.t);
-        let err = hit_point_error(ray, hit.t) + world.objects()[object].shape.surface_error(point);
+        let (point, err) = world.objects()[object].shape.hit_point(ray, hit.t);
         let entering = ray.dir.dot(hit.normal) < 0.0;
         // A family's members share the scene's textures (their keys hold them), so the
         // world's material says whether the point needs coordinates.

@@ -18,7 +18,7 @@
 //! local terms, which objects refract, where the energy of a total internal reflection
 //! goes, what weighs a refracted ray and what a transparent object filters shadows by.
 
-use super::{SampleKey, Surface, point_light_terms};
+use super::{SampleKey, Surface, caustic_share, point_light_terms};
 use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, aperture_share, point_incidence};
 use crate::math::{Ray, reflect, refract};
@@ -98,7 +98,8 @@ impl<'w, 's> Reference<'w, 's> {
     /// Local illumination at a hit (slides' full model):
     /// `L = L_a k_a S + sum_i A_i L_i [k_d S max(N.L_i, 0) + k_s [m S + (1 - m)] spec_i]`,
     /// an area light counting as its N points of colour `L / N`, summed in light order and
-    /// an area light's points in their order.
+    /// an area light's points in their order; then, with caustics, the caustic share
+    /// `E k_d S` of the photons that land near the point.
     fn local(&self, at: &Surface, key: SampleKey) -> DVec3 {
         let world = self.world;
         let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
@@ -119,6 +120,9 @@ impl<'w, 's> Reference<'w, 's> {
                 Light::Aperture(a) => color += self.aperture_light(a.color, light.incidence(at.point), at),
                 _ => color += self.light_share(light.incidence(at.point), at),
             }
+        }
+        if let Some((term, _)) = caustic_share(world, model, mat, at) {
+            color += term;
         }
         color
     }
@@ -171,7 +175,7 @@ impl<'w, 's> Reference<'w, 's> {
     fn shadow_filter(&self, at: &Surface, inc: &Incidence) -> DVec3 {
         let world = self.world;
         let ray = at.ray_along(inc.to_light);
-        let transparent = |i: usize| world.material_of(i).is_transparent();
+        let transparent = |i: usize| world.filters_shadows(i);
         if world.any_hit(&ray, inc.distance, &|i| !transparent(i)) {
             return DVec3::ZERO;
         }

@@ -1735,6 +1735,8 @@ impl<'a> Reader<'a> {
             background: DVec3::ZERO,
             adaptive_threshold: self.adaptive_threshold.unwrap_or(0.0),
             conventions,
+            // SIMRenderer has no photon pass.
+            caustics: None,
         };
         let highlight = conventions.default_highlight.metal();
         // The materials: the first definition of each name, then the names used but not

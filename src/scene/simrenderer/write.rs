@@ -194,6 +194,12 @@ impl Writer {
             self.refused
                 .push("render shadows = false: SIMRenderer always casts shadow rays".to_string());
         }
+        if let Some(c) = &s.caustics {
+            self.refused.push(format!(
+                "caustics photons = {}: SIMRenderer has no photon pass",
+                c.photons
+            ));
+        }
         if s.background != DVec3::ZERO {
             self.refused.push(format!(
                 "render background {:?}: SIMRenderer's background is black",

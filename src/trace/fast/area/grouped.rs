@@ -54,7 +54,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         let mut rejects = 0;
         let len = s.lanes.dist.len();
         // Opaque candidates, then transparent ones, each in ascending order.
-        let transparent = |c: &&Candidate| world.material_of(c.object).is_transparent();
+        let transparent = |c: &&Candidate| world.filters_shadows(c.object);
         let opaque = candidates.iter().filter(|c| !transparent(c));
         let walk = self.walks_transparent();
         let see_through = candidates.iter().filter(|c| walk && transparent(c));
@@ -149,7 +149,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 s.ensure_filter(len);
             }
             let met = &s.hits[..hits];
-            if !world.material_of(c.object).is_transparent() {
+            if !world.filters_shadows(c.object) {
                 for &i in met {
                     s.filter[i as usize] = DVec3::ZERO;
                     s.blocked[i as usize] = true;
