@@ -6,7 +6,7 @@ use crate::conventions::{RayOrigin, SamplePosition};
 use crate::film::Film;
 use crate::math::Ray;
 use crate::sampling::{Purpose, Stream};
-use crate::trace::{Member, NoRecord, RayCounts, Recorder, Reference, SampleKey, Tracer};
+use crate::trace::{Formulas, Member, NoRecord, RayCounts, Recorder, Reference, SampleKey, Tracer};
 use crate::world::World;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -251,6 +251,24 @@ pub fn render_rows_reference(
     };
     let (pixels, [stats]) = render_rows_with(world, rows, progress, cancel, new, |[c]| c);
     (pixels, stats)
+}
+
+/// The radiance of each pixel of `pixels` (`(x, y)` pairs), as [`render_reference`]
+/// renders it but with the reference tracer evaluating `formulas` (see
+/// [`crate::trace::Formulas`]), in parallel on the current rayon pool: the same values for
+/// any thread count. `lumiere diagnose` renders its mistakes so, on a subset of pixels.
+pub fn render_pixels_with(world: &World, formulas: Formulas, pixels: &[(u32, u32)]) -> Vec<DVec3> {
+    pixels
+        .par_iter()
+        .with_min_len(64)
+        .map_init(
+            || ReferencePixels {
+                tracer: Reference::with_formulas(world, formulas),
+                counts: RayCounts::default(),
+            },
+            |tracer, &(x, y)| tracer.pixel(x, y)[0],
+        )
+        .collect()
 }
 
 /// What renders the pixels of a row: the fast tracer's members, or the reference tracer.

@@ -16,23 +16,41 @@
 //! [`crate::conventions::Conventions`] decide: how far a camera ray sees, what weighs the
 //! local terms, which objects refract, where the energy of a total internal reflection
 //! goes, what weighs a refracted ray and what a transparent object filters shadows by.
+//!
+//! Each formula is evaluated through a table of functions ([`Formulas`]): the chapter's
+//! ([`Formulas::CHAPTER`]) for every render, another for a named mistake of
+//! `lumiere diagnose`.
 
-use super::{SampleKey, Surface, point_light_terms};
+use super::formulas::{AmbientContext, Formulas};
+use super::{SampleKey, Surface, point_light_terms_with};
 use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, point_incidence};
-use crate::math::{Ray, reflect, refract};
-use crate::shading::{ambient, beneath_notice, local_weight, shadow_filter, transmission_weight, transparent_filter};
+use crate::math::Ray;
+use crate::shading::{ambient, beneath_notice, local_weight, shadow_filter, transmission_weight};
 use crate::world::World;
 use glam::DVec3;
 
 /// Traces rays through a world, as the chapter does.
 pub struct Reference<'w, 's> {
     world: &'w World<'s>,
+    formulas: Formulas,
+}
+
+/// What the lights did at a hit, for the ambient entry of [`Formulas`].
+#[derive(Clone, Copy, Default)]
+struct Shadowing {
+    cast: u32,
+    blocked: u32,
 }
 
 impl<'w, 's> Reference<'w, 's> {
     pub fn new(world: &'w World<'s>) -> Self {
-        Reference { world }
+        Reference::with_formulas(world, Formulas::CHAPTER)
+    }
+
+    /// A tracer evaluating `formulas` in place of the chapter's.
+    pub fn with_formulas(world: &'w World<'s>, formulas: Formulas) -> Self {
+        Reference { world, formulas }
     }
 
     /// The world it traces.
@@ -62,7 +80,7 @@ impl<'w, 's> Reference<'w, 's> {
             let mut refracted = None;
             let closed = self.world.objects()[object].shape.is_closed();
             if mat.kt > 0.0 && conventions.refracting.admits(closed) {
-                match refract(ray.dir, at.n, mat.eta(at.entering)) {
+                match (self.formulas.refract)(ray.dir, at.n, (self.formulas.eta)(mat, at.entering)) {
                     Some(t) => refracted = Some(t.normalize()),
                     // Total internal reflection: the transmitted energy is reflected, or lost.
                     None => {
@@ -73,7 +91,7 @@ impl<'w, 's> Reference<'w, 's> {
                 }
             }
             if kr > 0.0 {
-                let dir = reflect(ray.dir, at.n).normalize();
+                let dir = (self.formulas.reflect)(ray.dir, at.n).normalize();
                 color += kr * self.secondary(&at, dir, level, weight * kr, key);
             }
             if let Some(dir) = refracted {
@@ -100,21 +118,42 @@ impl<'w, 's> Reference<'w, 's> {
     /// an area light's points in their order.
     fn local(&self, at: &Surface, key: SampleKey) -> DVec3 {
         let world = self.world;
+        let f = &self.formulas;
         let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
         let mut color = DVec3::ZERO;
+        let ambient_term = ambient(world.ambient, mat.ka, mat.color);
         if model.ambient {
-            color += ambient(world.ambient, mat.ka, mat.color);
+            color += ambient_term;
         }
+        let mut shadowing = Shadowing::default();
+        let mut attenuation = None;
         for (index, light) in world.scene.lights.iter().enumerate() {
             match light {
                 Light::Ambient { .. } => {}
                 Light::Area(area) => {
                     for q in world.area_points(index, key.pixel, key.sample).iter() {
                         let incidence = point_incidence(q, area.point_color(), &area.attenuation, at.point, 1.0);
-                        color += self.light_share(incidence, at);
+                        color += self.light_share(incidence, at, &mut shadowing);
                     }
                 }
-                _ => color += self.light_share(light.incidence(at.point), at),
+                _ => {
+                    let incidence = light.incidence_with(at.point, f.spot_factor);
+                    if matches!(light, Light::Point(_) | Light::Spot(_)) && attenuation.is_none() {
+                        attenuation = incidence.map(|inc| inc.attenuation);
+                    }
+                    color += self.light_share(incidence, at, &mut shadowing);
+                }
+            }
+        }
+        if model.ambient {
+            let context = AmbientContext {
+                in_shadow: shadowing.cast > 0 && shadowing.blocked == shadowing.cast,
+                attenuation: attenuation.unwrap_or(1.0),
+            };
+            let added = (f.ambient)(ambient_term, context);
+            // The chapter's entry is the identity: the sum is left as it is, to the bit.
+            if added != ambient_term {
+                color += added - ambient_term;
             }
         }
         color
@@ -124,23 +163,29 @@ impl<'w, 's> Reference<'w, 's> {
     /// nothing when no light arrives (the point is at the light) or the surface faces away
     /// (`N.L <= 0`: the slides count neither term there); otherwise the light that the
     /// shadow ray lets through.
-    fn light_share(&self, incidence: Option<Incidence>, at: &Surface) -> DVec3 {
+    fn light_share(&self, incidence: Option<Incidence>, at: &Surface, shadowing: &mut Shadowing) -> DVec3 {
         let world = self.world;
-        let Some(inc) = incidence else {
+        let f = &self.formulas;
+        let Some(mut inc) = incidence else {
             return DVec3::ZERO;
         };
+        inc.to_light = (f.light_direction)(inc.to_light);
         let n_dot_l = at.n.dot(inc.to_light);
         if n_dot_l <= 0.0 {
             return DVec3::ZERO;
         }
         let filter = if world.scene.settings.shadows {
-            self.shadow_filter(at, &inc)
+            let filter = self.shadow_filter(at, &inc);
+            shadowing.cast += 1;
+            shadowing.blocked += u32::from(filter == DVec3::ZERO);
+            filter
         } else {
             DVec3::ONE
         };
         let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
-        let (diffuse, specular) = point_light_terms(model, mat, at, inc.to_light, n_dot_l, inc.color * filter);
-        diffuse + specular
+        let (diffuse, specular) =
+            point_light_terms_with(f.specular, model, mat, at, inc.to_light, n_dot_l, inc.color * filter);
+        (f.light_share)(diffuse + specular)
     }
 
     /// Chapter 7.4b's shadow ray towards the light of incidence `inc`, up to the light
@@ -149,7 +194,11 @@ impl<'w, 's> Reference<'w, 's> {
     /// conventions), each counted once, in object order.
     fn shadow_filter(&self, at: &Surface, inc: &Incidence) -> DVec3 {
         let world = self.world;
-        let ray = at.ray_along(inc.to_light);
+        let f = &self.formulas;
+        let ray = Ray::new(
+            (f.shadow_origin)(at.point, at.outward, at.err, inc.to_light),
+            inc.to_light,
+        );
         let transparent = |i: usize| world.material_of(i).is_transparent();
         if world.any_hit(&ray, inc.distance, &|i| !transparent(i)) {
             return DVec3::ZERO;
@@ -160,7 +209,7 @@ impl<'w, 's> Reference<'w, 's> {
         let rule = world.scene.settings.conventions.shadow_filter;
         shadow_filter(crossed.into_iter().map(|i| {
             let mat = world.material_of(i);
-            transparent_filter(rule, mat.kt, mat.color)
+            (f.transparent_filter)(rule, mat.kt, mat.color)
         }))
     }
 }
