@@ -7,9 +7,14 @@
 //! - [`report`]: the HTML report with the images, heat-maps and ranking.
 //! - Here: [`diagnose`], which renders the oracle and every mistake on the same pixels,
 //!   counts in each the pixels off edges ([`crate::edges`]) that differ from the image by
-//!   more than the tolerance, and ranks the mistakes by it. The image matches when the
-//!   oracle's own count is within the compare rule (at most `max_fraction` of the judged
-//!   pixels): "no mistake found".
+//!   more than the tolerance, and ranks the mistakes by it.
+//!
+//! The image matches the oracle, "no mistake found", when at most `max_fraction` of the
+//! judged pixels are *beyond any sampling*: some channel lies more than the tolerance
+//! outside the range of the oracle's values over the pixel's footprint (the points
+//! [`crate::edges`] looks at), so an image sampled at other points of each pixel (another
+//! seed, sample count or sample position) matches. A mistake makes no visible difference
+//! on a scene when its own render matches the oracle so.
 //!
 //! On a large image the pixels judged are a regular grid of every `stride`-th pixel of
 //! every `stride`-th row, at most [`Options::max_pixels`] of them: a mistake shows on a
@@ -19,13 +24,13 @@ pub mod gains;
 pub mod mistakes;
 pub mod report;
 
-use crate::edges::is_edge;
+use crate::edges::{footprint, is_edge};
 use crate::film::quantize;
 use crate::layers::{PixelLayers, pixel_layers};
 use crate::output::srgb_encode;
-use crate::render::render_pixels_with;
+use crate::render::{camera_ray, render_pixels_with};
 use crate::scene::Scene;
-use crate::trace::{Formulas, Tracer};
+use crate::trace::{Formulas, Reference, SampleKey, Tracer};
 use crate::world::World;
 use gains::Gain;
 use glam::DVec3;
@@ -145,6 +150,9 @@ pub struct Diagnosis {
     pub edges: usize,
     /// The image against the oracle.
     pub oracle: Score,
+    /// Judged pixels of the image beyond any sampling of the oracle (see the module's
+    /// documentation): what the verdict counts.
+    pub beyond_sampling: usize,
     pub verdict: Verdict,
     pub gains: Vec<Gain>,
     /// Sentences read from the gains.
@@ -190,6 +198,49 @@ fn linear(c: f64) -> f64 {
 /// The largest channel difference of pixel `i`.
 fn pixel_diff(a: &[u8], b: &[u8], i: usize) -> u8 {
     (0..3).map(|c| a[3 * i + c].abs_diff(b[3 * i + c])).max().unwrap_or(0)
+}
+
+/// Per pixel of `pixels`, the oracle's 8-bit values over its footprint: the lowest and the
+/// highest of each channel, one camera sample at each point ([`footprint`]).
+fn footprint_ranges(world: &World, pixels: &[(u32, u32)]) -> Vec<[[u8; 3]; 2]> {
+    let width = world.scene.settings.width as u64;
+    pixels
+        .par_iter()
+        .with_min_len(16)
+        .map_init(
+            || Reference::new(world),
+            |tracer, &(x, y)| {
+                let key = SampleKey {
+                    pixel: y as u64 * width + x as u64,
+                    sample: 0,
+                };
+                footprint(world, x, y).fold([[u8::MAX; 3], [0; 3]], |[lo, hi], position| {
+                    let c = tracer.camera(&camera_ray(world, position), key);
+                    let q = [c.x, c.y, c.z].map(quantize);
+                    [
+                        std::array::from_fn(|i| lo[i].min(q[i])),
+                        std::array::from_fn(|i| hi[i].max(q[i])),
+                    ]
+                })
+            },
+        )
+        .collect()
+}
+
+/// Judged pixels of `image` some channel of which is more than `tolerance` outside its
+/// pixel's range in `ranges`.
+fn beyond_ranges(image: &[u8], ranges: &[[[u8; 3]; 2]], judged: &[bool], tolerance: u8) -> usize {
+    ranges
+        .iter()
+        .enumerate()
+        .filter(|&(i, [lo, hi])| {
+            judged[i]
+                && (0..3).any(|c| {
+                    let v = image[3 * i + c];
+                    v < lo[c].saturating_sub(tolerance) || v > hi[c].saturating_add(tolerance)
+                })
+        })
+        .count()
 }
 
 /// `a` against `b` over the pixels where `judged` holds.
@@ -320,6 +371,9 @@ pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
     let oracle_rgb = to_rgb8(&oracle, linear);
     let tol = options.tolerance;
     let oracle_score = score(&image_rgb, &oracle_rgb, &judged, tol);
+    let ranges = footprint_ranges(&world, &pixels);
+    let judged_count = judged.iter().filter(|j| **j).count().max(1) as f64;
+    let matches = |rgb: &[u8]| beyond_ranges(rgb, &ranges, &judged, tol) as f64 / judged_count <= options.max_fraction;
 
     let layers: Vec<PixelLayers> = pixels
         .par_iter()
@@ -349,7 +403,7 @@ pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
             not_applicable.push(m.name);
             continue;
         };
-        let visible = score(&rgb, &oracle_rgb, &judged, tol).fraction > options.max_fraction;
+        let visible = !matches(&rgb);
         if !visible {
             not_visible.push(m.name);
             continue;
@@ -376,6 +430,7 @@ pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
         max_fraction: options.max_fraction,
         edges: edge_mask.iter().filter(|e| **e).count(),
         oracle: oracle_score,
+        beyond_sampling: beyond_ranges(&image_rgb, &ranges, &judged, tol),
         verdict: Verdict::Unexplained,
         findings: findings(&gains),
         gains,
@@ -386,7 +441,7 @@ pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
         oracle_rgb,
         edge_mask,
     };
-    diagnosis.verdict = if diagnosis.oracle.fraction <= options.max_fraction {
+    diagnosis.verdict = if diagnosis.beyond_sampling as f64 / judged_count <= options.max_fraction {
         Verdict::NoMistakeFound
     } else if diagnosis.top(1).next().is_some() {
         Verdict::MistakeFound

@@ -145,7 +145,12 @@ fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
         "diagnosis          {image} against {scene} at {} x {}: {judged}, {} on edges apart",
         d.width, d.height, d.edges
     );
-    let _ = writeln!(out, "oracle             {}", score_line(&d.oracle, d.tolerance));
+    let _ = writeln!(
+        out,
+        "oracle             {}; {} beyond any sampling of the pixel",
+        score_line(&d.oracle, d.tolerance),
+        d.beyond_sampling
+    );
     let gains: Vec<String> = d.gains.iter().map(|g| format!("{} {}", g.term, g.label())).collect();
     let _ = writeln!(out, "gains              {}", gains.join(", "));
     for f in &d.findings {

@@ -179,6 +179,8 @@ impl LayersTarget {
     fn check(path: &Path, scene: &Path) -> Result<LayersTarget, CliError> {
         let bad = |m: &str| Err(CliError::BadInput(format!("{}: --layers: {m}", path.display())));
         let as_folder = path.as_os_str().to_string_lossy().ends_with('/') || path.is_dir();
+        // Without its trailing `/`, which makes a file look absent.
+        let path = path.components().as_path();
         if as_folder {
             if path.exists() && !path.is_dir() {
                 return bad("is a file, not a folder");
