@@ -160,7 +160,12 @@ fn gains_read_a_doubled_specular_term() {
         assert!((gain(term) - 1.0).abs() < 0.05, "{term}: {:?}", d.gains);
     }
     // Quantisation and the highlights clipped at 1 (left out of the fit) bias it slightly.
-    assert_eq!(d.findings, vec![format!("specular x{:.2}", gain("specular"))], "{:?}", d.gains);
+    assert_eq!(
+        d.findings,
+        vec![format!("specular x{:.2}", gain("specular"))],
+        "{:?}",
+        d.gains
+    );
 }
 
 #[test]
