@@ -6,6 +6,7 @@ use crate::conventions::{RayOrigin, SamplePosition};
 use crate::film::Film;
 use crate::math::Ray;
 use crate::sampling::{Purpose, Stream};
+use crate::trace::formulas::{Chapter, FormulaTable};
 use crate::trace::{Formulas, Member, NoRecord, RayCounts, Recorder, Reference, SampleKey, Tracer};
 use crate::world::World;
 use glam::DVec3;
@@ -290,12 +291,12 @@ impl<const K: usize> PixelTracer<K> for Tracer<'_, '_, K> {
 }
 
 /// The reference tracer with the counts it keeps: camera rays and non-finite samples.
-struct ReferencePixels<'w, 's> {
-    tracer: Reference<'w, 's>,
+struct ReferencePixels<'w, 's, F: FormulaTable = Chapter> {
+    tracer: Reference<'w, 's, F>,
     counts: RayCounts,
 }
 
-impl PixelTracer<1> for ReferencePixels<'_, '_> {
+impl<F: FormulaTable> PixelTracer<1> for ReferencePixels<'_, '_, F> {
     fn pixel(&mut self, x: u32, y: u32) -> [DVec3; 1] {
         let world = self.tracer.world();
         let counts = &mut self.counts;

@@ -1,11 +1,12 @@
-//! The formulas the reference tracer ([`super::Reference`]) evaluates, as a table of
-//! functions. [`Formulas::CHAPTER`] holds the chapter's own (each the one definition in
-//! [`crate::shading`], [`crate::math`] or [`crate::light`]), and is what every render uses.
-//! Another table replaces some entries by a wrong formula: that is how `lumiere diagnose`
-//! renders a named mistake (src/diagnose/mistakes.rs) without a second tracer. An entry
-//! that is the identity in the chapter's table ([`Formulas::light_share`],
-//! [`Formulas::ambient`]) is applied only where it changes the value, so the chapter's
-//! table gives the reference tracer's bits exactly.
+//! The formulas the reference tracer ([`super::Reference`]) evaluates, through the trait
+//! [`FormulaTable`]: [`Chapter`] calls the chapter's own functions (each the one definition
+//! in [`crate::shading`], [`crate::math`] or [`crate::light`]) and is what the reference
+//! tracer uses unless told otherwise, compiled as direct calls; [`Formulas`] is the same
+//! table as function pointers, [`Formulas::CHAPTER`] holding the same functions, and a copy
+//! with some entries replaced by a wrong formula is how `lumiere diagnose` renders a named
+//! mistake (src/diagnose/mistakes.rs) without a second tracer. An entry that is the
+//! identity in the chapter's table (`light_share`, `ambient`) is applied only where it
+//! changes the value, so the chapter's table gives the reference tracer's bits exactly.
 
 use super::specular_term;
 use crate::conventions::ShadowFilter;
@@ -81,6 +82,104 @@ impl Formulas {
         light_share: same_share,
         ambient: same_ambient,
     };
+}
+
+/// What the reference tracer evaluates: one method per entry of [`Formulas`].
+pub trait FormulaTable: Copy + Send + Sync {
+    /// Whether the `ambient` entry reads its [`AmbientContext`] (the tracer gathers it
+    /// only then): false for the chapter's, whose entry is the identity.
+    const AMBIENT_CONTEXT: bool = true;
+    fn specular(&self, model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64;
+    fn reflect(&self, v: DVec3, n: DVec3) -> DVec3;
+    fn refract(&self, v: DVec3, n: DVec3, eta: f64) -> Option<DVec3>;
+    fn eta(&self, mat: &Material, entering: bool) -> f64;
+    fn transparent_filter(&self, rule: ShadowFilter, kt: f64, s: DVec3) -> DVec3;
+    fn shadow_origin(&self, point: DVec3, outward: DVec3, err: f64, dir: DVec3) -> DVec3;
+    fn light_direction(&self, l: DVec3) -> DVec3;
+    fn spot_factor(&self) -> fn(f64, f64, f64, f64) -> f64;
+    fn light_share(&self, share: DVec3) -> DVec3;
+    fn ambient(&self, term: DVec3, context: AmbientContext) -> DVec3;
+}
+
+/// The chapter's formulas as direct calls: the entries of [`Formulas::CHAPTER`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Chapter;
+
+impl FormulaTable for Chapter {
+    const AMBIENT_CONTEXT: bool = false;
+    #[inline(always)]
+    fn specular(&self, model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
+        specular_term(model, n, l, e, exponent)
+    }
+    #[inline(always)]
+    fn reflect(&self, v: DVec3, n: DVec3) -> DVec3 {
+        reflect(v, n)
+    }
+    #[inline(always)]
+    fn refract(&self, v: DVec3, n: DVec3, eta: f64) -> Option<DVec3> {
+        refract(v, n, eta)
+    }
+    #[inline(always)]
+    fn eta(&self, mat: &Material, entering: bool) -> f64 {
+        mat.eta(entering)
+    }
+    #[inline(always)]
+    fn transparent_filter(&self, rule: ShadowFilter, kt: f64, s: DVec3) -> DVec3 {
+        transparent_filter(rule, kt, s)
+    }
+    #[inline(always)]
+    fn shadow_origin(&self, point: DVec3, outward: DVec3, err: f64, dir: DVec3) -> DVec3 {
+        offset_origin(point, outward, err, dir)
+    }
+    #[inline(always)]
+    fn light_direction(&self, l: DVec3) -> DVec3 {
+        same_direction(l)
+    }
+    #[inline(always)]
+    fn spot_factor(&self) -> fn(f64, f64, f64, f64) -> f64 {
+        spot_factor
+    }
+    #[inline(always)]
+    fn light_share(&self, share: DVec3) -> DVec3 {
+        same_share(share)
+    }
+    #[inline(always)]
+    fn ambient(&self, term: DVec3, context: AmbientContext) -> DVec3 {
+        same_ambient(term, context)
+    }
+}
+
+impl FormulaTable for Formulas {
+    fn specular(&self, model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
+        (self.specular)(model, n, l, e, exponent)
+    }
+    fn reflect(&self, v: DVec3, n: DVec3) -> DVec3 {
+        (self.reflect)(v, n)
+    }
+    fn refract(&self, v: DVec3, n: DVec3, eta: f64) -> Option<DVec3> {
+        (self.refract)(v, n, eta)
+    }
+    fn eta(&self, mat: &Material, entering: bool) -> f64 {
+        (self.eta)(mat, entering)
+    }
+    fn transparent_filter(&self, rule: ShadowFilter, kt: f64, s: DVec3) -> DVec3 {
+        (self.transparent_filter)(rule, kt, s)
+    }
+    fn shadow_origin(&self, point: DVec3, outward: DVec3, err: f64, dir: DVec3) -> DVec3 {
+        (self.shadow_origin)(point, outward, err, dir)
+    }
+    fn light_direction(&self, l: DVec3) -> DVec3 {
+        (self.light_direction)(l)
+    }
+    fn spot_factor(&self) -> fn(f64, f64, f64, f64) -> f64 {
+        self.spot_factor
+    }
+    fn light_share(&self, share: DVec3) -> DVec3 {
+        (self.light_share)(share)
+    }
+    fn ambient(&self, term: DVec3, context: AmbientContext) -> DVec3 {
+        (self.ambient)(term, context)
+    }
 }
 
 impl Default for Formulas {

@@ -64,10 +64,10 @@ pub fn specular_term(specular: Specular, n: DVec3, l: DVec3, e: DVec3, exponent:
 }
 
 /// [`point_light_terms`] with the specular term computed by `spec_term` (a
-/// [`Formulas`] entry: [`specular_term`] or a mistake's).
+/// [`formulas::FormulaTable`] entry: [`specular_term`] or a mistake's).
 #[inline(always)]
 pub(crate) fn point_light_terms_with(
-    spec_term: fn(Specular, DVec3, DVec3, DVec3, f64) -> f64,
+    spec_term: impl Fn(Specular, DVec3, DVec3, DVec3, f64) -> f64,
     model: ShadingModel,
     mat: &Material,
     at: &Surface,

@@ -21,7 +21,7 @@
 //! ([`Formulas::CHAPTER`]) for every render, another for a named mistake of
 //! `lumiere diagnose`.
 
-use super::formulas::{AmbientContext, Formulas};
+use super::formulas::{AmbientContext, Chapter, FormulaTable};
 use super::{SampleKey, Surface, point_light_terms_with};
 use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, point_incidence};
@@ -30,10 +30,11 @@ use crate::shading::{ambient, beneath_notice, local_weight, shadow_filter, trans
 use crate::world::World;
 use glam::DVec3;
 
-/// Traces rays through a world, as the chapter does.
-pub struct Reference<'w, 's> {
+/// Traces rays through a world, as the chapter does, evaluating the formulas of `F` (the
+/// chapter's, [`Chapter`], unless told otherwise).
+pub struct Reference<'w, 's, F: FormulaTable = Chapter> {
     world: &'w World<'s>,
-    formulas: Formulas,
+    formulas: F,
 }
 
 /// What the lights did at a hit, for the ambient entry of [`Formulas`].
@@ -45,11 +46,13 @@ struct Shadowing {
 
 impl<'w, 's> Reference<'w, 's> {
     pub fn new(world: &'w World<'s>) -> Self {
-        Reference::with_formulas(world, Formulas::CHAPTER)
+        Reference::with_formulas(world, Chapter)
     }
+}
 
-    /// A tracer evaluating `formulas` in place of the chapter's.
-    pub fn with_formulas(world: &'w World<'s>, formulas: Formulas) -> Self {
+impl<'w, 's, F: FormulaTable> Reference<'w, 's, F> {
+    /// A tracer evaluating `formulas` (a [`super::Formulas`] table with wrong entries, say).
+    pub fn with_formulas(world: &'w World<'s>, formulas: F) -> Self {
         Reference { world, formulas }
     }
 
@@ -80,7 +83,10 @@ impl<'w, 's> Reference<'w, 's> {
             let mut refracted = None;
             let closed = self.world.objects()[object].shape.is_closed();
             if mat.kt > 0.0 && conventions.refracting.admits(closed) {
-                match (self.formulas.refract)(ray.dir, at.n, (self.formulas.eta)(mat, at.entering)) {
+                match self
+                    .formulas
+                    .refract(ray.dir, at.n, self.formulas.eta(mat, at.entering))
+                {
                     Some(t) => refracted = Some(t.normalize()),
                     // Total internal reflection: the transmitted energy is reflected, or lost.
                     None => {
@@ -91,7 +97,7 @@ impl<'w, 's> Reference<'w, 's> {
                 }
             }
             if kr > 0.0 {
-                let dir = (self.formulas.reflect)(ray.dir, at.n).normalize();
+                let dir = self.formulas.reflect(ray.dir, at.n).normalize();
                 color += kr * self.secondary(&at, dir, level, weight * kr, key);
             }
             if let Some(dir) = refracted {
@@ -137,21 +143,22 @@ impl<'w, 's> Reference<'w, 's> {
                     }
                 }
                 _ => {
-                    let incidence = light.incidence_with(at.point, f.spot_factor);
-                    if matches!(light, Light::Point(_) | Light::Spot(_)) && attenuation.is_none() {
+                    let incidence = light.incidence_with(at.point, f.spot_factor());
+                    if F::AMBIENT_CONTEXT && matches!(light, Light::Point(_) | Light::Spot(_)) && attenuation.is_none()
+                    {
                         attenuation = incidence.map(|inc| inc.attenuation);
                     }
                     color += self.light_share(incidence, at, &mut shadowing);
                 }
             }
         }
-        if model.ambient {
+        if F::AMBIENT_CONTEXT && model.ambient {
             let context = AmbientContext {
                 in_shadow: shadowing.cast > 0 && shadowing.blocked == shadowing.cast,
                 attenuation: attenuation.unwrap_or(1.0),
             };
-            let added = (f.ambient)(ambient_term, context);
-            // The chapter's entry is the identity: the sum is left as it is, to the bit.
+            let added = f.ambient(ambient_term, context);
+            // Where the entry is the identity the sum is left as it is, to the bit.
             if added != ambient_term {
                 color += added - ambient_term;
             }
@@ -169,23 +176,32 @@ impl<'w, 's> Reference<'w, 's> {
         let Some(mut inc) = incidence else {
             return DVec3::ZERO;
         };
-        inc.to_light = (f.light_direction)(inc.to_light);
+        inc.to_light = f.light_direction(inc.to_light);
         let n_dot_l = at.n.dot(inc.to_light);
         if n_dot_l <= 0.0 {
             return DVec3::ZERO;
         }
         let filter = if world.scene.settings.shadows {
             let filter = self.shadow_filter(at, &inc);
-            shadowing.cast += 1;
-            shadowing.blocked += u32::from(filter == DVec3::ZERO);
+            if F::AMBIENT_CONTEXT {
+                shadowing.cast += 1;
+                shadowing.blocked += u32::from(filter == DVec3::ZERO);
+            }
             filter
         } else {
             DVec3::ONE
         };
         let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
-        let (diffuse, specular) =
-            point_light_terms_with(f.specular, model, mat, at, inc.to_light, n_dot_l, inc.color * filter);
-        (f.light_share)(diffuse + specular)
+        let (diffuse, specular) = point_light_terms_with(
+            |model, n, l, e, exponent| f.specular(model, n, l, e, exponent),
+            model,
+            mat,
+            at,
+            inc.to_light,
+            n_dot_l,
+            inc.color * filter,
+        );
+        f.light_share(diffuse + specular)
     }
 
     /// Chapter 7.4b's shadow ray towards the light of incidence `inc`, up to the light
@@ -196,7 +212,7 @@ impl<'w, 's> Reference<'w, 's> {
         let world = self.world;
         let f = &self.formulas;
         let ray = Ray::new(
-            (f.shadow_origin)(at.point, at.outward, at.err, inc.to_light),
+            f.shadow_origin(at.point, at.outward, at.err, inc.to_light),
             inc.to_light,
         );
         let transparent = |i: usize| world.material_of(i).is_transparent();
@@ -209,7 +225,7 @@ impl<'w, 's> Reference<'w, 's> {
         let rule = world.scene.settings.conventions.shadow_filter;
         shadow_filter(crossed.into_iter().map(|i| {
             let mat = world.material_of(i);
-            (f.transparent_filter)(rule, mat.kt, mat.color)
+            f.transparent_filter(rule, mat.kt, mat.color)
         }))
     }
 }
