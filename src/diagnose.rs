@@ -261,6 +261,9 @@ fn score(a: &[u8], b: &[u8], judged: &[bool], tolerance: u8) -> Score {
     }
 }
 
+/// Radiances and the output encoding (identity or sRGB) their 8-bit values go through.
+type Encoded = (Vec<DVec3>, fn(f64) -> f64);
+
 /// The radiance of the grid's pixels as the scene renders with `change` (`None`: the
 /// oracle's, given as `oracle`); `None` when the change does not apply to this scene.
 fn render_change(
@@ -269,7 +272,7 @@ fn render_change(
     pixels: &[(u32, u32)],
     oracle: &[DVec3],
     change: Change,
-) -> Option<(Vec<DVec3>, fn(f64) -> f64)> {
+) -> Option<Encoded> {
     match change {
         Change::Formulas(f) => Some((render_pixels_with(world, f, pixels), linear)),
         Change::Gamma => Some((oracle.to_vec(), srgb_encode)),

@@ -265,3 +265,43 @@ fn command_line_text_json_report_and_errors() {
         assert!(err.contains(message), "{extra:?}: {err}");
     }
 }
+
+#[test]
+fn readme_fixture_is_the_mistake_rendered() {
+    // tests/fixtures/diagnose/phong-for-blinn.png, made by examples/mistake_image.rs.
+    let mut scene = scene::load(&repo("scenes/reference.toml")).unwrap();
+    scene.settings.width = 160;
+    scene.settings.height = 120;
+    scene.settings.samples_per_pixel = 1;
+    let mut c = scene.settings.conventions;
+    c.set("sample_position", "center").unwrap();
+    scene.set_conventions(c);
+    let phong = catalogue().into_iter().find(|m| m.name == "phong-for-blinn").unwrap();
+    let fixture = image::open(repo("tests/fixtures/diagnose/phong-for-blinn.png"))
+        .unwrap()
+        .to_rgb8()
+        .into_raw();
+    assert_eq!(render_mistake(&scene, &phong).unwrap(), fixture);
+}
+
+#[test]
+fn same_diagnosis_for_any_thread_count() {
+    let scene = centred("tests/fixtures/diagnose/spot.toml");
+    let black = catalogue()
+        .into_iter()
+        .find(|m| m.name == "transparent-black-shadows")
+        .unwrap();
+    let image = render_mistake(&scene, &black).unwrap();
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let d = pool.install(|| diagnose(&scene, &image, &Options::default()));
+        (
+            serde_json::to_string(&d).unwrap(),
+            d.oracle_rgb.clone(),
+            d.ranking[0].rgb.clone(),
+        )
+    };
+    let one = run(1);
+    assert_eq!(one, run(2));
+    assert_eq!(one, run(3));
+}
