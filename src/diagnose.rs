@@ -27,7 +27,7 @@ pub mod report;
 use crate::edges::{footprint, is_edge};
 use crate::film::quantize;
 use crate::layers::{PixelLayers, pixel_layers};
-use crate::output::srgb_encode;
+use crate::output::{srgb_decode, srgb_encode};
 use crate::render::{camera_ray, render_pixels_with};
 use crate::scene::Scene;
 use crate::trace::{Formulas, Reference, SampleKey, Tracer};
@@ -47,6 +47,9 @@ pub struct Options {
     pub max_fraction: f64,
     /// Most pixels judged: beyond, a regular grid of every `stride`-th pixel.
     pub max_pixels: usize,
+    /// The oracle's images are sRGB-encoded (`render --srgb`): its renders are encoded so
+    /// before quantisation, and the gains fit the image decoded back to linear.
+    pub srgb: bool,
 }
 
 impl Default for Options {
@@ -55,6 +58,7 @@ impl Default for Options {
             tolerance: 8,
             max_fraction: 0.005,
             max_pixels: 40_000,
+            srgb: false,
         }
     }
 }
@@ -195,6 +199,11 @@ fn linear(c: f64) -> f64 {
     c
 }
 
+/// The transfer the oracle's 8-bit values go through: none, or sRGB's.
+fn output_encoding(srgb: bool) -> fn(f64) -> f64 {
+    if srgb { srgb_encode } else { linear }
+}
+
 /// The largest channel difference of pixel `i`.
 fn pixel_diff(a: &[u8], b: &[u8], i: usize) -> u8 {
     (0..3).map(|c| a[3 * i + c].abs_diff(b[3 * i + c])).max().unwrap_or(0)
@@ -202,7 +211,7 @@ fn pixel_diff(a: &[u8], b: &[u8], i: usize) -> u8 {
 
 /// Per pixel of `pixels`, the oracle's 8-bit values over its footprint: the lowest and the
 /// highest of each channel, one camera sample at each point ([`footprint`]).
-fn footprint_ranges(world: &World, pixels: &[(u32, u32)]) -> Vec<[[u8; 3]; 2]> {
+fn footprint_ranges(world: &World, pixels: &[(u32, u32)], encode: fn(f64) -> f64) -> Vec<[[u8; 3]; 2]> {
     let width = world.scene.settings.width as u64;
     pixels
         .par_iter()
@@ -216,7 +225,7 @@ fn footprint_ranges(world: &World, pixels: &[(u32, u32)]) -> Vec<[[u8; 3]; 2]> {
                 };
                 footprint(world, x, y).fold([[u8::MAX; 3], [0; 3]], |[lo, hi], position| {
                     let c = tracer.camera(&camera_ray(world, position), key);
-                    let q = [c.x, c.y, c.z].map(quantize);
+                    let q = [c.x, c.y, c.z].map(|v| quantize(encode(v)));
                     [
                         std::array::from_fn(|i| lo[i].min(q[i])),
                         std::array::from_fn(|i| hi[i].max(q[i])),
@@ -272,14 +281,17 @@ fn render_change(
     pixels: &[(u32, u32)],
     oracle: &[DVec3],
     change: Change,
+    srgb: bool,
 ) -> Option<Encoded> {
+    let output = output_encoding(srgb);
     match change {
-        Change::Formulas(f) => Some((render_pixels_with(world, f, pixels), linear)),
-        Change::Gamma => Some((oracle.to_vec(), srgb_encode)),
+        Change::Formulas(f) => Some((render_pixels_with(world, f, pixels), output)),
+        // An image the oracle writes sRGB-encoded already has its gamma.
+        Change::Gamma => (!srgb).then(|| (oracle.to_vec(), srgb_encode as fn(f64) -> f64)),
         Change::FlipVertical => {
             let h = scene.settings.height;
             let flipped: Vec<(u32, u32)> = pixels.iter().map(|&(x, y)| (x, h - 1 - y)).collect();
-            Some((render_pixels_with(world, Formulas::CHAPTER, &flipped), linear))
+            Some((render_pixels_with(world, Formulas::CHAPTER, &flipped), output))
         }
         Change::Convention(key) => {
             let value = convention_value(&scene.settings.conventions, key)?;
@@ -288,7 +300,7 @@ fn render_change(
             let mut changed = scene.clone();
             changed.set_conventions(conventions);
             let world = World::new(&changed);
-            Some((render_pixels_with(&world, Formulas::CHAPTER, pixels), linear))
+            Some((render_pixels_with(&world, Formulas::CHAPTER, pixels), output))
         }
     }
 }
@@ -303,7 +315,7 @@ pub fn render_mistake(scene: &Scene, mistake: &Mistake) -> Option<Vec<u8>> {
         Change::Gamma => render_pixels_with(&world, Formulas::CHAPTER, &pixels),
         _ => Vec::new(),
     };
-    render_change(scene, &world, &pixels, &oracle, mistake.change).map(|(r, encode)| to_rgb8(&r, encode))
+    render_change(scene, &world, &pixels, &oracle, mistake.change, false).map(|(r, encode)| to_rgb8(&r, encode))
 }
 
 /// The judged pixels beyond the tolerance against the oracle and within it against the
@@ -371,10 +383,10 @@ pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
         })
         .collect();
     let oracle = render_pixels_with(&world, Formulas::CHAPTER, &pixels);
-    let oracle_rgb = to_rgb8(&oracle, linear);
+    let oracle_rgb = to_rgb8(&oracle, output_encoding(options.srgb));
     let tol = options.tolerance;
     let oracle_score = score(&image_rgb, &oracle_rgb, &judged, tol);
-    let ranges = footprint_ranges(&world, &pixels);
+    let ranges = footprint_ranges(&world, &pixels, output_encoding(options.srgb));
     let judged_count = judged.iter().filter(|j| **j).count().max(1) as f64;
     let matches = |rgb: &[u8]| beyond_ranges(rgb, &ranges, &judged, tol) as f64 / judged_count <= options.max_fraction;
 
@@ -389,7 +401,11 @@ pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
         .filter(|(i, _)| judged[*i])
         .map(|(i, l)| {
             let rgb = &image_rgb[3 * i..3 * i + 3];
-            (l, DVec3::new(rgb[0] as f64, rgb[1] as f64, rgb[2] as f64) / 255.0)
+            let decode = |level: u8| {
+                let v = level as f64 / 255.0;
+                if options.srgb { srgb_decode(v) } else { v }
+            };
+            (l, DVec3::new(decode(rgb[0]), decode(rgb[1]), decode(rgb[2])))
         })
         .collect();
     let gains = gains::fit(&fit_pixels);
@@ -397,7 +413,10 @@ pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
     let list: Vec<Mistake> = catalogue();
     let rendered: Vec<Option<Vec<u8>>> = list
         .par_iter()
-        .map(|m| render_change(scene, &world, &pixels, &oracle, m.change).map(|(r, encode)| to_rgb8(&r, encode)))
+        .map(|m| {
+            render_change(scene, &world, &pixels, &oracle, m.change, options.srgb)
+                .map(|(r, encode)| to_rgb8(&r, encode))
+        })
         .collect();
     let mut ranking = Vec::new();
     let (mut not_visible, mut not_applicable) = (Vec::new(), Vec::new());

@@ -305,3 +305,23 @@ fn same_diagnosis_for_any_thread_count() {
     assert_eq!(one, run(2));
     assert_eq!(one, run(3));
 }
+
+#[test]
+fn srgb_images_against_an_srgb_oracle() {
+    // A correct image written sRGB-encoded (render --srgb) matches with --srgb, and its
+    // gains, fitted after decoding, are 1; without --srgb it is far off.
+    let scene = centred("scenes/reference.toml");
+    let film: Film = render(&World::new(&scene), &|| {}).0;
+    let encoded = lumiere::output::to_srgb8(&film);
+    let srgb = Options {
+        srgb: true,
+        ..Options::default()
+    };
+    let d = diagnose(&scene, &encoded, &srgb);
+    assert_eq!(d.verdict, Verdict::NoMistakeFound);
+    assert!(d.gains.iter().all(|g| !g.is_off()), "{:?}", d.gains);
+    assert!(d.not_applicable.contains(&"gamma-applied"));
+    let linear = diagnose(&scene, &encoded, &Options::default());
+    assert_eq!(linear.verdict, Verdict::MistakeFound);
+    assert_eq!(linear.top(1).next().unwrap().name, "gamma-applied");
+}

@@ -33,6 +33,10 @@ pub struct DiagnoseArgs {
     /// its parent exists).
     #[arg(long, value_name = "DIR")]
     pub report: Option<PathBuf>,
+    /// The oracle's images are sRGB-encoded (as `render --srgb` writes them): compare
+    /// yours with those, and fit the gains on it decoded to linear.
+    #[arg(long)]
+    pub srgb: bool,
     /// Print the diagnosis as JSON.
     #[arg(long)]
     pub json: bool,
@@ -96,6 +100,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
         tolerance: args.tolerance,
         max_fraction: args.max_fraction,
         max_pixels: args.max_pixels,
+        srgb: args.srgb,
     };
     let d = super::with_threads(args.threads, || diagnose(&scene, &image.rgb, &options))?;
     let (scene_name, image_name) = (args.scene.display().to_string(), args.image.display().to_string());

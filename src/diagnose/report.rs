@@ -51,7 +51,7 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
          td,th{{padding:2px 8px;text-align:left}}figure{{display:inline-block;margin:4px}}</style></head><body>\n\
          <h1>Diagnosis of {} against {}</h1>\n<p>{} x {} pixels; judged on every {}th pixel ({} x {}), {} on edges apart; \
          tolerance {} levels, at most {:.4} % beyond.</p>\n<p><b>Verdict: {}</b>. The oracle: {} of {} pixels beyond the tolerance \
-         ({:.4} %), RMS {:.4}.</p>\n",
+         ({:.4} %), RMS {:.4}; {} beyond any sampling of the pixel.</p>\n",
         escape(image),
         escape(scene),
         d.width,
@@ -66,7 +66,8 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
         d.oracle.beyond,
         d.oracle.judged,
         100.0 * d.oracle.fraction,
-        d.oracle.rms
+        d.oracle.rms,
+        d.beyond_sampling
     );
     html += "<h2>Gains per term</h2>\n<table><tr><th>term</th><th>gain</th></tr>\n";
     for g in &d.gains {
