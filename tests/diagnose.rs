@@ -4,8 +4,10 @@
 //! diagnosed: the mistake must be first (at least 90 % of the visible cases) and in the top
 //! three (all of them). Mistakes that make no visible difference on a scene are counted
 //! apart. A correct image at each sampling convention and with another seed is diagnosed
-//! "no mistake found". The gains of a doubled specular term, the command line's text,
-//! JSON and report, and its bad input.
+//! "no mistake found". The mistakes again in images sampled on a jittered grid (not equal
+//! to any render). The gains of a doubled specular term and of opaque filters; an sRGB
+//! oracle; the README's fixture; the same diagnosis for any thread count; the command
+//! line's text, JSON and report, and its bad input.
 
 mod common;
 use common::*;
