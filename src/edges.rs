@@ -151,7 +151,7 @@ pub fn same_region(a: &[Node], b: &[Node]) -> bool {
 }
 
 /// The points of pixel `(x, y)`'s footprint: the grid, then the render's samples.
-fn footprint<'a>(world: &'a World<'a>, x: u32, y: u32) -> impl Iterator<Item = (f64, f64)> + 'a {
+pub fn footprint<'a>(world: &'a World<'a>, x: u32, y: u32) -> impl Iterator<Item = (f64, f64)> + 'a {
     let (fx, fy) = (x as f64, y as f64);
     let spp = world.scene.settings.samples_per_pixel;
     GRID.iter()

@@ -28,13 +28,18 @@
 //!    photon pass: emission, specular paths through the intersection core, the photon map and
 //!    its density estimate).
 //! 7. [`world`]: a scene ready to render (camera, intersection core, light points, bounds).
-//! 8. [`trace`]: the Whitted recursion, as the chapter reads ([`trace::reference`]) and as
-//!    it renders ([`trace::fast`]), to the same bits.
+//! 8. [`trace`]: the Whitted recursion, as the chapter reads ([`trace::reference`], through
+//!    the table of formulas [`trace::formulas`]) and as it renders ([`trace::fast`]), to the
+//!    same bits.
 //! 9. [`render`]: pixels in parallel, deterministic for any thread count.
 //! 10. [`family`] (images that differ only in depth, lights, an area light's count or
 //!     shading, rendered in one pass), [`probe`] (the recorded ray tree of one pixel),
-//!     [`edges`] (the pixels whose footprint spans a boundary, from the recorded paths).
-//! 11. [`figures`]: the course's figure sets, manifests, contact sheets and gallery.
+//!     [`edges`] (the pixels whose footprint spans a boundary, from the recorded paths),
+//!     [`layers`] (each pixel's terms, recorded: ambient, diffuse, specular, reflected,
+//!     transmitted, shadow filters, object, normal, depth).
+//! 11. [`figures`]: the course's figure sets, manifests, contact sheets and gallery;
+//!     [`diagnose`]: what is most likely wrong in a student's image (gains per term, a
+//!     catalogue of named mistakes rendered and ranked, the HTML report).
 //! 12. [`study`]: render time against error of area lights; [`caustic_study`]: of the
 //!     caustic pass, over photon counts and estimate radii.
 //!
@@ -77,11 +82,13 @@ pub mod caustic_study;
 pub mod caustics;
 pub mod compare;
 pub mod conventions;
+pub mod diagnose;
 pub mod edges;
 pub mod family;
 pub mod figures;
 pub mod film;
 pub mod interference;
+pub mod layers;
 pub mod light;
 pub mod limits;
 pub mod material;

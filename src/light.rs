@@ -99,6 +99,13 @@ impl Light {
     /// Outside a spot's cone the incidence is black (spot factor 0). Area lights
     /// have one incidence per point: see [`point_incidence`].
     pub fn incidence(&self, p: DVec3) -> Option<Incidence> {
+        self.incidence_with(p, spot_factor)
+    }
+
+    /// [`Light::incidence`] with a spotlight's angular factor computed by `spot` (the
+    /// chapter's [`spot_factor`], or another falloff's with the same arguments).
+    #[inline(always)]
+    pub fn incidence_with(&self, p: DVec3, spot: fn(f64, f64, f64, f64) -> f64) -> Option<Incidence> {
         match self {
             Light::Ambient { .. } | Light::Area(_) => None,
             Light::Directional { direction, color } => Some(Incidence {
@@ -117,7 +124,7 @@ impl Light {
                 }
                 // d = (r_inter - r_lum) / |r_inter - r_lum|
                 // Outside the cone c = 0: the light arrives black (the tracer skips it).
-                let c = spot_factor(s.orientation.dot(to_p / dist), s.cos_half, s.c_min, s.c_max);
+                let c = spot(s.orientation.dot(to_p / dist), s.cos_half, s.c_min, s.c_max);
                 point_incidence(s.position, s.color, &s.attenuation, p, c)
             }
             Light::Aperture(a) => {

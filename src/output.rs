@@ -46,6 +46,17 @@ pub fn srgb_encode(c: f64) -> f64 {
     }
 }
 
+/// The inverse of [`srgb_encode`] (IEC 61966-2-1), from an encoded value in [0, 1] back to
+/// linear: `c / 12.92` for `c <= 0.04045`, else `((c + 0.055) / 1.055)^2.4`.
+pub fn srgb_decode(c: f64) -> f64 {
+    let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
+    if c <= 0.040_45 {
+        c / 12.92
+    } else {
+        libm::pow((c + 0.055) / 1.055, 2.4)
+    }
+}
+
 /// 8-bit RGB of a film with each channel sRGB-encoded before quantisation.
 pub fn to_srgb8(film: &Film) -> Vec<u8> {
     film.pixels
@@ -100,6 +111,11 @@ mod tests {
 
     #[test]
     fn srgb_by_hand() {
+        // Decoding undoes encoding: 0.5 encodes to 1.055 * 0.5^(1/2.4) - 0.055 = 0.735357.
+        assert!((srgb_encode(0.5) - 0.735_356_983).abs() < 1e-9);
+        for x in [0.0, 0.002, 0.0031308, 0.2, 0.5, 1.0] {
+            assert!((srgb_decode(srgb_encode(x)) - x).abs() < 1e-12, "{x}");
+        }
         assert_eq!(srgb_encode(0.0), 0.0);
         // 1.055 - 0.055 = 1 up to one rounding: 0.9999999999999999, which quantises to 255.
         assert!((srgb_encode(1.0) - 1.0).abs() < 1e-15);

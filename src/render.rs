@@ -6,7 +6,8 @@ use crate::conventions::{RayOrigin, SamplePosition};
 use crate::film::Film;
 use crate::math::Ray;
 use crate::sampling::{Purpose, Stream};
-use crate::trace::{Member, NoRecord, RayCounts, Recorder, Reference, SampleKey, Tracer};
+use crate::trace::formulas::{Chapter, FormulaTable};
+use crate::trace::{Formulas, Member, NoRecord, RayCounts, Recorder, Reference, SampleKey, Tracer};
 use crate::world::World;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -255,6 +256,24 @@ pub fn render_rows_reference(
     (pixels, stats)
 }
 
+/// The radiance of each pixel of `pixels` (`(x, y)` pairs), as [`render_reference`]
+/// renders it but with the reference tracer evaluating `formulas` (see
+/// [`crate::trace::Formulas`]), in parallel on the current rayon pool: the same values for
+/// any thread count. `lumiere diagnose` renders its mistakes so, on a subset of pixels.
+pub fn render_pixels_with(world: &World, formulas: Formulas, pixels: &[(u32, u32)]) -> Vec<DVec3> {
+    pixels
+        .par_iter()
+        .with_min_len(64)
+        .map_init(
+            || ReferencePixels {
+                tracer: Reference::with_formulas(world, formulas),
+                counts: RayCounts::default(),
+            },
+            |tracer, &(x, y)| tracer.pixel(x, y)[0],
+        )
+        .collect()
+}
+
 /// What renders the pixels of a row: the fast tracer's members, or the reference tracer.
 trait PixelTracer<const K: usize> {
     /// Every member's radiance of pixel `(x, y)`.
@@ -274,12 +293,12 @@ impl<const K: usize> PixelTracer<K> for Tracer<'_, '_, K> {
 }
 
 /// The reference tracer with the counts it keeps: camera rays and non-finite samples.
-struct ReferencePixels<'w, 's> {
-    tracer: Reference<'w, 's>,
+struct ReferencePixels<'w, 's, F: FormulaTable = Chapter> {
+    tracer: Reference<'w, 's, F>,
     counts: RayCounts,
 }
 
-impl PixelTracer<1> for ReferencePixels<'_, '_> {
+impl<F: FormulaTable> PixelTracer<1> for ReferencePixels<'_, '_, F> {
     fn pixel(&mut self, x: u32, y: u32) -> [DVec3; 1] {
         let world = self.tracer.world();
         let counts = &mut self.counts;

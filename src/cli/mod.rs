@@ -5,6 +5,7 @@
 
 mod compare;
 mod convert;
+mod diagnose;
 mod error;
 mod figures;
 mod lock;
@@ -82,6 +83,12 @@ pub enum Command {
         after_help = "Examples:\n  lumiere compare mine.png figures/lighting/01-ambient.png\n  lumiere compare mine.ppm oracle.png --scene scenes/reference.toml --tolerance 8 --max-fraction 0.001\n  lumiere compare mine.png ref.png --flip-heatmap flip.png --heatmap diff.png --json\n\nReads PNG, PPM / PGM / PBM, PFM, EXR, JPEG, BMP and TGA; PFM and EXR are clamped and quantised as lumiere's film does.\nExit codes: 0 the rule holds, 1 the images differ beyond the rule (--tolerance, --max-fraction, --max-flip), 2 bad input (images, sizes, options, scene, output paths)."
     )]
     Compare(compare::CompareArgs),
+    /// What is most likely wrong in your image: gains per term and a catalogue of named
+    /// mistakes rendered and ranked against it.
+    #[command(
+        after_help = "Examples:\n  lumiere diagnose scenes/reference.toml mine.png\n  lumiere diagnose scenes/prism.toml mine.ppm --convention sample_position=center --report diagnosis --json\n\nReads PNG, PPM / PGM / PBM, PFM, EXR, JPEG, BMP and TGA; the scene is rendered at the image's size with the given settings.\nExit codes: 0 a diagnosis was made (whatever it says), 2 bad input (image, scene, options, report folder)."
+    )]
+    Diagnose(diagnose::DiagnoseArgs),
     /// Regenerate the course's figures (all sets when none is named).
     #[command(
         after_help = "Examples:\n  lumiere figures                       # every set into figures/\n  lumiere figures lighting mirrors      # two sets\n  lumiere figures --scale 0.25 --out /tmp/preview\n  lumiere figures --check               # the committed files against a fresh render\n  lumiere figures --list\n\nThe sets are read from scenes/figures/<set>/ (set.toml and one scene file per figure). Each set writes <out>/<set>/NN-name.png (with its provenance in tEXt chunks), manifest.json and contact-sheet.png; <out>/index.html is a gallery of the sets in <out>; the run's times go to <out>/timings.json.\nCtrl-C, SIGTERM or SIGHUP leaves each set wholly old or wholly new. One run at a time writes into an output folder.\nExit codes: 0 ok, 1 a figure could not be written (disk full) or differs (--check), 2 bad input (option, output folder, or another run writing into it), 130 / 143 / 129 stopped by Ctrl-C / SIGTERM / SIGHUP."
@@ -229,6 +236,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Render(args) => render::run(&args, v),
         Command::Compare(args) => compare::run(&args),
+        Command::Diagnose(args) => diagnose::run(&args),
         Command::Figures(args) => figures::run(&args, v),
         Command::Merge(args) => merge::run(&args, v),
         Command::Completions(args) => {

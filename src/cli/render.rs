@@ -5,19 +5,26 @@ use super::{CliError, Overrides, Verbosity, check_output, check_output_path, sig
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::film::{WriteError, write_atomic};
+use lumiere::layers::render_layers;
 use lumiere::render::{RenderStats, render_rows, render_rows_reference};
 use lumiere::skips::Skip;
 use lumiere::world::World;
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
     /// The scene file: TOML, or SIMRenderer's format (see scenes/README.md).
     pub scene: PathBuf,
     /// Output image: .png (8-bit, clamped), .pfm or .exr (32-bit float radiance, unclamped).
-    #[arg(short, long)]
-    pub output: PathBuf,
+    #[arg(short, long, required_unless_present = "layers")]
+    pub output: Option<PathBuf>,
+    /// Also (or only) write the per-term layers of each pixel (ambient, diffuse, specular,
+    /// reflected, transmitted, each light's shadow filter, object, normal, depth): a
+    /// multi-channel `.exr`, or a folder ending in `/` of one PNG per layer (and PFM for
+    /// the colour layers). See README, "Checking your ray tracer".
+    #[arg(long, value_name = "OUT.exr|DIR/", conflicts_with_all = ["shard", "reference"])]
+    pub layers: Option<PathBuf>,
     /// Encode PNG output with the sRGB transfer function (default: linear, as the course).
     #[arg(long)]
     pub srgb: bool,
@@ -63,11 +70,20 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     let start = std::time::Instant::now();
     let scene = super::load_scene(&args.scene, &args.overrides)?;
     let loaded = start.elapsed();
+    let layers = args
+        .layers
+        .as_deref()
+        .map(|p| LayersTarget::check(p, &args.scene))
+        .transpose()?;
+    let Some(output) = &args.output else {
+        let layers = layers.expect("clap asks for -o or --layers");
+        return write_layers(&scene, &layers, args, v);
+    };
     let format = match args.shard {
-        None => Some(check_output(&args.output, &args.scene)?),
+        None => Some(check_output(output, &args.scene)?),
         Some(_) => {
-            lumiere::shard::check_path(&args.output).map_err(CliError::BadInput)?;
-            check_output_path(&args.output, &args.scene)?;
+            lumiere::shard::check_path(output).map_err(CliError::BadInput)?;
+            check_output_path(output, &args.scene)?;
             None
         }
     };
@@ -118,7 +134,7 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
         }
         (None, None) => unreachable!("format is checked when there is no shard"),
     };
-    write_atomic(&args.output, &bytes).map_err(|e| WriteError::new(&args.output, "cannot write the image", e))?;
+    write_atomic(output, &bytes).map_err(|e| WriteError::new(output, "cannot write the image", e))?;
     let phases = Phases {
         load: loaded.as_secs_f64(),
         build: (built - loaded).as_secs_f64(),
@@ -133,7 +149,7 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     v.note(|| {
         format!(
             "wrote {} ({} bytes) in {:.3} s",
-            args.output.display(),
+            output.display(),
             bytes.len(),
             stats.elapsed.as_secs_f64()
         )
@@ -143,11 +159,88 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     } else if args.stats {
         print!("{}", stats_report(&stats, &phases));
     }
+    if let Some(layers) = &layers {
+        write_layers(&scene, layers, args, v)?;
+    }
     if stats.counts.non_finite > 0 {
         eprintln!(
             "warning: {} samples were NaN or infinite and were written as black",
             stats.counts.non_finite
         );
+    }
+    Ok(())
+}
+
+/// Where `--layers` writes: one EXR file, or a folder of PNG and PFM files.
+enum LayersTarget {
+    Exr(PathBuf),
+    Folder(PathBuf),
+}
+
+impl LayersTarget {
+    /// Checks `--layers PATH` before any work: a folder when it ends in `/` or is one (created
+    /// if its parent exists), else a file ending in `.exr` in an existing folder.
+    fn check(path: &Path, scene: &Path) -> Result<LayersTarget, CliError> {
+        let bad = |m: &str| Err(CliError::BadInput(format!("{}: --layers: {m}", path.display())));
+        let as_folder = path.as_os_str().to_string_lossy().ends_with('/') || path.is_dir();
+        // Without its trailing `/`, which makes a file look absent.
+        let path = path.components().as_path();
+        if as_folder {
+            if path.exists() && !path.is_dir() {
+                return bad("is a file, not a folder");
+            }
+            if !path.exists() {
+                let parent = path
+                    .parent()
+                    .filter(|p| !p.as_os_str().is_empty())
+                    .unwrap_or(Path::new("."));
+                if !parent.is_dir() {
+                    return bad(&format!("the folder {} does not exist", parent.display()));
+                }
+            }
+            return Ok(LayersTarget::Folder(path.to_path_buf()));
+        }
+        let exr = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+        if !exr {
+            return bad("must end in .exr (one multi-channel file) or / (a folder of PNG and PFM files)");
+        }
+        check_output_path(path, scene)?;
+        Ok(LayersTarget::Exr(path.to_path_buf()))
+    }
+}
+
+/// Renders the layers of `scene` and writes them to `target`.
+fn write_layers(
+    scene: &lumiere::scene::Scene,
+    target: &LayersTarget,
+    args: &RenderArgs,
+    v: Verbosity,
+) -> Result<(), CliError> {
+    let world = World::with_accel(scene, args.overrides.accel);
+    let layers = super::with_threads(args.threads, || render_layers(&world))?;
+    if let Some(signal) = signals::received() {
+        return Err(CliError::Interrupted(signal));
+    }
+    match target {
+        LayersTarget::Exr(path) => {
+            let bytes = layers
+                .encode_exr(&scene.lights)
+                .map_err(|e| CliError::Failed(format!("cannot encode the layers: {e}")))?;
+            write_atomic(path, &bytes).map_err(|e| WriteError::new(path, "cannot write the layers", e))?;
+            v.note(|| format!("wrote the layers into {}", path.display()));
+        }
+        LayersTarget::Folder(dir) => {
+            if !dir.exists() {
+                std::fs::create_dir(dir).map_err(|e| WriteError::new(dir, "cannot create the layers' folder", e))?;
+            }
+            let files = layers
+                .write_folder(dir, &scene.lights)
+                .map_err(|e| WriteError::new(dir, "cannot write the layers", e))?;
+            v.note(|| format!("wrote {} layer files into {}", files.len(), dir.display()));
+        }
     }
     Ok(())
 }

@@ -29,9 +29,11 @@ use crate::world::World;
 use glam::DVec3;
 
 pub mod fast;
+pub mod formulas;
 pub mod reference;
 
 pub use fast::{Member, Tracer};
+pub use formulas::Formulas;
 pub use reference::Reference;
 
 /// One point light's diffuse and specular shares at `at` (slides, full model):
@@ -39,7 +41,7 @@ pub use reference::Reference;
 /// `model` says, for the light `light` arriving through its shadow filter (`A C_theta L`
 /// times the filter) from direction `inc.to_light`; a texture material's images give the
 /// point's colours ([`Surface::reflectance`]). Both tracers shade every point light so.
-#[inline]
+#[inline(always)]
 pub(crate) fn point_light_terms(
     model: ShadingModel,
     mat: &Material,
@@ -48,11 +50,34 @@ pub(crate) fn point_light_terms(
     n_dot_l: f64,
     light: DVec3,
 ) -> (DVec3, DVec3) {
-    let spec = match model.specular {
+    point_light_terms_with(specular_term, model, mat, at, to_light, n_dot_l, light)
+}
+
+/// The specular term `spec` of the model `specular` asks for (slides): 0, Phong's
+/// `max(R.E, 0)^n` or Blinn's `max(N.H, 0)^n`, for the unit normal `n`, direction to the
+/// light `l`, direction to the eye `e` and exponent `n`.
+#[inline(always)]
+pub fn specular_term(specular: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
+    match specular {
         Specular::None => 0.0,
-        Specular::Phong => phong(at.n, to_light, at.eye, mat.shininess),
-        Specular::Blinn => blinn(at.n, to_light, at.eye, mat.shininess),
-    };
+        Specular::Phong => phong(n, l, e, exponent),
+        Specular::Blinn => blinn(n, l, e, exponent),
+    }
+}
+
+/// [`point_light_terms`] with the specular term computed by `spec_term` (a
+/// [`formulas::FormulaTable`] entry: [`specular_term`] or a mistake's).
+#[inline(always)]
+pub(crate) fn point_light_terms_with(
+    spec_term: impl Fn(Specular, DVec3, DVec3, DVec3, f64) -> f64,
+    model: ShadingModel,
+    mat: &Material,
+    at: &Surface,
+    to_light: DVec3,
+    n_dot_l: f64,
+    light: DVec3,
+) -> (DVec3, DVec3) {
+    let spec = spec_term(model.specular, at.n, to_light, at.eye, mat.shininess);
     let r = at.reflectance(mat);
     let kd = if model.diffuse { r.kd } else { 0.0 };
     (

@@ -17,23 +17,44 @@
 //! [`crate::conventions::Conventions`] decide: how far a camera ray sees, what weighs the
 //! local terms, which objects refract, where the energy of a total internal reflection
 //! goes, what weighs a refracted ray and what a transparent object filters shadows by.
+//!
+//! Each formula is evaluated through a table of functions ([`Formulas`]): the chapter's
+//! ([`Formulas::CHAPTER`]) for every render, another for a named mistake of
+//! `lumiere diagnose`.
 
-use super::{SampleKey, Surface, caustic_share, point_light_terms};
+use super::formulas::{AmbientContext, Chapter, FormulaTable};
+use super::{SampleKey, Surface, caustic_share, point_light_terms_with};
 use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, aperture_share, point_incidence};
-use crate::math::{Ray, reflect, refract};
-use crate::shading::{ambient, beneath_notice, local_weight, shadow_filter, transmission_weight, transparent_filter};
+use crate::math::Ray;
+use crate::shading::{ambient, beneath_notice, local_weight, shadow_filter, transmission_weight};
 use crate::world::World;
 use glam::DVec3;
 
-/// Traces rays through a world, as the chapter does.
-pub struct Reference<'w, 's> {
+/// Traces rays through a world, as the chapter does, evaluating the formulas of `F` (the
+/// chapter's, [`Chapter`], unless told otherwise).
+pub struct Reference<'w, 's, F: FormulaTable = Chapter> {
     world: &'w World<'s>,
+    formulas: F,
+}
+
+/// What the lights did at a hit, for the ambient entry of [`Formulas`].
+#[derive(Clone, Copy, Default)]
+struct Shadowing {
+    cast: u32,
+    blocked: u32,
 }
 
 impl<'w, 's> Reference<'w, 's> {
     pub fn new(world: &'w World<'s>) -> Self {
-        Reference { world }
+        Reference::with_formulas(world, Chapter)
+    }
+}
+
+impl<'w, 's, F: FormulaTable> Reference<'w, 's, F> {
+    /// A tracer evaluating `formulas` (a [`super::Formulas`] table with wrong entries, say).
+    pub fn with_formulas(world: &'w World<'s>, formulas: F) -> Self {
+        Reference { world, formulas }
     }
 
     /// The world it traces.
@@ -63,7 +84,10 @@ impl<'w, 's> Reference<'w, 's> {
             let mut refracted = None;
             let closed = self.world.objects()[object].shape.is_closed();
             if mat.kt > 0.0 && conventions.refracting.admits(closed) {
-                match refract(ray.dir, at.n, mat.eta(at.entering)) {
+                match self
+                    .formulas
+                    .refract(ray.dir, at.n, self.formulas.eta(mat, at.entering))
+                {
                     Some(t) => refracted = Some(t.normalize()),
                     // Total internal reflection: the transmitted energy is reflected, or lost.
                     None => {
@@ -74,7 +98,7 @@ impl<'w, 's> Reference<'w, 's> {
                 }
             }
             if kr > 0.0 {
-                let dir = reflect(ray.dir, at.n).normalize();
+                let dir = self.formulas.reflect(ray.dir, at.n).normalize();
                 color += kr * self.secondary(&at, dir, level, weight * kr, key);
             }
             if let Some(dir) = refracted {
@@ -102,29 +126,89 @@ impl<'w, 's> Reference<'w, 's> {
     /// `E k_d S` of the photons that land near the point.
     fn local(&self, at: &Surface, key: SampleKey) -> DVec3 {
         let world = self.world;
+        let f = &self.formulas;
         let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
         let mut color = DVec3::ZERO;
+        let r = at.reflectance(mat);
+        let ambient_term = ambient(world.ambient, r.ka, r.ambient);
         if model.ambient {
-            let r = at.reflectance(mat);
-            color += ambient(world.ambient, r.ka, r.ambient);
+            color += ambient_term;
         }
+        let mut shadowing = Shadowing::default();
+        let mut attenuation = None;
         for (index, light) in world.scene.lights.iter().enumerate() {
             match light {
                 Light::Ambient { .. } => {}
                 Light::Area(area) => {
                     for q in world.area_points(index, key.pixel, key.sample).iter() {
                         let incidence = point_incidence(q, area.point_color(), &area.attenuation, at.point, 1.0);
-                        color += self.light_share(incidence, at);
+                        color += self.light_share(incidence, at, &mut shadowing);
                     }
                 }
                 Light::Aperture(a) => color += self.aperture_light(a.color, light.incidence(at.point), at),
-                _ => color += self.light_share(light.incidence(at.point), at),
+                _ => {
+                    let incidence = light.incidence_with(at.point, f.spot_factor());
+                    if F::AMBIENT_CONTEXT && matches!(light, Light::Point(_) | Light::Spot(_)) && attenuation.is_none()
+                    {
+                        attenuation = incidence.map(|inc| inc.attenuation);
+                    }
+                    color += self.light_share(incidence, at, &mut shadowing);
+                }
             }
         }
         if let Some((term, _)) = caustic_share(world, model, mat, at) {
             color += term;
         }
+        if F::AMBIENT_CONTEXT && model.ambient {
+            let context = AmbientContext {
+                in_shadow: shadowing.cast > 0 && shadowing.blocked == shadowing.cast,
+                attenuation: attenuation.unwrap_or(1.0),
+            };
+            let added = f.ambient(ambient_term, context);
+            // Where the entry is the identity the sum is left as it is, to the bit.
+            if added != ambient_term {
+                color += added - ambient_term;
+            }
+        }
         color
+    }
+
+    /// One point light's share, `A L filter [k_d S max(N.L, 0) + k_s [m S + (1 - m)] spec]`:
+    /// nothing when no light arrives (the point is at the light) or the surface faces away
+    /// (`N.L <= 0`: the slides count neither term there); otherwise the light that the
+    /// shadow ray lets through.
+    fn light_share(&self, incidence: Option<Incidence>, at: &Surface, shadowing: &mut Shadowing) -> DVec3 {
+        let world = self.world;
+        let f = &self.formulas;
+        let Some(mut inc) = incidence else {
+            return DVec3::ZERO;
+        };
+        inc.to_light = f.light_direction(inc.to_light);
+        let n_dot_l = at.n.dot(inc.to_light);
+        if n_dot_l <= 0.0 {
+            return DVec3::ZERO;
+        }
+        let filter = if world.scene.settings.shadows {
+            let filter = self.shadow_filter(at, &inc);
+            if F::AMBIENT_CONTEXT {
+                shadowing.cast += 1;
+                shadowing.blocked += u32::from(filter == DVec3::ZERO);
+            }
+            filter
+        } else {
+            DVec3::ONE
+        };
+        let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
+        let (diffuse, specular) = point_light_terms_with(
+            |model, n, l, e, exponent| f.specular(model, n, l, e, exponent),
+            model,
+            mat,
+            at,
+            inc.to_light,
+            n_dot_l,
+            inc.color * filter,
+        );
+        f.light_share(diffuse + specular)
     }
 
     /// The share of an aperture light of colour `light` ([`aperture_share`]): nothing when
@@ -145,36 +229,17 @@ impl<'w, 's> Reference<'w, 's> {
         aperture_share(light, filter, inc.color)
     }
 
-    /// One point light's share, `A L filter [k_d S max(N.L, 0) + k_s [m S + (1 - m)] spec]`:
-    /// nothing when no light arrives (the point is at the light) or the surface faces away
-    /// (`N.L <= 0`: the slides count neither term there); otherwise the light that the
-    /// shadow ray lets through.
-    fn light_share(&self, incidence: Option<Incidence>, at: &Surface) -> DVec3 {
-        let world = self.world;
-        let Some(inc) = incidence else {
-            return DVec3::ZERO;
-        };
-        let n_dot_l = at.n.dot(inc.to_light);
-        if n_dot_l <= 0.0 {
-            return DVec3::ZERO;
-        }
-        let filter = if world.scene.settings.shadows {
-            self.shadow_filter(at, &inc)
-        } else {
-            DVec3::ONE
-        };
-        let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
-        let (diffuse, specular) = point_light_terms(model, mat, at, inc.to_light, n_dot_l, inc.color * filter);
-        diffuse + specular
-    }
-
     /// Chapter 7.4b's shadow ray towards the light of incidence `inc`, up to the light
     /// (`t_max` = its distance): 0 if it meets an opaque object, else the product of the
     /// filters of the transparent objects it crosses (their colours, or `k_t S` by the
     /// conventions), each counted once, in object order.
     fn shadow_filter(&self, at: &Surface, inc: &Incidence) -> DVec3 {
         let world = self.world;
-        let ray = at.ray_along(inc.to_light);
+        let f = &self.formulas;
+        let ray = Ray::new(
+            f.shadow_origin(at.point, at.outward, at.err, inc.to_light),
+            inc.to_light,
+        );
         let transparent = |i: usize| world.filters_shadows(i);
         if world.any_hit(&ray, inc.distance, &|i| !transparent(i)) {
             return DVec3::ZERO;
@@ -185,7 +250,7 @@ impl<'w, 's> Reference<'w, 's> {
         let rule = world.scene.settings.conventions.shadow_filter;
         shadow_filter(crossed.into_iter().map(|i| {
             let mat = world.material_of(i);
-            transparent_filter(rule, mat.kt, mat.color)
+            f.transparent_filter(rule, mat.kt, mat.color)
         }))
     }
 }

@@ -1,0 +1,190 @@
+//! `lumiere diagnose SCENE IMAGE`: what is most likely wrong in a student's image. Prints
+//! the gains per term, the verdict and the top mistakes with their evidence (or JSON), and
+//! writes the HTML report with `--report DIR`. Exit 0 whatever the verdict, 2 bad input.
+
+use super::{CliError, Overrides, load_scene};
+use clap::Args;
+use lumiere::compare::read::read_image;
+use lumiere::diagnose::{Diagnosis, Options, Score, Verdict, diagnose, report};
+use lumiere::film::WriteError;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+#[derive(Args, Debug)]
+pub struct DiagnoseArgs {
+    /// The scene the image renders (TOML or SIMRenderer's format); loaded at the image's size.
+    pub scene: PathBuf,
+    /// Your image: PNG, PPM / PGM / PBM, PFM, EXR, JPEG, BMP or TGA.
+    pub image: PathBuf,
+    /// Largest per-channel difference (8-bit levels) that counts as equal.
+    #[arg(long, default_value_t = Options::default().tolerance)]
+    pub tolerance: u8,
+    /// Largest fraction (0 to 1) of the judged pixels beyond the tolerance for the image to
+    /// match the oracle ("no mistake found").
+    #[arg(long, default_value_t = Options::default().max_fraction, value_name = "FRACTION")]
+    pub max_fraction: f64,
+    /// Most pixels judged; a larger image is judged on a regular grid of every n-th pixel.
+    #[arg(long, default_value_t = Options::default().max_pixels, value_name = "N")]
+    pub max_pixels: usize,
+    /// How many mistakes to print.
+    #[arg(long, default_value_t = 3, value_name = "N")]
+    pub top: usize,
+    /// Write an HTML report (index.html, the images and heat-maps) into this folder (made if
+    /// its parent exists).
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
+    /// The oracle's images are sRGB-encoded (as `render --srgb` writes them): compare
+    /// yours with those, and fit the gains on it decoded to linear.
+    #[arg(long)]
+    pub srgb: bool,
+    /// Print the diagnosis as JSON.
+    #[arg(long)]
+    pub json: bool,
+    /// Worker threads (default: all cores). The diagnosis does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// The oracle's settings, as `render` takes them (the size is the image's).
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
+    if !(0.0..=1.0).contains(&args.max_fraction) {
+        return Err(CliError::BadInput(format!(
+            "--max-fraction: must be in [0, 1], got {}",
+            args.max_fraction
+        )));
+    }
+    if args.max_pixels == 0 {
+        return Err(CliError::BadInput("--max-pixels: must be at least 1, got 0".into()));
+    }
+    if let Some(dir) = &args.report {
+        let parent = dir
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        if dir.exists() && !dir.is_dir() {
+            return Err(CliError::BadInput(format!(
+                "{}: --report: is a file, not a folder",
+                dir.display()
+            )));
+        }
+        if !dir.exists() && !parent.is_dir() {
+            return Err(CliError::BadInput(format!(
+                "{}: --report: the folder {} does not exist",
+                dir.display(),
+                parent.display()
+            )));
+        }
+    }
+    let image = read_image(&args.image).map_err(CliError::BadInput)?;
+    for note in &image.notes {
+        eprintln!("lumiere: {}: {note}", args.image.display());
+    }
+    let mut overrides = args.overrides.clone();
+    for (given, actual, flag) in [
+        (overrides.width, image.width, "--width"),
+        (overrides.height, image.height, "--height"),
+    ] {
+        if given.is_some_and(|g| g != actual) {
+            return Err(CliError::BadInput(format!(
+                "{flag}: the image is {} x {}; the oracle renders at the image's size",
+                image.width, image.height
+            )));
+        }
+    }
+    overrides.width = Some(image.width);
+    overrides.height = Some(image.height);
+    let scene = load_scene(&args.scene, &overrides)?;
+    let options = Options {
+        tolerance: args.tolerance,
+        max_fraction: args.max_fraction,
+        max_pixels: args.max_pixels,
+        srgb: args.srgb,
+    };
+    let d = super::with_threads(args.threads, || diagnose(&scene, &image.rgb, &options))?;
+    let (scene_name, image_name) = (args.scene.display().to_string(), args.image.display().to_string());
+    if let Some(dir) = &args.report {
+        if !dir.exists() {
+            std::fs::create_dir(dir).map_err(|e| WriteError::new(dir, "cannot create the report's folder", e))?;
+        }
+        report::write(dir, &d, &scene_name, &image_name, args.top)
+            .map_err(|e| WriteError::new(dir, "cannot write the report", e))?;
+    }
+    if args.json {
+        let mut value = serde_json::to_value(&d).map_err(|e| CliError::Failed(e.to_string()))?;
+        value["scene"] = scene_name.into();
+        value["image"] = image_name.into();
+        value["top"] = d.top(args.top).map(|c| c.name).collect::<Vec<_>>().into();
+        println!("{value}");
+    } else {
+        print!("{}", text(&d, &scene_name, &image_name, args.top));
+    }
+    Ok(())
+}
+
+/// `B of J pixels beyond T levels (F %), RMS R`.
+fn score_line(s: &Score, tolerance: u8) -> String {
+    format!(
+        "{} of {} pixels beyond {tolerance} levels ({:.4} %), RMS {:.4}",
+        s.beyond,
+        s.judged,
+        100.0 * s.fraction,
+        s.rms
+    )
+}
+
+/// The diagnosis as text.
+fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
+    let mut out = String::new();
+    let judged = if d.grid.stride == 1 {
+        "every pixel judged".to_string()
+    } else {
+        format!(
+            "every {}th pixel of every {}th row judged ({} x {})",
+            d.grid.stride, d.grid.stride, d.grid.width, d.grid.height
+        )
+    };
+    let _ = writeln!(
+        out,
+        "diagnosis          {image} against {scene} at {} x {}: {judged}, {} on edges apart",
+        d.width, d.height, d.edges
+    );
+    let _ = writeln!(
+        out,
+        "oracle             {}; {} beyond any sampling of the pixel",
+        score_line(&d.oracle, d.tolerance),
+        d.beyond_sampling
+    );
+    let gains: Vec<String> = d.gains.iter().map(|g| format!("{} {}", g.term, g.label())).collect();
+    let _ = writeln!(out, "gains              {}", gains.join(", "));
+    for f in &d.findings {
+        let _ = writeln!(out, "finding            {f}");
+    }
+    let verdict = match d.verdict {
+        Verdict::NoMistakeFound => "no mistake found",
+        Verdict::MistakeFound => "mistake found",
+        Verdict::Unexplained => "the image differs; no mistake of the catalogue explains it",
+    };
+    let _ = writeln!(out, "verdict            {verdict}");
+    if d.verdict == Verdict::MistakeFound {
+        for (k, c) in d.top(top).enumerate() {
+            let _ = writeln!(out, "{}. {}: {}", k + 1, c.name, c.description);
+            let _ = writeln!(out, "     after         {}", score_line(&c.score, d.tolerance));
+            if let Some(r) = &c.fixes {
+                let _ = writeln!(
+                    out,
+                    "     explains      {} pixels, x {}..{}, y {}..{}",
+                    r.pixels, r.x[0], r.x[1], r.y[0], r.y[1]
+                );
+            }
+        }
+    }
+    if !d.not_visible.is_empty() {
+        let _ = writeln!(out, "no visible difference on this scene: {}", d.not_visible.join(", "));
+    }
+    if !d.not_applicable.is_empty() {
+        let _ = writeln!(out, "not applicable: {}", d.not_applicable.join(", "));
+    }
+    out
+}

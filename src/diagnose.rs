@@ -1,0 +1,511 @@
+//! `lumiere diagnose`: what is most likely wrong in a student's image of a scene.
+//!
+//! - [`gains`]: the gain of each term of the oracle's layers ([`crate::layers`]) that fits
+//!   the image best by least squares ("specular x2.00", "ambient x0").
+//! - [`mistakes`]: a catalogue of named mistakes, each rendered by the reference tracer
+//!   with a wrong formula table, a convention switched, or a post-process.
+//! - [`report`]: the HTML report with the images, heat-maps and ranking.
+//! - Here: [`diagnose`], which renders the oracle and every mistake on the same pixels,
+//!   counts in each the pixels off edges ([`crate::edges`]) that differ from the image by
+//!   more than the tolerance, and ranks the mistakes by it.
+//!
+//! The image matches the oracle, "no mistake found", when at most `max_fraction` of the
+//! judged pixels are *beyond any sampling*: some channel lies more than the tolerance
+//! outside the range of the oracle's values over the pixel's footprint (the points
+//! [`crate::edges`] looks at), so an image sampled at other points of each pixel (another
+//! seed, sample count or sample position) matches. A mistake makes no visible difference
+//! on a scene when its own render matches the oracle so.
+//!
+//! On a large image the pixels judged are a regular grid of every `stride`-th pixel of
+//! every `stride`-th row, at most [`Options::max_pixels`] of them: a mistake shows on a
+//! region, not on a single pixel, and the catalogue renders in seconds so.
+
+pub mod gains;
+pub mod mistakes;
+pub mod report;
+
+use crate::edges::{footprint, is_edge};
+use crate::film::quantize;
+use crate::layers::{PixelLayers, pixel_layers};
+use crate::output::{srgb_decode, srgb_encode};
+use crate::render::{camera_ray, render_pixels_with};
+use crate::scene::Scene;
+use crate::trace::{Formulas, Reference, SampleKey, Tracer};
+use crate::world::World;
+use gains::Gain;
+use glam::DVec3;
+use mistakes::{Change, Mistake, catalogue, convention_value};
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// The rule and the budget of a diagnosis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Largest per-channel difference (8-bit levels) that counts as equal.
+    pub tolerance: u8,
+    /// Largest fraction of the judged pixels beyond the tolerance for the image to match.
+    pub max_fraction: f64,
+    /// Most pixels judged: beyond, a regular grid of every `stride`-th pixel.
+    pub max_pixels: usize,
+    /// The oracle's images are sRGB-encoded (`render --srgb`): its renders are encoded so
+    /// before quantisation, and the gains fit the image decoded back to linear.
+    pub srgb: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            tolerance: 8,
+            max_fraction: 0.005,
+            max_pixels: 40_000,
+            srgb: false,
+        }
+    }
+}
+
+/// The pixels judged: every `stride`-th pixel of every `stride`-th row, from (0, 0).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Grid {
+    pub stride: u32,
+    /// The grid's size: `ceil(width / stride) x ceil(height / stride)`.
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Grid {
+    /// The grid of at most `max_pixels` points over a `width x height` image.
+    pub fn new(width: u32, height: u32, max_pixels: usize) -> Grid {
+        let area = width as f64 * height as f64;
+        let stride = (area / max_pixels.max(1) as f64).sqrt().ceil().max(1.0) as u32;
+        Grid {
+            stride,
+            width: width.div_ceil(stride),
+            height: height.div_ceil(stride),
+        }
+    }
+
+    /// The image pixels of the grid, row-major.
+    pub fn pixels(&self) -> Vec<(u32, u32)> {
+        (0..self.height)
+            .flat_map(|j| (0..self.width).map(move |i| (i * self.stride, j * self.stride)))
+            .collect()
+    }
+}
+
+/// How far an image is from another over the judged pixels.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Score {
+    /// Judged pixels where some channel differs by more than the tolerance.
+    pub beyond: usize,
+    pub judged: usize,
+    /// `beyond / judged`.
+    pub fraction: f64,
+    /// Root mean square of the channel differences, in 8-bit levels.
+    pub rms: f64,
+}
+
+/// Judged pixels a mistake fixes (beyond the tolerance against the oracle, within it
+/// against the mistake), with their bounding box in image pixels (inclusive).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Region {
+    pub pixels: usize,
+    pub x: [u32; 2],
+    pub y: [u32; 2],
+}
+
+/// One mistake rendered and scored against the image.
+#[derive(Clone, Debug, Serialize)]
+pub struct Candidate {
+    pub name: &'static str,
+    pub description: &'static str,
+    /// The image against this mistake's render.
+    pub score: Score,
+    /// The pixels it fixes; `None` when it fixes none.
+    pub fixes: Option<Region>,
+    /// Whether its render differs from the oracle's beyond the rule (else it makes no
+    /// visible difference on this scene, and cannot be told from a correct image).
+    pub visible: bool,
+    /// The mistake's render on the grid, 8-bit RGB.
+    #[serde(skip)]
+    pub rgb: Vec<u8>,
+}
+
+/// What the diagnosis concludes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    /// The image matches the oracle within the rule.
+    NoMistakeFound,
+    /// Some mistake of the catalogue explains more pixels than the oracle.
+    MistakeFound,
+    /// The image differs and no mistake of the catalogue brings it closer.
+    Unexplained,
+}
+
+/// A diagnosis.
+#[derive(Clone, Debug, Serialize)]
+pub struct Diagnosis {
+    pub width: u32,
+    pub height: u32,
+    pub grid: Grid,
+    pub tolerance: u8,
+    pub max_fraction: f64,
+    /// Grid pixels on an edge (left out of every score).
+    pub edges: usize,
+    /// The image against the oracle.
+    pub oracle: Score,
+    /// Judged pixels of the image beyond any sampling of the oracle (see the module's
+    /// documentation): what the verdict counts.
+    pub beyond_sampling: usize,
+    pub verdict: Verdict,
+    pub gains: Vec<Gain>,
+    /// Sentences read from the gains.
+    pub findings: Vec<String>,
+    /// The visible mistakes, best first (fewest pixels beyond, then smallest RMS; ties in
+    /// catalogue order).
+    pub ranking: Vec<Candidate>,
+    /// The mistakes that make no visible difference on this scene.
+    pub not_visible: Vec<&'static str>,
+    /// The mistakes that do not apply (a convention the oracle already follows).
+    pub not_applicable: Vec<&'static str>,
+    /// The image and the oracle on the grid, and the grid's edge mask.
+    #[serde(skip)]
+    pub image_rgb: Vec<u8>,
+    #[serde(skip)]
+    pub oracle_rgb: Vec<u8>,
+    #[serde(skip)]
+    pub edge_mask: Vec<bool>,
+}
+
+impl Diagnosis {
+    /// The best `n` mistakes that bring the image closer than the oracle.
+    pub fn top(&self, n: usize) -> impl Iterator<Item = &Candidate> {
+        self.ranking
+            .iter()
+            .filter(|c| c.fixes.is_some() && (c.score.beyond, c.score.rms) < (self.oracle.beyond, self.oracle.rms))
+            .take(n)
+    }
+}
+
+/// 8-bit RGB of radiances, clamped and quantised as the film does.
+fn to_rgb8(radiance: &[DVec3], encode: fn(f64) -> f64) -> Vec<u8> {
+    radiance
+        .iter()
+        .flat_map(|p| [p.x, p.y, p.z].map(|c| quantize(encode(c))))
+        .collect()
+}
+
+fn linear(c: f64) -> f64 {
+    c
+}
+
+/// The transfer the oracle's 8-bit values go through: none, or sRGB's.
+fn output_encoding(srgb: bool) -> fn(f64) -> f64 {
+    if srgb { srgb_encode } else { linear }
+}
+
+/// The largest channel difference of pixel `i`.
+fn pixel_diff(a: &[u8], b: &[u8], i: usize) -> u8 {
+    (0..3).map(|c| a[3 * i + c].abs_diff(b[3 * i + c])).max().unwrap_or(0)
+}
+
+/// Per pixel of `pixels`, the oracle's 8-bit values over its footprint: the lowest and the
+/// highest of each channel, one camera sample at each point ([`footprint`]).
+fn footprint_ranges(world: &World, pixels: &[(u32, u32)], encode: fn(f64) -> f64) -> Vec<[[u8; 3]; 2]> {
+    let width = world.scene.settings.width as u64;
+    pixels
+        .par_iter()
+        .with_min_len(16)
+        .map_init(
+            || Reference::new(world),
+            |tracer, &(x, y)| {
+                let key = SampleKey {
+                    pixel: y as u64 * width + x as u64,
+                    sample: 0,
+                };
+                footprint(world, x, y).fold([[u8::MAX; 3], [0; 3]], |[lo, hi], position| {
+                    let c = tracer.camera(&camera_ray(world, position), key);
+                    let q = [c.x, c.y, c.z].map(|v| quantize(encode(v)));
+                    [
+                        std::array::from_fn(|i| lo[i].min(q[i])),
+                        std::array::from_fn(|i| hi[i].max(q[i])),
+                    ]
+                })
+            },
+        )
+        .collect()
+}
+
+/// Judged pixels of `image` some channel of which is more than `tolerance` outside its
+/// pixel's range in `ranges`.
+fn beyond_ranges(image: &[u8], ranges: &[[[u8; 3]; 2]], judged: &[bool], tolerance: u8) -> usize {
+    ranges
+        .iter()
+        .enumerate()
+        .filter(|&(i, [lo, hi])| {
+            judged[i]
+                && (0..3).any(|c| {
+                    let v = image[3 * i + c];
+                    v < lo[c].saturating_sub(tolerance) || v > hi[c].saturating_add(tolerance)
+                })
+        })
+        .count()
+}
+
+/// `a` against `b` over the pixels where `judged` holds.
+fn score(a: &[u8], b: &[u8], judged: &[bool], tolerance: u8) -> Score {
+    let (mut beyond, mut count, mut sum_sq) = (0, 0, 0u64);
+    for (i, _) in judged.iter().enumerate().filter(|(_, j)| **j) {
+        count += 1;
+        beyond += usize::from(pixel_diff(a, b, i) > tolerance);
+        sum_sq += (0..3)
+            .map(|c| (a[3 * i + c].abs_diff(b[3 * i + c]) as u64).pow(2))
+            .sum::<u64>();
+    }
+    Score {
+        beyond,
+        judged: count,
+        fraction: beyond as f64 / count.max(1) as f64,
+        rms: (sum_sq as f64 / (3 * count).max(1) as f64).sqrt(),
+    }
+}
+
+/// Radiances and the output encoding (identity or sRGB) their 8-bit values go through.
+type Encoded = (Vec<DVec3>, fn(f64) -> f64);
+
+/// The radiance of the grid's pixels as the scene renders with `change` (`None`: the
+/// oracle's, given as `oracle`); `None` when the change does not apply to this scene.
+fn render_change(
+    scene: &Scene,
+    world: &World,
+    pixels: &[(u32, u32)],
+    oracle: &[DVec3],
+    change: Change,
+    srgb: bool,
+) -> Option<Encoded> {
+    let output = output_encoding(srgb);
+    match change {
+        Change::Formulas(f) => Some((render_pixels_with(world, f, pixels), output)),
+        // An image the oracle writes sRGB-encoded already has its gamma.
+        Change::Gamma => (!srgb).then(|| (oracle.to_vec(), srgb_encode as fn(f64) -> f64)),
+        Change::FlipVertical => {
+            let h = scene.settings.height;
+            let flipped: Vec<(u32, u32)> = pixels.iter().map(|&(x, y)| (x, h - 1 - y)).collect();
+            Some((render_pixels_with(world, Formulas::CHAPTER, &flipped), output))
+        }
+        Change::Convention(key) => {
+            let value = convention_value(&scene.settings.conventions, key)?;
+            let mut conventions = scene.settings.conventions;
+            conventions.set(key, &value).ok()?;
+            let mut changed = scene.clone();
+            changed.set_conventions(conventions);
+            let world = World::new(&changed);
+            Some((render_pixels_with(&world, Formulas::CHAPTER, pixels), output))
+        }
+    }
+}
+
+/// The whole image of `scene` rendered with `mistake`, 8-bit RGB (what a student's ray
+/// tracer with that mistake writes); `None` when the mistake does not apply to the scene.
+pub fn render_mistake(scene: &Scene, mistake: &Mistake) -> Option<Vec<u8>> {
+    let s = &scene.settings;
+    let pixels = Grid::new(s.width, s.height, usize::MAX).pixels();
+    let world = World::new(scene);
+    let oracle = match mistake.change {
+        Change::Gamma => render_pixels_with(&world, Formulas::CHAPTER, &pixels),
+        _ => Vec::new(),
+    };
+    render_change(scene, &world, &pixels, &oracle, mistake.change, false).map(|(r, encode)| to_rgb8(&r, encode))
+}
+
+/// The judged pixels beyond the tolerance against the oracle and within it against the
+/// mistake, as a region of image pixels.
+fn fixed_region(
+    image: &[u8],
+    oracle: &[u8],
+    mistake: &[u8],
+    judged: &[bool],
+    pixels: &[(u32, u32)],
+    tolerance: u8,
+) -> Option<Region> {
+    let mut region: Option<Region> = None;
+    for (i, &(x, y)) in pixels.iter().enumerate() {
+        if judged[i] && pixel_diff(image, oracle, i) > tolerance && pixel_diff(image, mistake, i) <= tolerance {
+            let r = region.get_or_insert(Region {
+                pixels: 0,
+                x: [x, x],
+                y: [y, y],
+            });
+            r.pixels += 1;
+            r.x = [r.x[0].min(x), r.x[1].max(x)];
+            r.y = [r.y[0].min(y), r.y[1].max(y)];
+        }
+    }
+    region
+}
+
+/// The sentences the gains say: each term off its oracle's value, and a shadow filter
+/// opaque (or weakened) where the oracle filters by colour.
+fn findings(gains: &[Gain]) -> Vec<String> {
+    gains
+        .iter()
+        .filter(|g| g.is_off())
+        .map(|g| match (g.term, g.gain) {
+            ("through colour filters", Some(x)) if x.abs() < 0.1 => format!(
+                "shadow filter opaque where the oracle filters by colour (light through transparent objects {})",
+                g.label()
+            ),
+            (term, _) => format!("{term} {}", g.label()),
+        })
+        .collect()
+}
+
+/// Diagnoses `image` (8-bit RGB, row-major, at the scene's size) against the scene's
+/// oracle render with every mistake of the catalogue, on the current rayon pool.
+pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
+    let s = &scene.settings;
+    let (width, height) = (s.width, s.height);
+    assert_eq!(
+        image.len(),
+        width as usize * height as usize * 3,
+        "image at the scene's size"
+    );
+    let grid = Grid::new(width, height, options.max_pixels);
+    let pixels = grid.pixels();
+    let world = World::new(scene);
+    let edge_mask: Vec<bool> = pixels.par_iter().map(|&(x, y)| is_edge(&world, x, y)).collect();
+    let judged: Vec<bool> = edge_mask.iter().map(|e| !e).collect();
+    let image_rgb: Vec<u8> = pixels
+        .iter()
+        .flat_map(|&(x, y)| {
+            let i = 3 * (y as usize * width as usize + x as usize);
+            [image[i], image[i + 1], image[i + 2]]
+        })
+        .collect();
+    let oracle = render_pixels_with(&world, Formulas::CHAPTER, &pixels);
+    let oracle_rgb = to_rgb8(&oracle, output_encoding(options.srgb));
+    let tol = options.tolerance;
+    let oracle_score = score(&image_rgb, &oracle_rgb, &judged, tol);
+    let ranges = footprint_ranges(&world, &pixels, output_encoding(options.srgb));
+    let judged_count = judged.iter().filter(|j| **j).count().max(1) as f64;
+    let matches = |rgb: &[u8]| beyond_ranges(rgb, &ranges, &judged, tol) as f64 / judged_count <= options.max_fraction;
+
+    let layers: Vec<PixelLayers> = pixels
+        .par_iter()
+        .with_min_len(64)
+        .map_init(|| Tracer::new(&world), |tracer, &(x, y)| pixel_layers(tracer, x, y))
+        .collect();
+    let fit_pixels: Vec<(&PixelLayers, DVec3)> = layers
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| judged[*i])
+        .map(|(i, l)| {
+            let rgb = &image_rgb[3 * i..3 * i + 3];
+            let decode = |level: u8| {
+                let v = level as f64 / 255.0;
+                if options.srgb { srgb_decode(v) } else { v }
+            };
+            (l, DVec3::new(decode(rgb[0]), decode(rgb[1]), decode(rgb[2])))
+        })
+        .collect();
+    let gains = gains::fit(&fit_pixels);
+
+    let list: Vec<Mistake> = catalogue();
+    let rendered: Vec<Option<Vec<u8>>> = list
+        .par_iter()
+        .map(|m| {
+            render_change(scene, &world, &pixels, &oracle, m.change, options.srgb)
+                .map(|(r, encode)| to_rgb8(&r, encode))
+        })
+        .collect();
+    let mut ranking = Vec::new();
+    let (mut not_visible, mut not_applicable) = (Vec::new(), Vec::new());
+    for (m, rgb) in list.iter().zip(rendered) {
+        let Some(rgb) = rgb else {
+            not_applicable.push(m.name);
+            continue;
+        };
+        let visible = !matches(&rgb);
+        if !visible {
+            not_visible.push(m.name);
+            continue;
+        }
+        ranking.push(Candidate {
+            name: m.name,
+            description: m.description,
+            score: score(&image_rgb, &rgb, &judged, tol),
+            fixes: fixed_region(&image_rgb, &oracle_rgb, &rgb, &judged, &pixels, tol),
+            visible,
+            rgb,
+        });
+    }
+    ranking.sort_by(|a, b| {
+        (a.score.beyond, a.score.rms)
+            .partial_cmp(&(b.score.beyond, b.score.rms))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let mut diagnosis = Diagnosis {
+        width,
+        height,
+        grid,
+        tolerance: tol,
+        max_fraction: options.max_fraction,
+        edges: edge_mask.iter().filter(|e| **e).count(),
+        oracle: oracle_score,
+        beyond_sampling: beyond_ranges(&image_rgb, &ranges, &judged, tol),
+        verdict: Verdict::Unexplained,
+        findings: findings(&gains),
+        gains,
+        ranking,
+        not_visible,
+        not_applicable,
+        image_rgb,
+        oracle_rgb,
+        edge_mask,
+    };
+    diagnosis.verdict = if diagnosis.beyond_sampling as f64 / judged_count <= options.max_fraction {
+        Verdict::NoMistakeFound
+    } else if diagnosis.top(1).next().is_some() {
+        Verdict::MistakeFound
+    } else {
+        Verdict::Unexplained
+    };
+    diagnosis
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_keeps_within_its_budget() {
+        let g = Grid::new(800, 600, 40_000);
+        // 480000 / 40000 = 12, sqrt 3.46: every 4th pixel, 200 x 150.
+        assert_eq!((g.stride, g.width, g.height), (4, 200, 150));
+        assert_eq!(g.pixels()[201], (4, 4));
+        let small = Grid::new(160, 120, 40_000);
+        assert_eq!((small.stride, small.width, small.height), (1, 160, 120));
+    }
+
+    #[test]
+    fn scores_and_regions_by_hand() {
+        // Three pixels: equal, 9 levels off, 20 levels off in one channel.
+        let a = [0, 0, 0, 10, 10, 10, 50, 0, 0];
+        let b = [0, 0, 0, 19, 10, 10, 30, 0, 0];
+        let s = score(&a, &b, &[true, true, true], 8);
+        assert_eq!((s.beyond, s.judged), (2, 3));
+        // Squares 81 + 400 over 9 channels.
+        assert!((s.rms - (481.0f64 / 9.0).sqrt()).abs() < 1e-12);
+        let s = score(&a, &b, &[true, true, false], 8);
+        assert_eq!((s.beyond, s.judged), (1, 2));
+        let region = fixed_region(&a, &b, &a, &[true; 3], &[(0, 0), (5, 1), (2, 7)], 8).unwrap();
+        assert_eq!(
+            region,
+            Region {
+                pixels: 2,
+                x: [2, 5],
+                y: [1, 7]
+            }
+        );
+    }
+}

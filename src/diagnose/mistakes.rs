@@ -1,0 +1,361 @@
+//! The catalogue of named mistakes `lumiere diagnose` renders and ranks. Each is one of:
+//! - a change of the reference tracer's formula table ([`Formulas`]): an entry replaced by
+//!   the wrong formula written here, the chapter's own functions left alone;
+//! - a convention switch ([`crate::conventions`]) set to SIMRenderer's value where the
+//!   oracle follows the chapter's (and to the chapter's where it follows SIMRenderer's);
+//! - a post-process of the oracle's image (the sRGB transfer, a vertical flip).
+//!
+//! Nothing outside this module and its parent knows about mistakes.
+
+use crate::conventions::{Conventions, ShadowFilter};
+use crate::material::Material;
+use crate::math::mirror;
+use crate::scene::Specular;
+use crate::shading::{phong, positive_part, pow, transparent_filter};
+use crate::trace::Formulas;
+use crate::trace::formulas::AmbientContext;
+use crate::trace::specular_term;
+use glam::DVec3;
+
+/// How a mistake changes the oracle's render.
+#[derive(Clone, Copy, Debug)]
+pub enum Change {
+    /// The reference tracer evaluates these formulas.
+    Formulas(Formulas),
+    /// The convention switch `key` takes the other preset's value.
+    Convention(&'static str),
+    /// The sRGB transfer function applied before quantisation.
+    Gamma,
+    /// The image upside down.
+    FlipVertical,
+}
+
+/// A named mistake.
+#[derive(Clone, Copy, Debug)]
+pub struct Mistake {
+    /// A short name, as printed and in JSON (`phong-for-blinn`).
+    pub name: &'static str,
+    /// What the wrong code does, in a line.
+    pub description: &'static str,
+    pub change: Change,
+}
+
+/// Phong's `(R.E)^n` where the model asks for Blinn's `(N.H)^n`.
+fn phong_for_blinn(model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
+    match model {
+        Specular::Blinn => phong(n, l, e, exponent),
+        other => specular_term(other, n, l, e, exponent),
+    }
+}
+
+/// Blinn's term with the half vector left unnormalised: `max(N.(L + E), 0)^n`.
+fn unnormalised_half_vector(model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
+    match model {
+        Specular::Blinn => pow(positive_part(n.dot(l + e)), exponent),
+        other => specular_term(other, n, l, e, exponent),
+    }
+}
+
+/// The law of reflection with the sign of its normal term flipped: `R = v - 2 (E.N) N`.
+fn reflection_wrong_sign(v: DVec3, n: DVec3) -> DVec3 {
+    mirror(v, n, -(-v).dot(n))
+}
+
+/// The ratio of indices inverted: `n2 / n1` where the law takes `n1 / n2`.
+fn inverted_index(mat: &Material, entering: bool) -> f64 {
+    1.0 / mat.eta(entering)
+}
+
+/// The law of refraction with no total internal reflection: the root's argument taken as
+/// its absolute value, `T = n v + (n (E.N) - sqrt(|1 - n^2 (1 - (E.N)^2)|)) N`, so a ray
+/// is always refracted.
+fn refract_always(v: DVec3, n_normal: DVec3, eta: f64) -> Option<DVec3> {
+    let cos_i = (-v).dot(n_normal);
+    let radicand = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+    Some(eta * v + (eta * cos_i - radicand.abs().sqrt()) * n_normal)
+}
+
+/// Transparent objects block shadow rays as opaque ones do.
+fn black_filter(_: ShadowFilter, _: f64, _: DVec3) -> DVec3 {
+    DVec3::ZERO
+}
+
+/// A transparent object's filter applied at each of its surfaces a shadow ray crosses:
+/// twice for a closed object it passes through, `S^2`.
+fn filter_twice(rule: ShadowFilter, kt: f64, s: DVec3) -> DVec3 {
+    let f = transparent_filter(rule, kt, s);
+    f * f
+}
+
+/// A shadow ray starting on the surface point itself, with no offset.
+fn no_offset(point: DVec3, _outward: DVec3, _err: f64, _dir: DVec3) -> DVec3 {
+    point
+}
+
+/// `L` pointing from the light to the point instead of towards the light.
+fn reversed_direction(l: DVec3) -> DVec3 {
+    -l
+}
+
+/// A spotlight falling off as the cosine, `C_theta = C_max (o.d)`, inside the cone.
+fn cosine_spot(o_dot_d: f64, cos_half: f64, _c_min: f64, c_max: f64) -> f64 {
+    if o_dot_d < cos_half || cos_half >= 1.0 {
+        return 0.0;
+    }
+    c_max * o_dot_d
+}
+
+/// Each light's share clamped to [0, 1] before the sum, instead of the pixel at output.
+fn clamp_each(share: DVec3) -> DVec3 {
+    share.clamp(DVec3::ZERO, DVec3::ONE)
+}
+
+/// No ambient term where every shadow ray is blocked.
+fn ambient_lit_only(term: DVec3, context: AmbientContext) -> DVec3 {
+    if context.in_shadow { DVec3::ZERO } else { term }
+}
+
+/// The ambient term attenuated by the first point or spot light's `A`.
+fn ambient_attenuated(term: DVec3, context: AmbientContext) -> DVec3 {
+    term * context.attenuation
+}
+
+/// The chapter's formulas with some entries replaced.
+fn with(change: fn(Formulas) -> Formulas) -> Change {
+    Change::Formulas(change(Formulas::CHAPTER))
+}
+
+/// The conventions where the oracle's `conventions` and the other preset differ: the
+/// chapter's against SIMRenderer's, or SIMRenderer's against the chapter's.
+pub fn convention_value(conventions: &Conventions, key: &str) -> Option<String> {
+    let other = if conventions.describe() == Conventions::SIMRENDERER.describe() {
+        Conventions::CHAPTER
+    } else {
+        Conventions::SIMRENDERER
+    };
+    let mine = conventions.describe().into_iter().find(|(k, _)| *k == key)?.1;
+    let theirs = other.describe().into_iter().find(|(k, _)| *k == key)?.1;
+    (mine != theirs).then_some(theirs)
+}
+
+/// Every mistake, in the order ties are broken.
+pub fn catalogue() -> Vec<Mistake> {
+    let m = |name, description, change| Mistake {
+        name,
+        description,
+        change,
+    };
+    vec![
+        m(
+            "phong-for-blinn",
+            "Phong's (R.E)^n where the scene asks for Blinn's (N.H)^n",
+            with(|f| Formulas {
+                specular: phong_for_blinn,
+                ..f
+            }),
+        ),
+        m(
+            "unnormalised-half-vector",
+            "Blinn's term with H = L + E not normalised",
+            with(|f| Formulas {
+                specular: unnormalised_half_vector,
+                ..f
+            }),
+        ),
+        m(
+            "reflection-wrong-sign",
+            "the reflected ray R = v - 2 (E.N) N instead of v + 2 (E.N) N",
+            with(|f| Formulas {
+                reflect: reflection_wrong_sign,
+                ..f
+            }),
+        ),
+        m(
+            "light-direction-reversed",
+            "L taken from the light to the point instead of towards the light",
+            with(|f| Formulas {
+                light_direction: reversed_direction,
+                ..f
+            }),
+        ),
+        m(
+            "inverted-refraction-index",
+            "the law of refraction given n2 / n1 instead of n1 / n2",
+            with(|f| Formulas {
+                eta: inverted_index,
+                ..f
+            }),
+        ),
+        m(
+            "no-total-internal-reflection",
+            "no total internal reflection: the refracted ray always traced",
+            with(|f| Formulas {
+                refract: refract_always,
+                ..f
+            }),
+        ),
+        m(
+            "transparent-black-shadows",
+            "transparent objects cast black shadows (shadow filter opaque)",
+            with(|f| Formulas {
+                transparent_filter: black_filter,
+                ..f
+            }),
+        ),
+        m(
+            "filter-counted-twice",
+            "a transparent object's filter counted at each surface crossed (S^2 for a sphere)",
+            with(|f| Formulas {
+                transparent_filter: filter_twice,
+                ..f
+            }),
+        ),
+        m(
+            "shadow-acne",
+            "shadow rays start on the surface with no offset (shadow acne)",
+            with(|f| Formulas {
+                shadow_origin: no_offset,
+                ..f
+            }),
+        ),
+        m(
+            "ambient-dropped-in-shadow",
+            "no ambient term where every shadow ray is blocked",
+            with(|f| Formulas {
+                ambient: ambient_lit_only,
+                ..f
+            }),
+        ),
+        m(
+            "attenuation-on-ambient",
+            "the ambient term multiplied by the light's attenuation A",
+            with(|f| Formulas {
+                ambient: ambient_attenuated,
+                ..f
+            }),
+        ),
+        m(
+            "clamp-per-light",
+            "each light's share clamped to [0, 1] instead of the pixel at output",
+            with(|f| Formulas {
+                light_share: clamp_each,
+                ..f
+            }),
+        ),
+        m(
+            "spot-cosine-falloff",
+            "a spotlight falling off as C_max (o.d) instead of the chapter's linear C_theta",
+            with(|f| Formulas {
+                spot_factor: cosine_spot,
+                ..f
+            }),
+        ),
+        m(
+            "gamma-applied",
+            "the sRGB transfer (gamma) applied before quantisation",
+            Change::Gamma,
+        ),
+        m(
+            "image-flipped-vertically",
+            "the image upside down (row 0 at the bottom)",
+            Change::FlipVertical,
+        ),
+        m(
+            "sample-position",
+            "camera rays through the pixel's top-left corner (SIMRenderer's sample_position)",
+            Change::Convention("sample_position"),
+        ),
+        m(
+            "ray-origin",
+            "camera rays from the near plane (SIMRenderer's ray_origin)",
+            Change::Convention("ray_origin"),
+        ),
+        m(
+            "far-plane",
+            "nothing seen beyond the far plane at 100 (SIMRenderer's far)",
+            Change::Convention("far"),
+        ),
+        m(
+            "shadow-filter-kt",
+            "shadows filtered by k_t S instead of S (SIMRenderer's shadow_filter)",
+            Change::Convention("shadow_filter"),
+        ),
+        m(
+            "transmission-kt-color",
+            "refracted rays weighed by k_t S entering (SIMRenderer's transmission)",
+            Change::Convention("transmission"),
+        ),
+        m(
+            "closed-only-refract",
+            "only closed shapes refract (SIMRenderer's refracting)",
+            Change::Convention("refracting"),
+        ),
+        m(
+            "internal-reflection-dropped",
+            "the refracted energy lost on total internal reflection (SIMRenderer's total_internal_reflection)",
+            Change::Convention("total_internal_reflection"),
+        ),
+        m(
+            "highlight-in-material-colour",
+            "highlights in the material's colour, m = 1 by default (SIMRenderer's default_highlight)",
+            Change::Convention("default_highlight"),
+        ),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::reflect;
+
+    #[test]
+    fn wrong_formulas_by_hand() {
+        // v = (1, -1, 0) / sqrt 2 onto the floor N = +z... here N = +y: E.N = 1/sqrt 2.
+        let v = DVec3::new(1.0, -1.0, 0.0).normalize();
+        let n = DVec3::Y;
+        assert!((reflect(v, n) - DVec3::new(1.0, 1.0, 0.0).normalize()).length() < 1e-15);
+        // v - 2 (E.N) N = (0.7071, -0.7071 - 1.4142, 0): goes on into the surface.
+        let wrong = reflection_wrong_sign(v, n);
+        assert!((wrong - DVec3::new(0.5f64.sqrt(), -3.0 * 0.5f64.sqrt(), 0.0)).length() < 1e-15);
+        // N = L = E = z: |L + E| = 2, so the unnormalised cosine is 2 and 2^20 = 1048576.
+        let z = DVec3::Z;
+        assert_eq!(unnormalised_half_vector(Specular::Blinn, z, z, z, 20.0), 1_048_576.0);
+        assert_eq!(phong_for_blinn(Specular::Blinn, z, z, z, 20.0), 1.0);
+        // Glass of n = 1.5 entered: 1 / 1.5 becomes 1.5.
+        let glass = Material {
+            ior: 1.5,
+            ..Material::default()
+        };
+        assert_eq!(inverted_index(&glass, true), 1.5);
+        // Past the critical angle (eta 1.5, 60 degrees: 1 - 2.25 * 0.75 = -0.6875) the
+        // chapter's law has no ray, this one has.
+        let grazing = DVec3::new(60f64.to_radians().sin(), -60f64.to_radians().cos(), 0.0);
+        assert!(crate::math::refract(grazing, n, 1.5).is_none());
+        assert!(refract_always(grazing, n, 1.5).is_some());
+        let s = DVec3::new(0.5, 0.25, 1.0);
+        assert_eq!(filter_twice(ShadowFilter::Color, 0.7, s), DVec3::new(0.25, 0.0625, 1.0));
+        assert_eq!(cosine_spot(0.9, 0.8, 0.0, 1.0), 0.9);
+        assert_eq!(cosine_spot(0.7, 0.8, 0.0, 1.0), 0.0);
+        assert_eq!(clamp_each(DVec3::new(1.5, -0.0, 0.25)), DVec3::new(1.0, 0.0, 0.25));
+    }
+
+    #[test]
+    fn catalogue_has_every_convention_difference_and_unique_names() {
+        let list = catalogue();
+        assert!(list.len() >= 15);
+        let mut names: Vec<_> = list.iter().map(|m| m.name).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), list.len());
+        for (key, chapter) in Conventions::CHAPTER.describe() {
+            let differs = Conventions::SIMRENDERER
+                .describe()
+                .iter()
+                .any(|(k, v)| *k == key && *v != chapter);
+            let listed = list
+                .iter()
+                .any(|m| matches!(m.change, Change::Convention(k) if k == key));
+            assert_eq!(differs, listed, "{key}");
+        }
+    }
+}

@@ -1,0 +1,136 @@
+//! The HTML report of a diagnosis (`lumiere diagnose --report DIR`): `index.html` with the
+//! verdict, the gains and the ranking, and beside it, on the judged grid, the image
+//! (`image.png`), the oracle (`oracle.png`), their difference (`heat-oracle.png`), the edge
+//! mask (`edges.png`) and for each of the top mistakes its render (`mistake-N.png`) and the
+//! image's difference from it (`heat-N.png`). Heat-maps are black where equal, white at
+//! 16 levels or more ([`crate::compare::heat_map`]).
+
+use super::{Diagnosis, Verdict};
+use crate::compare::heat_map;
+use crate::film::{encode_png, write_atomic};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Escapes text for HTML.
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+}
+
+/// Writes the report into `dir` (which must exist); returns the files written.
+pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) -> std::io::Result<Vec<PathBuf>> {
+    let (w, h) = (d.grid.width, d.grid.height);
+    let mut written = Vec::new();
+    let mut png = |name: &str, rgb: &[u8]| -> std::io::Result<()> {
+        let bytes = encode_png(w, h, rgb).map_err(std::io::Error::other)?;
+        let path = dir.join(name);
+        write_atomic(&path, &bytes)?;
+        written.push(path);
+        Ok(())
+    };
+    png("image.png", &d.image_rgb)?;
+    png("oracle.png", &d.oracle_rgb)?;
+    png("heat-oracle.png", &heat_map(&d.image_rgb, &d.oracle_rgb, 16))?;
+    let edges: Vec<u8> = d.edge_mask.iter().flat_map(|&e| [if e { 255 } else { 0 }; 3]).collect();
+    png("edges.png", &edges)?;
+    let best: Vec<_> = d.top(top).collect();
+    for (k, c) in best.iter().enumerate() {
+        png(&format!("mistake-{}.png", k + 1), &c.rgb)?;
+        png(&format!("heat-{}.png", k + 1), &heat_map(&d.image_rgb, &c.rgb, 16))?;
+    }
+
+    let mut html = String::new();
+    let verdict = match d.verdict {
+        Verdict::NoMistakeFound => "no mistake found",
+        Verdict::MistakeFound => "mistake found",
+        Verdict::Unexplained => "the image differs, and no mistake of the catalogue explains it",
+    };
+    let _ = write!(
+        html,
+        "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>lumiere diagnose</title>\n\
+         <style>body{{font-family:sans-serif;margin:2em}}img{{image-rendering:pixelated;width:320px;border:1px solid #888}}\
+         td,th{{padding:2px 8px;text-align:left}}figure{{display:inline-block;margin:4px}}</style></head><body>\n\
+         <h1>Diagnosis of {} against {}</h1>\n<p>{} x {} pixels; judged on {} ({} x {}), {} on edges apart; \
+         tolerance {} levels, at most {:.4} % beyond.</p>\n<p><b>Verdict: {}</b>. The oracle: {} of {} pixels beyond the tolerance \
+         ({:.4} %), RMS {:.4}; {} beyond any sampling of the pixel.</p>\n",
+        escape(image),
+        escape(scene),
+        d.width,
+        d.height,
+        if d.grid.stride == 1 {
+            "every pixel".to_string()
+        } else {
+            format!("every {}th pixel of every {}th row", d.grid.stride, d.grid.stride)
+        },
+        w,
+        h,
+        d.edges,
+        d.tolerance,
+        100.0 * d.max_fraction,
+        verdict,
+        d.oracle.beyond,
+        d.oracle.judged,
+        100.0 * d.oracle.fraction,
+        d.oracle.rms,
+        d.beyond_sampling
+    );
+    html += "<h2>Gains per term</h2>\n<table><tr><th>term</th><th>gain</th></tr>\n";
+    for g in &d.gains {
+        let _ = writeln!(html, "<tr><td>{}</td><td>{}</td></tr>", escape(g.term), g.label());
+    }
+    html += "</table>\n";
+    for f in &d.findings {
+        let _ = writeln!(html, "<p>{}</p>", escape(f));
+    }
+    html += "<h2>Images</h2>\n";
+    for (file, caption) in [
+        ("image.png", "the image"),
+        ("oracle.png", "the oracle"),
+        ("heat-oracle.png", "image against oracle"),
+        ("edges.png", "edges (left out)"),
+    ] {
+        let _ = writeln!(
+            html,
+            "<figure><img src=\"{file}\"><figcaption>{caption}</figcaption></figure>"
+        );
+    }
+    html += "<h2>Ranking</h2>\n<table><tr><th>#</th><th>mistake</th><th>what it does</th><th>pixels beyond</th><th>RMS</th><th>pixels it fixes</th><th>region</th></tr>\n";
+    for (k, c) in d.ranking.iter().enumerate() {
+        let region = c.fixes.as_ref().map_or(String::from("-"), |r| {
+            format!("x {}..{}, y {}..{}", r.x[0], r.x[1], r.y[0], r.y[1])
+        });
+        let _ = writeln!(
+            html,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.4}</td><td>{}</td><td>{}</td></tr>",
+            k + 1,
+            c.name,
+            escape(c.description),
+            c.score.beyond,
+            c.score.rms,
+            c.fixes.as_ref().map_or(0, |r| r.pixels),
+            region
+        );
+    }
+    html += "</table>\n";
+    for (k, c) in best.iter().enumerate() {
+        let _ = writeln!(
+            html,
+            "<h3>{}. {}</h3>\n<figure><img src=\"mistake-{n}.png\"><figcaption>rendered with the mistake</figcaption></figure>\
+             <figure><img src=\"heat-{n}.png\"><figcaption>image against it</figcaption></figure>",
+            k + 1,
+            c.name,
+            n = k + 1
+        );
+    }
+    if !d.not_visible.is_empty() {
+        let _ = writeln!(
+            html,
+            "<p>No visible difference on this scene: {}.</p>",
+            d.not_visible.join(", ")
+        );
+    }
+    html += "</body></html>\n";
+    let path = dir.join("index.html");
+    write_atomic(&path, html.as_bytes())?;
+    written.push(path);
+    Ok(written)
+}
