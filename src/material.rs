@@ -85,19 +85,31 @@ impl Material {
     /// material (`SBlinnTextureMaterial`): each term that has an image takes the texel's
     /// colour as its whole colour, the coefficient not applied (white times the texel), and
     /// a term without an image keeps the material's own.
+    #[inline]
     pub fn reflectance(&self, uv: impl FnOnce() -> (f64, f64)) -> Reflectance {
-        let plain = Reflectance {
+        match &self.texture {
+            None => self.plain_reflectance(),
+            Some(maps) => self.textured_reflectance(maps, uv()),
+        }
+    }
+
+    /// [`Material::reflectance`] without images: the material's own colours.
+    #[inline]
+    fn plain_reflectance(&self) -> Reflectance {
+        Reflectance {
             ka: self.ka,
             ambient: self.color,
             kd: self.kd,
             diffuse: self.color,
             ks: self.ks,
             tint: specular_tint(self.metal, self.color),
-        };
-        let Some(maps) = &self.texture else {
-            return plain;
-        };
-        let uv = uv();
+        }
+    }
+
+    /// [`Material::reflectance`] with the images `maps`, at texture coordinates `uv`.
+    #[inline(never)]
+    fn textured_reflectance(&self, maps: &crate::texture::TextureMaps, uv: (f64, f64)) -> Reflectance {
+        let plain = self.plain_reflectance();
         let texel = |t: &Option<crate::texture::Texture>| t.as_ref().map(|t| t.color(uv, maps.uv_format));
         let (a, d, s) = (texel(&maps.ambient), texel(&maps.diffuse), texel(&maps.specular));
         Reflectance {
