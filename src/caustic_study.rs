@@ -11,9 +11,9 @@
 //! more photons lower the noise at any radius and cost time in the photon pass and in every
 //! estimate. The plot draws RMSE against time on log-log axes, one line per radius.
 
-use crate::film::{Film, encode_png};
+use crate::film::Film;
 use crate::scene::{CausticSettings, Scene};
-use crate::study::{BLACK, Error, LogLog, WHITE, dot, error, line, render_timed};
+use crate::study::{BLACK, Error, LogLog, WHITE, dot, error, line, render_timed, study_files};
 use crate::text::draw_text;
 use image::{Rgb, RgbImage};
 
@@ -276,18 +276,7 @@ pub fn plot(study: &Study) -> RgbImage {
 /// The files of a study, in the order they are written: `study.csv`, `study.png` (the
 /// plot), `study.md` (the report) and `reference.png`, each with its bytes.
 pub fn outputs(study: &Study, reference: &Film) -> Result<Vec<(&'static str, Vec<u8>)>, String> {
-    let img = plot(study);
-    let plot_png =
-        encode_png(img.width(), img.height(), img.as_raw()).map_err(|e| format!("cannot encode the plot: {e}"))?;
-    let reference_png = reference
-        .encode_png()
-        .map_err(|e| format!("cannot encode the reference: {e}"))?;
-    Ok(vec![
-        ("study.csv", csv(study).into_bytes()),
-        ("study.png", plot_png),
-        ("study.md", report(study).into_bytes()),
-        ("reference.png", reference_png),
-    ])
+    study_files(csv(study), &plot(study), report(study), reference)
 }
 
 #[cfg(test)]

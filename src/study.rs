@@ -746,16 +746,26 @@ pub fn plot(study: &Study) -> RgbImage {
 /// The files of a study, in the order they are written: `study.csv`, `study.png` (the
 /// plot), `study.md` (the report) and `reference.png`, each with its bytes.
 pub fn outputs(study: &Study, reference: &Film) -> Result<Vec<(&'static str, Vec<u8>)>, String> {
-    let img = plot(study);
+    study_files(csv(study), &plot(study), report(study), reference)
+}
+
+/// A study's files from its CSV, plot, report and reference image: the names
+/// [`outputs`] lists, the images encoded as PNG.
+pub fn study_files(
+    csv: String,
+    plot: &RgbImage,
+    report: String,
+    reference: &Film,
+) -> Result<Vec<(&'static str, Vec<u8>)>, String> {
     let plot_png =
-        encode_png(img.width(), img.height(), img.as_raw()).map_err(|e| format!("cannot encode the plot: {e}"))?;
+        encode_png(plot.width(), plot.height(), plot.as_raw()).map_err(|e| format!("cannot encode the plot: {e}"))?;
     let reference_png = reference
         .encode_png()
         .map_err(|e| format!("cannot encode the reference: {e}"))?;
     Ok(vec![
-        ("study.csv", csv(study).into_bytes()),
+        ("study.csv", csv.into_bytes()),
         ("study.png", plot_png),
-        ("study.md", report(study).into_bytes()),
+        ("study.md", report.into_bytes()),
         ("reference.png", reference_png),
     ])
 }
