@@ -105,6 +105,18 @@ fn wrong_array_length() {
 }
 
 #[test]
+fn too_long_an_array_is_refused_too() {
+    assert_eq!(
+        error_after("center = [0, 0, 1]", "center = [0, 0, 1, 7]"),
+        "s.toml:20:10: shapes[1].center: invalid length 4, expected an array of length 3"
+    );
+    assert_eq!(
+        error_after("color = [1, 0, 0]", "color = [1, 0, 0, 0, 0]"),
+        "s.toml:11:9: materials.red.color: invalid length 5, expected an array of length 3"
+    );
+}
+
+#[test]
 fn wrong_type_inside_an_array_names_the_element() {
     assert_eq!(
         error_after("color = [1, 0, 0]", "color = [1, \"0\", 0]"),

@@ -153,6 +153,59 @@ fn in_range(path: &FieldPath, x: f64, lo: f64, hi: f64) -> Check<f64> {
     Ok(x)
 }
 
+/// Three numbers, no more and no fewer: a point, a direction, a colour or angles as the file
+/// writes them (`[x, y, z]`). A longer or shorter array is an error on its value.
+#[derive(Clone, Copy, Default, PartialEq)]
+struct Xyz([f64; 3]);
+
+impl std::fmt::Debug for Xyz {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl std::ops::Deref for Xyz {
+    type Target = [f64; 3];
+    fn deref(&self) -> &[f64; 3] {
+        &self.0
+    }
+}
+
+impl From<Xyz> for DVec3 {
+    fn from(v: Xyz) -> DVec3 {
+        DVec3::from(v.0)
+    }
+}
+
+impl<'de> Deserialize<'de> for Xyz {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Three;
+        impl<'de> serde::de::Visitor<'de> for Three {
+            type Value = Xyz;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("an array of length 3")
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Xyz, A::Error> {
+                let mut v = [0.0; 3];
+                for (i, c) in v.iter_mut().enumerate() {
+                    *c = seq
+                        .next_element()?
+                        .ok_or_else(|| serde::de::Error::invalid_length(i, &self))?;
+                }
+                let mut extra = 0;
+                while seq.next_element::<serde::de::IgnoredAny>()?.is_some() {
+                    extra += 1;
+                }
+                if extra > 0 {
+                    return Err(serde::de::Error::invalid_length(3 + extra, &self));
+                }
+                Ok(Xyz(v))
+            }
+        }
+        deserializer.deserialize_seq(Three)
+    }
+}
+
 /// A finite number `> 0` and at most `hi`.
 fn positive(path: &FieldPath, x: f64, hi: f64) -> Check<f64> {
     if !x.is_finite() || x <= 0.0 || x > hi {
@@ -162,7 +215,7 @@ fn positive(path: &FieldPath, x: f64, hi: f64) -> Check<f64> {
 }
 
 /// A point or vector with finite components of magnitude at most `limits::MAX_COORDINATE`.
-fn vec3(path: &FieldPath, v: [f64; 3]) -> Check<DVec3> {
+fn vec3(path: &FieldPath, v: Xyz) -> Check<DVec3> {
     let m = limits::MAX_COORDINATE;
     if v.iter().any(|c| !c.is_finite() || c.abs() > m) {
         return fail(
@@ -174,7 +227,7 @@ fn vec3(path: &FieldPath, v: [f64; 3]) -> Check<DVec3> {
 }
 
 /// A direction: finite and of non-zero length; returned normalised.
-fn direction(path: &FieldPath, v: [f64; 3]) -> Check<DVec3> {
+fn direction(path: &FieldPath, v: Xyz) -> Check<DVec3> {
     let d = vec3(path, v)?;
     let len = d.length();
     if len <= 1e-12 {
@@ -184,7 +237,7 @@ fn direction(path: &FieldPath, v: [f64; 3]) -> Check<DVec3> {
 }
 
 /// A colour: each channel finite in `[0, hi]`.
-fn color(path: &FieldPath, v: [f64; 3], hi: f64) -> Check<DVec3> {
+fn color(path: &FieldPath, v: Xyz, hi: f64) -> Check<DVec3> {
     if v.iter().any(|c| !c.is_finite() || *c < 0.0 || *c > hi) {
         return fail(
             path,
@@ -194,8 +247,8 @@ fn color(path: &FieldPath, v: [f64; 3], hi: f64) -> Check<DVec3> {
     Ok(DVec3::from(v))
 }
 
-fn one() -> [f64; 3] {
-    [1.0; 3]
+fn one() -> Xyz {
+    Xyz([1.0; 3])
 }
 
 #[derive(Deserialize)]
@@ -226,8 +279,8 @@ struct FileGenerate {
     count: u64,
     #[serde(default)]
     seed: u64,
-    min: [f64; 3],
-    max: [f64; 3],
+    min: Xyz,
+    max: Xyz,
     radius: [f64; 2],
     #[serde(default)]
     materials: Vec<String>,
@@ -254,16 +307,16 @@ fn default_seed() -> u64 {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileCamera {
-    position: [f64; 3],
-    look_at: [f64; 3],
+    position: Xyz,
+    look_at: Xyz,
     #[serde(default = "z_up")]
-    up: [f64; 3],
+    up: Xyz,
     #[serde(default = "default_fov")]
     vfov: f64,
 }
 
-fn z_up() -> [f64; 3] {
-    [0.0, 0.0, 1.0]
+fn z_up() -> Xyz {
+    Xyz([0.0, 0.0, 1.0])
 }
 fn default_fov() -> f64 {
     60.0
@@ -278,7 +331,7 @@ struct FileRender {
     /// "blinn", "phong" or "none".
     specular: String,
     shadows: bool,
-    background: [f64; 3],
+    background: Xyz,
     adaptive_threshold: f64,
 }
 
@@ -290,7 +343,7 @@ impl Default for FileRender {
             diffuse: true,
             specular: "blinn".to_string(),
             shadows: true,
-            background: [0.0; 3],
+            background: Xyz([0.0; 3]),
             adaptive_threshold: limits::DEFAULT_ADAPTIVE_THRESHOLD,
         }
     }
@@ -416,7 +469,7 @@ impl FileConventions {
 #[serde(deny_unknown_fields)]
 struct FileMaterial {
     #[serde(default = "one")]
-    color: [f64; 3],
+    color: Xyz,
     ka: Option<f64>,
     kd: Option<f64>,
     ks: Option<f64>,
@@ -515,8 +568,8 @@ enum FileShape {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FilePlane {
-    point: [f64; 3],
-    normal: [f64; 3],
+    point: Xyz,
+    normal: Xyz,
     material: Option<String>,
     name: Option<String>,
     transform: Option<FileTransform>,
@@ -525,9 +578,9 @@ struct FilePlane {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileRectangle {
-    corner: [f64; 3],
-    edge1: [f64; 3],
-    edge2: [f64; 3],
+    corner: Xyz,
+    edge1: Xyz,
+    edge2: Xyz,
     material: Option<String>,
     name: Option<String>,
     transform: Option<FileTransform>,
@@ -536,8 +589,8 @@ struct FileRectangle {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileDisk {
-    center: [f64; 3],
-    normal: [f64; 3],
+    center: Xyz,
+    normal: Xyz,
     radius: f64,
     material: Option<String>,
     name: Option<String>,
@@ -547,7 +600,7 @@ struct FileDisk {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileSphere {
-    center: [f64; 3],
+    center: Xyz,
     radius: f64,
     material: Option<String>,
     name: Option<String>,
@@ -557,10 +610,10 @@ struct FileSphere {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileBox {
-    center: [f64; 3],
-    size: [f64; 3],
+    center: Xyz,
+    size: Xyz,
     #[serde(default)]
-    rotation: [f64; 3],
+    rotation: Xyz,
     material: Option<String>,
     name: Option<String>,
     transform: Option<FileTransform>,
@@ -570,9 +623,9 @@ struct FileBox {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileCapped {
-    base: [f64; 3],
+    base: Xyz,
     #[serde(default = "z_up")]
-    axis: [f64; 3],
+    axis: Xyz,
     height: f64,
     radius: f64,
     material: Option<String>,
@@ -584,9 +637,9 @@ struct FileCapped {
 #[serde(deny_unknown_fields)]
 struct FileMirrorPair {
     #[serde(default)]
-    hinge: [f64; 3],
+    hinge: Xyz,
     #[serde(default = "minus_y")]
-    bisector: [f64; 3],
+    bisector: Xyz,
     opening: f64,
     length: f64,
     height: f64,
@@ -598,9 +651,9 @@ struct FileMirrorPair {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileTorus {
-    center: [f64; 3],
+    center: Xyz,
     #[serde(default = "z_up")]
-    axis: [f64; 3],
+    axis: Xyz,
     major_radius: f64,
     minor_radius: f64,
     material: Option<String>,
@@ -612,9 +665,9 @@ struct FileTorus {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileTriangle {
-    p0: [f64; 3],
-    p1: [f64; 3],
-    p2: [f64; 3],
+    p0: Xyz,
+    p1: Xyz,
+    p2: Xyz,
     material: Option<String>,
     name: Option<String>,
     transform: Option<FileTransform>,
@@ -625,9 +678,9 @@ struct FileTriangle {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileSphericalCap {
-    center: [f64; 3],
+    center: Xyz,
     #[serde(default = "z_up")]
-    normal: [f64; 3],
+    normal: Xyz,
     radius: f64,
     curvature: f64,
     material: Option<String>,
@@ -641,9 +694,9 @@ struct FileSphericalCap {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileLens {
-    base: [f64; 3],
+    base: Xyz,
     #[serde(default = "z_up")]
-    axis: [f64; 3],
+    axis: Xyz,
     thickness: f64,
     radius: f64,
     curvature1: f64,
@@ -657,8 +710,8 @@ struct FileLens {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileTube {
-    start: [f64; 3],
-    end: [f64; 3],
+    start: Xyz,
+    end: Xyz,
     radius: f64,
     material: Option<String>,
     name: Option<String>,
@@ -679,9 +732,9 @@ struct FileMesh {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileTransform {
-    scale: Option<[f64; 3]>,
-    rotation: Option<[f64; 3]>,
-    translation: Option<[f64; 3]>,
+    scale: Option<Xyz>,
+    rotation: Option<Xyz>,
+    translation: Option<Xyz>,
     /// Rows `[a, b, c, d]` of the 3x4 matrix `[A | b]`.
     matrix: Option<[[f64; 4]; 3]>,
 }
@@ -727,23 +780,23 @@ enum FileLight {
 #[serde(deny_unknown_fields)]
 struct FileAmbientLight {
     #[serde(default = "one")]
-    color: [f64; 3],
+    color: Xyz,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileDirectionalLight {
-    direction: [f64; 3],
+    direction: Xyz,
     #[serde(default = "one")]
-    color: [f64; 3],
+    color: Xyz,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FilePointLight {
-    position: [f64; 3],
+    position: Xyz,
     #[serde(default = "one")]
-    color: [f64; 3],
+    color: Xyz,
     #[serde(default)]
     attenuation: FileAttenuation,
 }
@@ -751,15 +804,15 @@ struct FilePointLight {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileSpotLight {
-    position: [f64; 3],
-    direction: [f64; 3],
+    position: Xyz,
+    direction: Xyz,
     angle: f64,
     #[serde(default)]
     c_min: f64,
     #[serde(default = "one_f")]
     c_max: f64,
     #[serde(default = "one")]
-    color: [f64; 3],
+    color: Xyz,
     #[serde(default)]
     attenuation: FileAttenuation,
 }
@@ -770,19 +823,19 @@ struct FileSpotLight {
 #[serde(deny_unknown_fields)]
 struct FileAreaLight {
     shape: String,
-    center: Option<[f64; 3]>,
+    center: Option<Xyz>,
     radius: Option<f64>,
-    start: Option<[f64; 3]>,
-    end: Option<[f64; 3]>,
-    edge1: Option<[f64; 3]>,
-    edge2: Option<[f64; 3]>,
+    start: Option<Xyz>,
+    end: Option<Xyz>,
+    edge1: Option<Xyz>,
+    edge2: Option<Xyz>,
     points: u32,
     #[serde(default = "chapter")]
     placement: String,
     #[serde(default = "fixed")]
     mode: String,
     #[serde(default = "one")]
-    color: [f64; 3],
+    color: Xyz,
     #[serde(default)]
     attenuation: FileAttenuation,
 }
@@ -793,9 +846,9 @@ struct FileAreaLight {
 #[serde(deny_unknown_fields)]
 struct FileLinearAperture {
     #[serde(default)]
-    start: [f64; 3],
+    start: Xyz,
     #[serde(default = "slit_end")]
-    end: [f64; 3],
+    end: Xyz,
     #[serde(default = "green_nm")]
     wavelength: f64,
     #[serde(default = "two")]
@@ -814,11 +867,11 @@ struct FileLinearAperture {
 #[serde(deny_unknown_fields)]
 struct FilePlanarAperture {
     #[serde(default)]
-    center: [f64; 3],
+    center: Xyz,
     #[serde(default = "plus_z")]
-    front: [f64; 3],
+    front: Xyz,
     #[serde(default = "plus_y")]
-    up: [f64; 3],
+    up: Xyz,
     #[serde(default = "millimetre")]
     width: f64,
     #[serde(default = "millimetre")]
@@ -836,8 +889,8 @@ struct FilePlanarAperture {
     attenuation: FileAttenuation,
 }
 
-fn slit_end() -> [f64; 3] {
-    [0.0, 1e-4, 0.0]
+fn slit_end() -> Xyz {
+    Xyz([0.0, 1e-4, 0.0])
 }
 
 fn green_nm() -> f64 {
@@ -852,12 +905,12 @@ fn ten() -> u32 {
     10
 }
 
-fn plus_z() -> [f64; 3] {
-    [0.0, 0.0, 1.0]
+fn plus_z() -> Xyz {
+    Xyz([0.0, 0.0, 1.0])
 }
 
-fn plus_y() -> [f64; 3] {
-    [0.0, 1.0, 0.0]
+fn plus_y() -> Xyz {
+    Xyz([0.0, 1.0, 0.0])
 }
 
 fn millimetre() -> f64 {
@@ -872,8 +925,8 @@ fn fixed() -> String {
     "fixed".to_string()
 }
 
-fn minus_y() -> [f64; 3] {
-    [0.0, -1.0, 0.0]
+fn minus_y() -> Xyz {
+    Xyz([0.0, -1.0, 0.0])
 }
 
 fn one_f() -> f64 {
@@ -1483,7 +1536,7 @@ impl FileMesh {
 }
 
 /// Angles in degrees, each in [-360, 360].
-fn angles(path: &FieldPath, v: [f64; 3]) -> Check<DVec3> {
+fn angles(path: &FieldPath, v: Xyz) -> Check<DVec3> {
     let a = vec3(path, v)?;
     if a.abs().max_element() > 360.0 {
         return fail(path, format!("angles must be in [-360, 360] degrees, got {v:?}"));
@@ -1553,7 +1606,7 @@ fn transform_of(path: &FieldPath, t: Option<FileTransform>) -> Check<Option<Tran
             }
         }
     } else {
-        let scale = t.scale.unwrap_or([1.0; 3]);
+        let scale = t.scale.unwrap_or(Xyz([1.0; 3]));
         if scale.iter().any(|s| !s.is_finite() || s.abs() < lo || s.abs() > hi) {
             return fail(
                 &path.key("scale"),
@@ -1698,7 +1751,7 @@ fn running_total(
 
 /// The two edges of a rectangle or window (`edge1`, `edge2` of the entry at `path`): each of
 /// non-zero length and not parallel, else the surface is a segment or a point.
-fn spanning_edges(path: &FieldPath, edge1: [f64; 3], edge2: [f64; 3]) -> Check<(DVec3, DVec3)> {
+fn spanning_edges(path: &FieldPath, edge1: Xyz, edge2: Xyz) -> Check<(DVec3, DVec3)> {
     let e1 = vec3(&path.key("edge1"), edge1)?;
     let e2 = vec3(&path.key("edge2"), edge2)?;
     for (key, e, raw) in [("edge1", e1, edge1), ("edge2", e2, edge2)] {
@@ -1740,8 +1793,8 @@ fn material_index(field: &FieldPath, m: &str, names: &[String]) -> Check<usize> 
 fn mirror_pair(
     path: &FieldPath,
     index: usize,
-    hinge: [f64; 3],
-    bisector: [f64; 3],
+    hinge: Xyz,
+    bisector: Xyz,
     opening: f64,
     length: f64,
     height: f64,
@@ -1799,7 +1852,7 @@ impl FileAttenuation {
 impl FileLight {
     /// The light; a mask image is read relative to `dir`, the scene file's folder.
     fn validate(self, path: &FieldPath, dir: &Path) -> Check<Light> {
-        let light_color = |c: [f64; 3]| color(&path.key("color"), c, limits::MAX_LIGHT);
+        let light_color = |c: Xyz| color(&path.key("color"), c, limits::MAX_LIGHT);
         Ok(match self {
             FileLight::Ambient(FileAmbientLight { color }) => Light::Ambient {
                 color: light_color(color)?,
@@ -1878,7 +1931,7 @@ impl FileLight {
                         return fail(&path.key(field), format!("{field} {why} a {shape} light"));
                     }
                 }
-                let at = |key: &str, v: Option<[f64; 3]>| vec3(&path.key(key), v.unwrap_or_default());
+                let at = |key: &str, v: Option<Xyz>| vec3(&path.key(key), v.unwrap_or_default());
                 let area_shape = match shape.as_str() {
                     "sphere" => AreaShape::Sphere {
                         center: at("center", center)?,
