@@ -130,11 +130,7 @@ pub fn csv(study: &Study) -> String {
     let mut out = CSV_COLUMNS.join(",") + "\n";
     for r in &study.rows {
         let e = &r.error;
-        let psnr = if e.rmse == 0.0 {
-            f64::INFINITY
-        } else {
-            20.0 * libm::log10(255.0 / e.rmse)
-        };
+        let psnr = crate::compare::psnr_db(e.rmse * e.rmse);
         out += &format!(
             "{},{},{:.6},{:.6},{:.6},{},{:.6},{:.3}\n",
             r.config.photons, r.config.radius, r.seconds, e.rmse, e.rmse_unrounded, e.max_diff, e.within_one, psnr

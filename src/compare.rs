@@ -43,6 +43,16 @@ pub struct Comparison {
 }
 
 /// Compares interleaved RGB8 buffers; `tolerance` is the largest difference not counted.
+/// Peak signal-to-noise ratio of 8-bit images whose mean squared difference is `mse`:
+/// `10 log10(255^2 / MSE)` dB, infinite when they are equal.
+pub fn psnr_db(mse: f64) -> f64 {
+    if mse == 0.0 {
+        f64::INFINITY
+    } else {
+        10.0 * libm::log10(255.0 * 255.0 / mse)
+    }
+}
+
 pub fn compare_rgb8(a: &[u8], b: &[u8], width: u32, height: u32, tolerance: u8) -> Comparison {
     assert_eq!(a.len(), b.len());
     let mut max_diff = 0u8;
@@ -64,11 +74,7 @@ pub fn compare_rgb8(a: &[u8], b: &[u8], width: u32, height: u32, tolerance: u8) 
         height,
         max_diff,
         rms: mse.sqrt(),
-        psnr_db: if mse == 0.0 {
-            f64::INFINITY
-        } else {
-            10.0 * libm::log10(255.0 * 255.0 / mse)
-        },
+        psnr_db: psnr_db(mse),
         differing_pixels: differing,
         tolerance,
     }

@@ -119,11 +119,7 @@ pub fn stats(d: &PixelDiffs, tolerance: u8, keep: impl Fn(usize) -> bool) -> Opt
         pixels: n,
         max: (0..=255u8).rev().find(|&v| histogram[v as usize] > 0).unwrap_or(0),
         rms: mse.sqrt(),
-        psnr_db: Psnr(if mse == 0.0 {
-            f64::INFINITY
-        } else {
-            10.0 * libm::log10(255.0 * 255.0 / mse)
-        }),
+        psnr_db: Psnr(super::psnr_db(mse)),
         p50: percentile(500),
         p99: percentile(990),
         p999: percentile(999),
