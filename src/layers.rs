@@ -13,6 +13,8 @@
 //!   camera hit's reflected ray (0 where adaptive depth control does not trace it);
 //! - `transmitted`: the refracted-ray weight (`k_t`, or `k_t S` entering by SIMRenderer's
 //!   convention) times the radiance of the refracted ray;
+//! - `caustic`: with caustics, the camera hit's caustic share `E k_d S` of the photons
+//!   that land near it, times the local weight;
 //! - `background`: the background colour where the camera ray meets nothing;
 //! - `filtered`: the part of `diffuse + specular` that arrives through a colour filter (a
 //!   shadow ray crossing transparent objects whose filter is neither 0 nor 1);
@@ -25,12 +27,15 @@
 //! - `depth`: the mean distance `t` along the camera rays to their hits, infinite when a
 //!   sample sees the background.
 //!
-//! So `ambient + diffuse + specular + reflected + transmitted + background` is the pixel's
+//! An aperture light's share counts in `diffuse` (it has no specular term).
+//!
+//! So `ambient + diffuse + specular + caustic + reflected + transmitted + background` is the pixel's
 //! radiance (to rounding: the tracer sums in another order). The terms are gathered by a
 //! [`Recorder`] on the renderer's own tracer ([`render_pixel_recorded`]): no formula is
 //! evaluated here but the transmission and local weights of the camera hit, through their
 //! one definition in [`crate::shading`].
 
+use crate::caustics::Estimate;
 use crate::film::{Film, quantize, write_atomic};
 use crate::light::Light;
 use crate::math::Ray;
@@ -48,6 +53,7 @@ pub struct PixelLayers {
     pub ambient: DVec3,
     pub diffuse: DVec3,
     pub specular: DVec3,
+    pub caustic: DVec3,
     pub reflected: DVec3,
     pub transmitted: DVec3,
     pub background: DVec3,
@@ -65,9 +71,9 @@ pub struct PixelLayers {
 }
 
 impl PixelLayers {
-    /// `ambient + diffuse + specular + reflected + transmitted + background`.
+    /// `ambient + diffuse + specular + caustic + reflected + transmitted + background`.
     pub fn sum(&self) -> DVec3 {
-        self.ambient + self.diffuse + self.specular + self.reflected + self.transmitted + self.background
+        self.ambient + self.diffuse + self.specular + self.caustic + self.reflected + self.transmitted + self.background
     }
 }
 
@@ -184,6 +190,12 @@ impl Recorder for LayerRecorder<'_, '_> {
         *entry = (entry.0 + f, entry.1 + 1);
     }
 
+    fn caustic(&mut self, term: DVec3, _estimate: &Estimate) {
+        if self.at_camera() {
+            self.sample.caustic = term;
+        }
+    }
+
     fn unlit(&mut self, light: usize, _n_dot_l: Option<f64>) {
         if self.at_camera() {
             self.filters[light].1 += 1;
@@ -219,6 +231,7 @@ impl Recorder for LayerRecorder<'_, '_> {
         s.ambient *= w;
         s.diffuse *= w;
         s.specular *= w;
+        s.caustic *= w;
         s.filtered_diffuse *= w;
         s.filtered_specular *= w;
         s.radiance = radiance;
@@ -231,6 +244,7 @@ impl Recorder for LayerRecorder<'_, '_> {
         t.ambient += s.ambient;
         t.diffuse += s.diffuse;
         t.specular += s.specular;
+        t.caustic += s.caustic;
         t.reflected += s.reflected;
         t.transmitted += s.transmitted;
         t.background += s.background;
@@ -259,6 +273,7 @@ pub fn pixel_layers(tracer: &mut Tracer, x: u32, y: u32) -> PixelLayers {
         &mut t.ambient,
         &mut t.diffuse,
         &mut t.specular,
+        &mut t.caustic,
         &mut t.reflected,
         &mut t.transmitted,
         &mut t.background,
@@ -316,6 +331,7 @@ impl Layers {
             colour("ambient", &|p: &PixelLayers| p.ambient),
             colour("diffuse", &|p: &PixelLayers| p.diffuse),
             colour("specular", &|p: &PixelLayers| p.specular),
+            colour("caustic", &|p: &PixelLayers| p.caustic),
             colour("reflected", &|p: &PixelLayers| p.reflected),
             colour("transmitted", &|p: &PixelLayers| p.transmitted),
             colour("background", &|p: &PixelLayers| p.background),

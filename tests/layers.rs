@@ -135,13 +135,19 @@ fn small(name: &str, w: u32, h: u32) -> Scene {
 
 #[test]
 fn terms_sum_to_the_rendered_radiance() {
-    for name in ["reference.toml", "prism.toml", "mirrors.toml"] {
+    for name in [
+        "reference.toml",
+        "prism.toml",
+        "mirrors.toml",
+        "figures/caustics/04-ball-lens-1e4.toml",
+        "figures/optique/02-grating.toml",
+    ] {
         let scene = small(name, 80, 60);
         let world = World::new(&scene);
         let layers = render_layers(&world);
         let (film, _) = render(&world, &|| {});
         let mut worst = 0.0f64;
-        let mut terms = [0usize; 3];
+        let mut terms = [0usize; 5];
         for (p, &radiance) in layers.pixels.iter().zip(&film.pixels) {
             // The radiance is the renderer's, to the bit.
             assert_eq!(p.radiance, radiance, "{name}");
@@ -149,6 +155,8 @@ fn terms_sum_to_the_rendered_radiance() {
             terms[0] += usize::from(p.reflected != DVec3::ZERO);
             terms[1] += usize::from(p.transmitted != DVec3::ZERO);
             terms[2] += usize::from(p.filtered_diffuse != DVec3::ZERO);
+            terms[3] += usize::from(p.caustic != DVec3::ZERO);
+            terms[4] += usize::from(p.diffuse != DVec3::ZERO);
         }
         assert!(
             worst < 1e-12,
@@ -158,7 +166,11 @@ fn terms_sum_to_the_rendered_radiance() {
         match name {
             "reference.toml" => assert!(terms[1] > 100 && terms[2] > 100, "{terms:?}"),
             "prism.toml" => assert!(terms[0] > 100 && terms[1] > 100, "{terms:?}"),
-            _ => assert!(terms[0] > 1000, "{terms:?}"),
+            "mirrors.toml" => assert!(terms[0] > 1000, "{terms:?}"),
+            // The ball lens's photons land on the floor behind it.
+            "figures/caustics/04-ball-lens-1e4.toml" => assert!(terms[3] > 50, "{terms:?}"),
+            // The grating's screen is lit by the aperture light alone: its share is diffuse.
+            _ => assert!(terms[4] > 1000, "{terms:?}"),
         }
     }
 }
@@ -228,8 +240,8 @@ fn exr_reads_back_channel_by_channel() {
             expected.push((format!("{}.{channel}", plane.name), values));
         }
     }
-    // 8 colour layers, one shadow filter (the directional light), object, normal, depth.
-    assert_eq!(expected.len(), 8 * 3 + 3 + 1 + 3 + 1);
+    // 9 colour layers, one shadow filter (the directional light), object, normal, depth.
+    assert_eq!(expected.len(), 9 * 3 + 3 + 1 + 3 + 1);
     assert_eq!(channels.len(), expected.len());
     for (name, values) in &expected {
         let channel = channels

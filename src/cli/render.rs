@@ -19,7 +19,7 @@ pub struct RenderArgs {
     /// Output image: .png (8-bit, clamped), .pfm or .exr (32-bit float radiance, unclamped).
     #[arg(short, long, required_unless_present = "layers")]
     pub output: Option<PathBuf>,
-    /// Also (or only) write the per-term layers of each pixel (ambient, diffuse, specular,
+    /// Also (or only) write the per-term layers of each pixel (ambient, diffuse, specular, caustic,
     /// reflected, transmitted, each light's shadow filter, object, normal, depth): a
     /// multi-channel `.exr`, or a folder ending in `/` of one PNG per layer (and PFM for
     /// the colour layers). See README, "Checking your ray tracer".

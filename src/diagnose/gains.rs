@@ -2,7 +2,7 @@
 //! layers ([`crate::layers`]), `image ~ background + sum_i g_i layer_i`, each pixel's
 //! channel an equation. The terms: ambient, diffuse and specular (the light that arrives
 //! through colour filters apart), the light through colour filters (its diffuse and
-//! specular), reflected and transmitted. A gain of 1 is the oracle's term; "specular x2.00"
+//! specular), reflected, transmitted and, with caustics, the caustic share. A gain of 1 is the oracle's term; "specular x2.00"
 //! is a highlight twice too strong, "through colour filters x0" a shadow filter opaque
 //! where the oracle filters by colour.
 
@@ -11,13 +11,14 @@ use glam::DVec3;
 use serde::Serialize;
 
 /// The terms fitted, in the order of [`Gain`]s.
-pub const TERMS: [&str; 6] = [
+pub const TERMS: [&str; 7] = [
     "ambient",
     "diffuse",
     "specular",
     "through colour filters",
     "reflected",
     "transmitted",
+    "caustic",
 ];
 
 /// One term's fitted gain.
@@ -48,7 +49,7 @@ impl Gain {
 }
 
 /// The regressors of one pixel: the layers of [`TERMS`], per channel.
-fn regressors(p: &PixelLayers) -> [DVec3; 6] {
+fn regressors(p: &PixelLayers) -> [DVec3; TERMS.len()] {
     [
         p.ambient,
         p.diffuse - p.filtered_diffuse,
@@ -56,6 +57,7 @@ fn regressors(p: &PixelLayers) -> [DVec3; 6] {
         p.filtered_diffuse + p.filtered_specular,
         p.reflected,
         p.transmitted,
+        p.caustic,
     ]
 }
 
@@ -166,6 +168,30 @@ mod tests {
             ("x0".into(), "x2.00".into(), "-".into())
         );
         assert!(gains[2].is_off() && !gains[1].is_off());
+    }
+
+    #[test]
+    fn fits_the_caustic_share_apart() {
+        // A caustic on the diffuse pixels, weighed x0.5 in the image (half the photons'
+        // power): its gain is 0.5, the others 1.
+        let layers: Vec<PixelLayers> = (0..20)
+            .map(|i| {
+                let mut p = pixel(0.05, 0.02 * i as f64, 0.01 * (i % 7) as f64);
+                p.caustic = DVec3::new(0.3, 0.2, 0.1) * ((i % 3) as f64);
+                p.radiance += p.caustic;
+                p
+            })
+            .collect();
+        let pairs: Vec<(&PixelLayers, DVec3)> = layers
+            .iter()
+            .map(|p| (p, p.ambient + p.diffuse + p.specular + 0.5 * p.caustic))
+            .collect();
+        let gains = fit(&pairs);
+        assert_eq!(gains[6].term, "caustic");
+        assert!((gains[6].gain.unwrap() - 0.5).abs() < 1e-12, "{gains:?}");
+        for g in &gains[..3] {
+            assert!((g.gain.unwrap() - 1.0).abs() < 1e-12, "{gains:?}");
+        }
     }
 
     #[test]
