@@ -14,7 +14,10 @@
 //! outside the range of the oracle's values over the pixel's footprint (the points
 //! [`crate::edges`] looks at), so an image sampled at other points of each pixel (another
 //! seed, sample count or sample position) matches. A mistake makes no visible difference
-//! on a scene when its own render matches the oracle so.
+//! on a scene when its own render matches the oracle so; when its render still leaves fewer
+//! pixels beyond the tolerance than the oracle's (an image sampled at each pixel's corner
+//! against a centre-sampled oracle), it is named apart, as what the image follows within
+//! sampling.
 //!
 //! On a large image the pixels judged are a regular grid of every `stride`-th pixel of
 //! every `stride`-th row, at most [`Options::max_pixels`] of them: a mistake shows on a
@@ -159,13 +162,19 @@ pub struct Diagnosis {
     pub beyond_sampling: usize,
     pub verdict: Verdict,
     pub gains: Vec<Gain>,
-    /// Sentences read from the gains.
+    /// Sentences read from the gains; none when the image matches the oracle within
+    /// sampling (a gain fitted to sampling differences alone says nothing of the shading).
     pub findings: Vec<String>,
     /// The visible mistakes, best first (fewest pixels beyond, then smallest RMS; ties in
     /// catalogue order).
     pub ranking: Vec<Candidate>,
-    /// The mistakes that make no visible difference on this scene.
+    /// The mistakes within sampling of the oracle on this scene whose render brings the
+    /// image no closer: nothing tells them from a correct image here.
     pub not_visible: Vec<&'static str>,
+    /// The mistakes within sampling of the oracle whose render leaves fewer pixels beyond
+    /// the tolerance than the oracle's, best first: what the image follows within
+    /// sampling, such as SIMRenderer's sample position.
+    pub within_sampling: Vec<Candidate>,
     /// The mistakes that do not apply (a convention the oracle already follows).
     pub not_applicable: Vec<&'static str>,
     /// The image and the oracle on the grid, and the grid's edge mask.
@@ -182,9 +191,24 @@ impl Diagnosis {
     pub fn top(&self, n: usize) -> impl Iterator<Item = &Candidate> {
         self.ranking
             .iter()
-            .filter(|c| c.fixes.is_some() && (c.score.beyond, c.score.rms) < (self.oracle.beyond, self.oracle.rms))
+            .filter(|c| c.fixes.is_some() && closer(&c.score, &self.oracle))
             .take(n)
     }
+}
+
+/// Whether `score` is closer than `than`: fewer pixels beyond, or as many and a smaller RMS.
+fn closer(score: &Score, than: &Score) -> bool {
+    (score.beyond, score.rms) < (than.beyond, than.rms)
+}
+
+/// Candidates sorted best first: fewest pixels beyond, then smallest RMS, ties in
+/// catalogue order (the sort is stable).
+fn best_first(candidates: &mut [Candidate]) {
+    candidates.sort_by(|a, b| {
+        (a.score.beyond, a.score.rms)
+            .partial_cmp(&(b.score.beyond, b.score.rms))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
 }
 
 /// 8-bit RGB of radiances, clamped and quantised as the film does.
@@ -419,31 +443,31 @@ pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
         })
         .collect();
     let mut ranking = Vec::new();
-    let (mut not_visible, mut not_applicable) = (Vec::new(), Vec::new());
+    let (mut not_visible, mut within_sampling, mut not_applicable) = (Vec::new(), Vec::new(), Vec::new());
     for (m, rgb) in list.iter().zip(rendered) {
         let Some(rgb) = rgb else {
             not_applicable.push(m.name);
             continue;
         };
         let visible = !matches(&rgb);
-        if !visible {
-            not_visible.push(m.name);
-            continue;
-        }
-        ranking.push(Candidate {
+        let candidate = Candidate {
             name: m.name,
             description: m.description,
             score: score(&image_rgb, &rgb, &judged, tol),
             fixes: fixed_region(&image_rgb, &oracle_rgb, &rgb, &judged, &pixels, tol),
             visible,
             rgb,
-        });
+        };
+        if visible {
+            ranking.push(candidate);
+        } else if candidate.score.beyond < oracle_score.beyond {
+            within_sampling.push(candidate);
+        } else {
+            not_visible.push(m.name);
+        }
     }
-    ranking.sort_by(|a, b| {
-        (a.score.beyond, a.score.rms)
-            .partial_cmp(&(b.score.beyond, b.score.rms))
-            .unwrap_or(std::cmp::Ordering::Equal)
-    });
+    best_first(&mut ranking);
+    best_first(&mut within_sampling);
     let mut diagnosis = Diagnosis {
         width,
         height,
@@ -454,10 +478,11 @@ pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
         oracle: oracle_score,
         beyond_sampling: beyond_ranges(&image_rgb, &ranges, &judged, tol),
         verdict: Verdict::Unexplained,
-        findings: findings(&gains),
+        findings: Vec::new(),
         gains,
         ranking,
         not_visible,
+        within_sampling,
         not_applicable,
         image_rgb,
         oracle_rgb,
@@ -470,6 +495,9 @@ pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
     } else {
         Verdict::Unexplained
     };
+    if diagnosis.verdict != Verdict::NoMistakeFound {
+        diagnosis.findings = findings(&diagnosis.gains);
+    }
     diagnosis
 }
 

@@ -180,6 +180,15 @@ fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
             }
         }
     }
+    for c in d.within_sampling.iter().take(top) {
+        let _ = writeln!(
+            out,
+            "within sampling    closer with {}: {} (after: {})",
+            c.name,
+            c.description,
+            score_line(&c.score, d.tolerance)
+        );
+    }
     if !d.not_visible.is_empty() {
         let _ = writeln!(out, "no visible difference on this scene: {}", d.not_visible.join(", "));
     }

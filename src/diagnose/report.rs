@@ -121,6 +121,16 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
             n = k + 1
         );
     }
+    for c in &d.within_sampling {
+        let _ = writeln!(
+            html,
+            "<p>Within sampling, the image is closer with {}: {} ({} pixels beyond, RMS {:.4}).</p>",
+            c.name,
+            escape(c.description),
+            c.score.beyond,
+            c.score.rms
+        );
+    }
     if !d.not_visible.is_empty() {
         let _ = writeln!(
             html,
