@@ -223,6 +223,23 @@ fn opaque_filters_are_named() {
     );
 }
 
+/// `lumiere diagnose` of `image` against the reference scene, centre-sampled at one sample
+/// per pixel as [`centred`] renders it.
+fn diagnose_reference_centred(image: &std::path::Path) -> Vec<String> {
+    let reference = repo("scenes/reference.toml");
+    [
+        "diagnose",
+        reference.to_str().unwrap(),
+        image.to_str().unwrap(),
+        "--convention",
+        "sample_position=center",
+        "--spp",
+        "1",
+    ]
+    .map(String::from)
+    .to_vec()
+}
+
 #[test]
 fn command_line_text_json_report_and_errors() {
     let dir = temp_dir("diagnose-cli");
@@ -232,16 +249,8 @@ fn command_line_text_json_report_and_errors() {
     let png = dir.join("phong.png");
     std::fs::write(&png, lumiere::film::encode_png(W, H, &image).unwrap()).unwrap();
     let report = dir.join("report");
-    let reference = repo("scenes/reference.toml");
-    let args = [
-        "diagnose",
-        reference.to_str().unwrap(),
-        png.to_str().unwrap(),
-        "--convention",
-        "sample_position=center",
-        "--spp",
-        "1",
-    ];
+    let args = diagnose_reference_centred(&png);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let o = lumiere(&[&args[..], &["--report", report.to_str().unwrap()]].concat());
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     let text = String::from_utf8(o.stdout).unwrap();
@@ -294,7 +303,7 @@ fn command_line_text_json_report_and_errors() {
         ),
         (vec![missing.to_str().unwrap()], "missing.png"),
     ] {
-        let o = lumiere(&[&["diagnose", reference.to_str().unwrap()][..], &extra[..]].concat());
+        let o = lumiere(&[&args[..2], &extra[..]].concat());
         assert_eq!(o.status.code(), Some(2), "{extra:?}");
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains(message), "{extra:?}: {err}");
@@ -411,16 +420,8 @@ fn command_line_names_what_is_within_sampling() {
     student.set_conventions(c);
     let png = dir.join("corner.png");
     std::fs::write(&png, lumiere::film::encode_png(W, H, &rendered(&student)).unwrap()).unwrap();
-    let reference = repo("scenes/reference.toml");
-    let args = [
-        "diagnose",
-        reference.to_str().unwrap(),
-        png.to_str().unwrap(),
-        "--convention",
-        "sample_position=center",
-        "--spp",
-        "1",
-    ];
+    let args = diagnose_reference_centred(&png);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let o = lumiere(&args);
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     let text = String::from_utf8(o.stdout).unwrap();
