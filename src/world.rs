@@ -12,7 +12,7 @@ use crate::material::Material;
 use crate::math::Ray;
 use crate::scene::{Object, Scene};
 use crate::shape::{Shape, SurfaceHit};
-use crate::skips::Skips;
+use crate::skips::{Skip, Skips};
 use glam::DVec3;
 use std::borrow::Cow;
 
@@ -120,6 +120,13 @@ pub struct World<'s> {
     /// Per object, whether it lets shadow rays through, filtering them by its colour
     /// ([`World::filters_shadows`]).
     see_through: Vec<bool>,
+    /// For a world scanned linearly, per object the cone of directions from the camera's
+    /// eye that meet its bounding sphere ([`direction_cone`]): unit axis and cosine of the
+    /// half-angle, a camera ray `d` with `d.axis < cos` misses the object
+    /// ([`World::closest_camera`]). For a flat object (whose own test costs a dot product
+    /// and a division), an unbounded one, or an eye inside the sphere, the cone of every
+    /// direction (cosine `-inf`). Empty for a BVH world, whose boxes cull already.
+    eye_cones: Vec<(DVec3, f64)>,
 }
 
 impl<'s> World<'s> {
@@ -170,7 +177,27 @@ impl<'s> World<'s> {
         let photons = s.caustics.as_ref().map(|c| caustics::build(scene, &accel, c));
         let photon_seconds = start.elapsed().as_secs_f64();
         let caustic_bound = photons.as_ref().map(PhotonMap::irradiance_bound);
+        let eye_cones = match accel {
+            Accel::Linear(_) => scene
+                .objects
+                .iter()
+                .map(|o| {
+                    // A plane's, rectangle's, disk's or triangle's own test is as cheap.
+                    let flat = matches!(
+                        o.shape,
+                        Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Triangle(_)
+                    );
+                    o.shape
+                        .bounding_sphere()
+                        .filter(|_| !flat)
+                        .and_then(|(center, radius)| direction_cone(camera.position, center, radius))
+                        .unwrap_or((DVec3::ZERO, f64::NEG_INFINITY))
+                })
+                .collect(),
+            Accel::Bvh(_) => Vec::new(),
+        };
         World {
+            eye_cones,
             photons,
             photon_seconds,
             see_through,
@@ -296,6 +323,35 @@ impl<'s> World<'s> {
     /// [`World::closest`] among the hits with `t < t_max`.
     pub fn closest_before(&self, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
         self.accel.closest(&self.scene.objects, ray, 0.0, t_max)
+    }
+
+    /// [`World::closest_before`] for a camera ray (from the eye, or from the image plane
+    /// along a line from the eye): in a linearly scanned world with the bounding-sphere
+    /// shortcut on, an object whose cone of directions from the eye (`eye_cones`) the ray
+    /// leaves is not tested. The ray misses its bounding sphere, so the object too, and the
+    /// scan's answer (the closest hit, the lowest index on equal `t`) is the same. Adds the
+    /// objects not tested to `untested`.
+    #[inline(always)]
+    pub fn closest_camera(&self, ray: &Ray, t_max: f64, untested: &mut u64) -> Option<(usize, SurfaceHit)> {
+        if self.eye_cones.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
+            return self.closest_before(ray, t_max);
+        }
+        let objects = &self.scene.objects[..];
+        let cones = &self.eye_cones[..objects.len()];
+        let mut t_max = t_max;
+        let mut best = None;
+        for i in 0..objects.len() {
+            let (axis, cos) = cones[i];
+            if ray.dir.dot(axis) < cos {
+                *untested += 1;
+                continue;
+            }
+            if let Some(h) = objects[i].shape.intersect(ray, 0.0, t_max) {
+                t_max = h.t;
+                best = Some((i, h));
+            }
+        }
+        best
     }
 
     /// Whether some object that `filter` accepts is hit along `ray` with `0 < t < t_max`.
