@@ -81,8 +81,8 @@ impl Skip {
                  of the segments to the light can cross is not tested, and neither is a convex shading object's own \
                  surface (rays leaving it outward miss it; rays leaving a solid's inside wall towards a light outside \
                  it hit it). In a linearly scanned scene, a camera ray is not tested against an object whose cone of \
-                 directions from the eye it leaves, nor a shadow ray against a round object whose bounding sphere it \
-                 misses"
+                 directions from the eye it leaves, nor a shadow, reflected or refracted ray against a round object \
+                 whose bounding sphere it misses"
             }
             Skip::BlockedShading => "Shading terms (specular power, tints) are not evaluated for a fully blocked light",
         }

@@ -127,8 +127,9 @@ pub struct World<'s> {
     /// and a division), an unbounded one, or an eye inside the sphere, the cone of every
     /// direction (cosine `-inf`). Empty for a BVH world, whose boxes cull already.
     eye_cones: Vec<(DVec3, f64)>,
-    /// For a world scanned linearly, per object the ball a shadow ray is tested against
-    /// before the object ([`World::shadow_any_hit`], [`World::shadow_each_hit`]): its
+    /// For a world scanned linearly, per object the ball a shadow, reflected or refracted
+    /// ray is tested against before the object ([`World::shadow_any_hit`],
+    /// [`World::shadow_each_hit`], [`World::closest_secondary`]): its
     /// bounding sphere, or for a flat or unbounded object one of infinite radius (that no
     /// ray misses). Empty for a BVH world.
     shadow_balls: Vec<(DVec3, f64)>,
@@ -373,6 +374,33 @@ impl<'s> World<'s> {
     /// Whether some object that `filter` accepts is hit along `ray` with `0 < t < t_max`.
     pub fn any_hit(&self, ray: &Ray, t_max: f64, filter: &dyn Fn(usize) -> bool) -> bool {
         self.accel.any_hit(&self.scene.objects, ray, 0.0, t_max, filter)
+    }
+
+    /// [`World::closest_before`] for a reflected or refracted ray: in a linearly scanned
+    /// world with the bounding-sphere skip on, an object whose ball (`shadow_balls`) the ray
+    /// misses before the closest hit so far is not tested, as in
+    /// [`World::shadow_any_hit`]. The same answer (the closest hit, the lowest index on equal
+    /// `t`). Adds the objects not tested to `untested`.
+    #[inline(always)]
+    pub fn closest_secondary(&self, ray: &Ray, t_max: f64, untested: &mut u64) -> Option<(usize, SurfaceHit)> {
+        if self.shadow_balls.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
+            return self.closest_before(ray, t_max);
+        }
+        let objects = &self.scene.objects[..];
+        let balls = &self.shadow_balls[..objects.len()];
+        let mut t_max = t_max;
+        let mut best = None;
+        for i in 0..objects.len() {
+            if misses_ball(ray, t_max, balls[i]) {
+                *untested += 1;
+                continue;
+            }
+            if let Some(h) = objects[i].shape.intersect(ray, 0.0, t_max) {
+                t_max = h.t;
+                best = Some((i, h));
+            }
+        }
+        best
     }
 
     /// [`World::any_hit`] for a shadow ray: in a linearly scanned world with the

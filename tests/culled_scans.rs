@@ -5,7 +5,9 @@
 //! each object's cone edge. Shadow rays skip the objects whose bounding sphere they miss
 //! ([`World::shadow_any_hit`], [`World::shadow_each_hit`]): the same answer and the same
 //! objects hit as [`World::any_hit`] and [`World::each_hit`], on rays from the visible
-//! points towards every light and in random directions. Both on every course scene; each
+//! points towards every light and in random directions. Reflected and refracted rays skip
+//! them too ([`World::closest_secondary`]), with the answer of [`World::closest_before`] to
+//! the bit. All on every course scene; each
 //! shortcut tests fewer objects when on and every object when the bounding-sphere skip is
 //! off.
 
@@ -139,8 +141,9 @@ fn check_shadow_ray(world: &World, ray: &Ray, t_max: f64, what: &str) -> u64 {
 
 /// Shadow rays of `scene` at 160 x 120: from every visible point (lifted off the surface
 /// along its normal) towards every light as the tracer aims them (to 8 random points of an
-/// area light's ball), and in 4 random directions, unbounded and to distance 3. Returns the
-/// objects not tested.
+/// area light's ball), and in 4 random directions, unbounded and to distance 3; and
+/// reflected or refracted rays from it ([`World::closest_secondary`] against
+/// [`World::closest_before`]). Returns the objects not tested.
 fn check_shadow_rays(scene: &Scene, what: &str) -> u64 {
     let scene = small(scene);
     let world = World::new(&scene);
@@ -184,6 +187,17 @@ fn check_shadow_rays(scene: &Scene, what: &str) -> u64 {
                 untested += check_shadow_ray(&world, &ray, f64::INFINITY, what);
                 untested += check_shadow_ray(&world, &ray, 3.0, what);
             }
+            // Secondary rays: the mirror direction, and random ones, unbounded as the tracer
+            // traces them and to distance 3.
+            let mirror = ray.dir - 2.0 * ray.dir.dot(normal) * normal;
+            for dir in [mirror.normalize(), unit(), unit()] {
+                for t_max in [f64::INFINITY, 3.0] {
+                    let ray = Ray::new(p, dir);
+                    let culled = world.closest_secondary(&ray, t_max, &mut untested);
+                    let plain = world.closest_before(&ray, t_max);
+                    assert_eq!(bits(culled), bits(plain), "{what}: secondary ray {ray:?} to {t_max}");
+                }
+            }
         }
     }
     untested
@@ -200,7 +214,7 @@ fn camera_rays_meet_what_the_linear_scan_meets_on_every_course_scene() {
 }
 
 #[test]
-fn shadow_rays_meet_what_the_linear_scan_meets_on_every_course_scene() {
+fn shadow_and_secondary_rays_meet_what_the_linear_scan_meets_on_every_course_scene() {
     for file in &course_scenes() {
         let scene = lumiere::scene::load(file).expect("scene loads");
         let untested = check_shadow_rays(&scene, &file.display().to_string());
@@ -250,5 +264,7 @@ fn the_bounding_sphere_skip_switches_the_shadow_culling_off() {
     let mut untested = 0;
     assert!(!world.shadow_any_hit(&up, f64::INFINITY, |_| true, &mut untested));
     world.shadow_each_hit(&to_cube, f64::INFINITY, |_| true, |_| {}, &mut untested);
+    let hit = world.closest_secondary(&to_cube, f64::INFINITY, &mut untested);
+    assert_eq!(hit.map(|(i, _)| i), Some(1), "the cube");
     assert_eq!(untested, 0);
 }

@@ -244,14 +244,13 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         let scene = self.world.scene;
         let conventions = &scene.settings.conventions;
         let t_max = if level == 1 { conventions.far } else { f64::INFINITY };
+        let mut untested = 0;
         let closest = if kind == RayKind::Camera {
-            let mut untested = 0;
-            let closest = self.world.closest_camera(ray, t_max, &mut untested);
-            self.counts.saved.count(Skip::BoundingSpheres, untested);
-            closest
+            self.world.closest_camera(ray, t_max, &mut untested)
         } else {
-            self.world.closest_before(ray, t_max)
+            self.world.closest_secondary(ray, t_max, &mut untested)
         };
+        self.counts.saved.count(Skip::BoundingSpheres, untested);
         let Some((object, hit)) = closest else {
             rec.miss();
             rec.done(scene.settings.background);
