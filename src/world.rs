@@ -342,16 +342,20 @@ impl<'s> World<'s> {
         self.accel.closest(&self.scene.objects, ray, 0.0, t_max)
     }
 
-    /// [`World::closest_before`] for a camera ray (from the eye, or from the image plane
-    /// along a line from the eye): in a linearly scanned world with the bounding-sphere
-    /// shortcut on, an object whose cone of directions from the eye (`eye_cones`) the ray
-    /// leaves is not tested. The ray misses its bounding sphere, so the object too, and the
-    /// scan's answer (the closest hit, the lowest index on equal `t`) is the same. Adds the
-    /// objects not tested to `untested`.
+    /// [`World::closest_before`] for a camera ray: in a linearly scanned world with the
+    /// bounding-sphere shortcut on, for a ray from the eye, an object whose cone of
+    /// directions from the eye (`eye_cones`) the ray leaves is not tested. The ray misses its
+    /// bounding sphere, so the object too, and the scan's answer (the closest hit, the
+    /// lowest index on equal `t`) is the same. A ray from elsewhere (from the image plane, or
+    /// any ray a caller traces as a camera ray) is scanned as [`World::closest_secondary`]
+    /// scans. Adds the objects not tested to `untested`.
     #[inline(always)]
     pub fn closest_camera(&self, ray: &Ray, t_max: f64, untested: &mut u64) -> Option<(usize, SurfaceHit)> {
         if self.eye_cones.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
             return self.closest_before(ray, t_max);
+        }
+        if ray.origin != self.camera.position {
+            return self.closest_secondary(ray, t_max, untested);
         }
         let objects = &self.scene.objects[..];
         let cones = &self.eye_cones[..objects.len()];

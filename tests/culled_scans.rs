@@ -2,7 +2,7 @@
 //! answers. Camera rays skip the objects whose cone of directions from the eye they leave
 //! ([`World::closest_camera`]): the same object, `t` and normal to the bit as
 //! [`World::closest_before`], on rays through a fine grid of image positions and along
-//! each object's cone edge. Shadow rays skip the objects whose bounding sphere they miss
+//! each object's cone edge, and on rays traced as camera rays from elsewhere. Shadow rays skip the objects whose bounding sphere they miss
 //! ([`World::shadow_any_hit`], [`World::shadow_each_hit`]): the same answer and the same
 //! objects hit as [`World::any_hit`] and [`World::each_hit`], on rays from the visible
 //! points towards every light and in random directions. Reflected and refracted rays skip
@@ -91,6 +91,20 @@ fn check_camera_rays(scene: &Scene, what: &str) -> u64 {
             let position = ((x as f64 + 0.5) / n as f64, (y as f64 + 0.5) / n as f64);
             untested += check_camera_ray(&world, &camera_ray(&world, position), what);
         }
+    }
+    // Rays traced as camera rays that do not leave the eye: from the image plane, and
+    // from points of the scene's box towards random points.
+    let mut random = Stream::new(6, Purpose::Generator, 0);
+    let mut coordinate = || 20.0 * random.next_f64() - 10.0;
+    for _ in 0..2000 {
+        let from = DVec3::new(coordinate(), coordinate(), coordinate());
+        let to = DVec3::new(coordinate(), coordinate(), coordinate());
+        untested += check_camera_ray(&world, &Ray::new(from, (to - from).normalize()), what);
+    }
+    for position in [(0.5, 0.5), (80.25, 60.75), (159.5, 119.5)] {
+        let ray = camera_ray(&world, position);
+        let near = Ray::new(ray.at(1e-3), ray.dir);
+        untested += check_camera_ray(&world, &near, what);
     }
     let eye = world.camera.position;
     for object in world.objects() {

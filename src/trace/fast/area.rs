@@ -797,11 +797,11 @@ mod tests {
                 let mut out = vec![Facing::NoLight; len];
                 let counts = facings(&lanes, color, unlit_skip, &mut out);
                 let mut want_counts = [0; 3];
-                for i in 0..len {
+                for (i, &got) in out.iter().enumerate() {
                     let c = arriving(color, lanes.atten[i], 1.0);
                     let zero = c.x == 0.0 && c.y == 0.0 && c.z == 0.0;
                     let want = Facing::of(lanes.dist[i] != 0.0, unlit_skip && zero, lanes.n_dot_l[i]);
-                    assert_eq!(out[i], want, "colour {color}, A = {:e}", lanes.atten[i]);
+                    assert_eq!(got, want, "colour {color}, A = {:e}", lanes.atten[i]);
                     for (k, f) in [Facing::Towards, Facing::Away, Facing::Black].into_iter().enumerate() {
                         want_counts[k] += u64::from(want == f);
                     }
