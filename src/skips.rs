@@ -80,7 +80,9 @@ impl Skip {
                  bounding sphere a ray misses, inside the cone through a ball within the solid it hits, a plane none \
                  of the segments to the light can cross is not tested, and neither is a convex shading object's own \
                  surface (rays leaving it outward miss it; rays leaving a solid's inside wall towards a light outside \
-                 it hit it)"
+                 it hit it). In a linearly scanned scene, a camera ray is not tested against an object whose cone of \
+                 directions from the eye it leaves, nor a shadow, reflected or refracted ray against a round object \
+                 whose bounding sphere it misses"
             }
             Skip::BlockedShading => "Shading terms (specular power, tints) are not evaluated for a fully blocked light",
         }

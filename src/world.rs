@@ -11,8 +11,8 @@ use crate::light::Light;
 use crate::material::Material;
 use crate::math::Ray;
 use crate::scene::{Object, Scene};
-use crate::shape::{Shape, SurfaceHit};
-use crate::skips::Skips;
+use crate::shape::{Shape, SurfaceHit, misses_bounding_sphere};
+use crate::skips::{Skip, Skips};
 use glam::DVec3;
 use std::borrow::Cow;
 
@@ -120,6 +120,19 @@ pub struct World<'s> {
     /// Per object, whether it lets shadow rays through, filtering them by its colour
     /// ([`World::filters_shadows`]).
     see_through: Vec<bool>,
+    /// For a world scanned linearly, per object the cone of directions from the camera's
+    /// eye that meet its bounding sphere ([`direction_cone`]): unit axis and cosine of the
+    /// half-angle, a camera ray `d` with `d.axis < cos` misses the object
+    /// ([`World::closest_camera`]). For a flat object (whose own test costs a dot product
+    /// and a division), an unbounded one, or an eye inside the sphere, the cone of every
+    /// direction (cosine `-inf`). Empty for a BVH world, whose boxes cull already.
+    eye_cones: Vec<(DVec3, f64)>,
+    /// For a world scanned linearly, per object the ball a shadow, reflected or refracted
+    /// ray is tested against before the object ([`World::shadow_any_hit`],
+    /// [`World::shadow_each_hit`], [`World::closest_secondary`]): its
+    /// bounding sphere, or for a flat or unbounded object one of infinite radius (that no
+    /// ray misses). Empty for a BVH world.
+    shadow_balls: Vec<(DVec3, f64)>,
 }
 
 impl<'s> World<'s> {
@@ -170,7 +183,38 @@ impl<'s> World<'s> {
         let photons = s.caustics.as_ref().map(|c| caustics::build(scene, &accel, c));
         let photon_seconds = start.elapsed().as_secs_f64();
         let caustic_bound = photons.as_ref().map(PhotonMap::irradiance_bound);
+        // A plane's, rectangle's, disk's or triangle's own test is as cheap as a ball's.
+        let ball = |o: &Object| {
+            let flat = matches!(
+                o.shape,
+                Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Triangle(_)
+            );
+            o.shape.bounding_sphere().filter(|_| !flat)
+        };
+        let linear = matches!(accel, Accel::Linear(_));
+        let eye_cones = match linear {
+            true => scene
+                .objects
+                .iter()
+                .map(|o| {
+                    ball(o)
+                        .and_then(|(center, radius)| direction_cone(camera.position, center, radius))
+                        .unwrap_or((DVec3::ZERO, f64::NEG_INFINITY))
+                })
+                .collect(),
+            false => Vec::new(),
+        };
+        let shadow_balls = match linear {
+            true => scene
+                .objects
+                .iter()
+                .map(|o| ball(o).unwrap_or((DVec3::ZERO, f64::INFINITY)))
+                .collect(),
+            false => Vec::new(),
+        };
         World {
+            eye_cones,
+            shadow_balls,
             photons,
             photon_seconds,
             see_through,
@@ -298,9 +342,121 @@ impl<'s> World<'s> {
         self.accel.closest(&self.scene.objects, ray, 0.0, t_max)
     }
 
+    /// [`World::closest_before`] for a camera ray: in a linearly scanned world with the
+    /// bounding-sphere shortcut on, for a ray from the eye, an object whose cone of
+    /// directions from the eye (`eye_cones`) the ray leaves is not tested. The ray misses its
+    /// bounding sphere, so the object too, and the scan's answer (the closest hit, the
+    /// lowest index on equal `t`) is the same. A ray from elsewhere (from the image plane, or
+    /// any ray a caller traces as a camera ray) is scanned as [`World::closest_secondary`]
+    /// scans. Adds the objects not tested to `untested`.
+    #[inline(always)]
+    pub fn closest_camera(&self, ray: &Ray, t_max: f64, untested: &mut u64) -> Option<(usize, SurfaceHit)> {
+        if self.eye_cones.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
+            return self.closest_before(ray, t_max);
+        }
+        if ray.origin != self.camera.position {
+            return self.closest_secondary(ray, t_max, untested);
+        }
+        let objects = &self.scene.objects[..];
+        let cones = &self.eye_cones[..objects.len()];
+        let mut t_max = t_max;
+        let mut best = None;
+        for i in 0..objects.len() {
+            let (axis, cos) = cones[i];
+            if ray.dir.dot(axis) < cos {
+                *untested += 1;
+                continue;
+            }
+            if let Some(h) = objects[i].shape.intersect(ray, 0.0, t_max) {
+                t_max = h.t;
+                best = Some((i, h));
+            }
+        }
+        best
+    }
+
     /// Whether some object that `filter` accepts is hit along `ray` with `0 < t < t_max`.
     pub fn any_hit(&self, ray: &Ray, t_max: f64, filter: &dyn Fn(usize) -> bool) -> bool {
         self.accel.any_hit(&self.scene.objects, ray, 0.0, t_max, filter)
+    }
+
+    /// [`World::closest_before`] for a reflected or refracted ray: in a linearly scanned
+    /// world with the bounding-sphere skip on, an object whose ball (`shadow_balls`) the ray
+    /// misses before the closest hit so far is not tested, as in
+    /// [`World::shadow_any_hit`]. The same answer (the closest hit, the lowest index on equal
+    /// `t`). Adds the objects not tested to `untested`.
+    #[inline(always)]
+    pub fn closest_secondary(&self, ray: &Ray, t_max: f64, untested: &mut u64) -> Option<(usize, SurfaceHit)> {
+        if self.shadow_balls.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
+            return self.closest_before(ray, t_max);
+        }
+        let objects = &self.scene.objects[..];
+        let balls = &self.shadow_balls[..objects.len()];
+        let mut t_max = t_max;
+        let mut best = None;
+        for i in 0..objects.len() {
+            if misses_ball(ray, t_max, balls[i]) {
+                *untested += 1;
+                continue;
+            }
+            if let Some(h) = objects[i].shape.intersect(ray, 0.0, t_max) {
+                t_max = h.t;
+                best = Some((i, h));
+            }
+        }
+        best
+    }
+
+    /// [`World::any_hit`] for a shadow ray: in a linearly scanned world with the
+    /// bounding-sphere skip on, an object whose ball (`shadow_balls`) the ray misses on
+    /// `(0, t_max)` ([`misses_bounding_sphere`], padded so that rounding never rejects a hit)
+    /// is not tested: it cannot be hit. Adds the objects not tested to `untested`.
+    #[inline]
+    pub fn shadow_any_hit(&self, ray: &Ray, t_max: f64, filter: impl Fn(usize) -> bool, untested: &mut u64) -> bool {
+        if self.shadow_balls.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
+            return self.any_hit(ray, t_max, &filter);
+        }
+        let objects = &self.scene.objects[..];
+        let balls = &self.shadow_balls[..objects.len()];
+        for i in 0..objects.len() {
+            if !filter(i) {
+                continue;
+            }
+            if misses_ball(ray, t_max, balls[i]) {
+                *untested += 1;
+            } else if objects[i].shape.occludes(ray, 0.0, t_max) {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// [`World::each_hit`] for a shadow ray, with the objects whose ball the ray misses not
+    /// tested as in [`World::shadow_any_hit`] (added to `untested`); in object order.
+    #[inline]
+    pub fn shadow_each_hit(
+        &self,
+        ray: &Ray,
+        t_max: f64,
+        filter: impl Fn(usize) -> bool,
+        mut visit: impl FnMut(usize),
+        untested: &mut u64,
+    ) {
+        if self.shadow_balls.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
+            return self.each_hit(ray, t_max, &filter, &mut visit);
+        }
+        let objects = &self.scene.objects[..];
+        let balls = &self.shadow_balls[..objects.len()];
+        for i in 0..objects.len() {
+            if !filter(i) {
+                continue;
+            }
+            if misses_ball(ray, t_max, balls[i]) {
+                *untested += 1;
+            } else if objects[i].shape.occludes(ray, 0.0, t_max) {
+                visit(i);
+            }
+        }
     }
 
     /// Calls `visit` once for every object that `filter` accepts and `ray` hits with
@@ -308,6 +464,13 @@ impl<'s> World<'s> {
     pub fn each_hit(&self, ray: &Ray, t_max: f64, filter: &dyn Fn(usize) -> bool, visit: &mut dyn FnMut(usize)) {
         self.accel.each_hit(&self.scene.objects, ray, 0.0, t_max, filter, visit)
     }
+}
+
+/// Whether `ray` misses the ball on `(0, t_max)` ([`misses_bounding_sphere`]); never for a
+/// ball of infinite radius, which costs one comparison.
+#[inline(always)]
+fn misses_ball(ray: &Ray, t_max: f64, ball: (DVec3, f64)) -> bool {
+    ball.1 != f64::INFINITY && misses_bounding_sphere(ray, 0.0, t_max, ball)
 }
 
 /// [`World::filters_shadows`] for an object of material `m` in `scene`.

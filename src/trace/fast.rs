@@ -244,7 +244,14 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         let scene = self.world.scene;
         let conventions = &scene.settings.conventions;
         let t_max = if level == 1 { conventions.far } else { f64::INFINITY };
-        let Some((object, hit)) = self.world.closest_before(ray, t_max) else {
+        let mut untested = 0;
+        let closest = if kind == RayKind::Camera {
+            self.world.closest_camera(ray, t_max, &mut untested)
+        } else {
+            self.world.closest_secondary(ray, t_max, &mut untested)
+        };
+        self.counts.saved.count(Skip::BoundingSpheres, untested);
+        let Some((object, hit)) = closest else {
             rec.miss();
             rec.done(scene.settings.background);
             return [scene.settings.background; K];
@@ -630,9 +637,10 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             }
             meets(c.object)
         };
+        let mut untested = 0;
         let blocked = match candidates {
             Some(c) => c.iter().any(|c| opaque(c.object) && meets_candidate(c)),
-            None if skips.on(Skip::OpaqueOnly) => world.any_hit(&ray, t_max, &opaque),
+            None if skips.on(Skip::OpaqueOnly) => world.shadow_any_hit(&ray, t_max, opaque, &mut untested),
             None => {
                 // Without the any-hit shortcut: visit every opaque hit.
                 let mut any = false;
@@ -642,7 +650,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         };
         if blocked || (!world.has_transparent && skips.on(Skip::OpaqueOnly)) {
             let saved = &mut self.counts.saved;
-            saved.count(Skip::BoundingSpheres, sphere_rejects.get());
+            saved.count(Skip::BoundingSpheres, sphere_rejects.get() + untested);
             saved.count(Skip::OpaqueOnly, u64::from(!blocked));
             return if blocked { DVec3::ZERO } else { DVec3::ONE };
         }
@@ -654,9 +662,11 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                     .filter(|c| transparent(c.object) && meets_candidate(c))
                     .map(|c| c.object),
             ),
-            None => world.each_hit(&ray, t_max, &transparent, &mut |i| crossed.push(i)),
+            None => world.shadow_each_hit(&ray, t_max, transparent, |i| crossed.push(i), &mut untested),
         }
-        self.counts.saved.count(Skip::BoundingSpheres, sphere_rejects.get());
+        self.counts
+            .saved
+            .count(Skip::BoundingSpheres, sphere_rejects.get() + untested);
         // Multiply in object order so the bits do not depend on the traversal order.
         self.crossed.sort_unstable();
         rec.shadow_crossed(&self.crossed);

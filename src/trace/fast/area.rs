@@ -179,16 +179,35 @@ fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mu
 /// A point is black when its colour `L / N * A` is zero (and the unlit skip is on).
 /// Returns how many points face the surface, face away and are black (counted here, in
 /// the same vector loop, rather than by more passes).
+///
+/// With no channel of `L / N` negative or NaN, the colour is zero exactly when its
+/// brightest channel is: a rounded product does not grow in magnitude when a factor
+/// shrinks, so `|fl(L_k A)| <= |fl(max_k L_k A)|` for every channel `k` (and an `A` that is
+/// NaN or infinite makes neither zero). One product and one comparison a point, not three.
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facing]) -> [u64; 3] {
+    // Every channel compared (a NaN fails), not `min_element`, which passes NaN by.
+    if point_color.cmpge(DVec3::ZERO).all() {
+        let brightest = point_color.max_element();
+        facings_where(lanes, unlit_skip, out, |a| arriving(brightest, a, 1.0) == 0.0)
+    } else {
+        facings_where(lanes, unlit_skip, out, |a| {
+            // Each channel compared, no branch.
+            let c = arriving(point_color, a, 1.0);
+            (c.x == 0.0) & (c.y == 0.0) & (c.z == 0.0)
+        })
+    }
+}
+
+/// [`facings`] with `zero(A_i)` telling whether point `i`'s colour is zero. Inlined into
+/// each of its versions.
+#[inline(always)]
+fn facings_where(lanes: &Lanes, unlit_skip: bool, out: &mut [Facing], zero: impl Fn(f64) -> bool) -> [u64; 3] {
     let len = out.len();
     let (dist, atten, n_dot_l) = (&lanes.dist[..len], &lanes.atten[..len], &lanes.n_dot_l[..len]);
     let (mut towards, mut away, mut black) = (0u32, 0u32, 0u32);
     for i in 0..len {
-        // The colour arriving is zero: each channel compared, no branch.
-        let c = arriving(point_color, atten[i], 1.0);
-        let zero = (c.x == 0.0) & (c.y == 0.0) & (c.z == 0.0);
-        let facing = Facing::of(dist[i] != 0.0, unlit_skip & zero, n_dot_l[i]);
+        let facing = Facing::of(dist[i] != 0.0, unlit_skip & zero(atten[i]), n_dot_l[i]);
         towards += u32::from(facing == Facing::Towards);
         away += u32::from(facing == Facing::Away);
         black += u32::from(facing == Facing::Black);
@@ -735,6 +754,65 @@ mod tests {
                 assert_eq!(DVec3::new(sr[i], sg[i], sb[i]), spec_term, "point {i}");
             }
         }
+    }
+
+    /// [`facings`] decides every point as [`Facing::of`] does with the colour `L / N * A`
+    /// compared channel by channel, for colours with zero, tiny and negative channels and
+    /// attenuations that make a channel underflow, zero, NaN or infinite.
+    #[test]
+    fn facings_are_the_channel_by_channel_decision() {
+        let tiny = f64::from_bits(1); // the least subnormal
+        let atten = [
+            1.0,
+            0.5,
+            0.0,
+            -0.0,
+            1e-300,
+            1e-310,
+            tiny,
+            f64::MIN_POSITIVE,
+            f64::NAN,
+            f64::INFINITY,
+            3e-8,
+        ];
+        let colors = [
+            DVec3::new(0.01, 0.02, 0.005),
+            DVec3::new(0.0, 1e-10, 0.0),
+            DVec3::new(1e-10, 1e-300, 2e-300),
+            DVec3::ZERO,
+            DVec3::new(tiny, 0.0, 0.5 * f64::MIN_POSITIVE),
+            DVec3::new(-0.25, 0.0, 1e-300),
+            DVec3::new(0.3, f64::NAN, 0.0),
+        ];
+        let len = atten.len() * 3;
+        let mut lanes = Lanes::default();
+        lanes.resize(len);
+        for i in 0..len {
+            lanes.atten[i] = atten[i % atten.len()];
+            lanes.dist[i] = [1.0, 0.0, 2.5][i / atten.len()];
+            lanes.n_dot_l[i] = [0.5, -0.5, 0.0][(i / 2) % 3];
+        }
+        for color in colors {
+            for unlit_skip in [true, false] {
+                let mut out = vec![Facing::NoLight; len];
+                let counts = facings(&lanes, color, unlit_skip, &mut out);
+                let mut want_counts = [0; 3];
+                for (i, &got) in out.iter().enumerate() {
+                    let c = arriving(color, lanes.atten[i], 1.0);
+                    let zero = c.x == 0.0 && c.y == 0.0 && c.z == 0.0;
+                    let want = Facing::of(lanes.dist[i] != 0.0, unlit_skip && zero, lanes.n_dot_l[i]);
+                    assert_eq!(got, want, "colour {color}, A = {:e}", lanes.atten[i]);
+                    for (k, f) in [Facing::Towards, Facing::Away, Facing::Black].into_iter().enumerate() {
+                        want_counts[k] += u64::from(want == f);
+                    }
+                }
+                assert_eq!(counts, want_counts, "colour {color}");
+            }
+        }
+        // The black points are there to be found: a colour of 1e-300 under A = 1e-300.
+        let mut out = vec![Facing::NoLight; len];
+        let [_, _, black] = facings(&lanes, DVec3::splat(1e-300), true, &mut out);
+        assert!(black > 0);
     }
 
     /// The fused pass 3 and 4 ([`lane_sum`]) gives the bits of [`shares`] followed by a
