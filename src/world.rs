@@ -416,19 +416,7 @@ impl<'s> World<'s> {
         if self.shadow_balls.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
             return self.any_hit(ray, t_max, &filter);
         }
-        let objects = &self.scene.objects[..];
-        let balls = &self.shadow_balls[..objects.len()];
-        for i in 0..objects.len() {
-            if !filter(i) {
-                continue;
-            }
-            if misses_ball(ray, t_max, balls[i]) {
-                *untested += 1;
-            } else if objects[i].shape.occludes(ray, 0.0, t_max) {
-                return true;
-            }
-        }
-        false
+        self.scan_balls(ray, t_max, filter, untested, |_| true)
     }
 
     /// [`World::each_hit`] for a shadow ray, with the objects whose ball the ray misses not
@@ -445,6 +433,25 @@ impl<'s> World<'s> {
         if self.shadow_balls.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
             return self.each_hit(ray, t_max, &filter, &mut visit);
         }
+        self.scan_balls(ray, t_max, filter, untested, |i| {
+            visit(i);
+            false
+        });
+    }
+
+    /// The linear scan of a shadow ray over the objects `filter` accepts, in object order,
+    /// skipping those whose ball (`shadow_balls`) it misses (added to `untested`): calls
+    /// `hit(i)` for each object it meets on `(0, t_max)` until `hit` returns true, and
+    /// returns whether it did.
+    #[inline(always)]
+    fn scan_balls(
+        &self,
+        ray: &Ray,
+        t_max: f64,
+        filter: impl Fn(usize) -> bool,
+        untested: &mut u64,
+        mut hit: impl FnMut(usize) -> bool,
+    ) -> bool {
         let objects = &self.scene.objects[..];
         let balls = &self.shadow_balls[..objects.len()];
         for i in 0..objects.len() {
@@ -453,10 +460,11 @@ impl<'s> World<'s> {
             }
             if misses_ball(ray, t_max, balls[i]) {
                 *untested += 1;
-            } else if objects[i].shape.occludes(ray, 0.0, t_max) {
-                visit(i);
+            } else if objects[i].shape.occludes(ray, 0.0, t_max) && hit(i) {
+                return true;
             }
         }
+        false
     }
 
     /// Calls `visit` once for every object that `filter` accepts and `ray` hits with
