@@ -1,6 +1,6 @@
 //! `lumiere diagnose SCENE IMAGE`: what is most likely wrong in a student's image. Prints
-//! the gains per term, the verdict and the top mistakes with their evidence (or JSON), and
-//! writes the HTML report with `--report DIR`. Exit 0 whatever the verdict, 2 bad input.
+//! the gains per term, the verdict, the top mistakes with their evidence and what the image
+//! follows within sampling (or JSON), and writes the HTML report with `--report DIR`. Exit 0 whatever the verdict, 2 bad input.
 
 use super::{CliError, Overrides, load_scene};
 use clap::Args;
