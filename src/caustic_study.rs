@@ -118,22 +118,23 @@ pub const CSV_COLUMNS: [&str; 8] = [
     "photons",
     "radius",
     "seconds",
-    "rmse",
-    "rmse_unrounded",
-    "max_diff",
-    "within_1_level",
-    "psnr_db",
+    Error::CSV_COLUMNS[0],
+    Error::CSV_COLUMNS[1],
+    Error::CSV_COLUMNS[2],
+    Error::CSV_COLUMNS[3],
+    Error::CSV_COLUMNS[4],
 ];
 
 /// The measurements as CSV, one row per configuration.
 pub fn csv(study: &Study) -> String {
     let mut out = CSV_COLUMNS.join(",") + "\n";
     for r in &study.rows {
-        let e = &r.error;
-        let psnr = crate::compare::psnr_db(e.rmse * e.rmse);
         out += &format!(
-            "{},{},{:.6},{:.6},{:.6},{},{:.6},{:.3}\n",
-            r.config.photons, r.config.radius, r.seconds, e.rmse, e.rmse_unrounded, e.max_diff, e.within_one, psnr
+            "{},{},{:.6},{}\n",
+            r.config.photons,
+            r.config.radius,
+            r.seconds,
+            r.error.csv_fields()
         );
     }
     out

@@ -71,6 +71,22 @@ pub struct PixelLayers {
 }
 
 impl PixelLayers {
+    /// The vector layers averaged over the pixel's samples: the colour terms and the normal.
+    fn averaged_mut(&mut self) -> [&mut DVec3; 10] {
+        [
+            &mut self.ambient,
+            &mut self.diffuse,
+            &mut self.specular,
+            &mut self.caustic,
+            &mut self.reflected,
+            &mut self.transmitted,
+            &mut self.background,
+            &mut self.filtered_diffuse,
+            &mut self.filtered_specular,
+            &mut self.normal,
+        ]
+    }
+
     /// `ambient + diffuse + specular + caustic + reflected + transmitted + background`.
     pub fn sum(&self) -> DVec3 {
         self.ambient + self.diffuse + self.specular + self.caustic + self.reflected + self.transmitted + self.background
@@ -241,16 +257,9 @@ impl Recorder for LayerRecorder<'_, '_> {
             *filter = if count == 0 { DVec3::ZERO } else { sum / count as f64 };
         }
         let t = &mut self.total;
-        t.ambient += s.ambient;
-        t.diffuse += s.diffuse;
-        t.specular += s.specular;
-        t.caustic += s.caustic;
-        t.reflected += s.reflected;
-        t.transmitted += s.transmitted;
-        t.background += s.background;
-        t.filtered_diffuse += s.filtered_diffuse;
-        t.filtered_specular += s.filtered_specular;
-        t.normal += s.normal;
+        for (sum, value) in t.averaged_mut().into_iter().zip(s.averaged_mut()) {
+            *sum += *value;
+        }
         t.depth += s.depth;
         for (a, b) in t.shadow_filters.iter_mut().zip(&s.shadow_filters) {
             *a += *b;
@@ -269,18 +278,7 @@ pub fn pixel_layers(tracer: &mut Tracer, x: u32, y: u32) -> PixelLayers {
     let radiance = render_pixel_recorded(tracer, x, y, &mut rec);
     let n = world.scene.settings.samples_per_pixel as f64;
     let mut t = rec.total;
-    for v in [
-        &mut t.ambient,
-        &mut t.diffuse,
-        &mut t.specular,
-        &mut t.caustic,
-        &mut t.reflected,
-        &mut t.transmitted,
-        &mut t.background,
-        &mut t.filtered_diffuse,
-        &mut t.filtered_specular,
-        &mut t.normal,
-    ] {
+    for v in t.averaged_mut() {
         *v /= n;
     }
     t.shadow_filters.iter_mut().for_each(|f| *f /= n);

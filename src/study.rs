@@ -170,6 +170,22 @@ pub struct Error {
     pub within_one: f64,
 }
 
+impl Error {
+    /// The CSV columns of an error, as [`Error::csv_fields`] writes them (both studies' CSV
+    /// end with them).
+    pub const CSV_COLUMNS: [&str; 5] = ["rmse", "rmse_unrounded", "max_diff", "within_1_level", "psnr_db"];
+
+    /// The error's CSV fields, in the order of [`Error::CSV_COLUMNS`]; the PSNR from the
+    /// RMS as `lumiere compare` gives it.
+    pub fn csv_fields(&self) -> String {
+        let psnr = crate::compare::psnr_db(self.rmse * self.rmse);
+        format!(
+            "{:.6},{:.6},{},{:.6},{:.3}",
+            self.rmse, self.rmse_unrounded, self.max_diff, self.within_one, psnr
+        )
+    }
+}
+
 /// `a` against the reference `b` (same size).
 pub fn error(a: &Film, b: &Film) -> Error {
     let c = compare_rgb8(&a.to_rgb8(), &b.to_rgb8(), a.width, a.height, 1);
@@ -301,31 +317,25 @@ pub const CSV_COLUMNS: [&str; 10] = [
     "points",
     "seconds",
     "shadow_rays",
-    "rmse",
-    "rmse_unrounded",
-    "max_diff",
-    "within_1_level",
-    "psnr_db",
+    Error::CSV_COLUMNS[0],
+    Error::CSV_COLUMNS[1],
+    Error::CSV_COLUMNS[2],
+    Error::CSV_COLUMNS[3],
+    Error::CSV_COLUMNS[4],
 ];
 
 /// The measurements as CSV, one row per configuration.
 pub fn csv(study: &Study) -> String {
     let mut out = CSV_COLUMNS.join(",") + "\n";
     for r in &study.rows {
-        let e = &r.error;
-        let psnr = crate::compare::psnr_db(e.rmse * e.rmse);
         out += &format!(
-            "{},{},{},{:.6},{},{:.6},{:.6},{},{:.6},{:.3}\n",
+            "{},{},{},{:.6},{},{}\n",
             placement_name(r.config.placement),
             mode_name(r.config.mode),
             r.config.points,
             r.seconds,
             r.shadow_rays,
-            e.rmse,
-            e.rmse_unrounded,
-            e.max_diff,
-            e.within_one,
-            psnr
+            r.error.csv_fields()
         );
     }
     out
