@@ -781,6 +781,22 @@ mod tests {
     use super::*;
 
     #[test]
+    fn error_csv_fields_by_hand() {
+        // RMS 2 levels: PSNR = 20 log10(255 / 2) = 42.1102 dB.
+        let e = Error {
+            rmse: 2.0,
+            rmse_unrounded: 1.5,
+            max_diff: 7,
+            within_one: 0.25,
+        };
+        assert_eq!(e.csv_fields(), "2.000000,1.500000,7,0.250000,42.110");
+        assert_eq!(
+            crate::caustic_study::CSV_COLUMNS.join(","),
+            "photons,radius,seconds,rmse,rmse_unrounded,max_diff,within_1_level,psnr_db"
+        );
+    }
+
+    #[test]
     fn placement_and_mode_lists() {
         assert_eq!(
             parse_placements("fibonacci, chapter,fibonacci"),
