@@ -133,6 +133,22 @@ fn small(name: &str, w: u32, h: u32) -> Scene {
     s
 }
 
+/// `lumiere render scenes/NAME` at `width x height` with `extra` arguments; it must succeed.
+fn render_small_cli(name: &str, (width, height): (u32, u32), extra: &[&str]) {
+    let scene = repo(&format!("scenes/{name}"));
+    let (width, height) = (width.to_string(), height.to_string());
+    let args = [
+        "render",
+        scene.to_str().unwrap(),
+        "--width",
+        &width,
+        "--height",
+        &height,
+    ];
+    let o = lumiere(&[&args[..], extra].concat());
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 #[test]
 fn terms_sum_to_the_rendered_radiance() {
     for name in [
@@ -189,19 +205,11 @@ fn same_layers_for_any_thread_count() {
     let dir = temp_dir("layers-threads");
     for t in ["1", "2"] {
         let out = dir.join(format!("t{t}.exr"));
-        let o = lumiere(&[
-            "render",
-            repo("scenes/reference.toml").to_str().unwrap(),
-            "--width",
-            "40",
-            "--height",
-            "30",
-            "--threads",
-            t,
-            "--layers",
-            out.to_str().unwrap(),
-        ]);
-        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        render_small_cli(
+            "reference.toml",
+            (40, 30),
+            &["--threads", t, "--layers", out.to_str().unwrap()],
+        );
     }
     assert_eq!(
         std::fs::read(dir.join("t1.exr")).unwrap(),
@@ -214,19 +222,11 @@ fn exr_reads_back_channel_by_channel() {
     let dir = temp_dir("layers-exr");
     let out = dir.join("layers.exr");
     let png = dir.join("image.png");
-    let o = lumiere(&[
-        "render",
-        repo("scenes/reference.toml").to_str().unwrap(),
-        "--width",
-        "40",
-        "--height",
-        "30",
-        "-o",
-        png.to_str().unwrap(),
-        "--layers",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    render_small_cli(
+        "reference.toml",
+        (40, 30),
+        &["-o", png.to_str().unwrap(), "--layers", out.to_str().unwrap()],
+    );
     let scene = small("reference.toml", 40, 30);
     let layers = render_layers(&World::new(&scene));
     let planes = layers.planes(&scene.lights);
@@ -265,17 +265,7 @@ fn exr_reads_back_channel_by_channel() {
 fn folder_form_writes_a_png_per_layer_and_pfm_floats() {
     let dir = temp_dir("layers-folder");
     let out = format!("{}/layers/", dir.display());
-    let o = lumiere(&[
-        "render",
-        repo("scenes/prism.toml").to_str().unwrap(),
-        "--width",
-        "32",
-        "--height",
-        "24",
-        "--layers",
-        &out,
-    ]);
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    render_small_cli("prism.toml", (32, 24), &["--layers", &out]);
     let scene = small("prism.toml", 32, 24);
     let layers = render_layers(&World::new(&scene));
     let folder = dir.join("layers");
