@@ -41,10 +41,12 @@ impl Sphere {
     }
 
     /// The two roots of the sphere's equation ([`sphere_roots`]).
+    #[inline]
     fn roots(&self, ray: &Ray) -> Option<(f64, f64)> {
         sphere_roots(self.center, self.radius, ray)
     }
 
+    #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let t = first_root_in(self.roots(ray)?, t_min, t_max)?;
         let normal = (ray.at(t) - self.center) / self.radius;
@@ -54,6 +56,7 @@ impl Sphere {
         })
     }
 
+    #[inline]
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         self.roots(ray).and_then(|r| first_root_in(r, t_min, t_max)).is_some()
     }
