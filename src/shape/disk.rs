@@ -21,6 +21,7 @@ impl Disk {
         }
     }
 
+    #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let denom = ray.dir.dot(self.normal);
         if denom == 0.0 {
@@ -35,6 +36,7 @@ impl Disk {
     }
 
     /// Bound on the distance from `p` (a hit inside the disk) to the disk's plane.
+    #[inline]
     pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
         (p - self.center).dot(self.normal).abs() + gamma(16) * (l1(p) + l1(self.center) + self.radius)
     }

@@ -21,6 +21,7 @@ impl Plane {
     }
 
     /// `t = (p0 - o).N / (v.N)`; rays parallel to the plane never hit.
+    #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let denom = ray.dir.dot(self.normal);
         if denom == 0.0 {
@@ -51,6 +52,7 @@ impl Plane {
     }
 
     /// Bound on the distance from `p` to the plane: `|(p - p0).N|` plus its evaluation error.
+    #[inline]
     pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
         (p - self.point).dot(self.normal).abs() + gamma(16) * (l1(p) + l1(self.point))
     }

@@ -33,6 +33,7 @@ impl Rectangle {
     }
 
     /// Plane hit, then `u = ((p - c) x e2).n / |n|^2`, `v = (e1 x (p - c)).n / |n|^2`.
+    #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let denom = ray.dir.dot(self.normal);
         if denom == 0.0 {
@@ -50,6 +51,7 @@ impl Rectangle {
     }
 
     /// Bound on the distance from `p` (a hit inside the rectangle) to its plane.
+    #[inline]
     pub(crate) fn surface_error(&self, p: DVec3) -> f64 {
         let size = l1(self.edge1) + l1(self.edge2);
         (p - self.corner).dot(self.normal).abs() + gamma(16) * (l1(p) + l1(self.corner) + size)
