@@ -476,10 +476,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                     lit += u32::from(*add);
                 }
             } else {
-                for ((&f, &blocked), add) in s.facing.iter().zip(&s.blocked).zip(&mut s.adds) {
-                    *add = (f == Facing::Towards) & !(blocked_shading & blocked);
-                    lit += u32::from(*add);
-                }
+                lit = mark_adds(&s.facing, &s.blocked, blocked_shading, &mut s.adds);
             }
             let lit = u64::from(lit);
             let blocked = towards - lit;
@@ -522,7 +519,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                         facings(&s.lanes, member_color, true, &mut s.member_facing[..count]);
                         self.diverged |= s.member_facing[..count] != s.facing[..count];
                     }
-                    let own = s.facing[..count].iter().filter(|&&f| f == Facing::Towards).count() as u64;
+                    let own = count_towards(&s.facing[..count]);
                     self.shadow_excess[j] += towards - own;
                 }
             }
@@ -648,6 +645,34 @@ impl SumTerms<'_> {
         }
         DVec3::new(r, g, b)
     }
+}
+
+/// Marks in `adds` the points that add to the sum: those facing the surface, but for
+/// the blocked ones (`blocked`) when `skip_blocked`; returns how many. A lane loop over
+/// bytes, in versions for AVX-512 and AVX2 chosen at run time (64 or 32 points a vector).
+#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn mark_adds(facing: &[Facing], blocked: &[bool], skip_blocked: bool, adds: &mut [bool]) -> u32 {
+    let len = facing.len();
+    let (blocked, adds) = (&blocked[..len], &mut adds[..len]);
+    let mut count = 0;
+    for i in 0..len {
+        adds[i] = (facing[i] == Facing::Towards) & !(skip_blocked & blocked[i]);
+    }
+    // Counted in bytes, a few vectors' worth at a time (at most 255 a byte lane).
+    for chunk in adds.chunks(128) {
+        count += u32::from(chunk.iter().fold(0u8, |n, &a| n + u8::from(a)));
+    }
+    count
+}
+
+/// How many of `facing` face the surface; as [`mark_adds`], a lane loop over bytes.
+#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn count_towards(facing: &[Facing]) -> u64 {
+    let mut count = 0;
+    for chunk in facing.chunks(128) {
+        count += u64::from(chunk.iter().fold(0u8, |n, &f| n + u8::from(f == Facing::Towards)));
+    }
+    count
 }
 
 /// Lists in `open` the `towards` points facing the surface, without a branch per point
@@ -813,6 +838,38 @@ mod tests {
         let mut out = vec![Facing::NoLight; len];
         let [_, _, black] = facings(&lanes, DVec3::splat(1e-300), true, &mut out);
         assert!(black > 0);
+    }
+
+    /// [`mark_adds`] and [`count_towards`] give, for counts past a byte and lengths past
+    /// their chunks of 128, the marks and counts of the point-by-point definitions: every
+    /// point facing and none blocked (all 300 add), and a mixed pattern with and without
+    /// the blocked points skipped.
+    #[test]
+    fn adds_are_marked_and_counted_as_point_by_point() {
+        let all = vec![Facing::Towards; 300];
+        let mut adds = vec![false; 300];
+        assert_eq!(mark_adds(&all, &[false; 300], true, &mut adds), 300);
+        assert!(adds.iter().all(|&a| a));
+        assert_eq!(count_towards(&all), 300);
+        assert_eq!(count_towards(&all[..129]), 129);
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let kinds = [Facing::NoLight, Facing::Black, Facing::Away, Facing::Towards];
+        let facing: Vec<Facing> = (0..1000).map(|_| kinds[(rng.next_u64() % 4) as usize]).collect();
+        let blocked: Vec<bool> = (0..1000).map(|_| rng.next_u64() % 3 == 0).collect();
+        for skip_blocked in [true, false] {
+            let want: Vec<bool> = (0..1000)
+                .map(|i| facing[i] == Facing::Towards && !(skip_blocked && blocked[i]))
+                .collect();
+            let mut adds = vec![true; 1000];
+            let count = mark_adds(&facing, &blocked, skip_blocked, &mut adds);
+            assert_eq!(adds, want);
+            assert_eq!(count as usize, want.iter().filter(|&&a| a).count());
+            assert!(count > 100 && count < 400, "a mixed pattern: {count} of 1000");
+        }
+        for len in [0, 1, 127, 128, 129, 1000] {
+            let want = facing[..len].iter().filter(|&&f| f == Facing::Towards).count() as u64;
+            assert_eq!(count_towards(&facing[..len]), want, "{len} points");
+        }
     }
 
     /// The fused pass 3 and 4 ([`lane_sum`]) gives the bits of [`shares`] followed by a
