@@ -37,7 +37,7 @@ use crate::material::{Material, Reflectance};
 use crate::scene::{ShadingModel, Specular};
 use crate::shading::{
     blinn_cosine, blinn_cosine_squared, blinn_defined, diffuse, half_of_even, half_vector_test_needed, phong_cosine,
-    pow_each, specular,
+    pow_each_of, specular,
 };
 use crate::shape::Verdict;
 use crate::skips::Skip;
@@ -218,8 +218,9 @@ fn facings_where(lanes: &Lanes, unlit_skip: bool, out: &mut [Facing], zero: impl
 
 /// Pass 3's first step: for every point, the specular term `spec_i`: Blinn's
 /// `max(N.H, 0)^n` or Phong's `max(R.E, 0)^n`, computed as [`crate::shading::blinn`] and
-/// [`crate::shading::phong`] compute them (their cosines point by point, then the power
-/// of every point at once).
+/// [`crate::shading::phong`] compute them (their cosines point by point, each raised to
+/// the power in the same loop for the small integer exponents, else the power of every
+/// point at once: [`pow_each_of`]).
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material, model: ShadingModel) {
     let Lanes {
@@ -232,20 +233,16 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
     } = lanes;
     let (lx, ly, lz, n_dot_l) = (&lx[..len], &ly[..len], &lz[..len], &n_dot_l[..len]);
     let spec = &mut spec[..len];
-    let to_light = |i: usize| DVec3::new(lx[i], ly[i], lz[i]);
+    // Closures that hold the slices themselves (`move`), not references to them: the
+    // compiler then knows their lengths in `pow_each_of`'s loop and vectorizes it.
+    let to_light = move |i: usize| DVec3::new(lx[i], ly[i], lz[i]);
     match model.specular {
         Specular::None => spec.fill(0.0),
         Specular::Blinn if let Some(m) = half_of_even(mat.shininess) => {
-            for (i, spec) in spec.iter_mut().enumerate() {
-                *spec = blinn_cosine_squared(n, to_light(i) + eye);
-            }
-            pow_each(spec, f64::from(m));
+            pow_each_of(spec, f64::from(m), move |i| blinn_cosine_squared(n, to_light(i) + eye));
         }
         Specular::Blinn => {
-            for (i, spec) in spec.iter_mut().enumerate() {
-                *spec = blinn_cosine(n, to_light(i) + eye);
-            }
-            pow_each(spec, mat.shininess);
+            pow_each_of(spec, mat.shininess, move |i| blinn_cosine(n, to_light(i) + eye));
             if half_vector_test_needed(mat.shininess) {
                 for (i, spec) in spec.iter_mut().enumerate() {
                     *spec = blinn_defined(to_light(i) + eye, *spec);
@@ -253,10 +250,9 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
             }
         }
         Specular::Phong => {
-            for i in 0..len {
-                spec[i] = phong_cosine(n, to_light(i), eye, n_dot_l[i]);
-            }
-            pow_each(spec, mat.shininess);
+            pow_each_of(spec, mat.shininess, move |i| {
+                phong_cosine(n, to_light(i), eye, n_dot_l[i])
+            });
         }
     }
 }
