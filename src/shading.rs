@@ -296,7 +296,7 @@ pub fn pow_each(xs: &mut [f64], y: f64) {
 
 /// `pow(f(i), y)` into each `out[i]`: [`pow_each`] of the values `f(i)`. For the integer
 /// exponents 1 to 16 the power is taken in the loop that computes `f(i)`, its
-/// multiplications written out for that exponent ([`powi_unrolled`]): the values stay in
+/// multiplications written out for that exponent (`powi_unrolled`): the values stay in
 /// registers instead of going through memory once per bit of `y`. Always inlined, as
 /// [`pow_each`].
 #[inline(always)]

@@ -16,7 +16,10 @@
 //! Passes 1 and 3 are straight loops over coordinate arrays that compile to vector
 //! instructions, in versions for AVX-512 and AVX2 chosen at run time (`multiversion`):
 //! the same IEEE operations on each lane whatever the vector width (Rust never fuses a
-//! multiply and an add), so the same bits on every machine. Each point's arithmetic is that
+//! multiply and an add), so the same bits on every machine; pass 3's specular power is
+//! taken in the loop that computes the cosine ([`pow_each_of`]), and pass 4 marks and
+//! counts the points that add in byte loops of the same kind ([`mark_adds`],
+//! [`count_towards`]). Each point's arithmetic is that
 //! of a lone point light: the loops call, point by point or channel by channel, the
 //! formulas a point light is shaded with ([`point_incidence`]'s [`direction_to`] and
 //! [`arriving`], [`blinn`]'s or [`phong`]'s cosines, [`diffuse`], [`specular`]), and the
