@@ -294,6 +294,51 @@ pub fn pow_each(xs: &mut [f64], y: f64) {
     }
 }
 
+/// `pow(f(i), y)` into each `out[i]`: [`pow_each`] of the values `f(i)`. For the integer
+/// exponents 1 to 16 the power is taken in the loop that computes `f(i)`, its
+/// multiplications written out for that exponent (`powi_unrolled`): the values stay in
+/// registers instead of going through memory once per bit of `y`. Always inlined, as
+/// [`pow_each`].
+#[inline(always)]
+pub fn pow_each_of(out: &mut [f64], y: f64, f: impl Fn(usize) -> f64) {
+    macro_rules! unrolled {
+        ($($n:literal)*) => {
+            match integer_exponent(y) {
+                $(Some($n) => {
+                    for (i, o) in out.iter_mut().enumerate() {
+                        *o = powi_unrolled::<$n>(f(i));
+                    }
+                    return;
+                })*
+                _ => {}
+            }
+        };
+    }
+    unrolled!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16);
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = f(i);
+    }
+    pow_each(out, y);
+}
+
+/// [`powi_exact_order`] for a constant exponent `N`: the same multiplications in the same
+/// order, the loop over the bits of `N` unrolled by the compiler.
+#[inline(always)]
+fn powi_unrolled<const N: u32>(mut x: f64) -> f64 {
+    let mut acc = 1.0;
+    let mut bit = 0;
+    while bit < u32::BITS && N >> bit > 0 {
+        if (N >> bit) & 1 == 1 {
+            acc *= x;
+        }
+        if N.checked_shr(bit + 1).unwrap_or(0) > 0 {
+            x *= x;
+        }
+        bit += 1;
+    }
+    acc
+}
+
 /// `x^n` by squaring, from the lowest bit of `n` up.
 fn powi_exact_order(mut x: f64, mut n: u32) -> f64 {
     let mut acc = 1.0;
@@ -465,6 +510,29 @@ mod tests {
         assert!(!beneath_notice(0.01, 0.3, 0.5));
         // Threshold 0 traces everything, even a zero weight.
         assert!(!beneath_notice(0.0, 0.3, 0.0));
+    }
+
+    /// [`pow_each_of`] gives the bits of [`pow`] for every integer exponent it unrolls
+    /// (1 to 16), those around them (0, 17, 20, 512) and non-integer ones, on values in
+    /// [0, 1] (as cosines are), above 1, and 0.
+    #[test]
+    fn pow_each_of_is_pow_bit_for_bit() {
+        let xs: Vec<f64> = (0..45)
+            .map(|i| [i as f64 / 36.0, 1.0 + i as f64 / 7.0][i % 2])
+            .collect();
+        let exponents = (0..=17).map(f64::from).chain([20.0, 512.0, 7.5, 0.25]);
+        for y in exponents {
+            let want: Vec<u64> = xs.iter().map(|&x| pow(x, y).to_bits()).collect();
+            let mut out = vec![f64::NAN; xs.len()];
+            pow_each_of(&mut out, y, |i| xs[i]);
+            assert_eq!(out.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), want, "y = {y}");
+        }
+        // By hand: 0.5^10 = 2^-10, 3^5 = 243 exactly.
+        let mut out = [0.0; 2];
+        pow_each_of(&mut out, 10.0, |_| 0.5);
+        assert_eq!(out, [1.0 / 1024.0; 2]);
+        pow_each_of(&mut out, 5.0, |_| 3.0);
+        assert_eq!(out, [243.0; 2]);
     }
 
     #[test]

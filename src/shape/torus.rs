@@ -25,6 +25,14 @@ pub enum QuarticMethod {
     OrellanaDeMichele,
 }
 
+/// How many points along a shadow ray's clip interval [`Torus::occludes`] looks at for a
+/// sure entry into the tube before solving the quartic.
+const ENTRY_SAMPLES: usize = 16;
+
+/// How many pieces of the clip interval [`Torus::occludes`]'s second clearance test
+/// bounds the tube's distance on (the fan verdicts' first one takes 4).
+const FINE_PIECES: usize = 16;
+
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Torus {
     pub center: DVec3,
@@ -280,7 +288,13 @@ impl Torus {
     /// sign change either: the answer is the same, without solving the quartic.
     #[inline(always)]
     fn clear_of_tube(&self, p: DVec3, d: DVec3, len: f64) -> bool {
-        const PIECES: usize = 4;
+        self.clear_of_tube_in::<4>(p, d, len)
+    }
+
+    /// [`Torus::clear_of_tube`] on `PIECES` pieces of the segment: more pieces, closer
+    /// bounds, more segments cleared.
+    #[inline(always)]
+    fn clear_of_tube_in<const PIECES: usize>(&self, p: DVec3, d: DVec3, len: f64) -> bool {
         let (big, small) = (self.major, self.minor);
         let margin = 1e-9 * (big + small);
         let reach = small + margin;
@@ -324,13 +338,36 @@ impl Torus {
         // branch (see `shadow_verdict`).
         let after_start = (enter > t_min) | (enter == 0.0);
         let crosses = (d.z != 0.0) & after_start & (s > 0.0) & (s <= exit - enter) & (enter + s < t_max);
-        let (big, small) = (self.major, self.minor);
-        let scale = |q: DVec3| {
-            let k = q.length_squared() + big * big + small * small;
-            1e-10 * k * k
-        };
         let q = p + d * s;
-        crosses & (self.implicit(p) > scale(p)) & (self.implicit(q) < -scale(q))
+        crosses & (self.implicit(p) > self.sign_margin(p)) & (self.implicit(q) < -self.sign_margin(q))
+    }
+
+    /// Whether the ray `o + t d` (as for [`Torus::surely_entered`]) starts clearly outside
+    /// the solid at the clip entry `p` and is clearly inside it at one of
+    /// [`ENTRY_SAMPLES`] points `p + s_k d`, `s_k = k len / ENTRY_SAMPLES`, before `t_max`:
+    /// the sign change [`Torus::surely_entered`] looks for on the equatorial plane, looked
+    /// for along the clip interval (the same margins, so the root isolator would find it
+    /// too). With branches, for one ray: the samples stop at the first inside.
+    fn entered_at_a_sample(&self, o: DVec3, d: DVec3, (enter, exit): (f64, f64), t_min: f64, t_max: f64) -> bool {
+        let p = o + d * enter;
+        let after_start = (enter > t_min) | (enter == 0.0);
+        if !after_start || self.implicit(p) <= self.sign_margin(p) {
+            return false;
+        }
+        let len = exit - enter;
+        (1..=ENTRY_SAMPLES).any(|k| {
+            let s = len * k as f64 / ENTRY_SAMPLES as f64;
+            let q = p + d * s;
+            (s > 0.0) & (enter + s < t_max) && self.implicit(q) < -self.sign_margin(q)
+        })
+    }
+
+    /// The margin by which `f(q)` is taken as surely positive or negative,
+    /// `1e-10 (|q|^2 + R^2 + r^2)^2`: far above the rounding of `f` at `q`.
+    #[inline(always)]
+    fn sign_margin(&self, q: DVec3) -> f64 {
+        let k = q.length_squared() + self.major * self.major + self.minor * self.minor;
+        1e-10 * k * k
     }
 
     /// Outward normal: gradient of `f`, `4 s p - 8 R^2 (x, y, 0)` with `s = |p|^2 + R^2 - r^2`.
@@ -368,7 +405,8 @@ impl Torus {
 
     /// Whether the ray meets the torus inside `(t_min, t_max)`: the shortcuts of
     /// `Torus::shadow_verdict` one after the other, stopping at the first that decides,
-    /// then the quartic.
+    /// then finer ones ([`Torus::entered_at_a_sample`], the tube clearance on
+    /// [`FINE_PIECES`] pieces), then the quartic.
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let Some((o, d, clip)) = self.local_clip(ray, t_min, t_max) else {
             return false;
@@ -377,6 +415,15 @@ impl Torus {
             return true;
         }
         if self.clear_of_tube(o + d * clip.0, d, clip.1 - clip.0) || self.rises_from_outside(o, d, clip, t_min) {
+            return false;
+        }
+        // The rays the fan verdicts leave undecided come here: finer shortcuts, each far
+        // cheaper than the quartic, too costly for a lane loop over every ray (most rays
+        // are decided before).
+        if self.entered_at_a_sample(o, d, clip, t_min, t_max) {
+            return true;
+        }
+        if self.clear_of_tube_in::<FINE_PIECES>(o + d * clip.0, d, clip.1 - clip.0) {
             return false;
         }
         let mut any = false;
@@ -459,8 +506,8 @@ mod tests {
         Torus::new(DVec3::new(4., 3., 2.), DVec3::Z, 1.5, 0.5)
     }
 
-    /// Whether the quartic has a root in `(t_min, t_max)`, with neither shortcut of
-    /// `occludes` (`clear_of_tube`, `surely_entered`).
+    /// Whether the quartic has a root in `(t_min, t_max)`, with none of the shortcuts of
+    /// `occludes`.
     fn occludes_by_quartic(t: &Torus, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let o = t.frame.to_local(ray.origin - t.center);
         let d = t.frame.to_local(ray.dir);
@@ -480,13 +527,15 @@ mod tests {
     fn shortcuts_give_the_quartic_answer() {
         // Shadow-ray-like segments from around and on the torus towards points above it,
         // through the hole, grazing the tube, and along the equatorial plane: `occludes`
-        // (with its shortcuts) answers exactly as the quartic does, and both shortcuts act.
+        // (with its shortcuts) answers exactly as the quartic does, and every shortcut acts,
+        // the finer ones on rays the fan verdicts' shortcuts leave to the quartic.
         use rand_chacha::ChaCha8Rng;
         use rand_core::{Rng, SeedableRng};
         let mut rng = ChaCha8Rng::seed_from_u64(11);
         let mut u = move |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
         let torus = Torus::new(DVec3::new(4., 3., 2.), DVec3::new(0.2, -0.1, 1.0), 1.5, 0.5);
         let (mut hits, mut cleared, mut entered, mut risen) = (0, 0, 0, 0);
+        let (mut sampled, mut finely_cleared, mut solved) = (0, 0, 0);
         for k in 0..20_000 {
             let start = match k % 4 {
                 // floor points around the torus
@@ -520,6 +569,24 @@ mod tests {
             if let Some((o, d, clip)) = torus.local_clip(&ray, 0.0, t_max) {
                 entered += torus.surely_entered(o, d, clip, 0.0, t_max) as u32;
                 risen += torus.rises_from_outside(o, d, clip, 0.0) as u32;
+                let (sure, cleared, rising) = (
+                    torus.surely_entered(o, d, clip, 0.0, t_max),
+                    torus.clear_of_tube(o + d * clip.0, d, clip.1 - clip.0),
+                    torus.rises_from_outside(o, d, clip, 0.0),
+                );
+                if !sure && !cleared && !rising {
+                    // Left by the fan verdicts: the finer shortcuts, each one the quartic's
+                    // answer where it decides.
+                    if torus.entered_at_a_sample(o, d, clip, 0.0, t_max) {
+                        assert!(want, "ray {k}: entered at a sample, but the quartic misses");
+                        sampled += 1;
+                    } else if torus.clear_of_tube_in::<FINE_PIECES>(o + d * clip.0, d, clip.1 - clip.0) {
+                        assert!(!want, "ray {k}: finely clear, but the quartic hits");
+                        finely_cleared += 1;
+                    } else {
+                        solved += 1;
+                    }
+                }
             }
             let o = torus.frame.to_local(ray.origin - torus.center);
             let d = torus.frame.to_local(ray.dir);
@@ -530,6 +597,10 @@ mod tests {
         assert!(
             hits > 1000 && entered > 500 && cleared > 1000 && risen > 500,
             "{hits} {entered} {cleared} {risen}"
+        );
+        assert!(
+            sampled > 100 && finely_cleared > 100 && solved > 0,
+            "{sampled} {finely_cleared} {solved}"
         );
     }
 

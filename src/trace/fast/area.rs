@@ -16,7 +16,10 @@
 //! Passes 1 and 3 are straight loops over coordinate arrays that compile to vector
 //! instructions, in versions for AVX-512 and AVX2 chosen at run time (`multiversion`):
 //! the same IEEE operations on each lane whatever the vector width (Rust never fuses a
-//! multiply and an add), so the same bits on every machine. Each point's arithmetic is that
+//! multiply and an add), so the same bits on every machine; pass 3's specular power is
+//! taken in the loop that computes the cosine ([`pow_each_of`]), and pass 4 marks and
+//! counts the points that add in byte loops of the same kind ([`mark_adds`],
+//! [`count_towards`]). Each point's arithmetic is that
 //! of a lone point light: the loops call, point by point or channel by channel, the
 //! formulas a point light is shaded with ([`point_incidence`]'s [`direction_to`] and
 //! [`arriving`], [`blinn`]'s or [`phong`]'s cosines, [`diffuse`], [`specular`]), and the
@@ -37,7 +40,7 @@ use crate::material::{Material, Reflectance};
 use crate::scene::{ShadingModel, Specular};
 use crate::shading::{
     blinn_cosine, blinn_cosine_squared, blinn_defined, diffuse, half_of_even, half_vector_test_needed, phong_cosine,
-    pow_each, specular,
+    pow_each_of, specular,
 };
 use crate::shape::Verdict;
 use crate::skips::Skip;
@@ -218,8 +221,9 @@ fn facings_where(lanes: &Lanes, unlit_skip: bool, out: &mut [Facing], zero: impl
 
 /// Pass 3's first step: for every point, the specular term `spec_i`: Blinn's
 /// `max(N.H, 0)^n` or Phong's `max(R.E, 0)^n`, computed as [`crate::shading::blinn`] and
-/// [`crate::shading::phong`] compute them (their cosines point by point, then the power
-/// of every point at once).
+/// [`crate::shading::phong`] compute them (their cosines point by point, each raised to
+/// the power in the same loop for the small integer exponents, else the power of every
+/// point at once: [`pow_each_of`]).
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material, model: ShadingModel) {
     let Lanes {
@@ -232,20 +236,16 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
     } = lanes;
     let (lx, ly, lz, n_dot_l) = (&lx[..len], &ly[..len], &lz[..len], &n_dot_l[..len]);
     let spec = &mut spec[..len];
-    let to_light = |i: usize| DVec3::new(lx[i], ly[i], lz[i]);
+    // Closures that hold the slices themselves (`move`), not references to them: the
+    // compiler then knows their lengths in `pow_each_of`'s loop and vectorizes it.
+    let to_light = move |i: usize| DVec3::new(lx[i], ly[i], lz[i]);
     match model.specular {
         Specular::None => spec.fill(0.0),
         Specular::Blinn if let Some(m) = half_of_even(mat.shininess) => {
-            for (i, spec) in spec.iter_mut().enumerate() {
-                *spec = blinn_cosine_squared(n, to_light(i) + eye);
-            }
-            pow_each(spec, f64::from(m));
+            pow_each_of(spec, f64::from(m), move |i| blinn_cosine_squared(n, to_light(i) + eye));
         }
         Specular::Blinn => {
-            for (i, spec) in spec.iter_mut().enumerate() {
-                *spec = blinn_cosine(n, to_light(i) + eye);
-            }
-            pow_each(spec, mat.shininess);
+            pow_each_of(spec, mat.shininess, move |i| blinn_cosine(n, to_light(i) + eye));
             if half_vector_test_needed(mat.shininess) {
                 for (i, spec) in spec.iter_mut().enumerate() {
                     *spec = blinn_defined(to_light(i) + eye, *spec);
@@ -253,10 +253,9 @@ fn speculars(lanes: &mut Lanes, len: usize, n: DVec3, eye: DVec3, mat: &Material
             }
         }
         Specular::Phong => {
-            for i in 0..len {
-                spec[i] = phong_cosine(n, to_light(i), eye, n_dot_l[i]);
-            }
-            pow_each(spec, mat.shininess);
+            pow_each_of(spec, mat.shininess, move |i| {
+                phong_cosine(n, to_light(i), eye, n_dot_l[i])
+            });
         }
     }
 }
@@ -476,10 +475,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                     lit += u32::from(*add);
                 }
             } else {
-                for ((&f, &blocked), add) in s.facing.iter().zip(&s.blocked).zip(&mut s.adds) {
-                    *add = (f == Facing::Towards) & !(blocked_shading & blocked);
-                    lit += u32::from(*add);
-                }
+                lit = mark_adds(&s.facing, &s.blocked, blocked_shading, &mut s.adds);
             }
             let lit = u64::from(lit);
             let blocked = towards - lit;
@@ -522,7 +518,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                         facings(&s.lanes, member_color, true, &mut s.member_facing[..count]);
                         self.diverged |= s.member_facing[..count] != s.facing[..count];
                     }
-                    let own = s.facing[..count].iter().filter(|&&f| f == Facing::Towards).count() as u64;
+                    let own = count_towards(&s.facing[..count]);
                     self.shadow_excess[j] += towards - own;
                 }
             }
@@ -648,6 +644,34 @@ impl SumTerms<'_> {
         }
         DVec3::new(r, g, b)
     }
+}
+
+/// Marks in `adds` the points that add to the sum: those facing the surface, but for
+/// the blocked ones (`blocked`) when `skip_blocked`; returns how many. A lane loop over
+/// bytes, in versions for AVX-512 and AVX2 chosen at run time (64 or 32 points a vector).
+#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn mark_adds(facing: &[Facing], blocked: &[bool], skip_blocked: bool, adds: &mut [bool]) -> u32 {
+    let len = facing.len();
+    let (blocked, adds) = (&blocked[..len], &mut adds[..len]);
+    let mut count = 0;
+    for i in 0..len {
+        adds[i] = (facing[i] == Facing::Towards) & !(skip_blocked & blocked[i]);
+    }
+    // Counted in bytes, a few vectors' worth at a time (at most 255 a byte lane).
+    for chunk in adds.chunks(128) {
+        count += u32::from(chunk.iter().fold(0u8, |n, &a| n + u8::from(a)));
+    }
+    count
+}
+
+/// How many of `facing` face the surface; as [`mark_adds`], a lane loop over bytes.
+#[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
+fn count_towards(facing: &[Facing]) -> u64 {
+    let mut count = 0;
+    for chunk in facing.chunks(128) {
+        count += u64::from(chunk.iter().fold(0u8, |n, &f| n + u8::from(f == Facing::Towards)));
+    }
+    count
 }
 
 /// Lists in `open` the `towards` points facing the surface, without a branch per point
@@ -813,6 +837,38 @@ mod tests {
         let mut out = vec![Facing::NoLight; len];
         let [_, _, black] = facings(&lanes, DVec3::splat(1e-300), true, &mut out);
         assert!(black > 0);
+    }
+
+    /// [`mark_adds`] and [`count_towards`] give, for counts past a byte and lengths past
+    /// their chunks of 128, the marks and counts of the point-by-point definitions: every
+    /// point facing and none blocked (all 300 add), and a mixed pattern with and without
+    /// the blocked points skipped.
+    #[test]
+    fn adds_are_marked_and_counted_as_point_by_point() {
+        let all = vec![Facing::Towards; 300];
+        let mut adds = vec![false; 300];
+        assert_eq!(mark_adds(&all, &[false; 300], true, &mut adds), 300);
+        assert!(adds.iter().all(|&a| a));
+        assert_eq!(count_towards(&all), 300);
+        assert_eq!(count_towards(&all[..129]), 129);
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let kinds = [Facing::NoLight, Facing::Black, Facing::Away, Facing::Towards];
+        let facing: Vec<Facing> = (0..1000).map(|_| kinds[(rng.next_u64() % 4) as usize]).collect();
+        let blocked: Vec<bool> = (0..1000).map(|_| rng.next_u64() % 3 == 0).collect();
+        for skip_blocked in [true, false] {
+            let want: Vec<bool> = (0..1000)
+                .map(|i| facing[i] == Facing::Towards && !(skip_blocked && blocked[i]))
+                .collect();
+            let mut adds = vec![true; 1000];
+            let count = mark_adds(&facing, &blocked, skip_blocked, &mut adds);
+            assert_eq!(adds, want);
+            assert_eq!(count as usize, want.iter().filter(|&&a| a).count());
+            assert!(count > 100 && count < 400, "a mixed pattern: {count} of 1000");
+        }
+        for len in [0, 1, 127, 128, 129, 1000] {
+            let want = facing[..len].iter().filter(|&&f| f == Facing::Towards).count() as u64;
+            assert_eq!(count_towards(&facing[..len]), want, "{len} points");
+        }
     }
 
     /// The fused pass 3 and 4 ([`lane_sum`]) gives the bits of [`shares`] followed by a
