@@ -313,7 +313,9 @@ impl Bvh {
         t_max: f64,
         filter: &dyn Fn(usize) -> bool,
     ) -> bool {
-        self.visit(ray, t_min, t_max, |j| filter(j) && occludes(objects, ray, t_min, t_max, j))
+        self.visit(ray, t_min, t_max, |j| {
+            filter(j) && occludes(objects, ray, t_min, t_max, j)
+        })
     }
 
     /// Calls `visit` for every object accepted by `filter` hit in `(t_min, t_max)`, in tree
