@@ -61,6 +61,7 @@ impl Stream {
 /// Salsa20", 2008; RFC 8439 section 2.3 reads words 13-15 as a 96-bit nonce instead).
 /// Each row of four words is one vector: the quarter round runs on the four columns at
 /// once, then on the four diagonals turned into columns.
+#[inline(always)]
 pub fn chacha8_block(key: &[u32; 8], counter: u64, stream: u64) -> [u32; 16] {
     let input = [
         [0x6170_7865, 0x3320_646e, 0x7962_2d32, 0x6b20_6574],
@@ -90,6 +91,7 @@ mod rows {
     };
 
     /// The block of the state `input` (four rows of four words).
+    #[inline]
     #[target_feature(enable = "sse2")]
     pub(super) fn block(input: [[u32; 4]; 4]) -> [u32; 16] {
         let input = input.map(|w| _mm_set_epi32(w[3] as i32, w[2] as i32, w[1] as i32, w[0] as i32));
@@ -254,6 +256,7 @@ impl ShortStream {
     }
 
     /// Computes block `counter` into `words`.
+    #[inline(always)]
     fn refill(&mut self) {
         self.words = chacha8_block(&self.key, self.counter, self.stream);
     }

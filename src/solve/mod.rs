@@ -107,10 +107,27 @@ impl Few {
     }
 }
 
-/// The isolator proper (see the module doc), for at most 5 coefficients. Generic over `f`,
-/// so that a caller's evaluation (the torus's implicit equation) is inlined into the
-/// bracketing and refinement that call it dozens of times per root.
+/// The isolator proper (see the module doc), for at most 5 coefficients, every root into
+/// `out`.
 fn roots_into<F: Fn(f64) -> f64 + ?Sized>(c: &[f64], lo: f64, hi: f64, f: &F, out: &mut Few) {
+    visit_roots(c, lo, hi, f, &mut |t| {
+        out.push_unique(t);
+        false
+    });
+}
+
+/// The roots [`poly_roots`] finds, in the same increasing order and to the same bits,
+/// each passed to `visit` as it is found until `visit` returns true: the roots after it
+/// are not refined (a closest hit needs the first root in its interval, an occlusion test
+/// any). Generic over `f`, so that a caller's evaluation (the torus's implicit equation) is
+/// inlined into the bracketing and refinement that call it dozens of times per root.
+pub fn visit_roots<F: Fn(f64) -> f64 + ?Sized, V: FnMut(f64) -> bool>(
+    c: &[f64],
+    lo: f64,
+    hi: f64,
+    f: &F,
+    visit: &mut V,
+) {
     let mut len = c.len().min(5);
     while len > 1 && c[len - 1] == 0.0 {
         len -= 1;
@@ -154,17 +171,26 @@ fn roots_into<F: Fn(f64) -> f64 + ?Sized>(c: &[f64], lo: f64, hi: f64, f: &F, ou
     splits[ns] = hi;
     ns += 1;
     let splits = &splits[..ns];
+    // Equal consecutive roots are passed once, as [`Few`] keeps them.
+    let mut last = None;
+    let mut found = |t: f64| {
+        let new = last != Some(t);
+        last = Some(t);
+        new && visit(t)
+    };
     for w in splits.windows(2) {
         let (a, b) = (w[0], w[1]);
         let (fa, fb) = (f(a), f(b));
         if fa == 0.0 {
-            out.push_unique(a);
-        } else if fa.signum() != fb.signum() && fb != 0.0 {
-            out.push_unique(refine(f, deriv, a, b, fa));
+            if found(a) {
+                return;
+            }
+        } else if fa.signum() != fb.signum() && fb != 0.0 && found(refine(f, deriv, a, b, fa)) {
+            return;
         }
     }
     if f(hi) == 0.0 {
-        out.push_unique(hi);
+        found(hi);
     }
 }
 
@@ -298,5 +324,51 @@ mod tests {
         for (got, want) in r.iter().zip(roots) {
             assert!((got - want).abs() < 1e-9, "{got} vs {want}");
         }
+    }
+
+    #[test]
+    fn visiting_stops_refining_at_the_root_it_needs() {
+        // (t-1)(t-2)(t-3)(t-4) on [0, 10], bracketed on the expanded polynomial with each
+        // evaluation counted: every root visited is `poly_roots`' root to the bit, in
+        // order; stopping at the first root leaves the three others unrefined, so `f` is
+        // evaluated fewer times than for all four.
+        let c = [24.0, -50.0, 35.0, -10.0, 1.0];
+        let calls = std::cell::Cell::new(0);
+        let f = |t: f64| {
+            calls.set(calls.get() + 1);
+            horner(&c, t)
+        };
+        let all = poly_roots(&c, 0.0, 10.0, &f);
+        let calls_for_all = calls.replace(0);
+        assert_eq!(all.as_slice().len(), 4);
+        let mut visited = Vec::new();
+        visit_roots(&c, 0.0, 10.0, &f, &mut |t| {
+            visited.push(t);
+            false
+        });
+        assert_eq!(
+            visited.iter().map(|t| t.to_bits()).collect::<Vec<_>>(),
+            all.as_slice().iter().map(|t| t.to_bits()).collect::<Vec<_>>()
+        );
+        assert_eq!(calls.replace(0), calls_for_all);
+        let mut first = Vec::new();
+        visit_roots(&c, 0.0, 10.0, &f, &mut |t| {
+            first.push(t);
+            true
+        });
+        assert_eq!(first, [all.as_slice()[0]]);
+        assert!((first[0] - 1.0).abs() < 1e-13);
+        assert!(
+            calls.get() < calls_for_all,
+            "{} of {calls_for_all} evaluations",
+            calls.get()
+        );
+        // Skipping the first two (a caller's `t <= t_min`), stopping at the third.
+        let mut third = Vec::new();
+        visit_roots(&c, 0.0, 10.0, &f, &mut |t| {
+            third.push(t);
+            t > 2.5
+        });
+        assert_eq!(third, all.as_slice()[..3]);
     }
 }
