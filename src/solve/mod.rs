@@ -181,10 +181,7 @@ pub fn visit_roots<F: Fn(f64) -> f64 + ?Sized, V: FnMut(f64) -> bool + ?Sized>(
             }
             stopped
         };
-        // Through `dyn`: a closure type of each instance would instantiate the next one
-        // without end.
-        let derivative: &dyn Fn(f64) -> f64 = &|t| horner(deriv, t);
-        visit_roots(deriv, lo, hi, derivative, &mut split as &mut dyn FnMut(f64) -> bool);
+        visit_horner_roots(deriv, lo, hi, &mut split);
         if stopped {
             return;
         }
@@ -192,6 +189,14 @@ pub fn visit_roots<F: Fn(f64) -> f64 + ?Sized, V: FnMut(f64) -> bool + ?Sized>(
     if !piece(start, hi) && f(hi) == 0.0 {
         found(hi);
     }
+}
+
+/// [`visit_roots`] bracketing on the polynomial itself (Horner's rule on `c`): the
+/// derivatives' roots. Not generic, so that its one instance of [`visit_roots`], with
+/// Horner's rule inlined into the refinement, serves every level of the recursion (a
+/// closure type of each level would instantiate the next one without end).
+fn visit_horner_roots(c: &[f64], lo: f64, hi: f64, visit: &mut dyn FnMut(f64) -> bool) {
+    visit_roots(c, lo, hi, &|t| horner(c, t), visit);
 }
 
 fn push_unique(out: &mut Vec<f64>, t: f64) {
