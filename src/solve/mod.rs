@@ -6,7 +6,11 @@
 //! recursion on derivatives: the roots of `p'` split `[a, b]` into pieces where `p` is
 //! monotone, and each piece holding a sign change is solved by safeguarded Newton-bisection
 //! to full precision. The caller passes the exact function to bracket on (for the torus, its
-//! implicit equation evaluated directly, which has no coefficient cancellation).
+//! implicit equation evaluated directly, which has no coefficient cancellation). The pieces
+//! are taken in increasing order as the derivative's roots bound them, and [`visit_roots`]
+//! stops at the root its caller needs (a closest hit's first root in its interval): the
+//! pieces after it are neither bounded nor refined, and the roots before it are the bits a
+//! full search finds.
 //!
 //! The closed-form alternatives measured against it live in [`ferrari`] (textbook Ferrari)
 //! and [`orellana`] (Orellana and De Michele 2020); see BENCHMARKS.md, "Numerical stability".
