@@ -5,7 +5,7 @@
 use crate::conventions::{RayOrigin, SamplePosition};
 use crate::film::Film;
 use crate::math::Ray;
-use crate::sampling::{Purpose, Stream};
+use crate::sampling::{Purpose, ShortStream};
 use crate::trace::formulas::{Chapter, FormulaTable};
 use crate::trace::{Formulas, Member, NoRecord, RayCounts, Recorder, Reference, SampleKey, Tracer};
 use crate::world::World;
@@ -32,8 +32,8 @@ fn pixel_index(world: &World, x: u32, y: u32) -> u64 {
 
 /// The jitter stream of pixel `(x, y)`: sample `k` reads its two numbers from words
 /// `4k .. 4k + 4`, so reading samples in order and seeking to one sample agree.
-fn jitter_stream(world: &World, x: u32, y: u32) -> Stream {
-    Stream::new(
+fn jitter_stream(world: &World, x: u32, y: u32) -> ShortStream {
+    ShortStream::new(
         world.scene.settings.seed,
         Purpose::PixelJitter,
         pixel_index(world, x, y),
@@ -49,7 +49,7 @@ fn jitter_stream(world: &World, x: u32, y: u32) -> Stream {
 /// below the true corner along an odd width or height). `n` is the scene's
 /// [`grid_side`](crate::scene::Settings::grid_side), read once per pixel.
 #[inline]
-fn sample_at(world: &World, rng: &mut Stream, n: u32, x: u32, y: u32, k: u32) -> (f64, f64) {
+fn sample_at(world: &World, rng: &mut ShortStream, n: u32, x: u32, y: u32, k: u32) -> (f64, f64) {
     let s = &world.scene.settings;
     let (cx, cy) = ((k % n) as f64, (k / n) as f64);
     let (x, y, n) = (x as f64, y as f64, n as f64);

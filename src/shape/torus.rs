@@ -10,7 +10,7 @@
 
 use super::{Aabb, SurfaceHit, Verdict, gamma, l1};
 use crate::math::{Frame, Ray};
-use crate::solve::{ferrari, horner, orellana, poly_roots};
+use crate::solve::{ferrari, horner, orellana, visit_roots};
 use glam::DVec3;
 
 /// Which quartic solver the torus uses (see BENCHMARKS.md, "Numerical stability"); the
@@ -176,12 +176,17 @@ impl Torus {
             }
         };
         let len = exit - enter;
-        let isolated;
         let mut found = Vec::new();
-        let found: &[f64] = match method {
+        match method {
             QuarticMethod::Isolator => {
-                isolated = poly_roots(&coeffs, 0.0, len, &f);
-                isolated.as_slice()
+                // The roots as the isolator finds them, in increasing order, refined only
+                // until `visit` has what it needs.
+                visit_roots(&coeffs, 0.0, len, &f, &mut |s| {
+                    let t = enter + s;
+                    // The roots after one at or past `t_max` are too.
+                    t >= t_max || (t > t_min && visit(t, o, d))
+                });
+                return;
             }
             QuarticMethod::Ferrari | QuarticMethod::OrellanaDeMichele => {
                 if coeffs[0] == 0.0 {
@@ -213,10 +218,9 @@ impl Torus {
                 }
                 found.retain(|s| s.is_finite() && *s >= 0.0 && *s <= len);
                 found.sort_by(f64::total_cmp);
-                &found
             }
-        };
-        for &s in found {
+        }
+        for &s in &found {
             let t = enter + s;
             if t > t_min && t < t_max && visit(t, o, d) {
                 return;
