@@ -34,8 +34,9 @@ impl Stream {
     /// The stream for `(seed, purpose, index)`.
     pub fn new(seed: u64, purpose: Purpose, index: u64) -> Self {
         let mut key = [0u8; 32];
-        key[..8].copy_from_slice(&seed.to_le_bytes());
-        key[8..16].copy_from_slice(&(purpose as u64).to_le_bytes());
+        for (bytes, word) in key.chunks_exact_mut(4).zip(key_words(seed, purpose)) {
+            bytes.copy_from_slice(&word.to_le_bytes());
+        }
         let mut rng = ChaCha8Rng::from_seed(key);
         rng.set_stream(index);
         Stream(rng)
@@ -50,8 +51,30 @@ impl Stream {
 
     /// Uniform in [0, 1) with 53 random bits.
     pub fn next_f64(&mut self) -> f64 {
-        (self.0.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+        unit_interval(self.0.next_u64())
     }
+}
+
+/// The ChaCha key of `(seed, purpose)` as little-endian 32-bit words: the seed, the
+/// purpose, then zeros.
+fn key_words(seed: u64, purpose: Purpose) -> [u32; 8] {
+    let purpose = purpose as u64;
+    [
+        seed as u32,
+        (seed >> 32) as u32,
+        purpose as u32,
+        (purpose >> 32) as u32,
+        0,
+        0,
+        0,
+        0,
+    ]
+}
+
+/// The number in [0, 1) of a random `u64`'s 53 high bits.
+#[inline(always)]
+fn unit_interval(bits: u64) -> f64 {
+    (bits >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
 /// A row of the ChaCha state: four 32-bit words, added, xored and rotated lane by lane.
@@ -145,21 +168,10 @@ pub struct ShortStream {
 }
 
 impl ShortStream {
-    /// The stream for `(seed, purpose, index)`: [`Stream::new`]'s key (the seed's and the
-    /// purpose's little-endian bytes, then zeros) and stream number (`index`).
+    /// The stream for `(seed, purpose, index)`: [`Stream::new`]'s key and stream number.
     pub fn new(seed: u64, purpose: Purpose, index: u64) -> Self {
-        let purpose = purpose as u64;
         ShortStream {
-            key: [
-                seed as u32,
-                (seed >> 32) as u32,
-                purpose as u32,
-                (purpose >> 32) as u32,
-                0,
-                0,
-                0,
-                0,
-            ],
+            key: key_words(seed, purpose),
             stream: index,
             counter: 0,
             words: [0; 16],
@@ -212,7 +224,7 @@ impl ShortStream {
     /// Uniform in [0, 1) with 53 random bits: [`Stream::next_f64`]'s number.
     #[inline]
     pub fn next_f64(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+        unit_interval(self.next_u64())
     }
 }
 
