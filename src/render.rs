@@ -5,7 +5,7 @@
 use crate::conventions::{RayOrigin, SamplePosition};
 use crate::film::Film;
 use crate::math::Ray;
-use crate::sampling::{Purpose, ShortStream};
+use crate::sampling::{LANES, Purpose, ShortStream};
 use crate::trace::formulas::{Chapter, FormulaTable};
 use crate::trace::{Formulas, Member, NoRecord, RayCounts, Recorder, Reference, SampleKey, Tracer};
 use crate::world::World;
@@ -85,18 +85,30 @@ pub fn camera_ray(world: &World, (px, py): (f64, f64)) -> Ray {
     }
 }
 
+/// The jitter streams of the pixels `x .. x + LANES` of row `y` (those past the row's end
+/// unread): with jittered samples, their first blocks computed side by side.
+fn jitter_streams(world: &World, x: u32, y: u32) -> [ShortStream; LANES] {
+    let s = &world.scene.settings;
+    if s.conventions.sample_position == SamplePosition::Jittered {
+        let indices = std::array::from_fn(|l| pixel_index(world, x + l as u32, y));
+        ShortStream::first_blocks(s.seed, Purpose::PixelJitter, &indices)
+    } else {
+        std::array::from_fn(|l| jitter_stream(world, x + l as u32, y))
+    }
+}
+
 /// A pixel's radiance (the box filter): the mean of its samples, each traced by
 /// `trace(position, sample key)` at its position ([`sample_at`]), read in sample order from
-/// one jitter stream (the same numbers as [`sample_position`] for each sample).
+/// the pixel's jitter stream `rng` (the same numbers as [`sample_position`] for each sample).
 fn pixel_mean<const K: usize>(
     world: &World,
     x: u32,
     y: u32,
+    mut rng: ShortStream,
     mut trace: impl FnMut((f64, f64), SampleKey) -> [DVec3; K],
 ) -> [DVec3; K] {
     let settings = &world.scene.settings;
     let (spp, n) = (settings.samples_per_pixel, settings.grid_side());
-    let mut rng = jitter_stream(world, x, y);
     let mut sum = [DVec3::ZERO; K];
     for k in 0..spp {
         let key = SampleKey {
@@ -165,18 +177,20 @@ pub fn render_pixel(tracer: &mut Tracer, x: u32, y: u32) -> DVec3 {
 
 /// [`render_pixel`] with every sample recorded by `rec` (what `lumiere probe` uses).
 pub fn render_pixel_recorded<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, rec: &mut R) -> DVec3 {
-    render_pixel_members(tracer, x, y, rec)[0]
+    let rng = jitter_stream(tracer.world, x, y);
+    render_pixel_members(tracer, x, y, rng, rec)[0]
 }
 
-/// [`render_pixel_recorded`] for every member of a family.
+/// [`render_pixel_recorded`] for every member of a family, with the pixel's jitter stream.
 fn render_pixel_members<R: Recorder, const K: usize>(
     tracer: &mut Tracer<K>,
     x: u32,
     y: u32,
+    rng: ShortStream,
     rec: &mut R,
 ) -> [DVec3; K] {
     let world = tracer.world;
-    pixel_mean(world, x, y, |position, key| trace_at(tracer, position, key, rec))
+    pixel_mean(world, x, y, rng, |position, key| trace_at(tracer, position, key, rec))
 }
 
 /// Renders the whole image on the current rayon pool. `progress` is called once per
@@ -269,22 +283,22 @@ pub fn render_pixels_with(world: &World, formulas: Formulas, pixels: &[(u32, u32
                 tracer: Reference::with_formulas(world, formulas),
                 counts: RayCounts::default(),
             },
-            |tracer, &(x, y)| tracer.pixel(x, y)[0],
+            |tracer, &(x, y)| tracer.pixel(x, y, jitter_stream(world, x, y))[0],
         )
         .collect()
 }
 
 /// What renders the pixels of a row: the fast tracer's members, or the reference tracer.
 trait PixelTracer<const K: usize> {
-    /// Every member's radiance of pixel `(x, y)`.
-    fn pixel(&mut self, x: u32, y: u32) -> [DVec3; K];
+    /// Every member's radiance of pixel `(x, y)`, whose jitter stream is `rng`.
+    fn pixel(&mut self, x: u32, y: u32, rng: ShortStream) -> [DVec3; K];
     /// Each member's counts so far, and whether the members diverged.
     fn totals(&self) -> ([RayCounts; K], bool);
 }
 
 impl<const K: usize> PixelTracer<K> for Tracer<'_, '_, K> {
-    fn pixel(&mut self, x: u32, y: u32) -> [DVec3; K] {
-        render_pixel_members(self, x, y, &mut NoRecord)
+    fn pixel(&mut self, x: u32, y: u32, rng: ShortStream) -> [DVec3; K] {
+        render_pixel_members(self, x, y, rng, &mut NoRecord)
     }
 
     fn totals(&self) -> ([RayCounts; K], bool) {
@@ -299,11 +313,11 @@ struct ReferencePixels<'w, 's, F: FormulaTable = Chapter> {
 }
 
 impl<F: FormulaTable> PixelTracer<1> for ReferencePixels<'_, '_, F> {
-    fn pixel(&mut self, x: u32, y: u32) -> [DVec3; 1] {
+    fn pixel(&mut self, x: u32, y: u32, rng: ShortStream) -> [DVec3; 1] {
         let world = self.tracer.world();
         let counts = &mut self.counts;
         let tracer = &self.tracer;
-        pixel_mean(world, x, y, |position, key| {
+        pixel_mean(world, x, y, rng, |position, key| {
             counts.camera += 1;
             [finite_or_black(
                 tracer.camera(&camera_ray(world, position), key),
@@ -346,8 +360,11 @@ fn render_rows_with<T: Send + Clone, const K: usize, P: PixelTracer<K>>(
                 return (tracer.totals().0, false);
             }
             let y = rows.start + i as u32;
-            for (x, px) in row.iter_mut().enumerate() {
-                *px = keep(tracer.pixel(x as u32, y));
+            for (chunk, pixels) in row.chunks_mut(LANES).enumerate() {
+                let x = (chunk * LANES) as u32;
+                for ((l, px), rng) in pixels.iter_mut().enumerate().zip(jitter_streams(world, x, y)) {
+                    *px = keep(tracer.pixel(x + l as u32, y, rng));
+                }
             }
             progress();
             tracer.totals()
