@@ -6,6 +6,8 @@
 //! at a time. [`ShortStream`] reads the same words but computes each block alone when it is
 //! first read ([`chacha8_block`]): a pixel's jitter reads one block (4 samples x 2 numbers x
 //! 2 words) from a stream of its own, so the other three would be computed for nothing.
+//! The renderer starts the streams of a row's pixels 8 at a time, their first blocks
+//! computed side by side in vector lanes ([`ShortStream::first_blocks`]).
 
 use multiversion::multiversion;
 use rand_chacha::ChaCha8Rng;
