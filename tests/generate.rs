@@ -19,8 +19,9 @@ const GOOD: &str = "kind = \"mixed\"\ncount = 50\nseed = 3\nmin = [-1, -1, 0]\nm
 fn a_valid_table_adds_its_objects_after_the_shapes() {
     let s = parse(&with_table(GOOD), "g.toml").unwrap();
     assert_eq!(s.objects.len(), 51);
-    assert_eq!(s.objects[0].name, "plane#0");
-    assert_eq!(s.objects[1].name, "generate[0]#0");
+    assert_eq!(s.name_of(&s.objects[0]), "plane#0");
+    assert_eq!(s.name_of(&s.objects[1]), "generate[0]#0");
+    assert_eq!(s.name_of(&s.objects[50]), "generate[0]#49");
     assert!(s.objects[1..].iter().all(|o| o.material <= 1));
     // Same text, same objects; another seed, other objects.
     assert_eq!(s, parse(&with_table(GOOD), "g.toml").unwrap());
