@@ -6,11 +6,12 @@
 
 mod build;
 mod bvh;
+mod leaf;
 mod linear;
 mod node;
 mod wide;
 
-pub use bvh::Bvh;
+pub use bvh::{Bvh, Kernel};
 pub use linear::Linear;
 
 use crate::math::Ray;
