@@ -17,6 +17,7 @@
 //! own routine, which gives its hit, so the walk's answer is the scalar walk's to the bit.
 
 use super::build::MAX_LEAF;
+use super::pages::advise_huge_pages;
 use crate::math::Ray;
 use crate::scene::Object;
 use crate::shape::{Shape, Sphere};
@@ -61,7 +62,10 @@ impl SphereLanes {
         if !objects.iter().any(|o| matches!(o.shape, Shape::Sphere(_))) {
             return None;
         }
-        let mut values = vec![f64::NAN; 4 * prims.len() + LANES - 1];
+        let len = 4 * prims.len() + LANES - 1;
+        let mut values = Vec::with_capacity(len);
+        advise_huge_pages(&values);
+        values.resize(len, f64::NAN);
         // Each leaf's run is `values[4 * first..4 * (first + count)]`; the leaves are
         // disjoint and cover the leaf order, so the runs are cut off one after another.
         let mut runs: Vec<(&mut [f64], u32, u32)> = Vec::with_capacity(leaves.len());
@@ -93,6 +97,12 @@ impl SphereLanes {
     /// Bytes held.
     pub fn bytes(&self) -> usize {
         self.values.len() * size_of::<f64>()
+    }
+
+    /// The address of the run of the leaf whose first entry is `first` (for a prefetch).
+    #[inline(always)]
+    pub fn first_byte(&self, first: usize) -> *const u8 {
+        self.values.as_ptr().wrapping_add(4 * first).cast()
     }
 
     /// Entry `first + lane` of the leaf of entries `first..first + count`.
