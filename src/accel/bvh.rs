@@ -180,14 +180,20 @@ impl Bvh {
         // The binary tree is freed before the spheres are copied: the two are never held
         // at once.
         drop(binary);
-        let leaves: Vec<(u32, u32)> = nodes
-            .iter()
-            .flat_map(|n| n.child)
-            .map(unpack)
-            .filter(|&(_, count)| count > 0)
-            .map(|(first, count)| (first as u32, count as u32))
-            .collect();
-        let spheres = SphereLanes::new(objects, &prims, &leaves);
+        let spheres = SphereLanes::new(objects, &prims, || {
+            let leaves = || {
+                nodes
+                    .iter()
+                    .flat_map(|n| n.child)
+                    .map(unpack)
+                    .filter(|&(_, count)| count > 0)
+                    .map(|(first, count)| (first as u32, count as u32))
+            };
+            // Counted first, so that the list takes no more than it holds.
+            let mut list = Vec::with_capacity(leaves().count());
+            list.extend(leaves());
+            list
+        });
         Bvh {
             depth,
             nodes,

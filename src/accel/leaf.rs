@@ -56,9 +56,10 @@ pub enum LaneEntry {
 }
 
 impl SphereLanes {
-    /// The copies for the leaf order `prims`, whose leaves are `leaves` (first entry and
-    /// count); `None` when no object is a sphere.
-    pub fn new(objects: &[Object], prims: &[u32], leaves: &[(u32, u32)]) -> Option<Self> {
+    /// The copies for the leaf order `prims`; `None` when no object is a sphere. `leaves`
+    /// lists the leaves (first entry and count, in any order), asked for only when some
+    /// object is a sphere.
+    pub fn new(objects: &[Object], prims: &[u32], leaves: impl FnOnce() -> Vec<(u32, u32)>) -> Option<Self> {
         if !objects.iter().any(|o| matches!(o.shape, Shape::Sphere(_))) {
             return None;
         }
@@ -66,31 +67,11 @@ impl SphereLanes {
         let mut values = Vec::with_capacity(len);
         advise_huge_pages(&values);
         values.resize(len, f64::NAN);
-        // Each leaf's run is `values[4 * first..4 * (first + count)]`; the leaves are
-        // disjoint and cover the leaf order, so the runs are cut off one after another.
-        let mut runs: Vec<(&mut [f64], u32, u32)> = Vec::with_capacity(leaves.len());
-        let mut sorted = leaves.to_vec();
-        sorted.sort_unstable();
-        let mut rest = &mut values[..];
-        let mut at = 0usize;
-        for (first, count) in sorted {
-            let (_, tail) = rest.split_at_mut(4 * (first as usize - at));
-            let (run, tail) = tail.split_at_mut(4 * count as usize);
-            runs.push((run, first, count));
-            rest = tail;
-            at = (first + count) as usize;
-        }
-        runs.into_par_iter().for_each(|(run, first, count)| {
-            let n = count as usize;
-            for (l, &j) in prims[first as usize..][..n].iter().enumerate() {
-                if let Shape::Sphere(s) = &objects[j as usize].shape {
-                    run[l] = s.center.x;
-                    run[n + l] = s.center.y;
-                    run[2 * n + l] = s.center.z;
-                    run[3 * n + l] = s.radius;
-                }
-            }
-        });
+        // The leaves are disjoint and cover the leaf order: in order, their runs follow
+        // one another.
+        let mut leaves = leaves();
+        leaves.par_sort_unstable();
+        fill(&mut values, 0, &leaves, prims, objects);
         Some(SphereLanes { values })
     }
 
@@ -146,6 +127,37 @@ impl SphereLanes {
     }
 }
 
+/// Fills the runs of `leaves` (in order, the first starting at entry `base`) in `values`,
+/// which starts at that leaf's run: halves of the leaves in parallel, down to blocks of
+/// [`FILL_BLOCK`] leaves.
+fn fill(values: &mut [f64], base: usize, leaves: &[(u32, u32)], prims: &[u32], objects: &[Object]) {
+    if leaves.len() > FILL_BLOCK {
+        let (low, high) = leaves.split_at(leaves.len() / 2);
+        let middle = high[0].0 as usize;
+        let (a, b) = values.split_at_mut(4 * (middle - base));
+        rayon::join(
+            || fill(a, base, low, prims, objects),
+            || fill(b, middle, high, prims, objects),
+        );
+        return;
+    }
+    for &(first, count) in leaves {
+        let (first, n) = (first as usize, count as usize);
+        let run = &mut values[4 * (first - base)..][..4 * n];
+        for (l, &j) in prims[first..first + n].iter().enumerate() {
+            if let Shape::Sphere(s) = &objects[j as usize].shape {
+                run[l] = s.center.x;
+                run[n + l] = s.center.y;
+                run[2 * n + l] = s.center.z;
+                run[3 * n + l] = s.radius;
+            }
+        }
+    }
+}
+
+/// Leaves whose runs [`fill`] writes in one task.
+const FILL_BLOCK: usize = 4096;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -172,7 +184,7 @@ mod tests {
         ))));
         // Leaf order: objects 7, 6, 5 | 3 | 0, 1, 2, 4.
         let prims = [7, 6, 5, 3, 0, 1, 2, 4];
-        let lanes = SphereLanes::new(&objects, &prims, &[(4, 4), (0, 3), (3, 1)]).unwrap();
+        let lanes = SphereLanes::new(&objects, &prims, || vec![(4, 4), (0, 3), (3, 1)]).unwrap();
         assert_eq!(lanes.bytes(), (4 * 8 + 3) * 8);
         assert_eq!(
             &lanes.values[..12],
@@ -195,7 +207,7 @@ mod tests {
             }
         }
         // Without a sphere there are no copies.
-        assert!(SphereLanes::new(&objects[3..4], &[0], &[(0, 1)]).is_none());
+        assert!(SphereLanes::new(&objects[3..4], &[0], || vec![(0, 1)]).is_none());
     }
 
     /// Rays along the rim of a leaf's spheres, a few units in the last place inside and
@@ -216,7 +228,7 @@ mod tests {
                 .collect();
             let objects: Vec<Object> = spheres.iter().map(|s| object(Shape::Sphere(s.clone()))).collect();
             let prims: Vec<u32> = (0..count as u32).collect();
-            let lanes = SphereLanes::new(&objects, &prims, &[(0, count as u32)]).unwrap();
+            let lanes = SphereLanes::new(&objects, &prims, || vec![(0, count as u32)]).unwrap();
             // Along a random direction past sphere 0's rim.
             let d = DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
             let across = d.any_orthonormal_vector();
