@@ -220,7 +220,7 @@ fn crossover(c: &mut Criterion) {
         .collect();
     for n in [2, 4, 8, 12, 16, 24, 32, 48, 64] {
         let mut objects = vec![Object {
-            name: "floor".into(),
+            name: Default::default(),
             shape: Shape::Plane(Box::new(Plane::new(DVec3::ZERO, DVec3::Z))),
             material: 0,
         }];

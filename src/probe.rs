@@ -276,10 +276,10 @@ impl Recorder for TreeRecorder<'_> {
     fn hit(&mut self, object: usize, t: f64, point: DVec3, normal: DVec3, entering: bool) {
         let scene = self.scene;
         let o = &scene.objects[object];
-        let m = &scene.materials[o.material];
+        let m = &scene.materials[o.material()];
         self.top().hit = Some(Hit {
             object,
-            name: o.name.to_string(),
+            name: scene.name_of(o).to_string(),
             shape: o.shape.kind(),
             t,
             point: v3(point),
@@ -330,7 +330,7 @@ impl Recorder for TreeRecorder<'_> {
     fn shadow_crossed(&mut self, objects: &[usize]) {
         let names = objects
             .iter()
-            .map(|&i| self.scene.objects[i].name.to_string())
+            .map(|&i| self.scene.name_of(&self.scene.objects[i]).to_string())
             .collect();
         if let Some(s) = &mut self.shadow {
             s.filtered_by = names;

@@ -155,7 +155,7 @@ impl<'s> World<'s> {
         let see_through: Vec<bool> = scene
             .objects
             .iter()
-            .map(|o| lets_shadows_through(scene, &scene.materials[o.material]))
+            .map(|o| lets_shadows_through(scene, &scene.materials[o.material()]))
             .collect();
         let has_transparent = see_through.iter().any(|&t| t);
         let costly: Vec<bool> = scene
@@ -306,7 +306,7 @@ impl<'s> World<'s> {
     }
 
     pub fn material_of(&self, object: usize) -> &Material {
-        &self.scene.materials[self.scene.objects[object].material]
+        &self.scene.materials[self.scene.objects[object].material()]
     }
 
     /// The points of area light `index` (an [`AreaLight`](crate::area_light::AreaLight))

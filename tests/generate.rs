@@ -15,12 +15,54 @@ fn with_table(table: &str) -> String {
 
 const GOOD: &str = "kind = \"mixed\"\ncount = 50\nseed = 3\nmin = [-1, -1, 0]\nmax = [1, 1, 1]\nradius = [0.05, 0.1]\nmaterials = [\"red\", \"default\"]";
 
+/// A serialized scene lists each object as its name, shape and material, the names kept
+/// beside the objects as the file gives them or as generated.
+#[test]
+fn serialized_objects_carry_their_names() {
+    let two = with_table(GOOD).replace("[[generate]]", "[[shapes]]\ntype = \"sphere\"\nname = \"ball\"\ncenter = [0, 0, 1]\nradius = 0.5\nmaterial = \"red\"\n\n[[generate]]");
+    let s = parse(&(two + "\n[[generate]]\n" + GOOD), "g.toml").unwrap();
+    assert_eq!(s.objects.len(), 102);
+    // The fields in the struct's order, each object as `{name, shape, material}`.
+    let text = serde_json::to_string(&s).unwrap();
+    let at: Vec<usize> = [
+        "settings",
+        "camera",
+        "materials",
+        "material_names",
+        "metal_given",
+        "objects",
+        "lights",
+    ]
+    .map(|k| text.find(&format!("\"{k}\":")).unwrap())
+    .to_vec();
+    assert!(at.windows(2).all(|w| w[0] < w[1]), "{at:?}");
+    let ball = r#"{"name":"ball","shape":{"sphere":{"center":[0.0,0.0,1.0],"radius":0.5}},"material":1}"#;
+    assert!(text.contains(ball), "{text:.600}");
+    let json = serde_json::to_value(&s).unwrap();
+    let objects = json["objects"].as_array().unwrap();
+    let names: Vec<&str> = [0, 1, 2, 51, 52, 101]
+        .map(|i| objects[i]["name"].as_str().unwrap())
+        .to_vec();
+    assert_eq!(
+        names,
+        [
+            "plane#0",
+            "ball",
+            "generate[0]#0",
+            "generate[0]#49",
+            "generate[1]#0",
+            "generate[1]#49"
+        ]
+    );
+}
+
 #[test]
 fn a_valid_table_adds_its_objects_after_the_shapes() {
     let s = parse(&with_table(GOOD), "g.toml").unwrap();
     assert_eq!(s.objects.len(), 51);
-    assert_eq!(s.objects[0].name, "plane#0");
-    assert_eq!(s.objects[1].name, "generate[0]#0");
+    assert_eq!(s.name_of(&s.objects[0]), "plane#0");
+    assert_eq!(s.name_of(&s.objects[1]), "generate[0]#0");
+    assert_eq!(s.name_of(&s.objects[50]), "generate[0]#49");
     assert!(s.objects[1..].iter().all(|o| o.material <= 1));
     // Same text, same objects; another seed, other objects.
     assert_eq!(s, parse(&with_table(GOOD), "g.toml").unwrap());

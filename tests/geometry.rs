@@ -36,8 +36,8 @@ fn the_example_scene_reads_and_renders() {
     let kinds: Vec<&str> = s.objects.iter().take(4).map(|o| o.shape.kind()).collect();
     assert_eq!(kinds, ["plane", "triangle", "tube", "sphere"]);
     assert!(matches!(s.objects[3].shape, Shape::Transformed(_)));
-    assert_eq!(s.objects[4].name, "gem/0");
-    assert_eq!(s.objects[23].name, "gem/19");
+    assert_eq!(s.name_of(&s.objects[4]), "gem/0");
+    assert_eq!(s.name_of(&s.objects[23]), "gem/19");
     let film = render_small(&s, 80, 60, 1, 2);
     assert!(film.pixels.iter().all(|p| p.is_finite()));
 }
@@ -224,7 +224,10 @@ fn mesh_files_are_read_relative_to_the_scene_file() {
     let path = mesh_scene(&dir, SQUARE, "");
     let s = scene::load(&path).unwrap();
     assert_eq!(s.objects.len(), 2);
-    assert_eq!((s.objects[0].name.as_str(), s.objects[1].name.as_str()), ("m/0", "m/1"));
+    assert_eq!(
+        (s.name_of(&s.objects[0]).as_str(), s.name_of(&s.objects[1]).as_str()),
+        ("m/0", "m/1")
+    );
     // The same text parsed as if it lay elsewhere looks for the mesh there.
     let text = std::fs::read_to_string(&path).unwrap();
     let e = parse(&text, "elsewhere/scene.toml").unwrap_err().to_string();

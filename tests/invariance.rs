@@ -10,7 +10,7 @@ use lumiere::material::Material;
 use lumiere::math::Ray;
 use lumiere::render::{render, render_sample};
 use lumiere::scene::transform::Similarity;
-use lumiere::scene::{Object, Scene, Specular};
+use lumiere::scene::{Scene, Specular};
 use lumiere::shape::{Plane, Shape, Sphere};
 use lumiere::trace::{LightShare, RayKind, Recorder, Tracer};
 use lumiere::world::World;
@@ -166,18 +166,9 @@ fn lit_scene(sphere: Material) -> Scene {
     scene.settings.depth = 2;
     scene.materials = vec![Material::default(), sphere];
     scene.material_names = vec!["plane".into(), "sphere".into()];
-    scene.objects = vec![
-        Object {
-            name: "floor".into(),
-            shape: Shape::Plane(Box::new(Plane::new(DVec3::ZERO, DVec3::Z))),
-            material: 0,
-        },
-        Object {
-            name: "ball".into(),
-            shape: Shape::Sphere(Sphere::new(DVec3::new(0.0, 0.0, 1.0), 1.0)),
-            material: 1,
-        },
-    ];
+    scene.objects.clear();
+    scene.push_object("floor", Shape::Plane(Box::new(Plane::new(DVec3::ZERO, DVec3::Z))), 0);
+    scene.push_object("ball", Shape::Sphere(Sphere::new(DVec3::new(0.0, 0.0, 1.0), 1.0)), 1);
     scene.lights = vec![Light::Directional {
         direction: DVec3::new(0.3, 0.5, -1.0).normalize(),
         color: DVec3::ONE,

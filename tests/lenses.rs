@@ -28,7 +28,7 @@ fn through(world: &World, mut ray: Ray) -> Option<Ray> {
         let Some((object, hit)) = world.closest(&ray) else {
             return Some(ray);
         };
-        let material = &scene.materials[scene.objects[object].material];
+        let material = &scene.materials[scene.objects[object].material()];
         let entering = ray.dir.dot(hit.normal) < 0.0;
         let incident_side = if entering { hit.normal } else { -hit.normal };
         let dir = refract(ray.dir, incident_side, material.eta(entering))?;
@@ -234,7 +234,8 @@ fn the_optique_lens_figure_images_its_arrow_where_the_thick_lens_equations_say()
         "/scenes/figures/optique/04-lens.toml"
     )))
     .unwrap();
-    s.objects.retain(|o| o.name == "lens");
+    let names = s.names.clone();
+    s.objects.retain(|o| names.get(o.name) == "lens");
     let Shape::Lens(lens) = &s.objects[0].shape else {
         panic!("a lens")
     };

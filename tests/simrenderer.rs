@@ -210,14 +210,20 @@ fn every_keyword_reads_to_the_value_written() {
     ];
     assert_eq!(s.objects.len(), expected.len() + 4);
     for (o, (name, shape, material)) in s.objects.iter().zip(expected) {
-        assert_eq!((o.name.as_str(), &o.shape, o.material), (name, &shape, material));
+        assert_eq!(
+            (s.name_of(o).as_str(), &o.shape, o.material()),
+            (name, &shape, material)
+        );
     }
     // The model: scaled by 2, turned 90 degrees about z (x -> y, y -> -x), moved by (1, 1, 0).
     let corners = [v(1.0, 1.0, 0.0), v(1.0, 3.0, 0.0), v(-1.0, 1.0, 0.0), v(1.0, 1.0, 2.0)];
     let faces = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
     for (k, face) in faces.iter().enumerate() {
         let o = &s.objects[12 + k];
-        assert_eq!((o.name.to_string(), o.material), (format!("model#12/{k}"), none));
+        assert_eq!(
+            (s.name_of(o).to_string(), o.material()),
+            (format!("model#12/{k}"), none)
+        );
         let Shape::Triangle(t) = &o.shape else { panic!("{o:?}") };
         for (p, i) in t.points().iter().zip(face) {
             assert!((*p - corners[*i]).length() < 1e-14, "{p} {}", corners[*i]);
@@ -466,7 +472,7 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
     assert_eq!(s.settings.conventions.sample_position, SamplePosition::Jittered);
     // The btriangle primitive is dropped with its geometry; the second keeps its sphere.
     assert_eq!(s.objects.len(), 1);
-    assert_eq!(s.objects[0].name, "sphere#0");
+    assert_eq!(s.name_of(&s.objects[0]), "sphere#0");
     // An object SIMRenderer cannot build is dropped with a warning.
     let p = lenient("primitive\ntriangle\npoint 1 1 1\npoint 1 1 1\nend\nend\nprimitive\nsphere\nend\nend");
     assert_eq!(p.scene.objects.len(), 1);
@@ -537,7 +543,7 @@ fn lumiere_notes_name_objects_and_set_the_seed() {
     .unwrap()
     .scene;
     assert_eq!((s.settings.seed, s.settings.adaptive_threshold), (7, 0.5));
-    assert_eq!(s.objects[0].name, "the \"floor\"");
+    assert_eq!(s.name_of(&s.objects[0]), "the \"floor\"");
 }
 
 #[test]

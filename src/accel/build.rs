@@ -31,9 +31,10 @@ pub const MAX_SAH_DEPTH: usize = 64;
 /// budget of 0.3 s.
 const ALL_AXES_UP_TO: usize = 200_000;
 /// Cost of visiting an interior node relative to one object test, in trees over more than
-/// [`FINE_LEAVES_UP_TO`] objects: fuller leaves, 26 to 27 bytes per object (BENCHMARKS.md,
-/// "Memory and node cost", where a cost of 1 takes 62.4 bytes and a build of 276 ms at
-/// 1 000 000 spheres, near the 64-byte and 0.3 s budgets).
+/// [`FINE_LEAVES_UP_TO`] objects: fuller leaves, 26 to 27 bytes per object for the nodes
+/// and the leaf order's indices (BENCHMARKS.md, "Memory and node cost", where a cost of 1
+/// takes 62.4 bytes and a build of 276 ms at 1 000 000 spheres, near the 64-byte and 0.3 s
+/// budgets). A scene with spheres adds 32 bytes a sphere: their copies ([`super::leaf`]).
 const TRAVERSE_COST: f32 = 3.0;
 /// The node cost in trees over at most [`FINE_LEAVES_UP_TO`] objects. With 4-wide nodes,
 /// whose four boxes are tested at once, smaller leaves cull more object tests (BENCHMARKS.md,

@@ -16,13 +16,23 @@
 //! beyond the best hit so far; an any-hit (or every-hit) walk stops at the first hit. The
 //! box tests are conservative (see [`super::wide`]), so no object that holds the answer is
 //! ever skipped.
+//!
+//! In a scene with spheres the tree keeps a copy of them in leaf order ([`SphereLanes`]): a
+//! leaf's spheres are read from one run of memory and sifted four at a time by the first
+//! test of the sphere's routine, and the ones left are tested by the routine itself. The
+//! walks are compiled for AVX-512, AVX2 and baseline x86-64, the widest the processor
+//! has chosen at run time (`multiversion`), or the baseline as a [`Kernel`] says. As it
+//! pushes a child, a walk asks the caches for the child's node or leaf spheres, which it
+//! reads later; the nodes and the spheres ask for 2 MiB pages ([`super::pages`]).
 
 use super::build::{Built, MAX_SAH_DEPTH, PrimRef, build};
+use super::leaf::{LaneEntry, SphereLanes};
 use super::node::stored_box;
 use super::wide::{F32_RANGE, F32Slots, F64Slots, Node4, SlotTest, WIDTH, collapse, unpack};
 use crate::math::Ray;
 use crate::scene::Object;
-use crate::shape::{Shape, SurfaceHit};
+use crate::shape::{Shape, Sphere, SurfaceHit};
+use multiversion::multiversion;
 use rayon::prelude::*;
 
 /// Deepest possible binary tree: SAH splits up to `MAX_SAH_DEPTH`, then halving
@@ -44,7 +54,8 @@ const FULL: usize = stack_for(MAX_DEPTH);
 /// Tests object `j` for a closest-hit walk whose best hit so far is `best`, and takes its
 /// hit when it wins: nearer, or as near with a lower index. An object of lower index than
 /// the best is asked for hits up to and including the best `t` (a tie it wins), one of
-/// higher index strictly below. Returns whether it won.
+/// higher index strictly below. Returns whether it won. `sphere`: the leaf order's copy of
+/// the object's sphere, else its shape is read from `objects`.
 #[inline(always)]
 fn consider(
     objects: &[Object],
@@ -52,6 +63,7 @@ fn consider(
     t_min: f64,
     t_max: f64,
     j: usize,
+    sphere: Option<&Sphere>,
     best: &mut Option<(usize, SurfaceHit)>,
 ) -> bool {
     let limit = match *best {
@@ -60,9 +72,12 @@ fn consider(
         Some((_, h)) => h.t,
     };
     // The sphere's test inlined here: a million-sphere walk spends a third of its time in it.
-    let hit = match &objects[j].shape {
-        Shape::Sphere(s) => s.intersect(ray, t_min, limit),
-        shape => shape.intersect(ray, t_min, limit),
+    let hit = match sphere {
+        Some(s) => s.intersect(ray, t_min, limit),
+        None => match &objects[j].shape {
+            Shape::Sphere(s) => s.intersect(ray, t_min, limit),
+            shape => shape.intersect(ray, t_min, limit),
+        },
     };
     if let Some(h) = hit {
         let wins = best.is_none_or(|(i, b)| h.t < b.t || (h.t == b.t && j < i));
@@ -75,13 +90,28 @@ fn consider(
     }
 }
 
-/// Whether object `j` meets the ray with `t_min < t < t_max`, the sphere's test inlined.
+/// Whether object `j` meets the ray with `t_min < t < t_max`, the sphere's test inlined;
+/// `sphere` as in [`consider`].
 #[inline(always)]
-fn occludes(objects: &[Object], ray: &Ray, t_min: f64, t_max: f64, j: usize) -> bool {
-    match &objects[j].shape {
-        Shape::Sphere(s) => s.occludes(ray, t_min, t_max),
-        shape => shape.occludes(ray, t_min, t_max),
+fn occludes(objects: &[Object], ray: &Ray, t_min: f64, t_max: f64, j: usize, sphere: Option<&Sphere>) -> bool {
+    match sphere {
+        Some(s) => s.occludes(ray, t_min, t_max),
+        None => match &objects[j].shape {
+            Shape::Sphere(s) => s.occludes(ray, t_min, t_max),
+            shape => shape.occludes(ray, t_min, t_max),
+        },
     }
+}
+
+/// Which instructions the walks run on.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Kernel {
+    /// The widest vectors the processor has: AVX-512, AVX2, else baseline x86-64 (chosen
+    /// at run time).
+    #[default]
+    Widest,
+    /// Baseline x86-64 (SSE2) on any processor: the same hits, for tests.
+    Baseline,
 }
 
 /// The end of a closest-hit walk's interval: the best hit's `t`, else `t_max`.
@@ -96,6 +126,10 @@ pub struct Bvh {
     nodes: Vec<Node4>,
     /// Object indices in leaf order: a leaf holds `prims[first..first + count]`.
     prims: Vec<u32>,
+    /// The spheres in leaf order, when the scene has any.
+    spheres: Option<SphereLanes>,
+    /// The instructions the walks run on.
+    kernel: Kernel,
     /// Objects without bounds (planes), tested before the tree.
     unbounded: Vec<u32>,
     /// Depth of the deepest 4-wide node (the root at 0).
@@ -106,6 +140,11 @@ pub struct Bvh {
 
 impl Bvh {
     pub fn new(objects: &[Object]) -> Self {
+        Bvh::with_kernel(objects, Kernel::Widest)
+    }
+
+    /// [`Bvh::new`] whose walks run on `kernel`.
+    pub fn with_kernel(objects: &[Object], kernel: Kernel) -> Self {
         // An indexed map writes each box in place (a filtered one would collect pieces and
         // join them: a fifth of a 1 000 000-sphere build); the unbounded objects' slots,
         // marked, are dropped after.
@@ -138,10 +177,29 @@ impl Bvh {
             .first()
             .is_none_or(|root| (0..3).all(|a| root.min[a].abs().max(root.max[a].abs()) <= F32_RANGE));
         let (nodes, depth) = collapse(&binary);
+        // The binary tree is freed before the spheres are copied: the two are never held
+        // at once.
+        drop(binary);
+        let spheres = SphereLanes::new(objects, &prims, || {
+            let leaves = || {
+                nodes
+                    .iter()
+                    .flat_map(|n| n.child)
+                    .map(unpack)
+                    .filter(|&(_, count)| count > 0)
+                    .map(|(first, count)| (first as u32, count as u32))
+            };
+            // Counted first, so that the list takes no more than it holds.
+            let mut list = Vec::with_capacity(leaves().count());
+            list.extend(leaves());
+            list
+        });
         Bvh {
             depth,
             nodes,
             prims,
+            spheres,
+            kernel,
             unbounded,
             fits_f32,
         }
@@ -157,9 +215,28 @@ impl Bvh {
         self.depth
     }
 
-    /// Memory held by the structure: nodes, leaf order, unbounded list.
+    /// Memory held by the structure: nodes, leaf order and its spheres, unbounded list.
     pub fn bytes(&self) -> usize {
-        self.nodes.len() * size_of::<Node4>() + (self.prims.len() + self.unbounded.len()) * size_of::<u32>()
+        self.nodes.len() * size_of::<Node4>()
+            + (self.prims.len() + self.unbounded.len()) * size_of::<u32>()
+            + self.spheres.as_ref().map_or(0, SphereLanes::bytes)
+    }
+
+    /// Asks the caches for what visiting `child` reads first (its node's two lines, or its
+    /// leaf's spheres), as it is pushed: the walk takes the nearest child next and the
+    /// farther ones later, and the loads of a million-object tree mostly miss the caches.
+    #[inline(always)]
+    fn prefetch(&self, child: u32) {
+        let (first, count) = unpack(child);
+        let line: *const u8 = if count == 0 {
+            self.nodes.as_ptr().wrapping_add(first).cast()
+        } else if let Some(spheres) = &self.spheres {
+            spheres.first_byte(first)
+        } else {
+            self.prims.as_ptr().wrapping_add(first).cast()
+        };
+        prefetch_line(line);
+        prefetch_line(line.wrapping_add(64));
     }
 
     /// The `f32` test for this ray when it and the tree fit it, else `None`.
@@ -173,6 +250,15 @@ impl Bvh {
 
     /// Closest hit: see the module doc for why it equals the linear scan's.
     pub fn closest(&self, objects: &[Object], ray: &Ray, t_min: f64, t_max: f64) -> Option<(usize, SurfaceHit)> {
+        match self.kernel {
+            Kernel::Widest => closest_widest(self, objects, ray, t_min, t_max),
+            Kernel::Baseline => self.closest_walk(objects, ray, t_min, t_max),
+        }
+    }
+
+    /// [`Bvh::closest`] on the instructions of the function it is inlined into.
+    #[inline(always)]
+    fn closest_walk(&self, objects: &[Object], ray: &Ray, t_min: f64, t_max: f64) -> Option<(usize, SurfaceHit)> {
         match self.f32_slots(ray, t_min, t_max) {
             Some(s) if stack_for(self.depth) <= SMALL => self.closest_with::<_, SMALL>(objects, ray, t_min, t_max, s),
             Some(s) if stack_for(self.depth) <= MEDIUM => self.closest_with::<_, MEDIUM>(objects, ray, t_min, t_max, s),
@@ -185,6 +271,7 @@ impl Bvh {
     }
 
     /// [`Bvh::closest`] with the test `slots` and a stack of `S` entries.
+    #[inline(always)]
     fn closest_with<T: SlotTest, const S: usize>(
         &self,
         objects: &[Object],
@@ -194,9 +281,11 @@ impl Bvh {
         mut slots: T,
     ) -> Option<(usize, SurfaceHit)> {
         let mut best: Option<(usize, SurfaceHit)> = None;
-        let consider = |j: usize, best: &mut Option<(usize, SurfaceHit)>| consider(objects, ray, t_min, t_max, j, best);
+        let consider = |j: usize, sphere: Option<&Sphere>, best: &mut Option<(usize, SurfaceHit)>| {
+            consider(objects, ray, t_min, t_max, j, sphere, best)
+        };
         for &j in &self.unbounded {
-            consider(j as usize, &mut best);
+            consider(j as usize, None, &mut best);
         }
         if self.nodes.is_empty() {
             return best;
@@ -218,6 +307,7 @@ impl Bvh {
                 if entered >> s & 1 == 1 {
                     stack[depth] = (n.child[s], entries[s]);
                     depth += 1;
+                    self.prefetch(n.child[s]);
                 }
             }
             // The next waiting child that the best hit so far does not rule out (an entry
@@ -238,8 +328,24 @@ impl Bvh {
                     break;
                 }
                 let mut closer = false;
-                for &j in &self.prims[first..first + count] {
-                    closer |= consider(j as usize, &mut best);
+                match &self.spheres {
+                    Some(spheres) => {
+                        let mut lanes = spheres.candidates(first, count, ray);
+                        while lanes != 0 {
+                            let l = lanes.trailing_zeros() as usize;
+                            lanes &= lanes - 1;
+                            let j = self.prims[first + l] as usize;
+                            closer |= match spheres.entry(first, count, l) {
+                                LaneEntry::Sphere(s) => consider(j, Some(&s), &mut best),
+                                LaneEntry::Object => consider(j, None, &mut best),
+                            };
+                        }
+                    }
+                    None => {
+                        for &j in &self.prims[first..first + count] {
+                            closer |= consider(j as usize, None, &mut best);
+                        }
+                    }
                 }
                 if closer {
                     slots.set_t_max(bound(&best));
@@ -248,16 +354,20 @@ impl Bvh {
         }
     }
 
-    /// Calls `hit(j)` for objects whose boxes the ray meets in `[t_min, t_max]`, until it
-    /// returns true; returns whether it did.
+    /// Calls `hit(j, sphere)` for objects whose boxes the ray meets in `[t_min, t_max]`
+    /// (`sphere`: the leaf order's copy of object `j`'s sphere, if any), until it returns
+    /// true; returns whether it did. The spheres that the first step of their test rules
+    /// out are passed by ([`SphereLanes::candidates`]): `hit` is their test.
     /// Generic over `hit`, so each caller's test is inlined into the walk (no call through
     /// a pointer per object).
-    fn visit(&self, ray: &Ray, t_min: f64, t_max: f64, hit: impl FnMut(usize) -> bool) -> bool {
+    #[inline(always)]
+    fn visit(&self, ray: &Ray, t_min: f64, t_max: f64, hit: impl FnMut(usize, Option<&Sphere>) -> bool) -> bool {
         match self.f32_slots(ray, t_min, t_max) {
-            Some(s) if stack_for(self.depth) <= SMALL => self.visit_with::<_, SMALL>(s, hit),
-            Some(s) if stack_for(self.depth) <= MEDIUM => self.visit_with::<_, MEDIUM>(s, hit),
-            Some(s) => self.visit_with::<_, FULL>(s, hit),
+            Some(s) if stack_for(self.depth) <= SMALL => self.visit_with::<_, SMALL>(ray, s, hit),
+            Some(s) if stack_for(self.depth) <= MEDIUM => self.visit_with::<_, MEDIUM>(ray, s, hit),
+            Some(s) => self.visit_with::<_, FULL>(ray, s, hit),
             None => self.visit_with::<_, FULL>(
+                ray,
                 F64Slots::new(ray.origin.to_array(), ray.dir.to_array(), t_min, t_max),
                 hit,
             ),
@@ -265,8 +375,14 @@ impl Bvh {
     }
 
     /// [`Bvh::visit`] with the test `slots` and a stack of `S` entries.
-    fn visit_with<T: SlotTest, const S: usize>(&self, slots: T, mut hit: impl FnMut(usize) -> bool) -> bool {
-        if self.unbounded.iter().any(|&j| hit(j as usize)) {
+    #[inline(always)]
+    fn visit_with<T: SlotTest, const S: usize>(
+        &self,
+        ray: &Ray,
+        slots: T,
+        mut hit: impl FnMut(usize, Option<&Sphere>) -> bool,
+    ) -> bool {
+        if self.unbounded.iter().any(|&j| hit(j as usize, None)) {
             return true;
         }
         if self.nodes.is_empty() {
@@ -284,6 +400,7 @@ impl Bvh {
                 if entered >> s & 1 == 1 {
                     stack[depth] = n.child[s];
                     depth += 1;
+                    self.prefetch(n.child[s]);
                 }
             }
             loop {
@@ -296,8 +413,27 @@ impl Bvh {
                     at = first;
                     break;
                 }
-                if self.prims[first..first + count].iter().any(|&j| hit(j as usize)) {
-                    return true;
+                match &self.spheres {
+                    Some(spheres) => {
+                        let mut lanes = spheres.candidates(first, count, ray);
+                        while lanes != 0 {
+                            let l = lanes.trailing_zeros() as usize;
+                            lanes &= lanes - 1;
+                            let j = self.prims[first + l] as usize;
+                            let found = match spheres.entry(first, count, l) {
+                                LaneEntry::Sphere(s) => hit(j, Some(&s)),
+                                LaneEntry::Object => hit(j, None),
+                            };
+                            if found {
+                                return true;
+                            }
+                        }
+                    }
+                    None => {
+                        if self.prims[first..first + count].iter().any(|&j| hit(j as usize, None)) {
+                            return true;
+                        }
+                    }
                 }
             }
         }
@@ -313,8 +449,24 @@ impl Bvh {
         t_max: f64,
         filter: &dyn Fn(usize) -> bool,
     ) -> bool {
-        self.visit(ray, t_min, t_max, |j| {
-            filter(j) && occludes(objects, ray, t_min, t_max, j)
+        match self.kernel {
+            Kernel::Widest => any_hit_widest(self, objects, ray, t_min, t_max, filter),
+            Kernel::Baseline => self.any_hit_walk(objects, ray, t_min, t_max, filter),
+        }
+    }
+
+    /// [`Bvh::any_hit`] on the instructions of the function it is inlined into.
+    #[inline(always)]
+    fn any_hit_walk(
+        &self,
+        objects: &[Object],
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        filter: &dyn Fn(usize) -> bool,
+    ) -> bool {
+        self.visit(ray, t_min, t_max, |j, sphere| {
+            filter(j) && occludes(objects, ray, t_min, t_max, j, sphere)
         })
     }
 
@@ -329,8 +481,8 @@ impl Bvh {
         filter: &dyn Fn(usize) -> bool,
         visit: &mut dyn FnMut(usize),
     ) {
-        self.visit(ray, t_min, t_max, |j| {
-            if filter(j) && occludes(objects, ray, t_min, t_max, j) {
+        self.visit(ray, t_min, t_max, |j, sphere| {
+            if filter(j) && occludes(objects, ray, t_min, t_max, j, sphere) {
                 visit(j);
             }
             false
@@ -389,7 +541,17 @@ impl Bvh {
                     stack.push((first, depth + 1, Some(b)));
                     continue;
                 }
-                for &j in &self.prims[first..first + count] {
+                for (l, &j) in self.prims[first..first + count].iter().enumerate() {
+                    if let Some(spheres) = &self.spheres {
+                        let copied = match (spheres.entry(first, count, l), &objects[j as usize].shape) {
+                            (LaneEntry::Sphere(s), Shape::Sphere(o)) => s == *o,
+                            (LaneEntry::Object, shape) => !matches!(shape, Shape::Sphere(_)),
+                            (LaneEntry::Sphere(_), _) => false,
+                        };
+                        if !copied {
+                            return Err(format!("entry {} of the leaf order is not object {j}", first + l));
+                        }
+                    }
                     let o = stored_box(&objects[j as usize].shape.bounds().ok_or("unbounded in a leaf")?);
                     if !contains(b, o) {
                         return Err(format!("node {at}: slot {s} does not contain object {j}"));
@@ -406,4 +568,35 @@ impl Bvh {
             None => Ok(()),
         }
     }
+}
+
+/// Asks the caches for the line holding `p` (a hint: it faults on no address).
+#[inline(always)]
+fn prefetch_line(p: *const u8) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch reads nothing the program sees and faults on no address.
+    unsafe {
+        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(p.cast());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = p;
+}
+
+/// [`Bvh::closest`] on the widest vectors the processor has.
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn closest_widest(bvh: &Bvh, objects: &[Object], ray: &Ray, t_min: f64, t_max: f64) -> Option<(usize, SurfaceHit)> {
+    bvh.closest_walk(objects, ray, t_min, t_max)
+}
+
+/// [`Bvh::any_hit`] on the widest vectors the processor has.
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn any_hit_widest(
+    bvh: &Bvh,
+    objects: &[Object],
+    ray: &Ray,
+    t_min: f64,
+    t_max: f64,
+    filter: &dyn Fn(usize) -> bool,
+) -> bool {
+    bvh.any_hit_walk(objects, ray, t_min, t_max, filter)
 }

@@ -6,11 +6,13 @@
 
 mod build;
 mod bvh;
+mod leaf;
 mod linear;
 mod node;
+mod pages;
 mod wide;
 
-pub use bvh::Bvh;
+pub use bvh::{Bvh, Kernel};
 pub use linear::Linear;
 
 use crate::math::Ray;

@@ -114,7 +114,7 @@ impl Emitters {
             .iter()
             .enumerate()
             .filter(|(_, o)| {
-                let m = &scene.materials[o.material];
+                let m = &scene.materials[o.material()];
                 m.kr > 0.0 || m.kt > 0.0
             })
             .filter_map(|(i, o)| o.shape.bounding_sphere().map(|(c, r)| (i, c, r)))

@@ -42,7 +42,7 @@ pub fn trace(scene: &Scene, accel: &Accel, start: Start, bounces: u32, rng: &mut
             return;
         }
         let shape = &scene.objects[object].shape;
-        let mat = &scene.materials[scene.objects[object].material];
+        let mat = &scene.materials[scene.objects[object].material()];
         let (point, err) = shape.hit_point(&ray, hit.t);
         travelled += hit.t;
         let entering = ray.dir.dot(hit.normal) < 0.0;

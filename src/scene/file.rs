@@ -10,7 +10,7 @@
 use super::generate::{Generate, GenerateKind};
 use super::locate::{FieldError, FieldPath, line_col, locate, path_at};
 use super::tag;
-use super::{CameraSpec, CausticSettings, Object, PhotonFilter, Scene, Settings, ShadingModel, Specular};
+use super::{CameraSpec, CausticSettings, Object, ObjectNames, PhotonFilter, Scene, Settings, ShadingModel, Specular};
 use crate::area_light::{AreaLight, AreaShape, PointMode};
 use crate::conventions::{Conventions, Highlight};
 use crate::interference::{Aperture, ApertureLight, Invalid, Mask, Planar};
@@ -22,6 +22,7 @@ use crate::shape::mesh::Mesh;
 use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Lens, Plane, Rectangle, Shape, Sphere, SphericalCap, Torus, Transform, Triangle,
 };
+use compact_str::CompactString;
 use glam::DVec3;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -933,6 +934,15 @@ fn one_f() -> f64 {
     1.0
 }
 
+/// An object as the file lists it, its name not yet set aside in the scene's
+/// [`ObjectNames`].
+#[derive(Debug)]
+struct Listed {
+    name: CompactString,
+    shape: Shape,
+    material: usize,
+}
+
 impl FileScene {
     fn validate(self, dir: &Path) -> Check<Scene> {
         let root = FieldPath::default();
@@ -948,10 +958,16 @@ impl FileScene {
             );
         }
         let mut objects: Vec<Object> = Vec::new();
+        let mut names = ObjectNames::default();
         for (i, s) in self.shapes.into_iter().enumerate() {
             // A mesh may fill what the scene's other objects leave of the limit.
             let room = limits::MAX_OBJECTS.saturating_sub(objects.len());
-            objects.extend(s.validate(&path.index(i), i, &material_names, dir, room)?);
+            let listed = s.validate(&path.index(i), i, &material_names, dir, room)?;
+            objects.extend(listed.into_iter().map(|l| Object {
+                shape: l.shape,
+                material: l.material as u32,
+                name: names.add(l.name),
+            }));
         }
         let path = root.key("generate");
         let tables = self
@@ -970,7 +986,7 @@ impl FileScene {
         )?;
         objects.reserve_exact(tables.iter().map(|g| g.count).sum());
         for (i, g) in tables.iter().enumerate() {
-            g.append_to(i, &mut objects);
+            g.append_to(i, names.add_table(g.count), &mut objects);
         }
         let path = root.key("lights");
         if self.lights.len() > limits::MAX_LIGHTS {
@@ -1006,6 +1022,7 @@ impl FileScene {
             material_names,
             metal_given,
             objects,
+            names,
             lights,
         })
     }
@@ -1153,7 +1170,7 @@ impl FileShape {
         material_names: &[String],
         dir: &Path,
         room: usize,
-    ) -> Check<Vec<Object>> {
+    ) -> Check<Vec<Listed>> {
         let size = |key: &str, x: f64| positive(&path.key(key), x, limits::MAX_COORDINATE);
         let (shape, material, name, transform) = match self {
             FileShape::Plane(FilePlane {
@@ -1282,7 +1299,7 @@ impl FileShape {
                 return pair
                     .into_iter()
                     .map(|o| {
-                        Ok(Object {
+                        Ok(Listed {
                             shape: moved(&path.key("transform"), &t, o.shape)?,
                             ..o
                         })
@@ -1441,7 +1458,7 @@ impl FileShape {
             None => shape,
         };
         let material_index = resolve_material(path, material, material_names)?;
-        Ok(vec![Object {
+        Ok(vec![Listed {
             name: name.map_or_else(|| compact_str::format_compact!("{}#{index}", shape.kind()), Into::into),
             shape,
             material: material_index,
@@ -1459,7 +1476,7 @@ impl FileMesh {
         material_names: &[String],
         dir: &Path,
         room: usize,
-    ) -> Check<Vec<Object>> {
+    ) -> Check<Vec<Listed>> {
         let field = path.key("file");
         let file = dir.join(&self.file);
         let shown = file.display();
@@ -1526,7 +1543,7 @@ impl FileMesh {
             .triangles()
             .into_iter()
             .enumerate()
-            .map(|(k, t)| Object {
+            .map(|(k, t)| Listed {
                 name: compact_str::format_compact!("{base}/{k}"),
                 shape: Shape::Triangle(t),
                 material,
@@ -1801,7 +1818,7 @@ fn mirror_pair(
     material: Option<String>,
     name: Option<String>,
     names: &[String],
-) -> Check<Vec<Object>> {
+) -> Check<Vec<Listed>> {
     let hinge = vec3(&path.key("hinge"), hinge)?;
     let b = vec3(&path.key("bisector"), bisector)?;
     let b = DVec3::new(b.x, b.y, 0.0);
@@ -1824,7 +1841,7 @@ fn mirror_pair(
     let up = DVec3::new(0.0, 0.0, height);
     Ok([("A", sin), ("B", -sin)]
         .into_iter()
-        .map(|(tag, s)| Object {
+        .map(|(tag, s)| Listed {
             name: compact_str::format_compact!("{base} {tag}"),
             shape: Shape::Rectangle(Box::new(Rectangle::new(hinge, side(s) * length, up))),
             material,

@@ -4,10 +4,9 @@
 //! objects are drawn in chunks of [`CHUNK`], chunk `k` from its own stream keyed by the
 //! table's seed and `(table, k)`.
 
-use super::Object;
+use super::{NameKey, Object};
 use crate::sampling::{Purpose, Stream};
 use crate::shape::{Cone, Shape, Sphere, Torus, Triangle};
-use compact_str::CompactString;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -56,27 +55,31 @@ pub struct Generate {
 }
 
 impl Generate {
-    /// The objects of table number `table`, in Z-order of their centers (names
-    /// `generate[table]#i`, `i` their place in that order).
+    /// The objects of table number `table`, in Z-order of their centers, unnamed (a scene's
+    /// tables are named as [`Generate::append_to`] says).
     ///
     /// Objects near in space are then near in memory, as in scenes made by modelling tools
     /// (meshes, grids); drawn in random order, a million objects would make every object
     /// test of a ray a cache miss, for either core.
     pub fn objects(&self, table: usize) -> Vec<Object> {
         let mut objects = Vec::new();
-        self.append_to(table, &mut objects);
+        self.append_to(table, NameKey::UNNAMED, &mut objects);
         objects
     }
 
     /// Appends [`Generate::objects`] to `objects`, drawing them in place: a million spheres
-    /// take their 96 MB once, with 12 bytes an object of sort keys beside them.
-    pub fn append_to(&self, table: usize, objects: &mut Vec<Object>) {
-        let name = |i: usize| compact_str::format_compact!("generate[{table}]#{i}");
+    /// take their 48 MB once, with 12 bytes an object of sort keys beside them. The `i`-th
+    /// object in Z-order takes the name key `first.nth(i)`: `first` from
+    /// [`super::ObjectNames::add_table`], which names it `generate[table]#i`
+    /// ([`NameKey::UNNAMED`]: all unnamed).
+    pub fn append_to(&self, table: usize, first: NameKey, objects: &mut Vec<Object>) {
+        let name = |i: usize| if first == NameKey::UNNAMED { first } else { first.nth(i) };
         if self.kind == GenerateKind::Triangles {
             let drawn = self.sorted(table, |s| self.draw_triangle(s));
             // The vertices in one array, in the objects' order.
             let vertices: Arc<[DVec3]> = drawn.iter().flat_map(|(_, points, _)| *points).collect();
             objects.par_extend(drawn.into_par_iter().enumerate().map(|(i, (_, _, material))| {
+                let material = material as u32;
                 let first = 3 * i as u32;
                 let triangle = Triangle::in_mesh(&vertices, [first, first + 1, first + 2]);
                 Object {
@@ -89,7 +92,7 @@ impl Generate {
         }
         let start = objects.len();
         let placeholder = Object {
-            name: CompactString::const_new(""),
+            name: NameKey::UNNAMED,
             shape: Shape::Sphere(Sphere::new(DVec3::ZERO, 1.0)),
             material: 0,
         };
@@ -104,7 +107,7 @@ impl Generate {
                 let mut s = self.stream(table, k);
                 for (object, code) in objects.iter_mut().zip(codes) {
                     let (z, shape, material) = self.draw(&mut s);
-                    (*code, object.shape, object.material) = (z, shape, material);
+                    (*code, object.shape, object.material) = (z, shape, material as u32);
                 }
             });
         // Stable: equal codes keep the drawing order, so the order is fully determined.

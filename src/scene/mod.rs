@@ -5,12 +5,14 @@
 mod file;
 pub mod generate;
 mod locate;
+mod names;
 mod overrides;
 pub mod simrenderer;
 mod tag;
 pub mod transform;
 
 pub use file::{SceneError, load as load_toml, parse};
+pub use names::{NameKey, ObjectNames};
 pub use overrides::Overrides;
 
 use crate::conventions::Conventions;
@@ -19,6 +21,7 @@ use crate::material::Material;
 use crate::shape::Shape;
 use compact_str::CompactString;
 use glam::DVec3;
+use serde::ser::SerializeStruct;
 
 /// The two scene file formats.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -295,19 +298,27 @@ pub struct CameraSpec {
     pub vfov_deg: f64,
 }
 
-/// One object: a shape with a material.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+/// One object: a shape with a material, and the key of its name in [`Scene::names`]
+/// (48 bytes: a million spheres take 48 MB).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Object {
-    /// The name given in the file, or `<kind>#<index>`: up to 24 bytes held inline (a
-    /// generated object's name costs no allocation).
-    pub name: CompactString,
     pub shape: Shape,
     /// Index into `Scene::materials`.
-    pub material: usize,
+    pub material: u32,
+    /// The name given in the file, or `<kind>#<index>`, is `Scene::names.get(name)`.
+    pub name: NameKey,
+}
+
+impl Object {
+    /// Index into `Scene::materials`.
+    #[inline]
+    pub fn material(&self) -> usize {
+        self.material as usize
+    }
 }
 
 /// A validated scene.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
     pub settings: Settings,
     pub camera: CameraSpec,
@@ -317,10 +328,59 @@ pub struct Scene {
     /// default highlight ([`Scene::set_conventions`]).
     pub metal_given: Vec<bool>,
     pub objects: Vec<Object>,
+    /// The objects' names, by their [`Object::name`] keys.
+    pub names: ObjectNames,
     pub lights: Vec<Light>,
 }
 
+/// An object as serialized: its name, shape and material.
+#[derive(serde::Serialize)]
+struct NamedObject<'a> {
+    name: CompactString,
+    shape: &'a Shape,
+    material: usize,
+}
+
+impl serde::Serialize for Scene {
+    /// The fields in order, each object with its name.
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let objects: Vec<NamedObject> = self
+            .objects
+            .iter()
+            .map(|o| NamedObject {
+                name: self.name_of(o),
+                shape: &o.shape,
+                material: o.material(),
+            })
+            .collect();
+        let mut s = serializer.serialize_struct("Scene", 7)?;
+        s.serialize_field("settings", &self.settings)?;
+        s.serialize_field("camera", &self.camera)?;
+        s.serialize_field("materials", &self.materials)?;
+        s.serialize_field("material_names", &self.material_names)?;
+        s.serialize_field("metal_given", &self.metal_given)?;
+        s.serialize_field("objects", &objects)?;
+        s.serialize_field("lights", &self.lights)?;
+        s.end()
+    }
+}
+
 impl Scene {
+    /// The name of `object`, one of this scene's objects.
+    pub fn name_of(&self, object: &Object) -> CompactString {
+        self.names.get(object.name)
+    }
+
+    /// Appends an object named `name`.
+    pub fn push_object(&mut self, name: &str, shape: Shape, material: usize) {
+        let name = self.names.add(name);
+        self.objects.push(Object {
+            shape,
+            material: material as u32,
+            name,
+        });
+    }
+
     /// Follows `conventions` from now on: the materials that give no metal factor take its
     /// default highlight.
     pub fn set_conventions(&mut self, conventions: Conventions) {

@@ -185,7 +185,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         let member = &self.members[j];
         (
             member.shading,
-            &member.materials[self.world.scene.objects[object].material],
+            &member.materials[self.world.scene.objects[object].material()],
         )
     }
 

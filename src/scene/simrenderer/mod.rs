@@ -55,7 +55,7 @@ pub struct Refused {
 /// `name (kind)` of an object, as messages name it.
 fn object_label(scene: &Scene, i: usize) -> String {
     let o = &scene.objects[i];
-    format!("objects[{i}] {:?} ({})", o.name, o.shape.kind())
+    format!("objects[{i}] {:?} ({})", scene.name_of(o), o.shape.kind())
 }
 
 /// Where `got` differs from `expected`, each part named (settings and camera by field,
@@ -104,7 +104,7 @@ pub fn differences(expected: &Scene, got: &Scene, most: usize) -> Vec<String> {
     } else {
         for (i, (x, y)) in expected.objects.iter().zip(&got.objects).enumerate() {
             let parts: Vec<&str> = [
-                ("name", x.name != y.name),
+                ("name", expected.name_of(x) != got.name_of(y)),
                 ("shape", x.shape != y.shape),
                 ("material", x.material != y.material),
             ]

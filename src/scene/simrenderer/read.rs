@@ -16,7 +16,7 @@ use crate::interference::{Aperture, ApertureLight, Invalid, Mask, Planar, VISIBL
 use crate::light::{Attenuation, Light, PointLight};
 use crate::limits;
 use crate::material::Material;
-use crate::scene::{CameraSpec, Object, Scene, SceneError, Settings, ShadingModel, Specular};
+use crate::scene::{CameraSpec, Object, ObjectNames, Scene, SceneError, Settings, ShadingModel, Specular};
 use crate::shape::mesh::Mesh;
 use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Lens, Plane, Shape, Sphere, SphericalCap, Torus, Transform, Triangle,
@@ -1796,8 +1796,9 @@ impl<'a> Reader<'a> {
             }
         }
         let mut objects = Vec::new();
+        let mut names = ObjectNames::default();
         for (i, s) in raw.shapes.into_iter().enumerate() {
-            let material = material_names.iter().position(|n| *n == s.material).unwrap_or(0);
+            let material = material_names.iter().position(|n| *n == s.material).unwrap_or(0) as u32;
             if objects.len() + s.shapes.len() > limits::MAX_OBJECTS {
                 let m = format!("the scene would hold more than {} objects", limits::MAX_OBJECTS);
                 self.problem(&s.at, m, "the rest is dropped")?;
@@ -1806,17 +1807,18 @@ impl<'a> Reader<'a> {
             if s.model {
                 let base = s.name.unwrap_or_else(|| format!("model#{i}"));
                 objects.extend(s.shapes.into_iter().enumerate().map(|(k, shape)| Object {
-                    name: compact_str::format_compact!("{base}/{k}"),
+                    name: names.add(compact_str::format_compact!("{base}/{k}")),
                     shape,
                     material,
                 }));
             } else {
                 for shape in s.shapes {
                     objects.push(Object {
-                        name: s
-                            .name
-                            .clone()
-                            .map_or_else(|| compact_str::format_compact!("{}#{i}", shape.kind()), Into::into),
+                        name: names.add(
+                            s.name
+                                .clone()
+                                .map_or_else(|| compact_str::format_compact!("{}#{i}", shape.kind()), Into::into),
+                        ),
                         shape,
                         material,
                     });
@@ -1842,6 +1844,7 @@ impl<'a> Reader<'a> {
                 material_names,
                 metal_given,
                 objects,
+                names,
                 lights,
             },
             warnings: self.warnings,

@@ -230,14 +230,15 @@ impl Writer {
             let fields = self.shape(&label, inner);
             self.line("[[shapes]]");
             self.line(format!("type = \"{}\"", inner.kind()));
-            if o.name != format!("{}#{i}", o.shape.kind()) {
-                self.line(format!("name = {}", quoted(&o.name)));
+            let name = scene.name_of(o);
+            if name != format!("{}#{i}", o.shape.kind()) {
+                self.line(format!("name = {}", quoted(&name)));
             }
             for f in fields {
                 self.line(f);
             }
             if o.material != 0 {
-                self.line(format!("material = {}", quoted(&scene.material_names[o.material])));
+                self.line(format!("material = {}", quoted(&scene.material_names[o.material()])));
             }
             if let Some(t) = transform {
                 let t = self.transform(&label, t);

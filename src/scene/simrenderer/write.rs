@@ -380,11 +380,12 @@ impl Writer {
                 continue;
             }
             self.line("primitive");
-            if o.name != format!("{}#{i}", o.shape.kind()) {
-                let quoted = serde_json::to_string(&o.name).unwrap_or_default();
+            let name = scene.name_of(o);
+            if name != format!("{}#{i}", o.shape.kind()) {
+                let quoted = serde_json::to_string(&name).unwrap_or_default();
                 self.line(format!("# lumiere: name {quoted}"));
             }
-            self.line(format!("material_name {}", scene.material_names[o.material]));
+            self.line(format!("material_name {}", scene.material_names[o.material()]));
             self.out.push_str(&block);
             self.line("end");
             self.line("");

@@ -1,0 +1,252 @@
+//! The BVH's spheres side by side in leaf order, so that a leaf's spheres are read from one
+//! run of memory and tested four at a time.
+//!
+//! A walk through a million-sphere tree waits on memory: the objects, met in leaf order,
+//! lie scattered, and reading an object's first byte costs more than its sphere test. So
+//! the tree keeps its own copy of each sphere: for the leaf of entries `first..first +
+//! count` (at most [`MAX_LEAF`] of them), `count` centre `x`s, then `count` `y`s, `count`
+//! `z`s and `count` radii, from `4 * first` on (32 bytes an entry, no more than the
+//! spheres themselves). The object indices stay in the tree's leaf order; an entry that is
+//! not a sphere holds a NaN radius and is tested as its object.
+//!
+//! [`SphereLanes::candidates`] computes, for the four lanes of a leaf at once, the
+//! discriminant of the sphere's test (`sphere_roots` in `src/shape/sphere.rs`) with exactly
+//! its operations in its order (no fused multiply-add, nothing reassociated), so each lane
+//! has the scalar routine's bits, and drops the lanes whose discriminant is negative: those
+//! the scalar routine misses at its first test. Every other lane is tested by the sphere's
+//! own routine, which gives its hit, so the walk's answer is the scalar walk's to the bit.
+
+use super::build::MAX_LEAF;
+use super::pages::advise_huge_pages;
+use crate::math::Ray;
+use crate::scene::Object;
+use crate::shape::{Shape, Sphere};
+use glam::DVec3;
+use rayon::prelude::*;
+
+const LANES: usize = 4;
+const _: () = assert!(MAX_LEAF <= LANES, "a leaf's spheres are tested in one pass");
+
+/// The spheres of the leaf order, per leaf as four runs (see the module doc).
+#[derive(Clone, Debug, Default)]
+pub struct SphereLanes {
+    /// `4 * entries` values, then `LANES - 1` of padding, so that every lane load of the
+    /// last leaf stays in the array.
+    values: Vec<f64>,
+}
+
+impl PartialEq for SphereLanes {
+    /// The same bits (the NaN of a non-sphere entry equals itself).
+    fn eq(&self, other: &Self) -> bool {
+        self.values.len() == other.values.len()
+            && self
+                .values
+                .iter()
+                .zip(&other.values)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+    }
+}
+
+/// What [`SphereLanes::entry`] finds at an entry.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LaneEntry {
+    Sphere(Sphere),
+    /// Not a sphere: tested as its object.
+    Object,
+}
+
+impl SphereLanes {
+    /// The copies for the leaf order `prims`; `None` when no object is a sphere. `leaves`
+    /// lists the leaves (first entry and count, in any order), asked for only when some
+    /// object is a sphere.
+    pub fn new(objects: &[Object], prims: &[u32], leaves: impl FnOnce() -> Vec<(u32, u32)>) -> Option<Self> {
+        if !objects.iter().any(|o| matches!(o.shape, Shape::Sphere(_))) {
+            return None;
+        }
+        let len = 4 * prims.len() + LANES - 1;
+        let mut values = Vec::with_capacity(len);
+        advise_huge_pages(&values);
+        values.resize(len, f64::NAN);
+        // The leaves are disjoint and cover the leaf order: in order, their runs follow
+        // one another.
+        let mut leaves = leaves();
+        leaves.par_sort_unstable();
+        fill(&mut values, 0, &leaves, prims, objects);
+        Some(SphereLanes { values })
+    }
+
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        self.values.len() * size_of::<f64>()
+    }
+
+    /// The address of the run of the leaf whose first entry is `first` (for a prefetch).
+    #[inline(always)]
+    pub fn first_byte(&self, first: usize) -> *const u8 {
+        self.values.as_ptr().wrapping_add(4 * first).cast()
+    }
+
+    /// Entry `first + lane` of the leaf of entries `first..first + count`.
+    #[inline(always)]
+    pub fn entry(&self, first: usize, count: usize, lane: usize) -> LaneEntry {
+        let v = &self.values[4 * first..];
+        let r = v[3 * count + lane];
+        if r.is_nan() {
+            return LaneEntry::Object;
+        }
+        LaneEntry::Sphere(Sphere::new(
+            DVec3::new(v[lane], v[count + lane], v[2 * count + lane]),
+            r,
+        ))
+    }
+
+    /// The lanes (bit `l` for entry `first + l`) of the leaf of entries `first..first +
+    /// count` that the ray may hit: every entry but the spheres whose discriminant is
+    /// negative (see the module doc).
+    #[inline(always)]
+    pub fn candidates(&self, first: usize, count: usize, ray: &Ray) -> u32 {
+        let v = &self.values[4 * first..4 * first + 3 * count + LANES];
+        let lanes = |k: usize| -> [f64; LANES] { v[k * count..k * count + LANES].try_into().unwrap() };
+        let (cx, cy, cz, r) = (lanes(0), lanes(1), lanes(2), lanes(3));
+        let (o, d) = (ray.origin, ray.dir);
+        let mut keep = 0u32;
+        // Plain loops over the lanes, vectorised by the compiler: `sphere_roots`' operations,
+        // in its order, lane by lane.
+        let mut disc = [0.0f64; LANES];
+        for l in 0..LANES {
+            let (fx, fy, fz) = (o.x - cx[l], o.y - cy[l], o.z - cz[l]);
+            let b = (fx * d.x) + (fy * d.y) + (fz * d.z);
+            let (px, py, pz) = (fx - b * d.x, fy - b * d.y, fz - b * d.z);
+            disc[l] = r[l] * r[l] - ((px * px) + (py * py) + (pz * pz));
+        }
+        for (l, &x) in disc.iter().enumerate() {
+            // Dropped only when negative: a NaN (a non-sphere's radius) is kept.
+            keep |= u32::from((x >= 0.0) | x.is_nan()) << l;
+        }
+        keep & ((1 << count) - 1)
+    }
+}
+
+/// Fills the runs of `leaves` (in order, the first starting at entry `base`) in `values`,
+/// which starts at that leaf's run: halves of the leaves in parallel, down to blocks of
+/// [`FILL_BLOCK`] leaves.
+fn fill(values: &mut [f64], base: usize, leaves: &[(u32, u32)], prims: &[u32], objects: &[Object]) {
+    if leaves.len() > FILL_BLOCK {
+        let (low, high) = leaves.split_at(leaves.len() / 2);
+        let middle = high[0].0 as usize;
+        let (a, b) = values.split_at_mut(4 * (middle - base));
+        rayon::join(
+            || fill(a, base, low, prims, objects),
+            || fill(b, middle, high, prims, objects),
+        );
+        return;
+    }
+    for &(first, count) in leaves {
+        let (first, n) = (first as usize, count as usize);
+        let run = &mut values[4 * (first - base)..][..4 * n];
+        for (l, &j) in prims[first..first + n].iter().enumerate() {
+            if let Shape::Sphere(s) = &objects[j as usize].shape {
+                run[l] = s.center.x;
+                run[n + l] = s.center.y;
+                run[2 * n + l] = s.center.z;
+                run[3 * n + l] = s.radius;
+            }
+        }
+    }
+}
+
+/// Leaves whose runs [`fill`] writes in one task.
+const FILL_BLOCK: usize = 4096;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::NameKey;
+
+    fn object(shape: Shape) -> Object {
+        Object {
+            shape,
+            material: 0,
+            name: NameKey::UNNAMED,
+        }
+    }
+
+    /// Leaves of 3, 1 and 4 entries, the second not a sphere: each run holds its spheres'
+    /// coordinates axis by axis, the cuboid reads as an object.
+    #[test]
+    fn runs_hold_each_leaf_axis_by_axis() {
+        let sphere = |i: f64| object(Shape::Sphere(Sphere::new(DVec3::new(i, 10.0 + i, 20.0 + i), 0.5 + i)));
+        let mut objects: Vec<Object> = (0..8).map(|i| sphere(i as f64)).collect();
+        objects[3] = object(Shape::Cuboid(Box::new(crate::shape::Cuboid::new(
+            DVec3::ZERO,
+            DVec3::ONE,
+            DVec3::ZERO,
+        ))));
+        // Leaf order: objects 7, 6, 5 | 3 | 0, 1, 2, 4.
+        let prims = [7, 6, 5, 3, 0, 1, 2, 4];
+        let lanes = SphereLanes::new(&objects, &prims, || vec![(4, 4), (0, 3), (3, 1)]).unwrap();
+        assert_eq!(lanes.bytes(), (4 * 8 + 3) * 8);
+        assert_eq!(
+            &lanes.values[..12],
+            &[7.0, 6.0, 5.0, 17.0, 16.0, 15.0, 27.0, 26.0, 25.0, 7.5, 6.5, 5.5]
+        );
+        assert!(lanes.values[12..16].iter().all(|v| v.is_nan()));
+        assert_eq!(lanes.entry(3, 1, 0), LaneEntry::Object);
+        for (k, &j) in prims.iter().enumerate() {
+            let (first, count) = if k < 3 {
+                (0, 3)
+            } else if k == 3 {
+                (3, 1)
+            } else {
+                (4, 4)
+            };
+            match (lanes.entry(first, count, k - first), &objects[j as usize].shape) {
+                (LaneEntry::Sphere(s), Shape::Sphere(o)) => assert_eq!(&s, o, "entry {k}"),
+                (LaneEntry::Object, Shape::Cuboid(_)) => {}
+                (e, _) => panic!("entry {k}: {e:?}"),
+            }
+        }
+        // Without a sphere there are no copies.
+        assert!(SphereLanes::new(&objects[3..4], &[0], || vec![(0, 1)]).is_none());
+    }
+
+    /// Rays along the rim of a leaf's spheres, a few units in the last place inside and
+    /// outside it: a lane is dropped only when the sphere's own test misses, at any `t`,
+    /// and near the rim both outcomes occur. Lanes past the leaf's count are never kept.
+    #[test]
+    fn only_misses_are_dropped() {
+        let mut s = crate::sampling::Stream::new(5, crate::sampling::Purpose::Generator, 0);
+        let mut next = || s.next_f64();
+        let (mut dropped, mut kept) = (0, 0);
+        for trial in 0..2000 {
+            let count = 1 + trial % 4;
+            let spheres: Vec<Sphere> = (0..count)
+                .map(|_| {
+                    let c = DVec3::new(next(), next(), next()) * 20.0 - 10.0;
+                    Sphere::new(c, 0.01 + next())
+                })
+                .collect();
+            let objects: Vec<Object> = spheres.iter().map(|s| object(Shape::Sphere(s.clone()))).collect();
+            let prims: Vec<u32> = (0..count as u32).collect();
+            let lanes = SphereLanes::new(&objects, &prims, || vec![(0, count as u32)]).unwrap();
+            // Along a random direction past sphere 0's rim.
+            let d = DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
+            let across = d.any_orthonormal_vector();
+            let ulps = [-3i64, -1, 0, 1, 3][trial % 5];
+            let reach = f64::from_bits((spheres[0].radius.to_bits() as i64 + ulps) as u64);
+            let ray = Ray::new(spheres[0].center + across * reach - 30.0 * d, d);
+            let keep = lanes.candidates(0, count, &ray);
+            assert_eq!(keep >> count, 0, "lanes past the leaf");
+            for (l, sphere) in spheres.iter().enumerate() {
+                if keep >> l & 1 == 0 {
+                    let hit = sphere.intersect(&ray, f64::NEG_INFINITY, f64::INFINITY);
+                    assert!(hit.is_none(), "lane {l} dropped, hit {hit:?}, {ray:?}");
+                    dropped += (l == 0) as u32;
+                } else {
+                    kept += (l == 0) as u32;
+                }
+            }
+        }
+        assert!(dropped > 300 && kept > 800, "rim lanes: {dropped} dropped, {kept} kept");
+    }
+}
