@@ -319,10 +319,12 @@ fn check_objects(seed: u64, objects: &[Object], half: f64) {
 #[test]
 fn sphere_lanes_agree_with_the_scan_on_tangent_rays() {
     let mut s = Stream::new(31, Purpose::Generator, 4);
-    let objects: Vec<Object> = (0..2000)
+    // More than `FINE_LEAVES_UP_TO` (4096), so that the tree has the sphere copies; as
+    // dense as 2000 in a cube of side 6.
+    let objects: Vec<Object> = (0..5000)
         .map(|_| {
             let r = 0.05 + 0.2 * s.next_f64();
-            object(Shape::Sphere(Sphere::new(point(&mut s, 3.0), r)))
+            object(Shape::Sphere(Sphere::new(point(&mut s, 4.1), r)))
         })
         .collect();
     let linear = Accel::build_with(&objects, AccelChoice::Linear);
@@ -375,7 +377,9 @@ fn cores_agree_on_spherical_caps_and_lenses() {
 
 #[test]
 fn cores_agree_on_larger_random_scenes() {
-    for (seed, n) in [(7, 150), (8, 600)] {
+    // 4200 objects: beyond `FINE_LEAVES_UP_TO`, with the sphere copies of the tree's leaves
+    // (and NaN-radius entries for its tori and cones).
+    for (seed, n) in [(7, 150), (8, 600), (9, 4200)] {
         check_scene(seed, n);
     }
 }

@@ -34,7 +34,7 @@ const ALL_AXES_UP_TO: usize = 200_000;
 /// [`FINE_LEAVES_UP_TO`] objects: fuller leaves, 26 to 27 bytes per object for the nodes
 /// and the leaf order's indices (BENCHMARKS.md, "Memory and node cost", where a cost of 1
 /// takes 62.4 bytes and a build of 276 ms at 1 000 000 spheres, near the 64-byte and 0.3 s
-/// budgets). A scene with spheres adds 32 bytes a sphere: their copies ([`super::leaf`]).
+/// budgets). A tree of spheres adds 32 bytes an object: their copies ([`super::leaf`]).
 const TRAVERSE_COST: f32 = 3.0;
 /// The node cost in trees over at most [`FINE_LEAVES_UP_TO`] objects. With 4-wide nodes,
 /// whose four boxes are tested at once, smaller leaves cull more object tests (BENCHMARKS.md,
@@ -44,7 +44,7 @@ const FINE_TRAVERSE_COST: f32 = 1.0;
 /// leave nodes less full: 44 to 56 bytes per object at N = 64 to 4096 on the bench's scenes
 /// (spheres and mixed), but 61 to 63 at 10 000 and 65 to 67 at 100 000, at or beyond the
 /// 64-byte budget.
-const FINE_LEAVES_UP_TO: usize = 4096;
+pub const FINE_LEAVES_UP_TO: usize = 4096;
 
 /// How a tree of a given size is built (see [`ALL_AXES_UP_TO`], [`FINE_LEAVES_UP_TO`]).
 #[derive(Clone, Copy, Debug)]

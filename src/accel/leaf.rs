@@ -7,7 +7,10 @@
 //! count` (at most [`MAX_LEAF`] of them), `count` centre `x`s, then `count` `y`s, `count`
 //! `z`s and `count` radii, from `4 * first` on (32 bytes an entry, no more than the
 //! spheres themselves). The object indices stay in the tree's leaf order; an entry that is
-//! not a sphere holds a NaN radius and is tested as its object.
+//! not a sphere holds a NaN radius and is tested as its object. Only trees of more than
+//! [`FINE_LEAVES_UP_TO`] objects have the copies: a smaller tree's objects stay in the
+//! caches, and its fine leaves already take up to 56 bytes an object, which the copies would
+//! take past the tree's budget of 64 (BENCHMARKS.md, "Memory and node cost").
 //!
 //! [`SphereLanes::candidates`] computes, for the four lanes of a leaf at once, the
 //! discriminant of the sphere's test (`sphere_roots` in `src/shape/sphere.rs`) with exactly
@@ -16,7 +19,7 @@
 //! the scalar routine misses at its first test. Every other lane is tested by the sphere's
 //! own routine, which gives its hit, so the walk's answer is the scalar walk's to the bit.
 
-use super::build::MAX_LEAF;
+use super::build::{FINE_LEAVES_UP_TO, MAX_LEAF};
 use super::pages::advise_huge_pages;
 use crate::math::Ray;
 use crate::scene::Object;
@@ -56,23 +59,28 @@ pub enum LaneEntry {
 }
 
 impl SphereLanes {
-    /// The copies for the leaf order `prims`; `None` when no object is a sphere. `leaves`
-    /// lists the leaves (first entry and count, in any order), asked for only when some
-    /// object is a sphere.
+    /// The copies for the leaf order `prims`; `None` when no object is a sphere or the
+    /// tree holds at most [`FINE_LEAVES_UP_TO`] objects. `leaves` lists the leaves (first
+    /// entry and count, in any order), asked for only when there are copies to make.
     pub fn new(objects: &[Object], prims: &[u32], leaves: impl FnOnce() -> Vec<(u32, u32)>) -> Option<Self> {
-        if !objects.iter().any(|o| matches!(o.shape, Shape::Sphere(_))) {
+        if prims.len() <= FINE_LEAVES_UP_TO || !objects.iter().any(|o| matches!(o.shape, Shape::Sphere(_))) {
             return None;
         }
+        Some(Self::copied(objects, prims, leaves()))
+    }
+
+    /// The copies for the leaf order `prims`, whose leaves (first entry and count, in any
+    /// order) are `leaves`.
+    fn copied(objects: &[Object], prims: &[u32], mut leaves: Vec<(u32, u32)>) -> Self {
         let len = 4 * prims.len() + LANES - 1;
         let mut values = Vec::with_capacity(len);
         advise_huge_pages(&values);
         values.resize(len, f64::NAN);
         // The leaves are disjoint and cover the leaf order: in order, their runs follow
         // one another.
-        let mut leaves = leaves();
         leaves.par_sort_unstable();
         fill(&mut values, 0, &leaves, prims, objects);
-        Some(SphereLanes { values })
+        SphereLanes { values }
     }
 
     /// Bytes held.
@@ -184,7 +192,7 @@ mod tests {
         ))));
         // Leaf order: objects 7, 6, 5 | 3 | 0, 1, 2, 4.
         let prims = [7, 6, 5, 3, 0, 1, 2, 4];
-        let lanes = SphereLanes::new(&objects, &prims, || vec![(4, 4), (0, 3), (3, 1)]).unwrap();
+        let lanes = SphereLanes::copied(&objects, &prims, vec![(4, 4), (0, 3), (3, 1)]);
         assert_eq!(lanes.bytes(), (4 * 8 + 3) * 8);
         assert_eq!(
             &lanes.values[..12],
@@ -206,8 +214,15 @@ mod tests {
                 (e, _) => panic!("entry {k}: {e:?}"),
             }
         }
-        // Without a sphere there are no copies.
-        assert!(SphereLanes::new(&objects[3..4], &[0], || vec![(0, 1)]).is_none());
+        // Without a sphere, or in a tree of at most `FINE_LEAVES_UP_TO` objects, there are
+        // no copies.
+        assert!(SphereLanes::new(&objects, &prims, || vec![(4, 4), (0, 3), (3, 1)]).is_none());
+        let many = vec![objects[3].clone(); FINE_LEAVES_UP_TO + 1];
+        let order: Vec<u32> = (0..many.len() as u32).collect();
+        assert!(SphereLanes::new(&many, &order, || vec![(0, 1)]).is_none());
+        let many = vec![objects[0].clone(); FINE_LEAVES_UP_TO + 1];
+        let leaves = (0..many.len() as u32).map(|i| (i, 1)).collect();
+        assert!(SphereLanes::new(&many, &order, || leaves).is_some());
     }
 
     /// Rays along the rim of a leaf's spheres, a few units in the last place inside and
@@ -228,7 +243,7 @@ mod tests {
                 .collect();
             let objects: Vec<Object> = spheres.iter().map(|s| object(Shape::Sphere(s.clone()))).collect();
             let prims: Vec<u32> = (0..count as u32).collect();
-            let lanes = SphereLanes::new(&objects, &prims, || vec![(0, count as u32)]).unwrap();
+            let lanes = SphereLanes::copied(&objects, &prims, vec![(0, count as u32)]);
             // Along a random direction past sphere 0's rim.
             let d = DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
             let across = d.any_orthonormal_vector();
