@@ -50,6 +50,8 @@ use multiversion::multiversion;
 
 mod grouped;
 
+use grouped::Packing;
+
 /// Per-point values of the current area light at the current shading point, one array
 /// entry per light point, reused from one shading point to the next.
 #[derive(Default)]
@@ -63,7 +65,8 @@ pub(super) struct AreaScratch {
     filter_ready: bool,
     /// Whether an opaque object blocks the point's shadow ray.
     blocked: Vec<bool>,
-    /// The points whose shadow ray is still open (facing, not blocked yet).
+    /// For [`Packing::OneByOne`] only: the points whose shadow ray is still open (facing,
+    /// not blocked yet).
     open: Vec<u32>,
     /// The open points that meet the current candidate, and those its cones leave
     /// undecided (then only those that meet its bounding sphere, for a costly shape
@@ -427,7 +430,10 @@ impl<const K: usize> Tracer<'_, '_, K> {
         s.facing.clear();
         s.facing.resize(len, Facing::NoLight);
         let [towards, away, black] = facings(&s.lanes, point_color, self.world.skips.on(Skip::Unlit), &mut s.facing);
-        list_facing(&s.facing, towards as usize, &mut s.open);
+        let packing = Packing::fastest();
+        if packing == Packing::OneByOne {
+            list_facing(&s.facing, towards as usize, &mut s.open);
+        }
         let shadows = self.world.scene.settings.shadows;
         s.filter_ready = false;
         s.blocked.clear();
@@ -441,7 +447,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         }
         let grouped = match candidates {
             Some(c) if shadows => {
-                self.shadow_points(c, at, area.bounding_sphere(), s);
+                self.shadow_points(c, at, area.bounding_sphere(), towards as usize, packing, s);
                 true
             }
             _ => false,
