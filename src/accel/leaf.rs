@@ -20,7 +20,6 @@
 //! own routine, which gives its hit, so the walk's answer is the scalar walk's to the bit.
 
 use super::build::{FINE_LEAVES_UP_TO, MAX_LEAF};
-use super::pages::advise_huge_pages;
 use crate::math::Ray;
 use crate::scene::Object;
 use crate::shape::{Shape, Sphere};
@@ -74,7 +73,6 @@ impl SphereLanes {
     fn copied(objects: &[Object], prims: &[u32], mut leaves: Vec<(u32, u32)>) -> Self {
         let len = 4 * prims.len() + LANES - 1;
         let mut values = Vec::with_capacity(len);
-        advise_huge_pages(&values);
         values.resize(len, f64::NAN);
         // The leaves are disjoint and cover the leaf order: in order, their runs follow
         // one another.

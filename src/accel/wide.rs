@@ -17,7 +17,6 @@
 
 use super::build::MAX_LEAF;
 use super::node::{Node, down};
-use super::pages::advise_huge_pages;
 use glam::{BVec4A, Vec4};
 
 // A leaf's count must fit the three bits of a child reference.
@@ -96,7 +95,6 @@ pub fn collapse(binary: &[Node]) -> (Vec<Node4>, usize) {
         return (Vec::new(), 0);
     }
     let mut nodes = Vec::with_capacity(binary.len() / 3 + 1);
-    advise_huge_pages(&nodes);
     let mut deepest = 0;
     // (binary node whose slots make the wide node, wide index to fill, depth)
     let mut pending = vec![(0usize, 0usize, 0usize)];
