@@ -241,6 +241,37 @@ impl Bvh {
         prefetch_line(line.wrapping_add(64));
     }
 
+    /// Calls `hit(j, sphere)` for the objects of the leaf of entries `first..first + count`
+    /// in leaf order (`sphere`: the leaf order's copy of object `j`'s sphere, if any), until
+    /// it returns true; returns whether it did. The spheres that the first step of their
+    /// test rules out are passed by ([`SphereLanes::candidates`]).
+    #[inline(always)]
+    fn leaf_until(
+        &self,
+        first: usize,
+        count: usize,
+        ray: &Ray,
+        mut hit: impl FnMut(usize, Option<&Sphere>) -> bool,
+    ) -> bool {
+        let Some(spheres) = &self.spheres else {
+            return self.prims[first..first + count].iter().any(|&j| hit(j as usize, None));
+        };
+        let mut lanes = spheres.candidates(first, count, ray);
+        while lanes != 0 {
+            let l = lanes.trailing_zeros() as usize;
+            lanes &= lanes - 1;
+            let j = self.prims[first + l] as usize;
+            let found = match spheres.entry(first, count, l) {
+                LaneEntry::Sphere(s) => hit(j, Some(&s)),
+                LaneEntry::Object => hit(j, None),
+            };
+            if found {
+                return true;
+            }
+        }
+        false
+    }
+
     /// The `f32` test for this ray when it and the tree fit it, else `None`.
     #[inline(always)]
     fn f32_slots(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<F32Slots> {
@@ -330,25 +361,10 @@ impl Bvh {
                     break;
                 }
                 let mut closer = false;
-                match &self.spheres {
-                    Some(spheres) => {
-                        let mut lanes = spheres.candidates(first, count, ray);
-                        while lanes != 0 {
-                            let l = lanes.trailing_zeros() as usize;
-                            lanes &= lanes - 1;
-                            let j = self.prims[first + l] as usize;
-                            closer |= match spheres.entry(first, count, l) {
-                                LaneEntry::Sphere(s) => consider(j, Some(&s), &mut best),
-                                LaneEntry::Object => consider(j, None, &mut best),
-                            };
-                        }
-                    }
-                    None => {
-                        for &j in &self.prims[first..first + count] {
-                            closer |= consider(j as usize, None, &mut best);
-                        }
-                    }
-                }
+                self.leaf_until(first, count, ray, |j, sphere| {
+                    closer |= consider(j, sphere, &mut best);
+                    false
+                });
                 if closer {
                     slots.set_t_max(bound(&best));
                 }
@@ -415,27 +431,8 @@ impl Bvh {
                     at = first;
                     break;
                 }
-                match &self.spheres {
-                    Some(spheres) => {
-                        let mut lanes = spheres.candidates(first, count, ray);
-                        while lanes != 0 {
-                            let l = lanes.trailing_zeros() as usize;
-                            lanes &= lanes - 1;
-                            let j = self.prims[first + l] as usize;
-                            let found = match spheres.entry(first, count, l) {
-                                LaneEntry::Sphere(s) => hit(j, Some(&s)),
-                                LaneEntry::Object => hit(j, None),
-                            };
-                            if found {
-                                return true;
-                            }
-                        }
-                    }
-                    None => {
-                        if self.prims[first..first + count].iter().any(|&j| hit(j as usize, None)) {
-                            return true;
-                        }
-                    }
+                if self.leaf_until(first, count, ray, &mut hit) {
+                    return true;
                 }
             }
         }
