@@ -13,8 +13,8 @@
 //! take past the tree's budget of 64 (BENCHMARKS.md, "Memory and node cost").
 //!
 //! [`SphereLanes::candidates`] computes, for the four lanes of a leaf at once, the
-//! discriminant of the sphere's test (`sphere_roots` in `src/shape/sphere.rs`) with exactly
-//! its operations in its order (no fused multiply-add, nothing reassociated), so each lane
+//! discriminant of the sphere's test ([`sphere_discriminant`], the first step of
+//! `sphere_roots`) lane by lane (no fused multiply-add, nothing reassociated), so each lane
 //! has the scalar routine's bits, and drops the lanes whose discriminant is negative: those
 //! the scalar routine misses at its first test. Every other lane is tested by the sphere's
 //! own routine, which gives its hit, so the walk's answer is the scalar walk's to the bit.
@@ -22,7 +22,7 @@
 use super::build::{FINE_LEAVES_UP_TO, MAX_LEAF};
 use crate::math::Ray;
 use crate::scene::Object;
-use crate::shape::{Shape, Sphere};
+use crate::shape::{Shape, Sphere, sphere_discriminant};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -114,16 +114,12 @@ impl SphereLanes {
         let v = &self.values[4 * first..4 * first + 3 * count + LANES];
         let lanes = |k: usize| -> [f64; LANES] { v[k * count..k * count + LANES].try_into().unwrap() };
         let (cx, cy, cz, r) = (lanes(0), lanes(1), lanes(2), lanes(3));
-        let (o, d) = (ray.origin, ray.dir);
         let mut keep = 0u32;
-        // Plain loops over the lanes, vectorised by the compiler: `sphere_roots`' operations,
-        // in its order, lane by lane.
+        // A plain loop over the lanes, vectorised by the compiler: the sphere test's own
+        // discriminant, lane by lane.
         let mut disc = [0.0f64; LANES];
         for l in 0..LANES {
-            let (fx, fy, fz) = (o.x - cx[l], o.y - cy[l], o.z - cz[l]);
-            let b = (fx * d.x) + (fy * d.y) + (fz * d.z);
-            let (px, py, pz) = (fx - b * d.x, fy - b * d.y, fz - b * d.z);
-            disc[l] = r[l] * r[l] - ((px * px) + (py * py) + (pz * pz));
+            disc[l] = sphere_discriminant(DVec3::new(cx[l], cy[l], cz[l]), r[l], ray).0;
         }
         for (l, &x) in disc.iter().enumerate() {
             // Dropped only when negative: a NaN (a non-sphere's radius) is kept.

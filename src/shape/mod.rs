@@ -31,6 +31,7 @@ pub use lens::Lens;
 pub use plane::Plane;
 pub use rectangle::Rectangle;
 pub use sphere::Sphere;
+pub(crate) use sphere::sphere_discriminant;
 pub use spherical_cap::SphericalCap;
 pub use torus::{QuarticMethod, Torus};
 pub use transformed::{Transform, Transformed};

@@ -12,10 +12,7 @@ use glam::DVec3;
 /// Shared by the sphere and the shapes cut from spheres (spherical cap, lens).
 #[inline]
 pub(crate) fn sphere_roots(center: DVec3, radius: f64, ray: &Ray) -> Option<(f64, f64)> {
-    let f = ray.origin - center;
-    let b = f.dot(ray.dir);
-    let perp = f - b * ray.dir;
-    let disc = radius * radius - perp.length_squared();
+    let (disc, f, b) = sphere_discriminant(center, radius, ray);
     if disc < 0.0 {
         return None;
     }
@@ -27,6 +24,16 @@ pub(crate) fn sphere_roots(center: DVec3, radius: f64, ray: &Ray) -> Option<(f64
     }
     let (t0, t1) = (q, c / q);
     Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+}
+
+/// [`sphere_roots`]' discriminant `r^2 - |f - b v|^2`, with `f = o - c` and `b = f.v`;
+/// negative where the ray's line misses the sphere.
+#[inline(always)]
+pub(crate) fn sphere_discriminant(center: DVec3, radius: f64, ray: &Ray) -> (f64, DVec3, f64) {
+    let f = ray.origin - center;
+    let b = f.dot(ray.dir);
+    let perp = f - b * ray.dir;
+    (radius * radius - perp.length_squared(), f, b)
 }
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
