@@ -17,9 +17,10 @@
 //! box tests are conservative (see [`super::wide`]), so no object that holds the answer is
 //! ever skipped.
 //!
-//! In a scene with spheres the tree keeps a copy of them in leaf order ([`SphereLanes`]): a
-//! leaf's spheres are read from one run of memory and sifted four at a time by the first
-//! test of the sphere's routine, and the ones left are tested by the routine itself. The
+//! A tree of more than 4096 objects with spheres among them keeps a copy of the spheres in
+//! leaf order ([`SphereLanes`]): a leaf's spheres are read from one run of memory and
+//! sifted four at a time by the first test of the sphere's routine, and the ones left are
+//! tested by the routine itself. The
 //! walks are compiled for AVX-512, AVX2 and baseline x86-64, the widest the processor
 //! has chosen at run time (`multiversion`), or the baseline as a [`Kernel`] says. As it
 //! pushes a child, a walk asks the caches for the child's node or leaf spheres, which it
