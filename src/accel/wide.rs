@@ -272,8 +272,8 @@ impl F32Slots {
         // A tiny component may have become 0: the test is on the exact one.
         let zero = BVec4A::new(dir[0] == 0.0, dir[1] == 0.0, dir[2] == 0.0, false);
         let fits = o.abs().cmple(range) & d.abs().cmple(range) & (d.abs().cmpge(range.recip()) | zero);
-        // `t_min >= 0` is false for a NaN; `-0` passes.
-        if !fits.all() || !(t_min >= 0.0) || t_max.is_nan() {
+        // `-0` passes as a `t_min`.
+        if !fits.all() || t_min < 0.0 || t_min.is_nan() || t_max.is_nan() {
             return None;
         }
         // Below and above the origin: `o` rounded to nearest is within half a step of it,
