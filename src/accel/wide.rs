@@ -7,16 +7,29 @@
 //! front-to-back order (by their centers' projection on the octant's diagonal), so the
 //! walk takes them nearest-first without sorting them per ray.
 //!
-//! The `f32` test is conservative (see [`super::node`]): the ray's
-//! origin is rounded outward (the entry plane measured from the bound that makes the entry
-//! earlier, the exit plane from the one that makes the exit later), and the computed entry
-//! and exit are widened by a relative `2^-20` (the subtraction, the reciprocal and the
-//! product each round by at most `2^-24`) and an absolute `2^-126` (an underflowed product).
-//! Rays for which `f32` cannot hold this (an origin or a reciprocal direction beyond `2^50`,
-//! a reciprocal below `2^-50`, or a tree beyond `2^50`) are tested in `f64` instead.
+//! The `f32` test is conservative (see [`super::node`]): the ray's origin is rounded
+//! outward (the entry plane measured from the bound that makes the entry earlier, the exit
+//! plane from the one that makes the exit later), `t_min` is rounded down and `t_max` up,
+//! and each slab's entry is computed with the reciprocal direction shrunk by a relative
+//! `2^-20`, its exit with it grown by `2^-20`. Five roundings of at most `2^-24` each (the
+//! direction to `f32`, the reciprocal, its scaling, the subtraction, the product) cannot
+//! undo that: a non-negative entry is computed no later than the exact one, a non-negative
+//! exit no earlier. An underflowed product is off by less than `2^-149`, which an absolute
+//! `2^-126` on either side covers. The scaling, not a widening of the computed interval,
+//! keeps the box test's chain of dependent operations short (the walk waits on it at
+//! every node).
+//!
+//! That holds from `t_min >= 0` on. A negative entry comes out later (nearer 0), but the
+//! interval starts at `t_min`, which is no later than the exact entry. A negative exit
+//! comes out earlier, but its sign is right (the exit plane is measured from the origin's
+//! bound behind the ray, and rounding keeps the sign of a difference and of a product): the
+//! box lies behind the origin on that axis and the ray, from `t_min >= 0`, misses it.
+//! Rays with `t_min < 0`, and rays for which `f32` cannot hold the test (an origin or a
+//! reciprocal direction beyond `2^50`, a reciprocal below `2^-50`, or a tree beyond
+//! `2^50`), are tested in `f64` instead.
 
 use super::build::MAX_LEAF;
-use super::node::{Node, down};
+use super::node::{Node, down, up};
 use glam::{BVec4A, Vec4};
 
 // A leaf's count must fit the three bits of a child reference.
@@ -209,7 +222,7 @@ pub trait SlotTest {
 /// (and the inverse of the smallest reciprocal): products stay far from `f32` overflow.
 pub const F32_RANGE: f32 = (1u64 << 50) as f32;
 
-/// Relative widening of the `f32` entry and exit (see the module doc).
+/// Relative scaling of the reciprocal direction in the `f32` test (see the module doc).
 const WIDEN32: f32 = 1.0 / (1u32 << 20) as f32;
 
 /// The rows of `Node4::bounds` by which a ray enters and leaves the slab of `axis`: the
@@ -237,7 +250,11 @@ pub struct F32Slots {
     /// Per axis, the origin's `f32` bound that makes the entry earlier, and the exit later.
     entry_origin: [Vec4; 3],
     exit_origin: [Vec4; 3],
-    inv: [Vec4; 3],
+    /// Per axis, the reciprocal direction shrunk by `WIDEN32` (for entries) and grown by it
+    /// (for exits).
+    entry_inv: [Vec4; 3],
+    exit_inv: [Vec4; 3],
+    /// `t_min` rounded down and `t_max` rounded up.
     t_min: Vec4,
     t_max: Vec4,
     octant: usize,
@@ -245,7 +262,7 @@ pub struct F32Slots {
 
 impl F32Slots {
     /// The test for `origin + t dir`, `t` in `[t_min, t_max]`, or `None` when `f32` cannot
-    /// carry it (see the module doc).
+    /// carry it or `t_min` is negative (see the module doc).
     #[inline(always)]
     pub fn new(origin: [f64; 3], dir: [f64; 3], t_min: f64, t_max: f64) -> Option<Self> {
         // The three axes in the first three lanes (the fourth is a harmless 0 and 1).
@@ -255,7 +272,8 @@ impl F32Slots {
         // A tiny component may have become 0: the test is on the exact one.
         let zero = BVec4A::new(dir[0] == 0.0, dir[1] == 0.0, dir[2] == 0.0, false);
         let fits = o.abs().cmple(range) & d.abs().cmple(range) & (d.abs().cmpge(range.recip()) | zero);
-        if !fits.all() || t_min.is_nan() || t_max.is_nan() {
+        // `-0` passes as a `t_min`.
+        if !fits.all() || t_min < 0.0 || t_min.is_nan() || t_max.is_nan() {
             return None;
         }
         // Below and above the origin: `o` rounded to nearest is within half a step of it,
@@ -263,18 +281,20 @@ impl F32Slots {
         // origin that rounded to zero or to a subnormal).
         let step = o.abs() * (1.0 / (1u32 << 23) as f32) + Vec4::splat(f32::MIN_POSITIVE);
         let (lo, hi) = ((o - step).to_array(), (o + step).to_array());
-        // `1 / d` rounds twice (`d` to `f32`, the quotient); `d = -0` keeps its sign.
-        let inv = d.recip().to_array();
+        // `1 / d` rounds twice (`d` to `f32`, the quotient), the scaling a third time;
+        // `d = -0` keeps its sign and an infinite reciprocal stays infinite.
+        let inv = d.recip();
+        let (shrunk, grown) = ((inv * (1.0 - WIDEN32)).to_array(), (inv * (1.0 + WIDEN32)).to_array());
         let octant = octant_of(dir);
         let mut t = F32Slots {
             entry_row: [0; 3],
             exit_row: [0; 3],
             entry_origin: [Vec4::ZERO; 3],
             exit_origin: [Vec4::ZERO; 3],
-            inv: [Vec4::ZERO; 3],
-            // Rounded to nearest: the entry's and exit's widening covers it.
-            t_min: Vec4::splat(t_min as f32),
-            t_max: Vec4::splat(t_max as f32),
+            entry_inv: [Vec4::ZERO; 3],
+            exit_inv: [Vec4::ZERO; 3],
+            t_min: Vec4::splat(down(t_min)),
+            t_max: Vec4::splat(up(t_max)),
             octant,
         };
         // Plain loops: `array::map` with closures is not inlined here, and the copies of
@@ -284,7 +304,8 @@ impl F32Slots {
             (t.entry_row[a], t.exit_row[a]) = slab_rows(a, negative);
             t.entry_origin[a] = Vec4::splat(if negative { lo[a] } else { hi[a] });
             t.exit_origin[a] = Vec4::splat(if negative { hi[a] } else { lo[a] });
-            t.inv[a] = Vec4::splat(inv[a]);
+            t.entry_inv[a] = Vec4::splat(shrunk[a]);
+            t.exit_inv[a] = Vec4::splat(grown[a]);
         }
         Some(t)
     }
@@ -297,8 +318,8 @@ impl SlotTest for F32Slots {
         for a in 0..3 {
             let entry = Vec4::from_array(n.bounds[self.entry_row[a]]);
             let exit = Vec4::from_array(n.bounds[self.exit_row[a]]);
-            let t0 = (entry - self.entry_origin[a]) * self.inv[a];
-            let t1 = (exit - self.exit_origin[a]) * self.inv[a];
+            let t0 = (entry - self.entry_origin[a]) * self.entry_inv[a];
+            let t1 = (exit - self.exit_origin[a]) * self.exit_inv[a];
             // `0 * inf = NaN` only for a slab the ray runs along whose plane lies exactly
             // at one of the origin's bounds, which are strictly outside the origin: the
             // ray is outside that slab, so a miss or a hit there are both sound. (`maxps`
@@ -306,14 +327,16 @@ impl SlotTest for F32Slots {
             near = t0.max(near);
             far = t1.min(far);
         }
-        let near = near - near.abs() * WIDEN32 - Vec4::splat(f32::MIN_POSITIVE);
-        let far = far + far.abs() * WIDEN32 + Vec4::splat(f32::MIN_POSITIVE);
-        (near.to_array(), near.cmple(far).bitmask())
+        // The absolute `2^-126` on either side (see the module doc): the entry is early by
+        // it, the exit late, so the comparison takes it twice.
+        let tiny = Vec4::splat(f32::MIN_POSITIVE);
+        let entered = near.cmple(far + 2.0 * tiny).bitmask();
+        ((near - tiny).to_array(), entered)
     }
 
     #[inline(always)]
     fn set_t_max(&mut self, t_max: f64) {
-        self.t_max = Vec4::splat(t_max as f32);
+        self.t_max = Vec4::splat(up(t_max));
     }
 
     #[inline(always)]
@@ -480,6 +503,9 @@ mod tests {
         );
         assert!(!ok([0.0; 3], [1.0, 2e15, 0.0], 0.0));
         assert!(!ok([0.0; 3], [1.0, 0.0, 0.0], f64::NAN));
+        // Its entries are shrunk toward 0, which is early only from `t = 0` on.
+        assert!(!ok([0.0; 3], [1.0, 0.0, 0.0], -1e-300));
+        assert!(ok([0.0; 3], [1.0, 0.0, 0.0], -0.0));
     }
 
     /// The slab test in `f64` without widening: where the ray enters `[min, max]` within
@@ -508,9 +534,31 @@ mod tests {
     fn both_tests_enter_every_box_the_ray_meets_and_little_more() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         let mut uniform = move || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-        let coords = [-2.0, -1.0, -0.5, -0.0, 0.0, 0.25, 1.0, 3.0, 0.1, 1.0 / 3.0];
-        let dirs = [-1.0, -0.3, -0.0, 0.0, 0.6, 1.0, 1e-3, -0.5];
-        let intervals = [(0.0, f64::INFINITY), (0.5, 2.0), (-1.0, 0.0), (1e-9, 1e30)];
+        let coords = [
+            -2.0,
+            -1.0,
+            -0.5,
+            -0.0,
+            0.0,
+            0.25,
+            1.0,
+            3.0,
+            0.1,
+            1.0 / 3.0,
+            1e-38,
+            -3e-38,
+        ];
+        let dirs = [-1.0, -0.3, -0.0, 0.0, 0.6, 1.0, 1e-3, -0.5, 1e10, -3e12];
+        // Near 0 the absolute widening is all there is: intervals of a few `2^-126`.
+        let intervals = [
+            (0.0, f64::INFINITY),
+            (0.5, 2.0),
+            (-1.0, 0.0),
+            (1e-9, 1e30),
+            (0.0, 0.0),
+            (0.0, 1e-38),
+            (1e-38, 3e-38),
+        ];
         let (mut hits, mut misses) = (0, 0);
         for _ in 0..20_000 {
             let mut pick = |set: &[f64]| {
@@ -538,9 +586,11 @@ mod tests {
                 continue;
             }
             for (t_min, t_max) in intervals {
-                let f32_slots = F32Slots::new(o, d, t_min, t_max).expect("within f32's range");
+                let f32_slots = F32Slots::new(o, d, t_min, t_max);
+                assert_eq!(f32_slots.is_some(), t_min >= 0.0, "f32 from t_min = 0 on");
                 let f64_slots = F64Slots::new(o, d, t_min, t_max);
-                let tests: [&dyn SlotTest; 2] = [&f32_slots, &f64_slots];
+                let mut tests: Vec<&dyn SlotTest> = vec![&f64_slots];
+                tests.extend(f32_slots.as_ref().map(|s| s as &dyn SlotTest));
                 for (which, test) in tests.iter().enumerate() {
                     let (entries, mask) = test.enter(&node);
                     for (s, (min, max)) in boxes.iter().enumerate() {
