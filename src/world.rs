@@ -120,6 +120,12 @@ pub struct World<'s> {
     /// Per object, whether it lets shadow rays through, filtering them by its colour
     /// ([`World::filters_shadows`]).
     see_through: Vec<bool>,
+    /// For a world scanned linearly, the objects that block shadow rays with their
+    /// `shadow_balls`, in object order: the first scan of [`World::shadow_scan`].
+    opaque_balls: Vec<(usize, (DVec3, f64))>,
+    /// Likewise the objects that filter shadow rays ([`World::filters_shadows`]): its second
+    /// scan.
+    see_through_balls: Vec<(usize, (DVec3, f64))>,
     /// For a world scanned linearly, per object the cone of directions from the camera's
     /// eye that meet its bounding sphere ([`direction_cone`]): unit axis and cosine of the
     /// half-angle, a camera ray `d` with `d.axis < cos` misses the object
@@ -212,7 +218,14 @@ impl<'s> World<'s> {
                 .collect(),
             false => Vec::new(),
         };
+        let (see_through_balls, opaque_balls): (Vec<_>, Vec<_>) = shadow_balls
+            .iter()
+            .enumerate()
+            .map(|(i, &ball)| (i, ball))
+            .partition(|&(i, _)| see_through[i]);
         World {
+            opaque_balls,
+            see_through_balls,
             eye_cones,
             shadow_balls,
             photons,
@@ -415,7 +428,7 @@ impl<'s> World<'s> {
     /// is not tested: it cannot be hit. Adds the objects not tested to `untested`.
     #[inline]
     pub fn shadow_any_hit(&self, ray: &Ray, t_max: f64, filter: impl Fn(usize) -> bool, untested: &mut u64) -> bool {
-        if self.shadow_balls.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
+        if !self.scans_balls() {
             return self.any_hit(ray, t_max, &filter);
         }
         self.scan_balls(ray, t_max, filter, untested, |_| true)
@@ -432,7 +445,7 @@ impl<'s> World<'s> {
         mut visit: impl FnMut(usize),
         untested: &mut u64,
     ) {
-        if self.shadow_balls.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
+        if !self.scans_balls() {
             return self.each_hit(ray, t_max, &filter, &mut visit);
         }
         self.scan_balls(ray, t_max, filter, untested, |i| {
@@ -467,6 +480,38 @@ impl<'s> World<'s> {
             }
         }
         false
+    }
+
+    /// Both questions the tracer asks of a shadow ray, in one call: whether an opaque object
+    /// blocks it on `(0, t_max)` ([`World::shadow_any_hit`] over the opaque objects), and if
+    /// not, into `crossed` (ascending) the objects that filter shadows it meets
+    /// ([`World::shadow_each_hit`] over those). Each scan visits only its own objects, each
+    /// with its ball. Adds the objects passed by to `untested` as those two calls would (on a
+    /// blocked ray, the opaque ones before the blocker). Only for a world that
+    /// [`World::scans_balls`].
+    pub fn shadow_scan(&self, ray: &Ray, t_max: f64, crossed: &mut Vec<usize>, untested: &mut u64) -> bool {
+        let objects = &self.scene.objects[..];
+        for &(i, ball) in &self.opaque_balls {
+            if misses_ball(ray, t_max, ball) {
+                *untested += 1;
+            } else if objects[i].shape.occludes(ray, 0.0, t_max) {
+                return true;
+            }
+        }
+        for &(i, ball) in &self.see_through_balls {
+            if misses_ball(ray, t_max, ball) {
+                *untested += 1;
+            } else if objects[i].shape.occludes(ray, 0.0, t_max) {
+                crossed.push(i);
+            }
+        }
+        false
+    }
+
+    /// Whether shadow rays are scanned with their balls, passing objects by
+    /// ([`World::shadow_any_hit`]): a linearly scanned world with the bounding-sphere skip on.
+    pub fn scans_balls(&self) -> bool {
+        !self.shadow_balls.is_empty() && self.skips.on(Skip::BoundingSpheres)
     }
 
     /// Calls `visit` once for every object that `filter` accepts and `ray` hits with

@@ -601,6 +601,19 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         let t_max = inc.distance;
         rec.shadow_ray(&ray, t_max);
         let skips = world.skips;
+        if candidates.is_none() && skips.on(Skip::OpaqueOnly) && world.scans_balls() {
+            // The common case, scanned in one call: the same tests, answer and counts as the
+            // general path below.
+            self.crossed.clear();
+            let mut untested = 0;
+            let blocked = world.shadow_scan(&ray, t_max, &mut self.crossed, &mut untested);
+            self.counts.saved.count(Skip::BoundingSpheres, untested);
+            if blocked || !world.has_transparent {
+                self.counts.saved.count(Skip::OpaqueOnly, u64::from(!blocked));
+                return if blocked { DVec3::ZERO } else { DVec3::ONE };
+            }
+            return self.crossed_filter(rec);
+        }
         let opaque = |i: usize| !world.filters_shadows(i);
         let transparent = |i: usize| world.filters_shadows(i);
         if let Some(c) = candidates {
@@ -669,7 +682,14 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             .count(Skip::BoundingSpheres, sphere_rejects.get() + untested);
         // Multiply in object order so the bits do not depend on the traversal order.
         self.crossed.sort_unstable();
+        self.crossed_filter(rec)
+    }
+
+    /// The shadow filter of the objects in `crossed` (ascending), reported to `rec`: the
+    /// product of their colours ([`shadow_filter`]).
+    fn crossed_filter<R: Recorder>(&mut self, rec: &mut R) -> DVec3 {
         rec.shadow_crossed(&self.crossed);
+        let world = self.world;
         let rule = world.scene.settings.conventions.shadow_filter;
         shadow_filter(self.crossed.iter().map(|&i| {
             let mat = world.material_of(i);
