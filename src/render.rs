@@ -123,18 +123,19 @@ fn pixel_mean<const K: usize>(
     let mut rays = [Ray::new(DVec3::ZERO, DVec3::ZERO); BATCH];
     for first in (0..spp).step_by(BATCH) {
         let batch = (spp - first).min(BATCH as u32) as usize;
-        for b in 0..batch {
-            positions[b] = sample_at(world, &mut rng, n, x, y, first + b as u32);
+        let (positions, rays) = (&mut positions[..batch], &mut rays[..batch]);
+        for (b, position) in positions.iter_mut().enumerate() {
+            *position = sample_at(world, &mut rng, n, x, y, first + b as u32);
         }
-        for b in 0..batch {
-            rays[b] = camera_ray(world, positions[b]);
+        for (ray, &position) in rays.iter_mut().zip(positions.iter()) {
+            *ray = camera_ray(world, position);
         }
-        for b in 0..batch {
+        for (b, (&position, ray)) in positions.iter().zip(rays.iter()).enumerate() {
             let key = SampleKey {
                 pixel,
                 sample: first + b as u32,
             };
-            let c = trace(positions[b], &rays[b], key);
+            let c = trace(position, ray, key);
             for j in 0..K {
                 sum[j] += c[j];
             }

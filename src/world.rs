@@ -1,7 +1,9 @@
 //! A scene ready to render: the camera for the image's aspect, the intersection core, the
 //! points of fixed area lights, and the per-scene bounds the tracer needs at every hit. The
 //! tracer asks it for closest hits and shadow-ray hits ([`World::closest`],
-//! [`World::any_hit`], [`World::each_hit`]) rather than reaching into the core.
+//! [`World::any_hit`], [`World::each_hit`], and in a linearly scanned world both shadow
+//! questions at once, [`World::shadow_scan`]) rather than reaching into the core. `along`
+//! holds the objects' balls as each directional light's shadow rays see them.
 
 use crate::accel::{Accel, AccelChoice};
 use crate::area_light::{PointMode, PointSet};
