@@ -27,7 +27,8 @@
 //!    a BVH), [`shard`] (split renders and their bit-identical merge), [`caustics`] (the
 //!    photon pass: emission, specular paths through the intersection core, the photon map and
 //!    its density estimate).
-//! 7. [`world`]: a scene ready to render (camera, intersection core, light points, bounds).
+//! 7. [`world`]: a scene ready to render (camera, intersection core, light points, bounds;
+//!    `world::along`, the objects' balls seen along a directional light).
 //! 8. [`trace`]: the Whitted recursion, as the chapter reads ([`trace::reference`], through
 //!    the table of formulas [`trace::formulas`]) and as it renders ([`trace::fast`]), to the
 //!    same bits.

@@ -98,6 +98,7 @@ impl Light {
     /// Incidence at `p`, or `None` for ambient lights and for a point exactly at the light.
     /// Outside a spot's cone the incidence is black (spot factor 0). Area lights
     /// have one incidence per point: see [`point_incidence`].
+    #[inline]
     pub fn incidence(&self, p: DVec3) -> Option<Incidence> {
         self.incidence_with(p, spot_factor)
     }

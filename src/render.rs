@@ -97,27 +97,48 @@ fn jitter_streams(world: &World, x: u32, y: u32) -> [ShortStream; LANES] {
     }
 }
 
+/// How many of a pixel's samples have their positions and camera rays made before any of
+/// them is traced. Each ray is a chain of divisions and a square root that the next steps
+/// wait for; made side by side, the chains of a batch overlap instead of each stalling the
+/// start of its sample's trace.
+const BATCH: usize = 4;
+
 /// A pixel's radiance (the box filter): the mean of its samples, each traced by
-/// `trace(position, sample key)` at its position ([`sample_at`]), read in sample order from
-/// the pixel's jitter stream `rng` (the same numbers as [`sample_position`] for each sample).
+/// `trace(position, camera ray, sample key)` at its position ([`sample_at`]), read in sample
+/// order from the pixel's jitter stream `rng` (the same numbers as [`sample_position`] for
+/// each sample), with its ray ([`camera_ray`]). Samples are made [`BATCH`] at a time, then
+/// traced in order.
 fn pixel_mean<const K: usize>(
     world: &World,
     x: u32,
     y: u32,
     mut rng: ShortStream,
-    mut trace: impl FnMut((f64, f64), SampleKey) -> [DVec3; K],
+    mut trace: impl FnMut((f64, f64), &Ray, SampleKey) -> [DVec3; K],
 ) -> [DVec3; K] {
     let settings = &world.scene.settings;
     let (spp, n) = (settings.samples_per_pixel, settings.grid_side());
+    let pixel = pixel_index(world, x, y);
     let mut sum = [DVec3::ZERO; K];
-    for k in 0..spp {
-        let key = SampleKey {
-            pixel: pixel_index(world, x, y),
-            sample: k,
-        };
-        let c = trace(sample_at(world, &mut rng, n, x, y, k), key);
-        for j in 0..K {
-            sum[j] += c[j];
+    let mut positions = [(0.0, 0.0); BATCH];
+    let mut rays = [Ray::new(DVec3::ZERO, DVec3::ZERO); BATCH];
+    for first in (0..spp).step_by(BATCH) {
+        let batch = (spp - first).min(BATCH as u32) as usize;
+        let (positions, rays) = (&mut positions[..batch], &mut rays[..batch]);
+        for (b, position) in positions.iter_mut().enumerate() {
+            *position = sample_at(world, &mut rng, n, x, y, first + b as u32);
+        }
+        for (ray, &position) in rays.iter_mut().zip(positions.iter()) {
+            *ray = camera_ray(world, position);
+        }
+        for (b, (&position, ray)) in positions.iter().zip(rays.iter()).enumerate() {
+            let key = SampleKey {
+                pixel,
+                sample: first + b as u32,
+            };
+            let c = trace(position, ray, key);
+            for j in 0..K {
+                sum[j] += c[j];
+            }
         }
     }
     sum.map(|s| s / spp as f64)
@@ -130,21 +151,23 @@ pub fn render_sample<R: Recorder>(tracer: &mut Tracer, x: u32, y: u32, k: u32, r
         pixel: pixel_index(tracer.world, x, y),
         sample: k,
     };
-    trace_at(tracer, position, key, rec)[0]
+    let ray = camera_ray(tracer.world, position);
+    trace_at(tracer, position, &ray, key, rec)[0]
 }
 
-/// Radiance of every member along the camera ray through image position `(px, py)`; a NaN
-/// or infinity is counted and replaced by black (and is a bug: debug builds stop on it).
+/// Radiance of every member along `ray`, the camera ray through image position
+/// `(px, py)`; a NaN or infinity is counted and replaced by black (and is a bug: debug
+/// builds stop on it).
 fn trace_at<R: Recorder, const K: usize>(
     tracer: &mut Tracer<K>,
     (px, py): (f64, f64),
+    ray: &Ray,
     key: SampleKey,
     rec: &mut R,
 ) -> [DVec3; K] {
     rec.sample(key.sample, px, py);
     tracer.sample_key = key;
-    let ray = camera_ray(tracer.world, (px, py));
-    let mut c = tracer.trace_camera_members(&ray, rec);
+    let mut c = tracer.trace_camera_members(ray, rec);
     for (j, c) in c.iter_mut().enumerate() {
         debug_assert!(
             c.is_finite(),
@@ -190,7 +213,9 @@ fn render_pixel_members<R: Recorder, const K: usize>(
     rec: &mut R,
 ) -> [DVec3; K] {
     let world = tracer.world;
-    pixel_mean(world, x, y, rng, |position, key| trace_at(tracer, position, key, rec))
+    pixel_mean(world, x, y, rng, |position, ray, key| {
+        trace_at(tracer, position, ray, key, rec)
+    })
 }
 
 /// Renders the whole image on the current rayon pool. `progress` is called once per
@@ -317,12 +342,9 @@ impl<F: FormulaTable> PixelTracer<1> for ReferencePixels<'_, '_, F> {
         let world = self.tracer.world();
         let counts = &mut self.counts;
         let tracer = &self.tracer;
-        pixel_mean(world, x, y, rng, |position, key| {
+        pixel_mean(world, x, y, rng, |_, ray, key| {
             counts.camera += 1;
-            [finite_or_black(
-                tracer.camera(&camera_ray(world, position), key),
-                counts,
-            )]
+            [finite_or_black(tracer.camera(ray, key), counts)]
         })
     }
 

@@ -1,7 +1,9 @@
 //! A scene ready to render: the camera for the image's aspect, the intersection core, the
 //! points of fixed area lights, and the per-scene bounds the tracer needs at every hit. The
 //! tracer asks it for closest hits and shadow-ray hits ([`World::closest`],
-//! [`World::any_hit`], [`World::each_hit`]) rather than reaching into the core.
+//! [`World::any_hit`], [`World::each_hit`], and in a linearly scanned world both shadow
+//! questions at once, [`World::shadow_scan`]) rather than reaching into the core. `along`
+//! holds the objects' balls as each directional light's shadow rays see them.
 
 use crate::accel::{Accel, AccelChoice};
 use crate::area_light::{PointMode, PointSet};
@@ -13,8 +15,11 @@ use crate::math::Ray;
 use crate::scene::{Object, Scene};
 use crate::shape::{Shape, SurfaceHit, misses_bounding_sphere};
 use crate::skips::{Skip, Skips};
+use along::BallsAlong;
 use glam::DVec3;
 use std::borrow::Cow;
+
+mod along;
 
 /// An object that may block some shadow ray from one shading point (see
 /// [`World::shadow_candidates`]).
@@ -120,6 +125,15 @@ pub struct World<'s> {
     /// Per object, whether it lets shadow rays through, filtering them by its colour
     /// ([`World::filters_shadows`]).
     see_through: Vec<bool>,
+    /// For a world scanned linearly, the objects that block shadow rays with their
+    /// `shadow_balls`, in object order: the first scan of [`World::shadow_scan`].
+    opaque_balls: Vec<(usize, (DVec3, f64))>,
+    /// Likewise the objects that filter shadow rays ([`World::filters_shadows`]): its second
+    /// scan.
+    see_through_balls: Vec<(usize, (DVec3, f64))>,
+    /// For a world scanned linearly, the two lists' balls seen along each directional
+    /// light's shadow rays ([`BallsAlong`]), for [`World::shadow_scan`].
+    balls_along: Vec<BallsAlong>,
     /// For a world scanned linearly, per object the cone of directions from the camera's
     /// eye that meet its bounding sphere ([`direction_cone`]): unit axis and cosine of the
     /// half-angle, a camera ray `d` with `d.axis < cos` misses the object
@@ -212,7 +226,26 @@ impl<'s> World<'s> {
                 .collect(),
             false => Vec::new(),
         };
+        let (see_through_balls, opaque_balls): (Vec<_>, Vec<_>) = shadow_balls
+            .iter()
+            .enumerate()
+            .map(|(i, &ball)| (i, ball))
+            .partition(|&(i, _)| see_through[i]);
+        let balls_along = scene
+            .lights
+            .iter()
+            .filter_map(|light| match light {
+                Light::Directional { .. } if linear => {
+                    let to_light = light.incidence(DVec3::ZERO)?.to_light;
+                    BallsAlong::new(to_light, &opaque_balls, &see_through_balls)
+                }
+                _ => None,
+            })
+            .collect();
         World {
+            balls_along,
+            opaque_balls,
+            see_through_balls,
             eye_cones,
             shadow_balls,
             photons,
@@ -415,7 +448,7 @@ impl<'s> World<'s> {
     /// is not tested: it cannot be hit. Adds the objects not tested to `untested`.
     #[inline]
     pub fn shadow_any_hit(&self, ray: &Ray, t_max: f64, filter: impl Fn(usize) -> bool, untested: &mut u64) -> bool {
-        if self.shadow_balls.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
+        if !self.scans_balls() {
             return self.any_hit(ray, t_max, &filter);
         }
         self.scan_balls(ray, t_max, filter, untested, |_| true)
@@ -432,7 +465,7 @@ impl<'s> World<'s> {
         mut visit: impl FnMut(usize),
         untested: &mut u64,
     ) {
-        if self.shadow_balls.is_empty() || !self.skips.on(Skip::BoundingSpheres) {
+        if !self.scans_balls() {
             return self.each_hit(ray, t_max, &filter, &mut visit);
         }
         self.scan_balls(ray, t_max, filter, untested, |i| {
@@ -467,6 +500,77 @@ impl<'s> World<'s> {
             }
         }
         false
+    }
+
+    /// Both questions the tracer asks of a shadow ray, in one call: whether an opaque object
+    /// blocks it on `(0, t_max)` ([`World::shadow_any_hit`] over the opaque objects), and if
+    /// not, into `crossed` (ascending) the objects that filter shadows it meets
+    /// ([`World::shadow_each_hit`] over those). Each scan visits only its own objects, and
+    /// tests an object exactly only where the ray meets its ball: for an unending ray along
+    /// a directional light, by the balls seen along the light ([`BallsAlong`]), else by
+    /// [`misses_bounding_sphere`]. Adds the objects passed by to `untested` (on a blocked
+    /// ray, only the opaque ones before the blocker). Only for a world that
+    /// [`World::scans_balls`].
+    pub fn shadow_scan(&self, ray: &Ray, t_max: f64, crossed: &mut Vec<usize>, untested: &mut u64) -> bool {
+        let along = match t_max == f64::INFINITY {
+            true => self.balls_along.iter().find(|along| along.l == ray.dir),
+            false => None,
+        };
+        match along {
+            Some(along) => {
+                let o = along.origin(ray.origin);
+                self.scan_lists(ray, t_max, crossed, untested, |through, k| {
+                    o.misses(if through {
+                        &along.see_through[k]
+                    } else {
+                        &along.opaque[k]
+                    })
+                })
+            }
+            None => self.scan_lists(ray, t_max, crossed, untested, |through, k| {
+                let list = if through {
+                    &self.see_through_balls
+                } else {
+                    &self.opaque_balls
+                };
+                misses_ball(ray, t_max, list[k].1)
+            }),
+        }
+    }
+
+    /// [`World::shadow_scan`]'s two scans, with `missed(see_through, k)` saying whether the
+    /// ray passes by the ball of entry `k` of the see-through list, or of the opaque one.
+    #[inline(always)]
+    fn scan_lists(
+        &self,
+        ray: &Ray,
+        t_max: f64,
+        crossed: &mut Vec<usize>,
+        untested: &mut u64,
+        missed: impl Fn(bool, usize) -> bool,
+    ) -> bool {
+        let objects = &self.scene.objects[..];
+        for (k, &(i, _)) in self.opaque_balls.iter().enumerate() {
+            if missed(false, k) {
+                *untested += 1;
+            } else if objects[i].shape.occludes(ray, 0.0, t_max) {
+                return true;
+            }
+        }
+        for (k, &(i, _)) in self.see_through_balls.iter().enumerate() {
+            if missed(true, k) {
+                *untested += 1;
+            } else if objects[i].shape.occludes(ray, 0.0, t_max) {
+                crossed.push(i);
+            }
+        }
+        false
+    }
+
+    /// Whether shadow rays are scanned with their balls, passing objects by
+    /// ([`World::shadow_any_hit`]): a linearly scanned world with the bounding-sphere skip on.
+    pub fn scans_balls(&self) -> bool {
+        !self.shadow_balls.is_empty() && self.skips.on(Skip::BoundingSpheres)
     }
 
     /// Calls `visit` once for every object that `filter` accepts and `ray` hits with

@@ -3,7 +3,8 @@
 //! ([`World::closest_camera`]): the same object, `t` and normal to the bit as
 //! [`World::closest_before`], on rays through a fine grid of image positions and along
 //! each object's cone edge, and on rays traced as camera rays from elsewhere. Shadow rays skip the objects whose bounding sphere they miss
-//! ([`World::shadow_any_hit`], [`World::shadow_each_hit`]): the same answer and the same
+//! ([`World::shadow_any_hit`], [`World::shadow_each_hit`], and both in the tracer's one
+//! [`World::shadow_scan`]): the same answer and the same
 //! objects hit as [`World::any_hit`] and [`World::each_hit`], on rays from the visible
 //! points towards every light and in random directions. Reflected and refracted rays skip
 //! them too ([`World::closest_secondary`]), with the answer of [`World::closest_before`] to
@@ -149,6 +150,46 @@ fn check_shadow_ray(world: &World, ray: &Ray, t_max: f64, what: &str) -> u64 {
         world.each_hit(ray, t_max, filter, &mut |i| plain_hits.push(i));
         plain_hits.sort();
         assert_eq!(culled_hits, plain_hits, "{what}: every hit, ray {ray:?} to {t_max}");
+    }
+    if world.scans_balls() {
+        // The tracer's one scan: the opaque scan's answer, then the see-through objects
+        // met, with the objects passed by counted as the two scans count them.
+        let (mut crossed, mut one_scan_untested) = (Vec::new(), 0);
+        let blocked = world.shadow_scan(ray, t_max, &mut crossed, &mut one_scan_untested);
+        let mut two_scans_untested = 0;
+        let opaque = |i: usize| !see_through(i);
+        assert_eq!(
+            blocked,
+            world.shadow_any_hit(ray, t_max, opaque, &mut two_scans_untested),
+            "{what}: one scan, ray {ray:?} to {t_max}"
+        );
+        if !blocked {
+            let mut plain_crossed = Vec::new();
+            world.shadow_each_hit(
+                ray,
+                t_max,
+                see_through,
+                |i| plain_crossed.push(i),
+                &mut two_scans_untested,
+            );
+            assert_eq!(crossed, plain_crossed, "{what}: one scan, ray {ray:?} to {t_max}");
+        }
+        // Along a directional light the balls are seen across the light, padded a little
+        // more: some objects may be tested that the two scans pass by, never the reverse.
+        let along_a_light = t_max == f64::INFINITY
+            && world.scene.lights.iter().any(|light| {
+                matches!(light, Light::Directional { .. })
+                    && light.incidence(ray.origin).is_some_and(|inc| inc.to_light == ray.dir)
+            });
+        if along_a_light {
+            assert!(one_scan_untested <= two_scans_untested, "{what}: one scan, ray {ray:?}");
+        } else {
+            assert_eq!(
+                one_scan_untested, two_scans_untested,
+                "{what}: one scan, ray {ray:?} to {t_max}"
+            );
+        }
+        untested += one_scan_untested;
     }
     untested
 }

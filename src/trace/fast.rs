@@ -20,6 +20,7 @@
 //! [`Reference`]: super::Reference
 
 use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface, caustic_share, point_light_terms};
+use crate::area_light::AreaLight;
 use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, aperture_share};
 use crate::material::Material;
@@ -392,7 +393,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             let shadow_before = self.counts.shadow;
             match light {
                 Light::Ambient { .. } => {}
-                Light::Area(area) => self.add_area_light(&mut color, lit, index, area, at, rec),
+                Light::Area(area) => self.area_light_apart(&mut color, lit, index, area, at, rec),
                 Light::Aperture(a) => {
                     // Its share depends on no member's material or shading: one for all.
                     let share = self.aperture_light(index, a.color, light.incidence(at.point), at, rec);
@@ -418,6 +419,22 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             }
         }
         color
+    }
+
+    /// [`Tracer::add_area_light`] kept out of [`Tracer::local`]: inlined there, the setup of
+    /// its scratch space would run at every hit of every scene, with an area light or not.
+    /// One call per area light and hit costs nothing beside its `N` points.
+    #[inline(never)]
+    fn area_light_apart<R: Recorder>(
+        &mut self,
+        color: &mut [DVec3; K],
+        mask: u32,
+        index: usize,
+        area: &AreaLight,
+        at: &Surface,
+        rec: &mut R,
+    ) {
+        self.add_area_light(color, mask, index, area, at, rec)
     }
 
     /// One point light's share at a surface point: `A L [k_d S max(N.L, 0) + k_s tint spec]`
@@ -601,6 +618,19 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         let t_max = inc.distance;
         rec.shadow_ray(&ray, t_max);
         let skips = world.skips;
+        if candidates.is_none() && skips.on(Skip::OpaqueOnly) && world.scans_balls() {
+            // The common case, scanned in one call: the same tests, answer and counts as the
+            // general path below.
+            self.crossed.clear();
+            let mut untested = 0;
+            let blocked = world.shadow_scan(&ray, t_max, &mut self.crossed, &mut untested);
+            self.counts.saved.count(Skip::BoundingSpheres, untested);
+            if blocked || !world.has_transparent {
+                self.counts.saved.count(Skip::OpaqueOnly, u64::from(!blocked));
+                return if blocked { DVec3::ZERO } else { DVec3::ONE };
+            }
+            return self.crossed_filter(rec);
+        }
         let opaque = |i: usize| !world.filters_shadows(i);
         let transparent = |i: usize| world.filters_shadows(i);
         if let Some(c) = candidates {
@@ -669,7 +699,14 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             .count(Skip::BoundingSpheres, sphere_rejects.get() + untested);
         // Multiply in object order so the bits do not depend on the traversal order.
         self.crossed.sort_unstable();
+        self.crossed_filter(rec)
+    }
+
+    /// The shadow filter of the objects in `crossed` (ascending), reported to `rec`: the
+    /// product of their colours ([`shadow_filter`]).
+    fn crossed_filter<R: Recorder>(&mut self, rec: &mut R) -> DVec3 {
         rec.shadow_crossed(&self.crossed);
+        let world = self.world;
         let rule = world.scene.settings.conventions.shadow_filter;
         shadow_filter(self.crossed.iter().map(|&i| {
             let mat = world.material_of(i);
