@@ -60,20 +60,9 @@ fn quadratic_roots(a: f64, b: f64, c: f64, disc: f64) -> (f64, f64) {
     if t0 <= t1 { (t0, t1) } else { (t1, t0) }
 }
 
-/// Evaluates `sum c[i] t^i` by Horner's rule (coefficients in increasing degree): from
-/// `acc = 0`, `acc = acc t + c[i]` for `i` from the top down. Up to degree 4 (the isolator's
-/// polynomials and their derivatives) the steps are written out, the same operations in
-/// the same order, so that the refinement's evaluations carry no loop.
-#[inline(always)]
+/// Evaluates `sum c[i] t^i` by Horner's rule (coefficients in increasing degree).
 pub fn horner(c: &[f64], t: f64) -> f64 {
-    match *c {
-        [c0] => 0.0 * t + c0,
-        [c0, c1] => (0.0 * t + c1) * t + c0,
-        [c0, c1, c2] => ((0.0 * t + c2) * t + c1) * t + c0,
-        [c0, c1, c2, c3] => (((0.0 * t + c3) * t + c2) * t + c1) * t + c0,
-        [c0, c1, c2, c3, c4] => ((((0.0 * t + c4) * t + c3) * t + c2) * t + c1) * t + c0,
-        _ => c.iter().rev().fold(0.0, |acc, &ci| acc * t + ci),
-    }
+    c.iter().rev().fold(0.0, |acc, &ci| acc * t + ci)
 }
 
 /// Pushes into `out`, in increasing order, the real roots in `[lo, hi]` of the polynomial
@@ -428,40 +417,6 @@ mod tests {
             push_unique(&mut out, hi);
         }
         out
-    }
-
-    #[test]
-    fn written_out_horner_is_the_fold_to_the_bit() {
-        // Horner's rule as a loop over the coefficients, top down from 0: what `horner`
-        // writes out for each length up to 5. Signed zeros (0 t is -0 for t < 0, and
-        // -0 + -0 stays -0), huge and tiny values and cancelling coefficients must give the
-        // same bits.
-        let fold = |c: &[f64], t: f64| c.iter().rev().fold(0.0, |acc: f64, &ci| acc * t + ci);
-        let values = [
-            0.0,
-            -0.0,
-            1.0,
-            -1.5,
-            1e-300,
-            -3e300,
-            0.1,
-            7.25,
-            -2.0 / 3.0,
-            f64::INFINITY,
-        ];
-        let ts = [0.0, -0.0, 0.5, -0.5, 3.0, -1e10, 1e-200, 0.1, f64::INFINITY, f64::NAN];
-        for len in 0..=6 {
-            for start in 0..values.len() {
-                let c: Vec<f64> = (0..len).map(|i| values[(start + 3 * i) % values.len()]).collect();
-                for &t in &ts {
-                    assert_eq!(horner(&c, t).to_bits(), fold(&c, t).to_bits(), "{c:?} at {t}");
-                }
-            }
-        }
-        // -0 as the only coefficient at a negative t: 0 (-0.5) + -0 = -0 + -0 = -0.
-        assert_eq!(horner(&[-0.0], -0.5).to_bits(), (-0.0f64).to_bits());
-        // A value worked by hand: 2 - 3 t + t^2 at t = 4 is 6.
-        assert_eq!(horner(&[2.0, -3.0, 1.0], 4.0), 6.0);
     }
 
     #[test]
