@@ -60,7 +60,15 @@ pub(super) struct AreaScratch {
     facing: Vec<Facing>,
     /// Shadow filter of each point: 1 unshadowed, 0 blocked, else the product of colours;
     /// filled with 1 only when first written at a shading point ([`AreaScratch::ensure_filter`]).
+    /// Where `blocked_unread`, the filters of points blocked by an opaque object are left
+    /// as they are (`blocked` tells them).
     filter: Vec<DVec3>,
+    /// Whether pass 4 never reads the filter of a point an opaque object blocks: without a
+    /// recorder, with the blocked-shading and back-facing skips on, a blocked point adds
+    /// nothing and only the points that add have their filters read. Then an opaque
+    /// candidate's hits only mark `blocked`, and the filters are filled with 1 only when a
+    /// transparent object meets a shadow ray.
+    blocked_unread: bool,
     /// Whether `filter` holds this shading point's filters (else every one is 1).
     filter_ready: bool,
     /// Whether an opaque object blocks the point's shadow ray.
@@ -436,6 +444,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
         }
         let shadows = self.world.scene.settings.shadows;
         s.filter_ready = false;
+        s.blocked_unread =
+            !R::RECORDS && self.world.skips.on(Skip::BlockedShading) && self.world.skips.on(Skip::BackFacing);
         s.blocked.clear();
         s.blocked.resize(len, false);
         s.zero_product = false;
@@ -476,8 +486,11 @@ impl<const K: usize> Tracer<'_, '_, K> {
             s.adds.resize(len, false);
             let mut lit = 0u32;
             if s.zero_product {
-                for ((&f, filter), add) in s.facing.iter().zip(&s.filter).zip(&mut s.adds) {
-                    *add = (f == Facing::Towards) & !(blocked_shading & (*filter == DVec3::ZERO));
+                let points = s.facing.iter().zip(&s.blocked).zip(&s.filter).zip(&mut s.adds);
+                for (((&f, &blocked), filter), add) in points {
+                    // A blocked point's filter is 0, or not written (`blocked_unread`).
+                    let zero = blocked | (*filter == DVec3::ZERO);
+                    *add = (f == Facing::Towards) & !(blocked_shading & zero);
                     lit += u32::from(*add);
                 }
             } else {

@@ -151,29 +151,39 @@ impl<const K: usize> Tracer<'_, '_, K> {
             };
             s.fan.resize(open, Verdict::Test);
             fan_verdicts(shape, &fan, &s.tests[..tests], &mut s.fan);
+            // The fan's hits join the list and its undecided rays stay in `tests`, without a
+            // branch per ray (the pattern is random); then the exact test of each undecided
+            // ray, in ascending order. The order of `hits` does not matter: each of its points
+            // is marked on its own.
+            let mut undecided = 0;
             for k in 0..tests {
-                let i = s.tests[k];
-                let met = match s.fan[k] {
-                    Verdict::Hit => true,
-                    Verdict::Miss => false,
-                    Verdict::Test => shape.occludes(
-                        &Ray::new(origin, lanes.to_light(i as usize)),
-                        0.0,
-                        lanes.dist[i as usize],
-                    ),
-                };
-                // `hits <= open`: in bounds.
+                let (i, verdict) = (s.tests[k], s.fan[k]);
+                // `hits <= open` and `undecided <= k`: in bounds.
                 s.hits[hits] = i;
-                hits += usize::from(met);
+                hits += usize::from(verdict == Verdict::Hit);
+                s.tests[undecided] = i;
+                undecided += usize::from(verdict == Verdict::Test);
             }
-            if hits > 0 {
+            for k in 0..undecided {
+                let i = s.tests[k] as usize;
+                s.hits[hits] = i as u32;
+                hits += usize::from(shape.occludes(&Ray::new(origin, lanes.to_light(i)), 0.0, lanes.dist[i]));
+            }
+            let opaque = !world.filters_shadows(c.object);
+            if hits > 0 && !(opaque && s.blocked_unread) {
                 s.ensure_filter(len);
             }
             let met = &s.hits[..hits];
-            if !world.filters_shadows(c.object) {
-                for &i in met {
-                    s.filter[i as usize] = DVec3::ZERO;
-                    s.blocked[i as usize] = true;
+            if opaque {
+                if s.blocked_unread {
+                    for &i in met {
+                        s.blocked[i as usize] = true;
+                    }
+                } else {
+                    for &i in met {
+                        s.filter[i as usize] = DVec3::ZERO;
+                        s.blocked[i as usize] = true;
+                    }
                 }
                 // Each of them was open.
                 open -= hits;
