@@ -19,7 +19,7 @@
 //! multiply and an add), so the same bits on every machine; pass 3's specular power is
 //! taken in the loop that computes the cosine ([`pow_each_of`]), and pass 4 marks and
 //! counts the points that add in byte loops of the same kind ([`mark_adds`],
-//! [`count_towards`]). Each point's arithmetic is that
+//! [`count_facing`]). Each point's arithmetic is that
 //! of a lone point light: the loops call, point by point or channel by channel, the
 //! formulas a point light is shaded with ([`point_incidence`]'s [`direction_to`] and
 //! [`arriving`], [`blinn`]'s or [`phong`]'s cosines, [`diffuse`], [`specular`]), and the
@@ -191,8 +191,8 @@ fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mu
 
 /// Pass 2's first step: how each point faces the surface, [`Facing::of`] as a lane loop.
 /// A point is black when its colour `L / N * A` is zero (and the unlit skip is on).
-/// Returns how many points face the surface, face away and are black (counted here, in
-/// the same vector loop, rather than by more passes).
+/// Returns how many points face the surface, face away and are black (counted after, in
+/// byte loops: [`count_facing`]).
 ///
 /// With no channel of `L / N` negative or NaN, the colour is zero exactly when its
 /// brightest channel is: a rounded product does not grow in magnitude when a factor
@@ -219,15 +219,11 @@ fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facin
 fn facings_where(lanes: &Lanes, unlit_skip: bool, out: &mut [Facing], zero: impl Fn(f64) -> bool) -> [u64; 3] {
     let len = out.len();
     let (dist, atten, n_dot_l) = (&lanes.dist[..len], &lanes.atten[..len], &lanes.n_dot_l[..len]);
-    let (mut towards, mut away, mut black) = (0u32, 0u32, 0u32);
     for i in 0..len {
-        let facing = Facing::of(dist[i] != 0.0, unlit_skip & zero(atten[i]), n_dot_l[i]);
-        towards += u32::from(facing == Facing::Towards);
-        away += u32::from(facing == Facing::Away);
-        black += u32::from(facing == Facing::Black);
-        out[i] = facing;
+        out[i] = Facing::of(dist[i] != 0.0, unlit_skip & zero(atten[i]), n_dot_l[i]);
     }
-    [towards, away, black].map(u64::from)
+    let out = &*out;
+    [Facing::Towards, Facing::Away, Facing::Black].map(|kind| count_facing(out, kind))
 }
 
 /// Pass 3's first step: for every point, the specular term `spec_i`: Blinn's
@@ -537,7 +533,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                         facings(&s.lanes, member_color, true, &mut s.member_facing[..count]);
                         self.diverged |= s.member_facing[..count] != s.facing[..count];
                     }
-                    let own = count_towards(&s.facing[..count]);
+                    let own = count_facing(&s.facing[..count], Facing::Towards);
                     self.shadow_excess[j] += towards - own;
                 }
             }
@@ -683,12 +679,13 @@ fn mark_adds(facing: &[Facing], blocked: &[bool], skip_blocked: bool, adds: &mut
     count
 }
 
-/// How many of `facing` face the surface; as [`mark_adds`], a lane loop over bytes.
+/// How many of `facing` are `kind`; as [`mark_adds`], a lane loop over bytes (counted in
+/// bytes, a few vectors' worth at a time: at most 255 a byte lane).
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn count_towards(facing: &[Facing]) -> u64 {
+fn count_facing(facing: &[Facing], kind: Facing) -> u64 {
     let mut count = 0;
     for chunk in facing.chunks(128) {
-        count += u64::from(chunk.iter().fold(0u8, |n, &f| n + u8::from(f == Facing::Towards)));
+        count += u64::from(chunk.iter().fold(0u8, |n, &f| n + u8::from(f == kind)));
     }
     count
 }
@@ -858,7 +855,7 @@ mod tests {
         assert!(black > 0);
     }
 
-    /// [`mark_adds`] and [`count_towards`] give, for counts past a byte and lengths past
+    /// [`mark_adds`] and [`count_facing`] give, for counts past a byte and lengths past
     /// their chunks of 128, the marks and counts of the point-by-point definitions: every
     /// point facing and none blocked (all 300 add), and a mixed pattern with and without
     /// the blocked points skipped.
@@ -868,8 +865,8 @@ mod tests {
         let mut adds = vec![false; 300];
         assert_eq!(mark_adds(&all, &[false; 300], true, &mut adds), 300);
         assert!(adds.iter().all(|&a| a));
-        assert_eq!(count_towards(&all), 300);
-        assert_eq!(count_towards(&all[..129]), 129);
+        assert_eq!(count_facing(&all, Facing::Towards), 300);
+        assert_eq!(count_facing(&all[..129], Facing::Towards), 129);
         let mut rng = ChaCha8Rng::seed_from_u64(3);
         let kinds = [Facing::NoLight, Facing::Black, Facing::Away, Facing::Towards];
         let facing: Vec<Facing> = (0..1000).map(|_| kinds[(rng.next_u64() % 4) as usize]).collect();
@@ -885,8 +882,10 @@ mod tests {
             assert!(count > 100 && count < 400, "a mixed pattern: {count} of 1000");
         }
         for len in [0, 1, 127, 128, 129, 1000] {
-            let want = facing[..len].iter().filter(|&&f| f == Facing::Towards).count() as u64;
-            assert_eq!(count_towards(&facing[..len]), want, "{len} points");
+            for kind in kinds {
+                let want = facing[..len].iter().filter(|&&f| f == kind).count() as u64;
+                assert_eq!(count_facing(&facing[..len], kind), want, "{len} points, {kind:?}");
+            }
         }
     }
 

@@ -202,12 +202,18 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 let mat = world.material_of(c.object);
                 let color = transparent_filter(world.scene.settings.conventions.shadow_filter, mat.kt, mat.color);
                 s.tinted |= hits > 0;
+                // Each channel compared, no branch (a product is rarely 0).
+                let mut zero_product = false;
                 for &i in met {
                     let i = i as usize;
-                    s.filter[i] = filter_through(s.filter[i], color);
-                    s.zero_product |= s.filter[i] == DVec3::ZERO;
-                    if let Some(list) = s.crossed.get_mut(i) {
-                        list.push(c.object);
+                    let f = filter_through(s.filter[i], color);
+                    s.filter[i] = f;
+                    zero_product |= (f.x == 0.0) & (f.y == 0.0) & (f.z == 0.0);
+                }
+                s.zero_product |= zero_product;
+                if !s.crossed.is_empty() {
+                    for &i in met {
+                        s.crossed[i as usize].push(c.object);
                     }
                 }
             }
