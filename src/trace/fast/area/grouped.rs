@@ -17,7 +17,7 @@
 use super::{AreaScratch, Facing, Lanes};
 use crate::math::Ray;
 use crate::shading::{filter_through, transparent_filter};
-use crate::shape::{Fan, Shape, Verdict, fan_verdicts};
+use crate::shape::{Fan, Shape, Verdict, fan_verdicts, occludes_undecided};
 use crate::skips::Skip;
 use crate::trace::Surface;
 use crate::trace::fast::{Tracer, segment_meets_sphere};
@@ -167,7 +167,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
             for k in 0..undecided {
                 let i = s.tests[k] as usize;
                 s.hits[hits] = i as u32;
-                hits += usize::from(shape.occludes(&Ray::new(origin, lanes.to_light(i)), 0.0, lanes.dist[i]));
+                hits += usize::from(occludes_undecided(shape, &fan, lanes.to_light(i), lanes.dist[i]));
             }
             let opaque = !world.filters_shadows(c.object);
             if hits > 0 && !(opaque && s.blocked_unread) {
