@@ -403,13 +403,15 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 world.shadow_candidates(at.point, center, radius, 4.0 * at.err, &mut candidates);
             }
             let shadowing = culled.then_some(candidates.as_slice());
-            self.add_area_points(color, mask, index, points, area, at, shadowing, &mut s, rec);
+            let light = (area, (center, radius));
+            self.add_area_points(color, mask, index, points, light, at, shadowing, &mut s, rec);
             s.candidates = candidates;
         }
         self.area = s;
     }
 
-    /// Passes 1 to 4 of the module doc for the light points `points` of `area`.
+    /// Passes 1 to 4 of the module doc for the light points `points` of `area`, whose
+    /// bounding sphere ([`AreaLight::bounding_sphere`]) is `sphere`.
     /// `candidates`, when given, are the only objects that can block their shadow rays;
     /// without them each shadow ray goes through the acceleration structure on its own.
     /// A member whose area light count `N` is set for this light takes the first `N` points,
@@ -421,7 +423,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         mask: u32,
         index: usize,
         points: &PointSet,
-        area: &AreaLight,
+        (area, sphere): (&AreaLight, (DVec3, f64)),
         at: &Surface,
         candidates: Option<&[Candidate]>,
         s: &mut AreaScratch,
@@ -453,7 +455,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         }
         let grouped = match candidates {
             Some(c) if shadows => {
-                self.shadow_points(c, at, area.bounding_sphere(), towards as usize, packing, s);
+                self.shadow_points(c, at, sphere, towards as usize, packing, s);
                 true
             }
             _ => false,
