@@ -62,6 +62,7 @@ pub fn fan_verdicts(shape: &Shape, fan: &Fan, list: &[u32], out: &mut [Verdict])
         Shape::Torus(torus) => in_chunks(&**torus, fan, list, out),
         Shape::Cuboid(cuboid) => in_chunks(&**cuboid, fan, list, out),
         Shape::Cone(cone) => in_chunks(&**cone, fan, list, out),
+        Shape::Cylinder(cylinder) => in_chunks(&**cylinder, fan, list, out),
         _ => out.fill(Verdict::Test),
     }
 }
@@ -145,7 +146,7 @@ fn chunk_verdicts<S: FanShape>(shape: &S, origin: S::Origin, chunk: &Chunk, out:
 mod tests {
     use super::*;
     use crate::math::Ray;
-    use crate::shape::{Aabb, Cone, Cuboid, Torus};
+    use crate::shape::{Aabb, Cone, Cuboid, Cylinder, Torus};
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
 
@@ -279,7 +280,17 @@ mod tests {
             counts.hits > 2000 && counts.misses > 2000 && counts.by_oracle > 10_000,
             "{counts:?}"
         );
-        for (k, shape) in [&turned, &cones[0], &cones[1]].into_iter().enumerate() {
+        let base = center - DVec3::new(0.0, 0.0, 1.0);
+        let tilt = DVec3::new(0.3, -0.5, 1.0);
+        let cylinders = [
+            Cylinder::new(base, DVec3::Z, 2.0, 1.0),
+            Cylinder::new(base, tilt, 2.0, 1.0),
+            Cylinder::tube(base, DVec3::Z, 2.0, 1.0),
+            Cylinder::tube(base, tilt, 2.0, 1.0),
+        ]
+        .map(|c| Shape::Cylinder(Box::new(c)));
+        let shapes = [&turned, &cones[0], &cones[1]].into_iter().chain(&cylinders);
+        for (k, shape) in shapes.enumerate() {
             let counts = check_fans(shape, center, 2.0, 1 + k as u64, none);
             assert!(counts.hits > 2000 && counts.misses > 2000, "shape {k}: {counts:?}");
         }

@@ -31,7 +31,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
     /// (opaque ones until one blocks, then every transparent one in ascending order), with
     /// the same counts. For each candidate, a lane loop first sorts every point's direction
     /// by the candidate's cones ([`verdicts`]); the undecided ones get the candidate's own
-    /// shortcuts, all together ([`fan_verdicts`]: for a box or a cone the whole exact test),
+    /// shortcuts, all together ([`fan_verdicts`]: for a box, a cone or a cylinder the whole exact test),
     /// and what is still undecided its exact test.
     pub(super) fn shadow_points(
         &mut self,
