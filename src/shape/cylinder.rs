@@ -1,10 +1,10 @@
 //! A cylinder: base center, unit axis, height, radius; capped (a closed solid), or open (a
 //! tube, SIMRenderer's `tube`: the side alone, seen from inside as from outside).
 
-use super::{Aabb, SurfaceHit, first_root_in, local_cap, nearer};
+use super::{Aabb, SurfaceHit, Verdict, cap_root, first_root, first_root_in, local_cap, nearer};
 use super::{gamma, l1};
 use crate::math::{Frame, Ray};
-use crate::solve::quadratic;
+use crate::solve::{quadratic, quadratic_parts};
 use glam::DVec3;
 
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -116,6 +116,40 @@ impl Cylinder {
         nearer(nearer(side, bottom), top)
     }
 
+    /// Whether the shadow ray from `origin` along `dir` meets the cylinder on `(0, reach)`:
+    /// `intersect(..).is_some()`, every step of it evaluated and selected without a branch
+    /// (see [`super::fan`]). For `a > 0` the quadratic's branch-free form gives the same
+    /// roots; the hit's `t` is the least of the side's and the caps' roots, infinity for
+    /// none, as `nearer` keeps it.
+    #[inline(always)]
+    fn shadow_hit(&self, origin: DVec3, dir: DVec3, reach: f64) -> bool {
+        const NONE: f64 = f64::INFINITY;
+        let ray = Ray::new(origin, dir);
+        let missed = super::misses_bounding_sphere(&ray, 0.0, reach, self.bounding_sphere());
+        let o = self.frame.to_local(ray.origin - self.base);
+        let d = self.frame.to_local(ray.dir);
+        let shift = super::recenter(o, d, DVec3::new(0.0, 0.0, 0.5 * self.height), self.height + self.radius);
+        let (o, t_min) = (o + d * shift, 0.0 - shift);
+        let r2 = self.radius * self.radius;
+        let a = d.x * d.x + d.y * d.y;
+        let on_side = |t: f64| {
+            let z = o.z + t * d.z;
+            (t > t_min) & (t < NONE) & (z >= 0.0) & (z <= self.height)
+        };
+        let (t0, t1, real) = quadratic_parts(a, 2.0 * (o.x * d.x + o.y * d.y), o.x * o.x + o.y * o.y - r2);
+        let t0 = if on_side(t0) { t0 } else { NONE };
+        let t1 = if on_side(t1) { t1 } else { NONE };
+        let side = first_root((t0.min(t1), t0.max(t1)), t_min, NONE);
+        let side = if (a > 0.0) & real { side } else { NONE };
+        let in_disk = |x: f64, y: f64| x * x + y * y <= r2;
+        let bottom = cap_root(o, d, 0.0, t_min, NONE, in_disk);
+        let top = cap_root(o, d, self.height, t_min, NONE, in_disk);
+        let caps = if top < bottom { top } else { bottom };
+        let closed = if caps < side { caps } else { side };
+        let t = if self.open { side } else { closed };
+        !missed & (t < NONE) & (t + shift < reach)
+    }
+
     /// Bound on the distance from `p` to the cylinder: the smallest of the distances to the
     /// side `| sqrt(x^2 + y^2) - r |` and (unless open) to the cap planes, plus its
     /// evaluation error.
@@ -133,6 +167,18 @@ impl Cylinder {
     pub fn bounds(&self) -> Option<Aabb> {
         disk_bounds(self.base, self.axis, self.radius)
             .map(|b| b.union(disk_bounds(self.base + self.axis * self.height, self.axis, self.radius).unwrap()))
+    }
+}
+
+impl super::fan::FanShape for Cylinder {
+    type Origin = DVec3;
+    fn fan_origin(&self, origin: DVec3) -> DVec3 {
+        origin
+    }
+    #[inline(always)]
+    fn verdict(&self, origin: DVec3, dir: DVec3, reach: f64) -> Verdict {
+        let hit = self.shadow_hit(origin, dir, reach);
+        Verdict::of(hit, !hit)
     }
 }
 

@@ -9,6 +9,7 @@
 //! the way. For one ray the shapes keep their early exits, which are cheaper there.
 
 use super::Shape;
+use crate::math::Ray;
 use glam::DVec3;
 use multiversion::multiversion;
 
@@ -61,46 +62,83 @@ pub fn fan_verdicts(shape: &Shape, fan: &Fan, list: &[u32], out: &mut [Verdict])
         Shape::Torus(torus) => in_chunks(&**torus, fan, list, out),
         Shape::Cuboid(cuboid) => in_chunks(&**cuboid, fan, list, out),
         Shape::Cone(cone) => in_chunks(&**cone, fan, list, out),
+        Shape::Cylinder(cylinder) => in_chunks(&**cylinder, fan, list, out),
         _ => out.fill(Verdict::Test),
     }
 }
 
-/// Rays gathered from a fan, at most [`CHUNK`].
+/// [`Shape::occludes`] on `(0, reach)` for the ray from `fan.origin` along `dir`, which
+/// [`fan_verdicts`] left undecided: for the torus, without the shortcuts its verdict
+/// already took (`Torus::occludes_undecided`). The same answer, to the bit.
+pub fn occludes_undecided(shape: &Shape, fan: &Fan, dir: DVec3, reach: f64) -> bool {
+    let ray = Ray::new(fan.origin, dir);
+    match shape {
+        Shape::Torus(torus) => torus.occludes_undecided(&ray, torus.local_origin(fan.origin), 0.0, reach),
+        _ => shape.occludes(&ray, 0.0, reach),
+    }
+}
+
+/// Rays gathered from a fan, at most [`CHUNK`], in groups of [`LANES`].
 const CHUNK: usize = 64;
+/// How many rays the verdict loop takes at a time: one AVX-512 vector of `f64`, two of AVX2.
+const LANES: usize = 8;
+const GROUPS: usize = CHUNK / LANES;
 struct Chunk {
-    x: [f64; CHUNK],
-    y: [f64; CHUNK],
-    z: [f64; CHUNK],
-    reach: [f64; CHUNK],
+    x: [[f64; LANES]; GROUPS],
+    y: [[f64; LANES]; GROUPS],
+    z: [[f64; LANES]; GROUPS],
+    reach: [[f64; LANES]; GROUPS],
+}
+
+impl Chunk {
+    /// Ray `i` of `fan` into place `k`.
+    #[inline(always)]
+    fn set(&mut self, k: usize, fan: &Fan, i: usize) {
+        let (g, l) = (k / LANES, k % LANES);
+        (self.x[g][l], self.y[g][l], self.z[g][l], self.reach[g][l]) = (fan.x[i], fan.y[i], fan.z[i], fan.reach[i]);
+    }
 }
 
 /// The verdicts of `shape` on the rays `list` of `fan`, [`CHUNK`] rays at a time: each
 /// chunk's directions and reaches gathered into arrays, so that the loop over them
-/// compiles to vector instructions.
+/// compiles to vector instructions. A chunk whose count is not a multiple of [`LANES`] is
+/// filled up with copies of its last ray, whose verdicts are dropped: every ray is then
+/// decided on a vector lane, none by a loop over the leftover rays one at a time (for the
+/// torus, such a ray costs several times a lane of a vector).
 fn in_chunks<S: FanShape>(shape: &S, fan: &Fan, list: &[u32], out: &mut [Verdict]) {
     let origin = shape.fan_origin(fan.origin);
     let mut chunk = Chunk {
-        x: [0.0; CHUNK],
-        y: [0.0; CHUNK],
-        z: [0.0; CHUNK],
-        reach: [0.0; CHUNK],
+        x: [[0.0; LANES]; GROUPS],
+        y: [[0.0; LANES]; GROUPS],
+        z: [[0.0; LANES]; GROUPS],
+        reach: [[0.0; LANES]; GROUPS],
     };
+    let mut verdicts = [Verdict::Test; CHUNK];
     for (rays, out) in list.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
         for (k, &i) in rays.iter().enumerate() {
-            let i = i as usize;
-            (chunk.x[k], chunk.y[k], chunk.z[k], chunk.reach[k]) = (fan.x[i], fan.y[i], fan.z[i], fan.reach[i]);
+            chunk.set(k, fan, i as usize);
         }
-        chunk_verdicts(shape, origin, &chunk, out);
+        let groups = rays.len().div_ceil(LANES);
+        let last = rays[rays.len() - 1] as usize;
+        for k in rays.len()..groups * LANES {
+            chunk.set(k, fan, last);
+        }
+        chunk_verdicts(shape, origin, &chunk, &mut verdicts[..groups * LANES]);
+        out.copy_from_slice(&verdicts[..rays.len()]);
     }
 }
 
-/// The verdicts on the first `out.len()` rays of `chunk`, in versions for AVX-512 and AVX2
-/// chosen at run time (the same IEEE operations on every lane, so the same verdicts).
+/// The verdicts on the first `out.len()` rays of `chunk` (a multiple of [`LANES`]), in
+/// versions for AVX-512 and AVX2 chosen at run time (the same IEEE operations on every
+/// lane, so the same verdicts).
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn chunk_verdicts<S: FanShape>(shape: &S, origin: S::Origin, chunk: &Chunk, out: &mut [Verdict]) {
-    for (k, verdict) in out.iter_mut().enumerate() {
-        let dir = DVec3::new(chunk.x[k], chunk.y[k], chunk.z[k]);
-        *verdict = shape.verdict(origin, dir, chunk.reach[k]);
+    let (groups, _) = out.as_chunks_mut::<LANES>();
+    for (g, out) in groups.iter_mut().enumerate() {
+        let (x, y, z, reach) = (&chunk.x[g], &chunk.y[g], &chunk.z[g], &chunk.reach[g]);
+        for l in 0..LANES {
+            out[l] = shape.verdict(origin, DVec3::new(x[l], y[l], z[l]), reach[l]);
+        }
     }
 }
 
@@ -108,7 +146,7 @@ fn chunk_verdicts<S: FanShape>(shape: &S, origin: S::Origin, chunk: &Chunk, out:
 mod tests {
     use super::*;
     use crate::math::Ray;
-    use crate::shape::{Aabb, Cone, Cuboid, Torus};
+    use crate::shape::{Aabb, Cone, Cuboid, Cylinder, Torus};
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
 
@@ -128,8 +166,8 @@ mod tests {
 
     /// Fans from around, inside, on and far from `shape`: directions towards random points
     /// near it and along the axes (zero components), reaches short and long, rays listed
-    /// out of order and more than a chunk at a time. Every decided verdict is `occludes`'s
-    /// answer, and the oracle's where it has one.
+    /// out of order and more than a chunk at a time, and the list's first rays alone. Every
+    /// decided verdict is `occludes`'s answer, and the oracle's where it has one.
     fn check_fans(shape: &Shape, center: DVec3, size: f64, seed: u64, oracle: Oracle) -> Counts {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut u = move || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53) * 2.0 - 1.0;
@@ -171,6 +209,13 @@ mod tests {
             let list: Vec<u32> = (0..150).rev().filter(|i| i % 7 != 3).collect();
             let mut out = vec![Verdict::Test; list.len() + 5];
             fan_verdicts(shape, &fan, &list, &mut out);
+            // The list's first rays alone, a chunk filled up with copies or not: the same
+            // verdicts.
+            for len in [1, 7, 8, 9, 63, 64, 65, 71] {
+                let mut part = vec![Verdict::Test; len];
+                fan_verdicts(shape, &fan, &list[..len], &mut part);
+                assert_eq!(part, out[..len], "fan {f}, the first {len} rays");
+            }
             for (&i, &verdict) in list.iter().zip(&out) {
                 let i = i as usize;
                 let ray = Ray::new(origin, dirs[i]);
@@ -178,7 +223,12 @@ mod tests {
                 match verdict {
                     Verdict::Hit => assert!(occluded, "fan {f}, ray {i}: {ray:?} up to {}", reach[i]),
                     Verdict::Miss => assert!(!occluded, "fan {f}, ray {i}: {ray:?} up to {}", reach[i]),
-                    Verdict::Test => {}
+                    Verdict::Test => assert_eq!(
+                        occludes_undecided(shape, &fan, dirs[i], reach[i]),
+                        occluded,
+                        "fan {f}, ray {i}: {ray:?} up to {}",
+                        reach[i]
+                    ),
                 }
                 match verdict {
                     Verdict::Hit => counts.hits += 1,
@@ -230,7 +280,17 @@ mod tests {
             counts.hits > 2000 && counts.misses > 2000 && counts.by_oracle > 10_000,
             "{counts:?}"
         );
-        for (k, shape) in [&turned, &cones[0], &cones[1]].into_iter().enumerate() {
+        let base = center - DVec3::new(0.0, 0.0, 1.0);
+        let tilt = DVec3::new(0.3, -0.5, 1.0);
+        let cylinders = [
+            Cylinder::new(base, DVec3::Z, 2.0, 1.0),
+            Cylinder::new(base, tilt, 2.0, 1.0),
+            Cylinder::tube(base, DVec3::Z, 2.0, 1.0),
+            Cylinder::tube(base, tilt, 2.0, 1.0),
+        ]
+        .map(|c| Shape::Cylinder(Box::new(c)));
+        let shapes = [&turned, &cones[0], &cones[1]].into_iter().chain(&cylinders);
+        for (k, shape) in shapes.enumerate() {
             let counts = check_fans(shape, center, 2.0, 1 + k as u64, none);
             assert!(counts.hits > 2000 && counts.misses > 2000, "shape {k}: {counts:?}");
         }

@@ -26,7 +26,7 @@ pub use cone::Cone;
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
-pub use fan::{Fan, Verdict, fan_verdicts};
+pub use fan::{Fan, Verdict, fan_verdicts, occludes_undecided};
 pub use lens::Lens;
 pub use plane::Plane;
 pub use rectangle::Rectangle;

@@ -421,6 +421,26 @@ impl Torus {
         if self.clear_of_tube(o + d * clip.0, d, clip.1 - clip.0) || self.rises_from_outside(o, d, clip, t_min) {
             return false;
         }
+        self.occludes_past_shortcuts(o, d, clip, t_min, t_max)
+    }
+
+    /// [`Torus::occludes`] for a ray its fan verdict left undecided ([`Verdict::Test`] from
+    /// [`Torus::shadow_verdict`] with the same `t_min`, `t_max`, and `o` the
+    /// [`Torus::local_origin`] of `ray.origin`): that verdict evaluated the shortcuts
+    /// `occludes` takes first on the same values, and none decided, so only the world
+    /// frame's bounding-sphere test and the clip interval (a few operations) are computed
+    /// again before the finer shortcuts. The same answer as `occludes`, to the bit.
+    pub(crate) fn occludes_undecided(&self, ray: &Ray, o: DVec3, t_min: f64, t_max: f64) -> bool {
+        if super::misses_bounding_sphere(ray, t_min, t_max, (self.center, self.major + self.minor)) {
+            return false;
+        }
+        let (d, clip, _) = self.shadow_clip(o, ray.dir, t_min, t_max);
+        self.occludes_past_shortcuts(o, d, clip, t_min, t_max)
+    }
+
+    /// The end of [`Torus::occludes`], for a ray inside its clip interval that the first
+    /// shortcuts leave undecided.
+    fn occludes_past_shortcuts(&self, o: DVec3, d: DVec3, clip: (f64, f64), t_min: f64, t_max: f64) -> bool {
         // The rays the fan verdicts leave undecided come here: finer shortcuts, each far
         // cheaper than the quartic, too costly for a lane loop over every ray (most rays
         // are decided before).
@@ -453,16 +473,24 @@ impl Torus {
     /// first that decides (cheaper for one ray).
     #[inline(always)]
     pub(crate) fn shadow_verdict(&self, o: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> Verdict {
-        let d = self.frame.to_local(dir);
-        let (enter, exit, inside) = self.clip_parts(o, d, t_min, f64::INFINITY);
-        // Every root is at `enter + s >= enter`: none can be below `t_max` otherwise.
-        let clipped = inside & (enter < t_max);
-        let entered = self.surely_entered(o, d, (enter, exit), t_min, t_max);
-        let cleared =
-            self.clear_of_tube(o + d * enter, d, exit - enter) | self.rises_from_outside(o, d, (enter, exit), t_min);
+        let (d, clip, clipped) = self.shadow_clip(o, dir, t_min, t_max);
+        let (enter, exit) = clip;
+        let entered = self.surely_entered(o, d, clip, t_min, t_max);
+        let cleared = self.clear_of_tube(o + d * enter, d, exit - enter) | self.rises_from_outside(o, d, clip, t_min);
         let hit = clipped & entered;
         let miss = !clipped | (!entered & cleared);
         Verdict::of(hit, miss)
+    }
+
+    /// The start of [`Torus::shadow_verdict`]: the direction `dir` in the local frame, the
+    /// clip interval `(enter, exit)` of [`Torus::local_clip`], and whether the ray has one
+    /// starting before `t_max` (every root is at `enter + s >= enter`); the bounds are
+    /// meaningless when not. Without a branch.
+    #[inline(always)]
+    fn shadow_clip(&self, o: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> (DVec3, (f64, f64), bool) {
+        let d = self.frame.to_local(dir);
+        let (enter, exit, inside) = self.clip_parts(o, d, t_min, f64::INFINITY);
+        (d, (enter, exit), inside & (enter < t_max))
     }
 
     /// Bound on the distance from `p` to the torus: the exact distance

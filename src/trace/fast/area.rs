@@ -19,7 +19,7 @@
 //! multiply and an add), so the same bits on every machine; pass 3's specular power is
 //! taken in the loop that computes the cosine ([`pow_each_of`]), and pass 4 marks and
 //! counts the points that add in byte loops of the same kind ([`mark_adds`],
-//! [`count_towards`]). Each point's arithmetic is that
+//! [`count_facing`]). Each point's arithmetic is that
 //! of a lone point light: the loops call, point by point or channel by channel, the
 //! formulas a point light is shaded with ([`point_incidence`]'s [`direction_to`] and
 //! [`arriving`], [`blinn`]'s or [`phong`]'s cosines, [`diffuse`], [`specular`]), and the
@@ -60,7 +60,15 @@ pub(super) struct AreaScratch {
     facing: Vec<Facing>,
     /// Shadow filter of each point: 1 unshadowed, 0 blocked, else the product of colours;
     /// filled with 1 only when first written at a shading point ([`AreaScratch::ensure_filter`]).
+    /// Where `blocked_unread`, the filters of points blocked by an opaque object are left
+    /// as they are (`blocked` tells them).
     filter: Vec<DVec3>,
+    /// Whether pass 4 never reads the filter of a point an opaque object blocks: without a
+    /// recorder, with the blocked-shading and back-facing skips on, a blocked point adds
+    /// nothing and only the points that add have their filters read. Then an opaque
+    /// candidate's hits only mark `blocked`, and the filters are filled with 1 only when a
+    /// transparent object meets a shadow ray.
+    blocked_unread: bool,
     /// Whether `filter` holds this shading point's filters (else every one is 1).
     filter_ready: bool,
     /// Whether an opaque object blocks the point's shadow ray.
@@ -183,8 +191,8 @@ fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mu
 
 /// Pass 2's first step: how each point faces the surface, [`Facing::of`] as a lane loop.
 /// A point is black when its colour `L / N * A` is zero (and the unlit skip is on).
-/// Returns how many points face the surface, face away and are black (counted here, in
-/// the same vector loop, rather than by more passes).
+/// Returns how many points face the surface, face away and are black (counted after, in
+/// byte loops: [`count_facing`]).
 ///
 /// With no channel of `L / N` negative or NaN, the colour is zero exactly when its
 /// brightest channel is: a rounded product does not grow in magnitude when a factor
@@ -211,15 +219,11 @@ fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facin
 fn facings_where(lanes: &Lanes, unlit_skip: bool, out: &mut [Facing], zero: impl Fn(f64) -> bool) -> [u64; 3] {
     let len = out.len();
     let (dist, atten, n_dot_l) = (&lanes.dist[..len], &lanes.atten[..len], &lanes.n_dot_l[..len]);
-    let (mut towards, mut away, mut black) = (0u32, 0u32, 0u32);
     for i in 0..len {
-        let facing = Facing::of(dist[i] != 0.0, unlit_skip & zero(atten[i]), n_dot_l[i]);
-        towards += u32::from(facing == Facing::Towards);
-        away += u32::from(facing == Facing::Away);
-        black += u32::from(facing == Facing::Black);
-        out[i] = facing;
+        out[i] = Facing::of(dist[i] != 0.0, unlit_skip & zero(atten[i]), n_dot_l[i]);
     }
-    [towards, away, black].map(u64::from)
+    let out = &*out;
+    [Facing::Towards, Facing::Away, Facing::Black].map(|kind| count_facing(out, kind))
 }
 
 /// Pass 3's first step: for every point, the specular term `spec_i`: Blinn's
@@ -399,13 +403,15 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 world.shadow_candidates(at.point, center, radius, 4.0 * at.err, &mut candidates);
             }
             let shadowing = culled.then_some(candidates.as_slice());
-            self.add_area_points(color, mask, index, points, area, at, shadowing, &mut s, rec);
+            let light = (area, (center, radius));
+            self.add_area_points(color, mask, index, points, light, at, shadowing, &mut s, rec);
             s.candidates = candidates;
         }
         self.area = s;
     }
 
-    /// Passes 1 to 4 of the module doc for the light points `points` of `area`.
+    /// Passes 1 to 4 of the module doc for the light points `points` of `area`, whose
+    /// bounding sphere ([`AreaLight::bounding_sphere`]) is `sphere`.
     /// `candidates`, when given, are the only objects that can block their shadow rays;
     /// without them each shadow ray goes through the acceleration structure on its own.
     /// A member whose area light count `N` is set for this light takes the first `N` points,
@@ -417,7 +423,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         mask: u32,
         index: usize,
         points: &PointSet,
-        area: &AreaLight,
+        (area, sphere): (&AreaLight, (DVec3, f64)),
         at: &Surface,
         candidates: Option<&[Candidate]>,
         s: &mut AreaScratch,
@@ -436,6 +442,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
         }
         let shadows = self.world.scene.settings.shadows;
         s.filter_ready = false;
+        s.blocked_unread =
+            !R::RECORDS && self.world.skips.on(Skip::BlockedShading) && self.world.skips.on(Skip::BackFacing);
         s.blocked.clear();
         s.blocked.resize(len, false);
         s.zero_product = false;
@@ -447,7 +455,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         }
         let grouped = match candidates {
             Some(c) if shadows => {
-                self.shadow_points(c, at, area.bounding_sphere(), towards as usize, packing, s);
+                self.shadow_points(c, at, sphere, towards as usize, packing, s);
                 true
             }
             _ => false,
@@ -476,8 +484,11 @@ impl<const K: usize> Tracer<'_, '_, K> {
             s.adds.resize(len, false);
             let mut lit = 0u32;
             if s.zero_product {
-                for ((&f, filter), add) in s.facing.iter().zip(&s.filter).zip(&mut s.adds) {
-                    *add = (f == Facing::Towards) & !(blocked_shading & (*filter == DVec3::ZERO));
+                let points = s.facing.iter().zip(&s.blocked).zip(&s.filter).zip(&mut s.adds);
+                for (((&f, &blocked), filter), add) in points {
+                    // A blocked point's filter is 0, or not written (`blocked_unread`).
+                    let zero = blocked | (*filter == DVec3::ZERO);
+                    *add = (f == Facing::Towards) & !(blocked_shading & zero);
                     lit += u32::from(*add);
                 }
             } else {
@@ -524,7 +535,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                         facings(&s.lanes, member_color, true, &mut s.member_facing[..count]);
                         self.diverged |= s.member_facing[..count] != s.facing[..count];
                     }
-                    let own = count_towards(&s.facing[..count]);
+                    let own = count_facing(&s.facing[..count], Facing::Towards);
                     self.shadow_excess[j] += towards - own;
                 }
             }
@@ -670,12 +681,13 @@ fn mark_adds(facing: &[Facing], blocked: &[bool], skip_blocked: bool, adds: &mut
     count
 }
 
-/// How many of `facing` face the surface; as [`mark_adds`], a lane loop over bytes.
+/// How many of `facing` are `kind`; as [`mark_adds`], a lane loop over bytes (counted in
+/// bytes, a few vectors' worth at a time: at most 255 a byte lane).
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn count_towards(facing: &[Facing]) -> u64 {
+fn count_facing(facing: &[Facing], kind: Facing) -> u64 {
     let mut count = 0;
     for chunk in facing.chunks(128) {
-        count += u64::from(chunk.iter().fold(0u8, |n, &f| n + u8::from(f == Facing::Towards)));
+        count += u64::from(chunk.iter().fold(0u8, |n, &f| n + u8::from(f == kind)));
     }
     count
 }
@@ -845,7 +857,7 @@ mod tests {
         assert!(black > 0);
     }
 
-    /// [`mark_adds`] and [`count_towards`] give, for counts past a byte and lengths past
+    /// [`mark_adds`] and [`count_facing`] give, for counts past a byte and lengths past
     /// their chunks of 128, the marks and counts of the point-by-point definitions: every
     /// point facing and none blocked (all 300 add), and a mixed pattern with and without
     /// the blocked points skipped.
@@ -855,8 +867,8 @@ mod tests {
         let mut adds = vec![false; 300];
         assert_eq!(mark_adds(&all, &[false; 300], true, &mut adds), 300);
         assert!(adds.iter().all(|&a| a));
-        assert_eq!(count_towards(&all), 300);
-        assert_eq!(count_towards(&all[..129]), 129);
+        assert_eq!(count_facing(&all, Facing::Towards), 300);
+        assert_eq!(count_facing(&all[..129], Facing::Towards), 129);
         let mut rng = ChaCha8Rng::seed_from_u64(3);
         let kinds = [Facing::NoLight, Facing::Black, Facing::Away, Facing::Towards];
         let facing: Vec<Facing> = (0..1000).map(|_| kinds[(rng.next_u64() % 4) as usize]).collect();
@@ -872,8 +884,10 @@ mod tests {
             assert!(count > 100 && count < 400, "a mixed pattern: {count} of 1000");
         }
         for len in [0, 1, 127, 128, 129, 1000] {
-            let want = facing[..len].iter().filter(|&&f| f == Facing::Towards).count() as u64;
-            assert_eq!(count_towards(&facing[..len]), want, "{len} points");
+            for kind in kinds {
+                let want = facing[..len].iter().filter(|&&f| f == kind).count() as u64;
+                assert_eq!(count_facing(&facing[..len], kind), want, "{len} points, {kind:?}");
+            }
         }
     }
 

@@ -17,11 +17,11 @@
 use super::{AreaScratch, Facing, Lanes};
 use crate::math::Ray;
 use crate::shading::{filter_through, transparent_filter};
-use crate::shape::{Fan, Shape, Verdict, fan_verdicts};
+use crate::shape::{Fan, Shape, Verdict, fan_verdicts, occludes_undecided};
 use crate::skips::Skip;
 use crate::trace::Surface;
 use crate::trace::fast::{Tracer, segment_meets_sphere};
-use crate::world::{Candidate, cones_apart, direction_cone};
+use crate::world::{Candidate, cone_with_sine, cones_apart, direction_cone};
 use glam::DVec3;
 use multiversion::multiversion;
 
@@ -31,7 +31,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
     /// (opaque ones until one blocks, then every transparent one in ascending order), with
     /// the same counts. For each candidate, a lane loop first sorts every point's direction
     /// by the candidate's cones ([`verdicts`]); the undecided ones get the candidate's own
-    /// shortcuts, all together ([`fan_verdicts`]: for a box or a cone the whole exact test),
+    /// shortcuts, all together ([`fan_verdicts`]: for a box, a cone or a cylinder the whole exact test),
     /// and what is still undecided its exact test.
     pub(super) fn shadow_points(
         &mut self,
@@ -63,7 +63,8 @@ impl<const K: usize> Tracer<'_, '_, K> {
         let origin = at.ray_along(s.lanes.to_light(first)).origin;
         let (center, radius) = light;
         // The directions from the shading point (as in `incidences`) to every light point.
-        let light_cone = direction_cone(at.point, center, radius);
+        // With its half-angle's sine, computed once for every candidate's `cones_apart`.
+        let light_cone = direction_cone(at.point, center, radius).map(cone_with_sine);
         let mut rejects = 0;
         let len = s.lanes.dist.len();
         // How many points face the surface and are not blocked yet (the open points).
@@ -151,29 +152,39 @@ impl<const K: usize> Tracer<'_, '_, K> {
             };
             s.fan.resize(open, Verdict::Test);
             fan_verdicts(shape, &fan, &s.tests[..tests], &mut s.fan);
+            // The fan's hits join the list and its undecided rays stay in `tests`, without a
+            // branch per ray (the pattern is random); then the exact test of each undecided
+            // ray, in ascending order. The order of `hits` does not matter: each of its points
+            // is marked on its own.
+            let mut undecided = 0;
             for k in 0..tests {
-                let i = s.tests[k];
-                let met = match s.fan[k] {
-                    Verdict::Hit => true,
-                    Verdict::Miss => false,
-                    Verdict::Test => shape.occludes(
-                        &Ray::new(origin, lanes.to_light(i as usize)),
-                        0.0,
-                        lanes.dist[i as usize],
-                    ),
-                };
-                // `hits <= open`: in bounds.
+                let (i, verdict) = (s.tests[k], s.fan[k]);
+                // `hits <= open` and `undecided <= k`: in bounds.
                 s.hits[hits] = i;
-                hits += usize::from(met);
+                hits += usize::from(verdict == Verdict::Hit);
+                s.tests[undecided] = i;
+                undecided += usize::from(verdict == Verdict::Test);
             }
-            if hits > 0 {
+            for k in 0..undecided {
+                let i = s.tests[k] as usize;
+                s.hits[hits] = i as u32;
+                hits += usize::from(occludes_undecided(shape, &fan, lanes.to_light(i), lanes.dist[i]));
+            }
+            let opaque = !world.filters_shadows(c.object);
+            if hits > 0 && !(opaque && s.blocked_unread) {
                 s.ensure_filter(len);
             }
             let met = &s.hits[..hits];
-            if !world.filters_shadows(c.object) {
-                for &i in met {
-                    s.filter[i as usize] = DVec3::ZERO;
-                    s.blocked[i as usize] = true;
+            if opaque {
+                if s.blocked_unread {
+                    for &i in met {
+                        s.blocked[i as usize] = true;
+                    }
+                } else {
+                    for &i in met {
+                        s.filter[i as usize] = DVec3::ZERO;
+                        s.blocked[i as usize] = true;
+                    }
                 }
                 // Each of them was open.
                 open -= hits;
@@ -192,12 +203,18 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 let mat = world.material_of(c.object);
                 let color = transparent_filter(world.scene.settings.conventions.shadow_filter, mat.kt, mat.color);
                 s.tinted |= hits > 0;
+                // Each channel compared, no branch (a product is rarely 0).
+                let mut zero_product = false;
                 for &i in met {
                     let i = i as usize;
-                    s.filter[i] = filter_through(s.filter[i], color);
-                    s.zero_product |= s.filter[i] == DVec3::ZERO;
-                    if let Some(list) = s.crossed.get_mut(i) {
-                        list.push(c.object);
+                    let f = filter_through(s.filter[i], color);
+                    s.filter[i] = f;
+                    zero_product |= (f.x == 0.0) & (f.y == 0.0) & (f.z == 0.0);
+                }
+                s.zero_product |= zero_product;
+                if !s.crossed.is_empty() {
+                    for &i in met {
+                        s.crossed[i as usize].push(c.object);
                     }
                 }
             }
@@ -497,7 +514,7 @@ mod tests {
             else {
                 continue;
             };
-            if !cones_apart(light, cone) {
+            if !cones_apart(cone_with_sine(light), cone) {
                 near += 1;
                 continue;
             }
