@@ -54,27 +54,20 @@ pub(crate) fn direction_cone(p: DVec3, center: DVec3, radius: f64) -> Option<(DV
     Some((to_center / dist, (1.0 - sin * sin).sqrt() - 1e-12))
 }
 
-/// The sine of a cone's half-angle from its cosine, `sqrt(1 - cos^2)` (0 past rounding).
-fn half_angle_sine(cos: f64) -> f64 {
-    (1.0 - cos * cos).max(0.0).sqrt()
-}
-
-/// A cone of directions (unit axis, cosine of the half-angle, as [`direction_cone`] gives
-/// them) with the sine of its half-angle, for [`cones_apart`] against many cones.
-pub(crate) fn cone_with_sine((axis, cos): (DVec3, f64)) -> (DVec3, f64, f64) {
-    (axis, cos, half_angle_sine(cos))
-}
-
-/// Whether two cones of directions (the first as [`cone_with_sine`] gives it, the second
-/// as [`direction_cone`] does) share no direction: the angle between their axes exceeds
+/// Whether two cones of directions (unit axis, cosine of the half-angle, as
+/// [`direction_cone`] gives them) share no direction: the angle between their axes exceeds
 /// the sum of their half-angles, `a.b < cos(alpha + beta) = cos a cos b - sin a sin b`, by
 /// a margin of 1e-9 far above the rounding of a unit direction's dot product. Only for
 /// half-angles below 90 degrees (else `false`).
-pub(crate) fn cones_apart((a, cos_a, sin_a): (DVec3, f64, f64), (b, cos_b): (DVec3, f64)) -> bool {
+pub(crate) fn cones_apart((a, cos_a): (DVec3, f64), (b, cos_b): (DVec3, f64)) -> bool {
     if cos_a <= 0.0 || cos_b <= 0.0 {
         return false;
     }
-    a.dot(b) < cos_a * cos_b - sin_a * half_angle_sine(cos_b) - 1e-9
+    let (sin_a, sin_b) = (
+        (1.0 - cos_a * cos_a).max(0.0).sqrt(),
+        (1.0 - cos_b * cos_b).max(0.0).sqrt(),
+    );
+    a.dot(b) < cos_a * cos_b - sin_a * sin_b - 1e-9
 }
 
 /// The cone of directions from `p` that pass through the ball (`center`, `radius`), shrunk
@@ -640,23 +633,21 @@ mod tests {
         // Two cones of half-angle 30 degrees: apart when their axes are more than 60
         // degrees apart.
         let half = 30f64.to_radians().cos();
-        // sin 30 degrees = 1/2.
-        assert!((cone_with_sine((DVec3::Z, half)).2 - 0.5).abs() < 1e-15);
         let axis_at = |deg: f64| DVec3::new(deg.to_radians().sin(), 0.0, deg.to_radians().cos());
-        assert!(cones_apart(cone_with_sine((DVec3::Z, half)), (axis_at(60.001), half)));
-        assert!(!cones_apart(cone_with_sine((DVec3::Z, half)), (axis_at(59.999), half)));
-        assert!(!cones_apart(cone_with_sine((DVec3::Z, half)), (axis_at(60.0), half)));
-        assert!(cones_apart(cone_with_sine((DVec3::Z, half)), (-DVec3::Z, half)));
+        assert!(cones_apart((DVec3::Z, half), (axis_at(60.001), half)));
+        assert!(!cones_apart((DVec3::Z, half), (axis_at(59.999), half)));
+        assert!(!cones_apart((DVec3::Z, half), (axis_at(60.0), half)));
+        assert!(cones_apart((DVec3::Z, half), (-DVec3::Z, half)));
         // Half-angles of 90 degrees or more are never apart.
-        assert!(!cones_apart(cone_with_sine((DVec3::Z, 0.0)), (-DVec3::Z, 0.99)));
+        assert!(!cones_apart((DVec3::Z, 0.0), (-DVec3::Z, 0.99)));
         // Every direction of one ball's cone misses the other's: a ball of radius 1 at
         // distance 2 (30 degrees) on +z and one on an axis 61 degrees away.
         let p = DVec3::new(0.3, -0.2, 0.1);
         let (a, b) = (p + 2.0 * DVec3::Z, p + 2.0 * axis_at(61.0));
         let (ca, cb) = (direction_cone(p, a, 1.0).unwrap(), direction_cone(p, b, 1.0).unwrap());
-        assert!(cones_apart(cone_with_sine(ca), cb));
+        assert!(cones_apart(ca, cb));
         assert!(!cones_apart(
-            cone_with_sine(ca),
+            ca,
             direction_cone(p, p + 2.0 * axis_at(59.0), 1.0).unwrap()
         ));
     }

@@ -21,7 +21,7 @@ use crate::shape::{Fan, Shape, Verdict, fan_verdicts, occludes_undecided};
 use crate::skips::Skip;
 use crate::trace::Surface;
 use crate::trace::fast::{Tracer, segment_meets_sphere};
-use crate::world::{Candidate, cone_with_sine, cones_apart, direction_cone};
+use crate::world::{Candidate, cones_apart, direction_cone};
 use glam::DVec3;
 use multiversion::multiversion;
 
@@ -63,8 +63,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         let origin = at.ray_along(s.lanes.to_light(first)).origin;
         let (center, radius) = light;
         // The directions from the shading point (as in `incidences`) to every light point.
-        // With its half-angle's sine, computed once for every candidate's `cones_apart`.
-        let light_cone = direction_cone(at.point, center, radius).map(cone_with_sine);
+        let light_cone = direction_cone(at.point, center, radius);
         let mut rejects = 0;
         let len = s.lanes.dist.len();
         // How many points face the surface and are not blocked yet (the open points).
@@ -514,7 +513,7 @@ mod tests {
             else {
                 continue;
             };
-            if !cones_apart(cone_with_sine(light), cone) {
+            if !cones_apart(light, cone) {
                 near += 1;
                 continue;
             }
