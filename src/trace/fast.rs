@@ -20,7 +20,6 @@
 //! [`Reference`]: super::Reference
 
 use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface, caustic_share, point_light_terms};
-use crate::area_light::AreaLight;
 use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, aperture_share};
 use crate::material::Material;
@@ -393,7 +392,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             let shadow_before = self.counts.shadow;
             match light {
                 Light::Ambient { .. } => {}
-                Light::Area(area) => self.area_light_apart(&mut color, lit, index, area, at, rec),
+                Light::Area(area) => self.add_area_light(&mut color, lit, index, area, at, rec),
                 Light::Aperture(a) => {
                     // Its share depends on no member's material or shading: one for all.
                     let share = self.aperture_light(index, a.color, light.incidence(at.point), at, rec);
@@ -419,22 +418,6 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             }
         }
         color
-    }
-
-    /// [`Tracer::add_area_light`] kept out of [`Tracer::local`]: inlined there, the setup of
-    /// its scratch space would run at every hit of every scene, with an area light or not.
-    /// One call per area light and hit costs nothing beside its `N` points.
-    #[inline(never)]
-    fn area_light_apart<R: Recorder>(
-        &mut self,
-        color: &mut [DVec3; K],
-        mask: u32,
-        index: usize,
-        area: &AreaLight,
-        at: &Surface,
-        rec: &mut R,
-    ) {
-        self.add_area_light(color, mask, index, area, at, rec)
     }
 
     /// One point light's share at a surface point: `A L [k_d S max(N.L, 0) + k_s tint spec]`

@@ -376,6 +376,10 @@ impl<const K: usize> Tracer<'_, '_, K> {
     /// Adds to `color` (each member of `mask`), point after point, the share of area light
     /// `index` at the surface `at`, after the horizon test and the search for the objects
     /// that can block any of its shadow rays.
+    /// Never inlined into [`Tracer::local`]: there the setup of its scratch space would run
+    /// at every hit of every scene, with an area light or not; one call per area light and
+    /// hit costs nothing beside its `N` points.
+    #[inline(never)]
     pub(super) fn add_area_light<R: Recorder>(
         &mut self,
         color: &mut [DVec3; K],
