@@ -549,19 +549,41 @@ impl<'s> World<'s> {
         untested: &mut u64,
         missed: impl Fn(bool, usize) -> bool,
     ) -> bool {
+        let blocked = self.scan_list(&self.opaque_balls, ray, t_max, untested, |k| missed(false, k), |_| true);
+        blocked
+            || self.scan_list(
+                &self.see_through_balls,
+                ray,
+                t_max,
+                untested,
+                |k| missed(true, k),
+                |i| {
+                    crossed.push(i);
+                    false
+                },
+            )
+    }
+
+    /// Tests exactly, in the order of `list`, the objects whose ball of entry `k` the ray
+    /// does not pass by (`missed(k)`, else counted in `untested`) and calls `hit(i)` for
+    /// each object `i` the ray meets on `(0, t_max)`, until it returns true; returns whether
+    /// it did.
+    #[inline(always)]
+    fn scan_list(
+        &self,
+        list: &[(usize, (DVec3, f64))],
+        ray: &Ray,
+        t_max: f64,
+        untested: &mut u64,
+        missed: impl Fn(usize) -> bool,
+        mut hit: impl FnMut(usize) -> bool,
+    ) -> bool {
         let objects = &self.scene.objects[..];
-        for (k, &(i, _)) in self.opaque_balls.iter().enumerate() {
-            if missed(false, k) {
+        for (k, &(i, _)) in list.iter().enumerate() {
+            if missed(k) {
                 *untested += 1;
-            } else if objects[i].shape.occludes(ray, 0.0, t_max) {
+            } else if objects[i].shape.occludes(ray, 0.0, t_max) && hit(i) {
                 return true;
-            }
-        }
-        for (k, &(i, _)) in self.see_through_balls.iter().enumerate() {
-            if missed(true, k) {
-                *untested += 1;
-            } else if objects[i].shape.occludes(ray, 0.0, t_max) {
-                crossed.push(i);
             }
         }
         false
