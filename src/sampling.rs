@@ -166,14 +166,20 @@ pub const LANES: usize = 8;
 #[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
 pub fn chacha8_blocks(key: &[u32; 8], counter: u64, streams: &[u64; LANES]) -> [[u32; 16]; LANES] {
     let constants = [0x6170_7865, 0x3320_646e, 0x7962_2d32, 0x6b20_6574];
-    let input: [[u32; LANES]; 16] = std::array::from_fn(|w| match w {
-        0..4 => [constants[w]; LANES],
-        4..12 => [key[w - 4]; LANES],
-        12 => [counter as u32; LANES],
-        13 => [(counter >> 32) as u32; LANES],
-        14 => streams.map(|s| s as u32),
-        _ => streams.map(|s| (s >> 32) as u32),
-    });
+    // Word by word in plain loops: `array::from_fn` with a closure compiles to a call a word.
+    let mut input = [[0u32; LANES]; 16];
+    for w in 0..4 {
+        input[w] = [constants[w]; LANES];
+    }
+    for w in 0..8 {
+        input[4 + w] = [key[w]; LANES];
+    }
+    input[12] = [counter as u32; LANES];
+    input[13] = [(counter >> 32) as u32; LANES];
+    for l in 0..LANES {
+        input[14][l] = streams[l] as u32;
+        input[15][l] = (streams[l] >> 32) as u32;
+    }
     let mut x = input;
     for _ in 0..4 {
         for i in 0..4 {
@@ -185,8 +191,14 @@ pub fn chacha8_blocks(key: &[u32; 8], counter: u64, streams: &[u64; LANES]) -> [
             [x[i], x[b], x[c], x[d]] = quarter_rounds([x[i], x[b], x[c], x[d]]);
         }
     }
-    let sum: [[u32; LANES]; 16] = std::array::from_fn(|w| add(x[w], input[w]));
-    std::array::from_fn(|l| std::array::from_fn(|w| sum[w][l]))
+    let mut out = [[0u32; 16]; LANES];
+    for w in 0..16 {
+        let sum = add(x[w], input[w]);
+        for l in 0..LANES {
+            out[l][w] = sum[l];
+        }
+    }
+    out
 }
 
 /// The words of [`Stream`] for the same `(seed, purpose, index)`, bit for bit, for streams
