@@ -19,9 +19,8 @@
 //!
 //! A tree of more than 4096 objects with spheres among them keeps a copy of the spheres in
 //! leaf order ([`SphereLanes`]): a leaf's spheres are read from one run of memory and
-//! sifted four at a time in `f32` by a test that drops only spheres the routine's first
-//! step would miss ([`super::sift`]), and the ones left are tested by the routine itself.
-//! The
+//! sifted four at a time by the first test of the sphere's routine, and the ones left are
+//! tested by the routine itself. The
 //! walks are compiled for AVX-512, AVX2 and baseline x86-64, the widest the processor
 //! has chosen at run time (`multiversion`), or the baseline as a [`Kernel`] says. As it
 //! pushes a child, a walk asks the caches for the child's node or leaf spheres, which it
@@ -30,7 +29,7 @@
 //! and where the kernel compacts memory to serve them it stalled the build by 0.1 s.
 
 use super::build::{Built, MAX_SAH_DEPTH, PrimRef, build};
-use super::leaf::{LaneEntry, LeafRay, SphereLanes};
+use super::leaf::{LaneEntry, SphereLanes};
 use super::node::stored_box;
 use super::wide::{F32_RANGE, F32Slots, F64Slots, Node4, SlotTest, WIDTH, collapse, unpack};
 use crate::math::Ray;
@@ -184,7 +183,7 @@ impl Bvh {
         // The binary tree is freed before the spheres are copied: the two are never held
         // at once.
         drop(binary);
-        let spheres = SphereLanes::new(objects, &prims, fits_f32, || {
+        let spheres = SphereLanes::new(objects, &prims, || {
             let leaves = || {
                 nodes
                     .iter()
@@ -245,14 +244,14 @@ impl Bvh {
 
     /// Calls `hit(j, sphere)` for the objects of the leaf of entries `first..first + count`
     /// in leaf order (`sphere`: the leaf order's copy of object `j`'s sphere, if any), until
-    /// it returns true; returns whether it did. The spheres that the sift rules out are
-    /// passed by ([`SphereLanes::candidates`]; `ray` prepared by [`Bvh::leaf_ray`]).
+    /// it returns true; returns whether it did. The spheres that the first step of their
+    /// test rules out are passed by ([`SphereLanes::candidates`]).
     #[inline(always)]
     fn leaf_until(
         &self,
         first: usize,
         count: usize,
-        ray: &LeafRay,
+        ray: &Ray,
         mut hit: impl FnMut(usize, Option<&Sphere>) -> bool,
     ) -> bool {
         let Some(spheres) = &self.spheres else {
@@ -272,15 +271,6 @@ impl Bvh {
             }
         }
         false
-    }
-
-    /// The ray prepared for sifting the leaves' spheres (once per walk).
-    #[inline(always)]
-    fn leaf_ray<'r>(&self, ray: &'r Ray) -> LeafRay<'r> {
-        match &self.spheres {
-            Some(spheres) => spheres.prepare(ray),
-            None => LeafRay::Exact(ray),
-        }
     }
 
     /// The `f32` test for this ray when it and the tree fit it, else `None`.
@@ -325,7 +315,6 @@ impl Bvh {
         mut slots: T,
     ) -> Option<(usize, SurfaceHit)> {
         let mut best: Option<(usize, SurfaceHit)> = None;
-        let leaf_ray = self.leaf_ray(ray);
         let consider = |j: usize, sphere: Option<&Sphere>, best: &mut Option<(usize, SurfaceHit)>| {
             consider(objects, ray, t_min, t_max, j, sphere, best)
         };
@@ -373,7 +362,7 @@ impl Bvh {
                     break;
                 }
                 let mut closer = false;
-                self.leaf_until(first, count, &leaf_ray, |j, sphere| {
+                self.leaf_until(first, count, ray, |j, sphere| {
                     closer |= consider(j, sphere, &mut best);
                     false
                 });
@@ -418,7 +407,6 @@ impl Bvh {
         if self.nodes.is_empty() {
             return false;
         }
-        let leaf_ray = self.leaf_ray(ray);
         let mut stack = [0u32; S];
         let mut depth = 0;
         let mut at = 0usize;
@@ -444,7 +432,7 @@ impl Bvh {
                     at = first;
                     break;
                 }
-                if self.leaf_until(first, count, &leaf_ray, &mut hit) {
+                if self.leaf_until(first, count, ray, &mut hit) {
                     return true;
                 }
             }
@@ -556,12 +544,8 @@ impl Bvh {
                 for (l, &j) in self.prims[first..first + count].iter().enumerate() {
                     if let Some(spheres) = &self.spheres {
                         let copied = match (spheres.entry(first, count, l), &objects[j as usize].shape) {
-                            (LaneEntry::Sphere(s), Shape::Sphere(o)) => {
-                                s == *o && spheres.sifts_as(first, count, l, &objects[j as usize].shape)
-                            }
-                            (LaneEntry::Object, shape) => {
-                                !matches!(shape, Shape::Sphere(_)) && spheres.sifts_as(first, count, l, shape)
-                            }
+                            (LaneEntry::Sphere(s), Shape::Sphere(o)) => s == *o,
+                            (LaneEntry::Object, shape) => !matches!(shape, Shape::Sphere(_)),
                             (LaneEntry::Sphere(_), _) => false,
                         };
                         if !copied {

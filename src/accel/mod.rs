@@ -9,7 +9,6 @@ mod bvh;
 mod leaf;
 mod linear;
 mod node;
-mod sift;
 mod wide;
 
 pub use bvh::{Bvh, Kernel};
