@@ -485,21 +485,18 @@ impl<'s> World<'s> {
         t_max: f64,
         filter: impl Fn(usize) -> bool,
         untested: &mut u64,
-        mut hit: impl FnMut(usize) -> bool,
+        hit: impl FnMut(usize) -> bool,
     ) -> bool {
-        let objects = &self.scene.objects[..];
-        let balls = &self.shadow_balls[..objects.len()];
-        for i in 0..objects.len() {
-            if !filter(i) {
-                continue;
-            }
-            if misses_ball(ray, t_max, balls[i]) {
-                *untested += 1;
-            } else if objects[i].shape.occludes(ray, 0.0, t_max) && hit(i) {
-                return true;
-            }
-        }
-        false
+        let balls = &self.shadow_balls[..self.scene.objects.len()];
+        let entries = (0..balls.len()).filter(|&i| filter(i)).map(|i| (i, i));
+        self.scan(
+            entries,
+            ray,
+            t_max,
+            untested,
+            |i| misses_ball(ray, t_max, balls[i]),
+            hit,
+        )
     }
 
     /// Both questions the tracer asks of a shadow ray, in one call: whether an opaque object
@@ -549,10 +546,11 @@ impl<'s> World<'s> {
         untested: &mut u64,
         missed: impl Fn(bool, usize) -> bool,
     ) -> bool {
-        let blocked = self.scan_list(&self.opaque_balls, ray, t_max, untested, |k| missed(false, k), |_| true);
+        let opaque = list_entries(&self.opaque_balls);
+        let blocked = self.scan(opaque, ray, t_max, untested, |k| missed(false, k), |_| true);
         blocked
-            || self.scan_list(
-                &self.see_through_balls,
+            || self.scan(
+                list_entries(&self.see_through_balls),
                 ray,
                 t_max,
                 untested,
@@ -564,14 +562,14 @@ impl<'s> World<'s> {
             )
     }
 
-    /// Tests exactly, in the order of `list`, the objects whose ball of entry `k` the ray
-    /// does not pass by (`missed(k)`, else counted in `untested`) and calls `hit(i)` for
-    /// each object `i` the ray meets on `(0, t_max)`, until it returns true; returns whether
-    /// it did.
+    /// The scan of a shadow ray over `entries` `(k, i)` in their order: tests exactly each
+    /// object `i` whose ball `k` the ray does not pass by (`missed(k)`, else counted in
+    /// `untested`) and calls `hit(i)` for each object it meets on `(0, t_max)`, until `hit`
+    /// returns true; returns whether it did.
     #[inline(always)]
-    fn scan_list(
+    fn scan(
         &self,
-        list: &[(usize, (DVec3, f64))],
+        entries: impl Iterator<Item = (usize, usize)>,
         ray: &Ray,
         t_max: f64,
         untested: &mut u64,
@@ -579,7 +577,7 @@ impl<'s> World<'s> {
         mut hit: impl FnMut(usize) -> bool,
     ) -> bool {
         let objects = &self.scene.objects[..];
-        for (k, &(i, _)) in list.iter().enumerate() {
+        for (k, i) in entries {
             if missed(k) {
                 *untested += 1;
             } else if objects[i].shape.occludes(ray, 0.0, t_max) && hit(i) {
@@ -600,6 +598,12 @@ impl<'s> World<'s> {
     pub fn each_hit(&self, ray: &Ray, t_max: f64, filter: &dyn Fn(usize) -> bool, visit: &mut dyn FnMut(usize)) {
         self.accel.each_hit(&self.scene.objects, ray, 0.0, t_max, filter, visit)
     }
+}
+
+/// The entries `(k, i)` of [`World::scan`] for a list of objects `i` with their balls: the
+/// ball of entry `k` is the list's.
+fn list_entries(list: &[(usize, (DVec3, f64))]) -> impl Iterator<Item = (usize, usize)> + '_ {
+    list.iter().enumerate().map(|(k, &(i, _))| (k, i))
 }
 
 /// Whether `ray` misses the ball on `(0, t_max)` ([`misses_bounding_sphere`]); never for a
