@@ -170,57 +170,118 @@ impl Lanes {
 
 /// Pass 1: for every light point `q_i`, the direction and distance of
 /// [`direction_to`], the attenuation `A(d_i)` and `N.L_i`: [`point_incidence`]'s formulas,
-/// point by point. A point at distance 0 gets NaN directions (no light arrives from it;
-/// see [`Facing`]).
+/// point by point; and in the same loop, pass 2's first step, how each point of colour
+/// `point_color` faces the surface ([`Facing::of`], as [`facings`] decides it), while the
+/// loop waits on its square root and divisions. A point at distance 0 gets NaN directions
+/// (no light arrives from it; see [`Facing`]). Returns how many points face the surface,
+/// face away and are black.
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
-fn incidences(points: &PointSet, p: DVec3, n: DVec3, att: &Attenuation, out: &mut Lanes) {
+fn incidences(
+    points: &PointSet,
+    (p, n): (DVec3, DVec3),
+    att: &Attenuation,
+    (point_color, unlit_skip): (DVec3, bool),
+    out: &mut Lanes,
+    facing: &mut [Facing],
+) -> [u64; 3] {
+    match ZeroColour::of(point_color) {
+        ZeroColour::Brightest(b) => incidences_where(points, (p, n), att, out, facing, move |a| {
+            unlit_skip & brightest_zero(b, a)
+        }),
+        ZeroColour::Channels(c) => incidences_where(points, (p, n), att, out, facing, move |a| {
+            unlit_skip & channels_zero(c, a)
+        }),
+    }
+}
+
+/// [`incidences`] with `black(A_i)` telling whether point `i` is black. Inlined into each
+/// of its versions.
+#[inline(always)]
+fn incidences_where(
+    points: &PointSet,
+    (p, n): (DVec3, DVec3),
+    att: &Attenuation,
+    out: &mut Lanes,
+    facing: &mut [Facing],
+    black: impl Fn(f64) -> bool,
+) -> [u64; 3] {
     let len = points.len();
     let (xs, ys, zs) = (&points.x[..len], &points.y[..len], &points.z[..len]);
     let (lx, ly, lz) = (&mut out.lx[..len], &mut out.ly[..len], &mut out.lz[..len]);
     let (dist, atten, ndl) = (&mut out.dist[..len], &mut out.atten[..len], &mut out.n_dot_l[..len]);
+    let facing = &mut facing[..len];
     for i in 0..len {
         let (l, d) = direction_to(DVec3::new(xs[i], ys[i], zs[i]), p);
+        let a = att.factor(d);
+        let n_dot_l = n.dot(l);
         lx[i] = l.x;
         ly[i] = l.y;
         lz[i] = l.z;
         dist[i] = d;
-        atten[i] = att.factor(d);
-        ndl[i] = n.dot(l);
+        atten[i] = a;
+        ndl[i] = n_dot_l;
+        facing[i] = Facing::of(d != 0.0, black(a), n_dot_l);
+    }
+    let facing = &*facing;
+    [Facing::Towards, Facing::Away, Facing::Black].map(|kind| count_facing(facing, kind))
+}
+
+/// How a point's colour `L / N * A` is tested for zero ([`facings`]).
+#[derive(Clone, Copy)]
+enum ZeroColour {
+    /// No channel of `L / N` negative or NaN: the colour is zero exactly when its brightest
+    /// channel `max_k L_k` times `A` is (a rounded product does not grow in magnitude when
+    /// a factor shrinks, so `|fl(L_k A)| <= |fl(max_k L_k A)|` for every channel `k`, and an
+    /// `A` that is NaN or infinite makes neither zero): one product and one comparison a
+    /// point, not three.
+    Brightest(f64),
+    /// Otherwise every channel is compared.
+    Channels(DVec3),
+}
+
+impl ZeroColour {
+    fn of(point_color: DVec3) -> ZeroColour {
+        // Every channel compared (a NaN fails), not `min_element`, which passes NaN by.
+        if point_color.cmpge(DVec3::ZERO).all() {
+            ZeroColour::Brightest(point_color.max_element())
+        } else {
+            ZeroColour::Channels(point_color)
+        }
     }
 }
 
-/// Pass 2's first step: how each point faces the surface, [`Facing::of`] as a lane loop.
-/// A point is black when its colour `L / N * A` is zero (and the unlit skip is on).
-/// Returns how many points face the surface, face away and are black (counted after, in
-/// byte loops: [`count_facing`]).
-///
-/// With no channel of `L / N` negative or NaN, the colour is zero exactly when its
-/// brightest channel is: a rounded product does not grow in magnitude when a factor
-/// shrinks, so `|fl(L_k A)| <= |fl(max_k L_k A)|` for every channel `k` (and an `A` that is
-/// NaN or infinite makes neither zero). One product and one comparison a point, not three.
+#[inline(always)]
+fn brightest_zero(brightest: f64, a: f64) -> bool {
+    arriving(brightest, a, 1.0) == 0.0
+}
+
+/// Each channel compared, no branch.
+#[inline(always)]
+fn channels_zero(point_color: DVec3, a: f64) -> bool {
+    let c = arriving(point_color, a, 1.0);
+    (c.x == 0.0) & (c.y == 0.0) & (c.z == 0.0)
+}
+
+/// How each point faces the surface, [`Facing::of`] as a lane loop, for points whose
+/// incidences are already in `lanes`. A point is black when its colour `L / N * A` is zero
+/// (and the unlit skip is on: [`ZeroColour`]). Returns how many points face the surface,
+/// face away and are black (counted after, in byte loops: [`count_facing`]).
 #[multiversion(targets("x86_64+avx512f", "x86_64+avx2"))]
 fn facings(lanes: &Lanes, point_color: DVec3, unlit_skip: bool, out: &mut [Facing]) -> [u64; 3] {
-    // Every channel compared (a NaN fails), not `min_element`, which passes NaN by.
-    if point_color.cmpge(DVec3::ZERO).all() {
-        let brightest = point_color.max_element();
-        facings_where(lanes, unlit_skip, out, |a| arriving(brightest, a, 1.0) == 0.0)
-    } else {
-        facings_where(lanes, unlit_skip, out, |a| {
-            // Each channel compared, no branch.
-            let c = arriving(point_color, a, 1.0);
-            (c.x == 0.0) & (c.y == 0.0) & (c.z == 0.0)
-        })
+    match ZeroColour::of(point_color) {
+        ZeroColour::Brightest(b) => facings_where(lanes, out, move |a| unlit_skip & brightest_zero(b, a)),
+        ZeroColour::Channels(c) => facings_where(lanes, out, move |a| unlit_skip & channels_zero(c, a)),
     }
 }
 
-/// [`facings`] with `zero(A_i)` telling whether point `i`'s colour is zero. Inlined into
-/// each of its versions.
+/// [`facings`] with `black(A_i)` telling whether point `i` is black. Inlined into each of
+/// its versions.
 #[inline(always)]
-fn facings_where(lanes: &Lanes, unlit_skip: bool, out: &mut [Facing], zero: impl Fn(f64) -> bool) -> [u64; 3] {
+fn facings_where(lanes: &Lanes, out: &mut [Facing], black: impl Fn(f64) -> bool) -> [u64; 3] {
     let len = out.len();
     let (dist, atten, n_dot_l) = (&lanes.dist[..len], &lanes.atten[..len], &lanes.n_dot_l[..len]);
     for i in 0..len {
-        out[i] = Facing::of(dist[i] != 0.0, unlit_skip & zero(atten[i]), n_dot_l[i]);
+        out[i] = Facing::of(dist[i] != 0.0, black(atten[i]), n_dot_l[i]);
     }
     let out = &*out;
     [Facing::Towards, Facing::Away, Facing::Black].map(|kind| count_facing(out, kind))
@@ -436,10 +497,17 @@ impl<const K: usize> Tracer<'_, '_, K> {
         let len = points.len();
         let point_color = area.point_color();
         s.lanes.resize(len);
-        incidences(points, at.point, at.n, &area.attenuation, &mut s.lanes);
         s.facing.clear();
         s.facing.resize(len, Facing::NoLight);
-        let [towards, away, black] = facings(&s.lanes, point_color, self.world.skips.on(Skip::Unlit), &mut s.facing);
+        let unlit_skip = self.world.skips.on(Skip::Unlit);
+        let [towards, away, black] = incidences(
+            points,
+            (at.point, at.n),
+            &area.attenuation,
+            (point_color, unlit_skip),
+            &mut s.lanes,
+            &mut s.facing,
+        );
         let packing = Packing::fastest();
         if packing == Packing::OneByOne {
             list_facing(&s.facing, towards as usize, &mut s.open);
@@ -730,6 +798,22 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
 
+    /// Pass 1's lanes for `set` seen from `p` with normal `n`, after checking that the
+    /// facings decided in its loop are those [`facings`] decides from the lanes, for the
+    /// unlit skip on and off.
+    pub(super) fn lanes_of(set: &PointSet, (p, n): (DVec3, DVec3), att: &Attenuation, point_color: DVec3) -> Lanes {
+        let mut lanes = Lanes::default();
+        lanes.resize(set.len());
+        for unlit_skip in [true, false] {
+            let mut fused = vec![Facing::NoLight; set.len()];
+            let counts = incidences(set, (p, n), att, (point_color, unlit_skip), &mut lanes, &mut fused);
+            let mut apart = vec![Facing::NoLight; set.len()];
+            assert_eq!(counts, facings(&lanes, point_color, unlit_skip, &mut apart));
+            assert_eq!(fused, apart);
+        }
+        lanes
+    }
+
     /// Passes 1 and 3 give, bit for bit, what the one-light formulas give point by point.
     #[test]
     fn lanes_are_the_point_light_formulas_bit_for_bit() {
@@ -769,12 +853,10 @@ mod tests {
                 diffuse: true,
                 specular: model_specular,
             };
-            let mut lanes = Lanes::default();
-            lanes.resize(points.len());
-            incidences(&set, p, n, &att, &mut lanes);
-            speculars(&mut lanes, points.len(), n, eye, &mat, model);
+            let lanes = &mut lanes_of(&set, (p, n), &att, point_color);
+            speculars(lanes, points.len(), n, eye, &mat, model);
             shares(
-                &mut lanes,
+                lanes,
                 points.len(),
                 point_color,
                 &filter,
@@ -928,9 +1010,7 @@ mod tests {
         let tinted: Vec<DVec3> = (0..len)
             .map(|i| [DVec3::ONE, DVec3::ZERO, DVec3::new(0.6, 0.27, 0.08)][i % 3])
             .collect();
-        let mut lanes = Lanes::default();
-        lanes.resize(len);
-        incidences(&set, p, n, &att, &mut lanes);
+        let mut lanes = lanes_of(&set, (p, n), &att, point_color);
         speculars(&mut lanes, len, n, eye, &mat, model);
         let start = DVec3::new(0.25, 0.125, 0.0);
         for filter in [Some(&tinted[..]), None] {

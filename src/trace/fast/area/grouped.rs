@@ -155,13 +155,16 @@ impl<const K: usize> Tracer<'_, '_, K> {
             // branch per ray (the pattern is random); then the exact test of each undecided
             // ray, in ascending order. The order of `hits` does not matter: each of its points
             // is marked on its own.
+            // Slices taken once: through the vectors, their pointers are loaded again after
+            // every store.
+            let (hit_list, test_list, said) = (&mut s.hits[..], &mut s.tests[..tests], &s.fan[..tests]);
             let mut undecided = 0;
             for k in 0..tests {
-                let (i, verdict) = (s.tests[k], s.fan[k]);
+                let (i, verdict) = (test_list[k], said[k]);
                 // `hits <= open` and `undecided <= k`: in bounds.
-                s.hits[hits] = i;
+                hit_list[hits] = i;
                 hits += usize::from(verdict == Verdict::Hit);
-                s.tests[undecided] = i;
+                test_list[undecided] = i;
                 undecided += usize::from(verdict == Verdict::Test);
             }
             for k in 0..undecided {
@@ -175,14 +178,15 @@ impl<const K: usize> Tracer<'_, '_, K> {
             }
             let met = &s.hits[..hits];
             if opaque {
+                let (blocked, filter) = (&mut s.blocked[..], &mut s.filter[..]);
                 if s.blocked_unread {
                     for &i in met {
-                        s.blocked[i as usize] = true;
+                        blocked[i as usize] = true;
                     }
                 } else {
                     for &i in met {
-                        s.filter[i as usize] = DVec3::ZERO;
-                        s.blocked[i as usize] = true;
+                        filter[i as usize] = DVec3::ZERO;
+                        blocked[i as usize] = true;
                     }
                 }
                 // Each of them was open.
@@ -204,10 +208,11 @@ impl<const K: usize> Tracer<'_, '_, K> {
                 s.tinted |= hits > 0;
                 // Each channel compared, no branch (a product is rarely 0).
                 let mut zero_product = false;
+                let filters = &mut s.filter[..];
                 for &i in met {
                     let i = i as usize;
-                    let f = filter_through(s.filter[i], color);
-                    s.filter[i] = f;
+                    let f = filter_through(filters[i], color);
+                    filters[i] = f;
                     zero_product |= (f.x == 0.0) & (f.y == 0.0) & (f.z == 0.0);
                 }
                 s.zero_product |= zero_product;
@@ -378,7 +383,7 @@ fn verdicts(lanes: &Lanes, (axis, cos): (DVec3, f64), sure: Option<(DVec3, f64, 
 
 #[cfg(test)]
 mod tests {
-    use super::super::incidences;
+    use super::super::tests::lanes_of;
     use super::*;
     use crate::area_light::PointSet;
     use crate::shading::Attenuation;
@@ -518,14 +523,12 @@ mod tests {
                 continue;
             }
             apart += 1;
-            let mut lanes = Lanes::default();
-            lanes.resize(points.len());
             let att = Attenuation {
                 constant: 1.0,
                 linear: 0.0,
                 quadratic: 0.0,
             };
-            incidences(&PointSet::from_points(&points), p, DVec3::Z, &att, &mut lanes);
+            let lanes = lanes_of(&PointSet::from_points(&points), (p, DVec3::Z), &att, DVec3::ONE);
             let mut verdict = vec![Verdict::Test; points.len()];
             verdicts(&lanes, cone, None, &mut verdict);
             assert!(
