@@ -283,10 +283,17 @@ impl PhotonFilter {
 }
 
 impl Settings {
-    /// Side `n` of the `n x n` sample grid.
+    /// Side `n` of the `n x n` sample grid ([`grid_side_of`]), read once per pixel.
     pub fn grid_side(&self) -> u32 {
-        (self.samples_per_pixel as f64).sqrt().round() as u32
+        grid_side_of(self.samples_per_pixel)
     }
+}
+
+/// `sqrt(s)` rounded to the nearest integer, in integers: with `r = isqrt(s)`, `sqrt(s)`
+/// reaches `r + 1/2` exactly when `s > r^2 + r` (when `s >= r^2 + r + 1/4`, never equal).
+fn grid_side_of(s: u32) -> u32 {
+    let r = s.isqrt();
+    r + u32::from(u64::from(s) > u64::from(r) * u64::from(r + 1))
 }
 
 /// Camera as written in the scene file; the aspect ratio comes from the image size.
@@ -395,5 +402,27 @@ impl Scene {
     /// The sum of the ambient lights' colours, `L_a`.
     pub fn ambient(&self) -> DVec3 {
         self.lights.iter().map(Light::ambient).sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::grid_side_of;
+
+    /// The rounded square root in integers is the rounded floating-point square root:
+    /// every count to 2^20, the squares and their neighbours to the top of `u32`.
+    #[test]
+    fn grid_side_is_the_rounded_square_root() {
+        let rounded = |s: u32| (s as f64).sqrt().round() as u32;
+        for s in 0..=1 << 20 {
+            assert_eq!(grid_side_of(s), rounded(s), "{s}");
+        }
+        for r in (1000..=65535u32).step_by(7).chain([65535]) {
+            for s in [r * r - 1, r * r, r * r + 1, r * r + r, r * r + r + 1] {
+                assert_eq!(grid_side_of(s), rounded(s), "{s}");
+            }
+        }
+        assert_eq!(grid_side_of(u32::MAX), 65536);
+        assert_eq!([1, 2, 3, 4, 6, 7, 9, 16].map(grid_side_of), [1, 1, 2, 2, 2, 3, 3, 4]);
     }
 }
