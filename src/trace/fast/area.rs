@@ -210,6 +210,7 @@ fn incidences_where(
     let (lx, ly, lz) = (&mut out.lx[..len], &mut out.ly[..len], &mut out.lz[..len]);
     let (dist, atten, ndl) = (&mut out.dist[..len], &mut out.atten[..len], &mut out.n_dot_l[..len]);
     let facing = &mut facing[..len];
+    let mut counts = [0u64; 3];
     for i in 0..len {
         let (l, d) = direction_to(DVec3::new(xs[i], ys[i], zs[i]), p);
         let a = att.factor(d);
@@ -220,10 +221,13 @@ fn incidences_where(
         dist[i] = d;
         atten[i] = a;
         ndl[i] = n_dot_l;
-        facing[i] = Facing::of(d != 0.0, black(a), n_dot_l);
+        let f = Facing::of(d != 0.0, black(a), n_dot_l);
+        facing[i] = f;
+        for (count, kind) in counts.iter_mut().zip([Facing::Towards, Facing::Away, Facing::Black]) {
+            *count += u64::from(f == kind);
+        }
     }
-    let facing = &*facing;
-    [Facing::Towards, Facing::Away, Facing::Black].map(|kind| count_facing(facing, kind))
+    counts
 }
 
 /// How a point's colour `L / N * A` is tested for zero ([`facings`]).
