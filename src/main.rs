@@ -16,16 +16,21 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
+    let args = cli::Cli::parse();
     // glibc serves blocks under a threshold from its heap, and raises that threshold to the
     // size of each large block freed (up to 32 MiB): a million objects' arrays (boxes,
     // subtrees, sort keys) then stay resident after they are freed. A fixed 1 MiB keeps
-    // every large array in its own mapping, returned when freed.
+    // every large array in its own mapping, returned when freed. `figures` keeps glibc's
+    // rule: its worlds are small, and it allocates an image's films again and again, which
+    // then come back from the heap instead of new mappings paid page by page (the nine
+    // course sets: 0.3 s of system time, 1.5 % of the wall time; BENCHMARKS.md).
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
-    // SAFETY: called before any allocation made by another thread.
-    unsafe {
-        libc::mallopt(libc::M_MMAP_THRESHOLD, 1 << 20);
+    if !matches!(args.command, cli::Command::Figures(_)) {
+        // SAFETY: called before any allocation made by another thread.
+        unsafe {
+            libc::mallopt(libc::M_MMAP_THRESHOLD, 1 << 20);
+        }
     }
-    let args = cli::Cli::parse();
     match cli::run(args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
