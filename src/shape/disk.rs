@@ -1,5 +1,6 @@
 //! A flat disk: center, unit normal, radius.
 
+use super::plane::plane_t;
 use super::{Aabb, SurfaceHit};
 use super::{gamma, l1};
 use crate::math::Ray;
@@ -23,14 +24,7 @@ impl Disk {
 
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
-        let denom = ray.dir.dot(self.normal);
-        if denom == 0.0 {
-            return None;
-        }
-        let t = (self.center - ray.origin).dot(self.normal) / denom;
-        if !(t > t_min && t < t_max) {
-            return None;
-        }
+        let t = plane_t(self.center, self.normal, ray, t_min, t_max)?;
         let inside = (ray.at(t) - self.center).length_squared() <= self.radius * self.radius;
         inside.then_some(SurfaceHit { t, normal: self.normal })
     }

@@ -5,6 +5,19 @@ use super::{gamma, l1};
 use crate::math::Ray;
 use glam::DVec3;
 
+/// Where the ray meets the plane through `p0` with unit normal `N`, when
+/// `t_min < t < t_max`: `t = (p0 - o).N / (v.N)`; rays parallel to the plane never hit.
+/// The plane's, the disk's and the rectangle's first step.
+#[inline]
+pub(crate) fn plane_t(p0: DVec3, normal: DVec3, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+    let denom = ray.dir.dot(normal);
+    if denom == 0.0 {
+        return None;
+    }
+    let t = (p0 - ray.origin).dot(normal) / denom;
+    (t > t_min && t < t_max).then_some(t)
+}
+
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Plane {
     pub point: DVec3,
@@ -20,15 +33,10 @@ impl Plane {
         }
     }
 
-    /// `t = (p0 - o).N / (v.N)`; rays parallel to the plane never hit.
+    /// The hit at [`plane_t`].
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
-        let denom = ray.dir.dot(self.normal);
-        if denom == 0.0 {
-            return None;
-        }
-        let t = (self.point - ray.origin).dot(self.normal) / denom;
-        (t > t_min && t < t_max).then_some(SurfaceHit { t, normal: self.normal })
+        plane_t(self.point, self.normal, ray, t_min, t_max).map(|t| SurfaceHit { t, normal: self.normal })
     }
 
     /// Whether no segment from `origin` to a point of the ball (`center`, `radius`) can hit

@@ -1,6 +1,7 @@
 //! A parallelogram given by a corner and two edges: `corner + u e1 + v e2`, `u, v in [0, 1]`
 //! (the finite mirrors of the `mirrors` figures).
 
+use super::plane::plane_t;
 use super::{Aabb, SurfaceHit};
 use super::{gamma, l1};
 use crate::math::Ray;
@@ -35,14 +36,7 @@ impl Rectangle {
     /// Plane hit, then `u = ((p - c) x e2).n / |n|^2`, `v = (e1 x (p - c)).n / |n|^2`.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
-        let denom = ray.dir.dot(self.normal);
-        if denom == 0.0 {
-            return None;
-        }
-        let t = (self.corner - ray.origin).dot(self.normal) / denom;
-        if !(t > t_min && t < t_max) {
-            return None;
-        }
+        let t = plane_t(self.corner, self.normal, ray, t_min, t_max)?;
         let w = ray.at(t) - self.corner;
         let n2 = self.cross.length_squared();
         let u = w.cross(self.edge2).dot(self.cross) / n2;
