@@ -285,7 +285,7 @@ fn check_objects(seed: u64, objects: &[Object], half: f64) {
     let objects = objects.to_vec();
     let linear = Accel::build_with(&objects, AccelChoice::Linear);
     Bvh::new(&objects).check(&objects).unwrap();
-    // The walks on the widest vectors the processor has, and on the build's target.
+    // The walks on the widest vectors the processor has, and on baseline x86-64.
     for kernel in [Kernel::Widest, Kernel::Baseline] {
         let bvh = Accel::Bvh(Bvh::with_kernel(&objects, kernel));
         let random = random_rays(seed, &objects, 300, half);

@@ -21,9 +21,8 @@
 //! leaf order ([`SphereLanes`]): a leaf's spheres are read from one run of memory and
 //! sifted four at a time by the first test of the sphere's routine, and the ones left are
 //! tested by the routine itself. The
-//! walks are compiled for AVX-512, AVX2 and the build's target (x86-64-v2 by
-//! `.cargo/config.toml`), the widest the processor has chosen at run time
-//! (`multiversion`), or the build's target as a [`Kernel`] says. As it
+//! walks are compiled for AVX-512, AVX2 and baseline x86-64, the widest the processor
+//! has chosen at run time (`multiversion`), or the baseline as a [`Kernel`] says. As it
 //! pushes a child, a walk asks the caches for the child's node or leaf spheres, which it
 //! reads later. The nodes and spheres are on the system's ordinary pages: asking Linux
 //! for 2 MiB pages (`madvise`) made the incoherent walks 5 % faster but a render no faster,
@@ -110,12 +109,11 @@ fn occludes(objects: &[Object], ray: &Ray, t_min: f64, t_max: f64, j: usize, sph
 /// Which instructions the walks run on.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Kernel {
-    /// The widest vectors the processor has: AVX-512, AVX2, else the build's target
-    /// (chosen at run time).
+    /// The widest vectors the processor has: AVX-512, AVX2, else baseline x86-64 (chosen
+    /// at run time).
     #[default]
     Widest,
-    /// The build's target (x86-64-v2 by `.cargo/config.toml`: SSE vectors) on any
-    /// processor: the same hits, for tests.
+    /// Baseline x86-64 (SSE2) on any processor: the same hits, for tests.
     Baseline,
 }
 
