@@ -456,7 +456,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
     ) {
         let world = self.world;
         let skips = world.skips;
-        let mut s = std::mem::take(&mut self.area);
+        let mut s = self.area.take().unwrap_or_default();
         let points = world.area_points(index, self.sample_key.pixel, self.sample_key.sample);
         let points = &*points;
         let (center, radius) = area.bounding_sphere();
@@ -476,7 +476,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
             self.add_area_points(color, mask, index, points, light, at, shadowing, &mut s, rec);
             s.candidates = candidates;
         }
-        self.area = s;
+        self.area = Some(s);
     }
 
     /// Passes 1 to 4 of the module doc for the light points `points` of `area`, whose
