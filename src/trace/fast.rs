@@ -260,7 +260,8 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         let mat = self.world.material_of(object);
         let surface = Surface::hit(self.world, ray, object, &hit);
         rec.hit(object, hit.t, surface.point, hit.normal, surface.entering);
-        let mut color = self.local_counted(&surface, mask, rec);
+        let mut color = [DVec3::ZERO; K];
+        self.local_counted(&surface, mask, rec, &mut color);
         let local = local_weight(conventions.local_weight, mat.kr, mat.kt);
         members_of::<K>(mask).for_each(|j| color[j] *= local);
         rec.local(color[0]);
@@ -354,27 +355,27 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     /// [`Tracer::local`] for the members of `mask`, with what it counts added to each member's
     /// counts, less the shadow rays its own scene does not cast (`shadow_excess`: towards
     /// area light points beyond its count, or towards lights it does not have).
-    fn local_counted<R: Recorder>(&mut self, at: &Surface, mask: u32, rec: &mut R) -> [DVec3; K] {
+    fn local_counted<R: Recorder>(&mut self, at: &Surface, mask: u32, rec: &mut R, color: &mut [DVec3; K]) {
         if K == 1 {
-            return self.local(at, mask, rec);
+            return self.local(at, mask, rec, color);
         }
         let shadow_before = self.counts.shadow;
-        let color = self.local(at, mask, rec);
+        self.local(at, mask, rec, color);
         let shadow = self.counts.shadow - shadow_before;
         for j in members_of::<K>(mask) {
             self.member_counts[j].shadow += shadow - self.shadow_excess[j];
         }
         self.shadow_excess = [0; K];
-        color
     }
 
     /// Local illumination at a hit (slides' full model), with shadow rays:
     /// `L = L_a k_a S + sum_i A_i L_i [k_d S max(N.L_i, 0) + k_s [m S + (1 - m)] spec_i]`,
     /// where an area light counts as its N points of colour `L / N`, then the caustic share
-    /// ([`caustic_share`]); for every member of `mask`, each summing in the same order.
-    fn local<R: Recorder>(&mut self, at: &Surface, mask: u32, rec: &mut R) -> [DVec3; K] {
+    /// ([`caustic_share`]); for every member of `mask`, each summing in the same order, into
+    /// `color` (zero on entry). The member arrays are written in place, not returned: for 16
+    /// members each return is a copy of 384 bytes.
+    fn local<R: Recorder>(&mut self, at: &Surface, mask: u32, rec: &mut R, color: &mut [DVec3; K]) {
         let scene = self.world.scene;
-        let mut color = [DVec3::ZERO; K];
         for j in members_of::<K>(mask) {
             let (model, mat) = self.member_shading(j, at.object);
             if model.ambient {
@@ -393,16 +394,13 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
             let shadow_before = self.counts.shadow;
             match light {
                 Light::Ambient { .. } => {}
-                Light::Area(area) => self.add_area_light(&mut color, lit, index, area, at, rec),
+                Light::Area(area) => self.add_area_light(color, lit, index, area, at, rec),
                 Light::Aperture(a) => {
                     // Its share depends on no member's material or shading: one for all.
                     let share = self.aperture_light(index, a.color, light.incidence(at.point), at, rec);
                     members_of::<K>(lit).for_each(|j| color[j] += share);
                 }
-                _ => {
-                    let share = self.light_share(index, light.incidence(at.point), at, None, lit, rec);
-                    members_of::<K>(lit).for_each(|j| color[j] += share[j]);
-                }
+                _ => self.add_light_share(color, index, light.incidence(at.point), at, lit, rec),
             }
             if lit != mask {
                 let cast = self.counts.shadow - shadow_before;
@@ -418,29 +416,28 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                 }
             }
         }
-        color
     }
 
-    /// One point light's share at a surface point: `A L [k_d S max(N.L, 0) + k_s tint spec]`
-    /// times the shadow filter. Nothing (and no shadow ray) when no light arrives or when
-    /// N.L <= 0, where neither the diffuse nor (slides) the specular term counts.
-    /// `candidates`, when given, are the only objects that can block the shadow ray. For
-    /// every member of `mask`: one shadow ray, each member's shading.
-    fn light_share<R: Recorder>(
+    /// Adds to `color` one point light's share at a surface point:
+    /// `A L [k_d S max(N.L, 0) + k_s tint spec]` times the shadow filter. Nothing (a share of
+    /// 0, and no shadow ray) when no light arrives or when N.L <= 0, where neither the
+    /// diffuse nor (slides) the specular term counts. For every member of `mask`: one shadow
+    /// ray, each member's shading.
+    fn add_light_share<R: Recorder>(
         &mut self,
+        color: &mut [DVec3; K],
         index: usize,
         inc: Option<Incidence>,
         at: &Surface,
-        candidates: Option<&[Candidate]>,
         mask: u32,
         rec: &mut R,
-    ) -> [DVec3; K] {
+    ) {
         let n_dot_l = inc.map_or(0.0, |inc| at.n.dot(inc.to_light));
         let mut shares = [DVec3::ZERO; K];
         match (inc, self.facing(inc.as_ref(), n_dot_l)) {
             (Some(inc), Facing::Towards) => {
                 let filter = if self.world.scene.settings.shadows {
-                    self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, candidates, rec)
+                    self.shadow_filter_recorded(at.point, at.outward, at.err, &inc, None, rec)
                 } else {
                     DVec3::ONE
                 };
@@ -459,9 +456,9 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                     };
                 }
             }
-            (_, facing) => self.not_facing(index, facing, inc.as_ref(), n_dot_l, at, candidates, rec),
+            (_, facing) => self.not_facing(index, facing, inc.as_ref(), n_dot_l, at, None, rec),
         }
-        shares
+        members_of::<K>(mask).for_each(|j| color[j] += shares[j]);
     }
 
     /// An aperture light's share at a surface point ([`super::Reference`]'s
