@@ -1,8 +1,9 @@
 //! One area light at one shading point, its N points taken together (chapter 7.4b,
 //! `L_multi = (1/N) sum_i L_point_i`). Four passes over the points:
 //!
-//! 1. the incidence of every point: `L_i`, `d_i`, `A(d_i)`, `N.L_i` ([`incidences`]);
-//! 2. how each point faces the surface, and the shadow rays of those facing it, tested
+//! 1. the incidence of every point: `L_i`, `d_i`, `A(d_i)`, `N.L_i`, and how it faces the
+//!    surface ([`incidences`]);
+//! 2. the shadow rays of the points facing the surface, tested
 //!    object by object ([`grouped`]: each candidate object against every point it has not
 //!    blocked yet, opaque objects first, then the transparent ones in ascending order
 //!    multiplying their colours in);
