@@ -444,7 +444,7 @@ impl<'s> World<'s> {
 
     /// [`World::any_hit`] for a shadow ray: in a linearly scanned world with the
     /// bounding-sphere skip on, an object whose ball (`shadow_balls`) the ray misses on
-    /// `(0, t_max)` ([`misses_bounding_sphere`], padded so that rounding never rejects a hit)
+    /// `(0, t_max)` (`misses_bounding_sphere`, padded so that rounding never rejects a hit)
     /// is not tested: it cannot be hit. Adds the objects not tested to `untested`.
     #[inline]
     pub fn shadow_any_hit(&self, ray: &Ray, t_max: f64, filter: impl Fn(usize) -> bool, untested: &mut u64) -> bool {
@@ -504,8 +504,8 @@ impl<'s> World<'s> {
     /// not, into `crossed` (ascending) the objects that filter shadows it meets
     /// ([`World::shadow_each_hit`] over those). Each scan visits only its own objects, and
     /// tests an object exactly only where the ray meets its ball: for an unending ray along
-    /// a directional light, by the balls seen along the light ([`BallsAlong`]), else by
-    /// [`misses_bounding_sphere`]. Adds the objects passed by to `untested` (on a blocked
+    /// a directional light, by the balls seen along the light (`BallsAlong`), else by
+    /// `misses_bounding_sphere`. Adds the objects passed by to `untested` (on a blocked
     /// ray, only the opaque ones before the blocker). Only for a world that
     /// [`World::scans_balls`].
     pub fn shadow_scan(&self, ray: &Ray, t_max: f64, crossed: &mut Vec<usize>, untested: &mut u64) -> bool {

@@ -1,6 +1,6 @@
 //! One photon's path: from its light, through reflections and refractions, to the diffuse
 //! surfaces where it is stored. It meets objects through the scene's intersection core and
-//! bends by the laws rays bend by ([`reflect`], [`refract`], [`total_internal_reflection`]
+//! bends by the laws rays bend by ([`reflect`], [`refract`], [`total_internal_reflection`](crate::math::total_internal_reflection)
 //! through `refract`), under the scene's conventions (which objects refract, where a total
 //! internal reflection's weight goes, what weighs a refracted ray).
 //!

@@ -283,7 +283,8 @@ impl PhotonFilter {
 }
 
 impl Settings {
-    /// Side `n` of the `n x n` sample grid ([`grid_side_of`]), read once per pixel.
+    /// Side `n` of the `n x n` sample grid: the sample count's square root rounded to the
+    /// nearest integer, taken in integers (`grid_side_of`), read once per pixel.
     pub fn grid_side(&self) -> u32 {
         grid_side_of(self.samples_per_pixel)
     }

@@ -33,7 +33,7 @@ impl Plane {
         }
     }
 
-    /// The hit at [`plane_t`].
+    /// The hit where `plane_t` puts it.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         plane_t(self.point, self.normal, ray, t_min, t_max).map(|t| SurfaceHit { t, normal: self.normal })

@@ -409,8 +409,8 @@ impl Torus {
 
     /// Whether the ray meets the torus inside `(t_min, t_max)`: the shortcuts of
     /// `Torus::shadow_verdict` one after the other, stopping at the first that decides,
-    /// then finer ones ([`Torus::entered_at_a_sample`], the tube clearance on
-    /// [`FINE_PIECES`] pieces), then the quartic.
+    /// then finer ones (`Torus::entered_at_a_sample`, the tube clearance on
+    /// `FINE_PIECES` pieces), then the quartic.
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let Some((o, d, clip)) = self.local_clip(ray, t_min, t_max) else {
             return false;

@@ -197,7 +197,7 @@ pub trait Recorder {
     /// The transparent objects (indices, ascending) whose colours filter the last shadow
     /// ray; not reported when an opaque object blocks it or nothing is transparent.
     fn shadow_crossed(&mut self, _objects: &[usize]) {}
-    /// The caustic share of the current hit ([`caustic_share`]): the term added, and the
+    /// The caustic share of the current hit (`caustic_share`): the term added, and the
     /// estimate (irradiance, photons) it comes from.
     fn caustic(&mut self, _term: DVec3, _estimate: &Estimate) {}
     /// The local illumination of the current hit (ambient + every light's share).

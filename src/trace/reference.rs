@@ -18,8 +18,8 @@
 //! local terms, which objects refract, where the energy of a total internal reflection
 //! goes, what weighs a refracted ray and what a transparent object filters shadows by.
 //!
-//! Each formula is evaluated through a table of functions ([`Formulas`]): the chapter's
-//! ([`Formulas::CHAPTER`]) for every render, another for a named mistake of
+//! Each formula is evaluated through a table of functions ([`Formulas`](super::Formulas)): the chapter's
+//! ([`Formulas::CHAPTER`](super::Formulas::CHAPTER)) for every render, another for a named mistake of
 //! `lumiere diagnose`.
 
 use super::formulas::{AmbientContext, Chapter, FormulaTable};
