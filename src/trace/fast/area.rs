@@ -502,7 +502,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
         let len = points.len();
         let point_color = area.point_color();
         s.lanes.resize(len);
-        s.facing.clear();
+        // Pass 1 writes every point's facing: no fill before it.
         s.facing.resize(len, Facing::NoLight);
         let unlit_skip = self.world.skips.on(Skip::Unlit);
         let [towards, away, black] = incidences(
