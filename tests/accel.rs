@@ -5,8 +5,7 @@
 //! any-hit and every-hit agree too. The BVH's structure holds its invariants, every shape honours the
 //! `t_max` contract the cores rely on, and whole images are byte-identical with either core.
 
-mod common;
-use common::*;
+use crate::common::*;
 use glam::DVec3;
 use lumiere::accel::{Accel, AccelChoice, Bvh, Kernel};
 use lumiere::math::Ray;

@@ -3,9 +3,7 @@
 //! caustic term, determinism across threads, shards and tracers, and the `[caustics]` table's
 //! errors.
 
-mod common;
-
-use common::{lumiere, repo, scene, temp_dir};
+use crate::common::{lumiere, repo, scene, temp_dir};
 use glam::DVec3;
 use lumiere::accel::{Accel, AccelChoice};
 use lumiere::caustics::{self, emit::Spread, emit::Start, path};

@@ -2,8 +2,7 @@
 //! naming the file, line, column and field, exit code 2 (bad input) or 1 (work failed), never
 //! a panic, and never a half-written output. Every exit code case: tests/exit_codes.rs.
 
-mod common;
-use common::*;
+use crate::common::*;
 use std::fs;
 
 /// A small valid scene; tests break one line of it.

@@ -3,8 +3,7 @@
 //! images, the JSON document, the worst pixels, FLIP against values of NVIDIA's FLIP tool,
 //! object edges on scenes whose edges are known, and the PFM reader under random bytes.
 
-mod common;
-use common::*;
+use crate::common::*;
 use glam::DVec3;
 use image::ImageEncoder;
 use lumiere::compare::pfm::decode_pfm;

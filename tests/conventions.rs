@@ -1,8 +1,6 @@
 //! Each convention where the chapter and SIMRenderer differ, pinned on a pixel computed by
 //! hand: the chapter's value, then the other's.
 
-mod common;
-
 use glam::DVec3;
 use lumiere::conventions::Conventions;
 use lumiere::math::Ray;
@@ -241,7 +239,7 @@ fn bad_conventions_are_located() {
 
 #[test]
 fn the_command_line_sets_presets_and_switches_and_probe_prints_them() {
-    let scene = common::repo("scenes/reference.toml");
+    let scene = crate::common::repo("scenes/reference.toml");
     let probe = |extra: &[&str]| {
         let mut args = vec![
             "probe",
@@ -254,7 +252,7 @@ fn the_command_line_sets_presets_and_switches_and_probe_prints_them() {
             "15",
         ];
         args.extend(extra);
-        common::lumiere(&args)
+        crate::common::lumiere(&args)
     };
     let out = probe(&["--conventions", "simrenderer", "--convention", "far=inf"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));

@@ -12,8 +12,7 @@
 //! shortcut tests fewer objects when on and every object when the bounding-sphere skip is
 //! off.
 
-mod common;
-use common::*;
+use crate::common::*;
 use glam::DVec3;
 use lumiere::light::Light;
 use lumiere::math::Ray;

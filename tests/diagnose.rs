@@ -12,8 +12,7 @@
 //! same diagnosis for any thread count; the command line's text, JSON and report, and its
 //! bad input.
 
-mod common;
-use common::*;
+use crate::common::*;
 use lumiere::diagnose::mistakes::catalogue;
 use lumiere::diagnose::{Options, Verdict, diagnose, render_mistake};
 use lumiere::film::Film;

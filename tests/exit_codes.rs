@@ -7,8 +7,7 @@
 //! (tests/signals.rs).
 #![cfg(unix)]
 
-mod common;
-use common::*;
+use crate::common::*;
 use std::fs;
 use std::path::Path;
 use std::process::Output;

@@ -3,8 +3,7 @@
 //! together, give the bytes and ray counts of separate renders; and only such scenes are
 //! grouped.
 
-mod common;
-use common::*;
+use crate::common::*;
 use lumiere::area_light::PointMode;
 use lumiere::family;
 use lumiere::figures::{registry, scaled};

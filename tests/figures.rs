@@ -2,8 +2,7 @@
 //! figures reproduced bit for bit, and what a set writes: images with their provenance,
 //! manifests that depend on their set alone, contact sheets and the gallery.
 
-mod common;
-use common::*;
+use crate::common::*;
 use lumiere::figures::{self, Run, files, provenance, registry, render_figure};
 use serde_json::Value;
 use std::path::Path;

@@ -2,8 +2,7 @@
 //! edited, a missing and an extra figure each fail with what differs, and the differing
 //! figures get a heat-map and a place on the review page.
 
-mod common;
-use common::*;
+use crate::common::*;
 use lumiere::figures::provenance;
 use lumiere::film::encode_png;
 use std::path::Path;

@@ -6,7 +6,8 @@
 //! each missing table, never a panic; random valid scenes (with random area lights) must
 //! render without a panic and with no NaN or infinity in any pixel. The suite runs 256
 //! cases per property; the long run, 50 000 cases per property in about 10 s:
-//! `PROPTEST_CASES=50000 nice -n 10 cargo test --release --test fuzz` (see BENCHMARKS.md).
+//! `PROPTEST_CASES=50000 nice -n 10 cargo test --release --test suite -- fuzz:: --skip
+//! simrenderer_fuzz` (see BENCHMARKS.md).
 
 use lumiere::render::render;
 use lumiere::scene::{self};

@@ -2,8 +2,7 @@
 //! (file, line, column, field, allowed range) and exit code 2 on the command line, never a
 //! panic.
 
-mod common;
-use common::*;
+use crate::common::*;
 use lumiere::scene::parse;
 
 const BASE: &str = "[image]\nwidth = 40\nheight = 30\n\n[camera]\nposition = [0, -16, 8]\nlook_at = [0, 0, 0]\n\n[materials.red]\ncolor = [1, 0, 0]\n\n[[shapes]]\ntype = \"plane\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n\n";

@@ -4,8 +4,7 @@
 //! naming what is allowed; mesh files are read relative to the scene file, and their errors
 //! name the `.obj` file and its line; a mirroring transform keeps a mesh's normals outward.
 
-mod common;
-use common::*;
+use crate::common::*;
 use glam::DVec3;
 use lumiere::math::Ray;
 use lumiere::render::render;

@@ -4,9 +4,7 @@
 //! not depend on the thread count. Then both scene formats: each light read, written and
 //! read back, and bad values refused with their place.
 
-mod common;
-
-use common::{render_small, repo, temp_dir};
+use crate::common::{render_small, repo, temp_dir};
 use glam::DVec3;
 use lumiere::interference::{Aperture, wavelength_color};
 use lumiere::light::Light;
@@ -468,7 +466,7 @@ fn a_bad_light_on_the_command_line_exits_2_and_writes_nothing() {
     )
     .unwrap();
     let out = dir.join("x.png");
-    let run = common::lumiere(&["render", bad.to_str().unwrap(), "-o", out.to_str().unwrap(), "-q"]);
+    let run = crate::common::lumiere(&["render", bad.to_str().unwrap(), "-o", out.to_str().unwrap(), "-q"]);
     assert_eq!(run.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(

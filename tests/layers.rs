@@ -3,8 +3,7 @@
 //! back channel by channel; the folder form; the same values for any thread count; bad
 //! paths refused with exit code 2.
 
-mod common;
-use common::*;
+use crate::common::*;
 use glam::DVec3;
 use lumiere::compare::pfm::decode_pfm;
 use lumiere::film::quantize;

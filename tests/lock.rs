@@ -3,8 +3,7 @@
 //! and the first completes as if alone; a lock file left by a run that ended without
 //! removing it is taken over.
 
-mod common;
-use common::*;
+use crate::common::*;
 use std::fs;
 use std::io::{BufRead, BufReader};
 use std::process::{Command, Stdio};

@@ -2,8 +2,7 @@
 //! merge to the one-machine bytes, shard files named as such, and Ctrl-C leaving nothing
 //! half-written (a render writes nothing, `figures` leaves each set wholly old or new).
 
-mod common;
-use common::*;
+use crate::common::*;
 use std::fs;
 
 fn reference() -> String {

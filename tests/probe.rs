@@ -2,8 +2,7 @@
 //! by hand before the snapshot is taken), the probe agreeing bit for bit with the
 //! renderer, the JSON output and the errors.
 
-mod common;
-use common::*;
+use crate::common::*;
 use glam::DVec3;
 use lumiere::film::{Film, quantize};
 use lumiere::probe::{PixelProbe, RayNode, format_text, probe};

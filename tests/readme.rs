@@ -6,8 +6,7 @@
 //! A bare ``` block right after a ```sh block is an excerpt of the output of that block's
 //! last command: its lines must be the command's real output (see `assert_excerpt`).
 
-mod common;
-use common::*;
+use crate::common::*;
 use std::path::Path;
 use std::process::Command;
 

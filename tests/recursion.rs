@@ -1,8 +1,7 @@
 //! Secondary rays (chapter 7.4b, "Illumination indirecte"): the physics of the two-mirror
 //! and prism figures checked on the tracer's own rays and on rendered images.
 
-mod common;
-use common::*;
+use crate::common::*;
 use glam::DVec3;
 use lumiere::math::Ray;
 use lumiere::render::render;

@@ -3,9 +3,7 @@
 //! scene files, and on scenes that exercise what the fast tracer groups or skips: per-sample
 //! area light points, adaptive depth control, transparent filters, the BVH.
 
-mod common;
-
-use common::scene;
+use crate::common::scene;
 use glam::DVec3;
 use lumiere::figures::{registry, scaled};
 use lumiere::film::Film;
@@ -213,21 +211,21 @@ fn aperture_lights_agree() {
 
 #[test]
 fn render_reference_writes_the_same_bytes() {
-    let dir = common::temp_dir("reference-cli");
+    let dir = crate::common::temp_dir("reference-cli");
     let (fast, reference) = (dir.join("fast.png"), dir.join("reference.png"));
-    let scene = common::repo("scenes/soft-shadows.toml");
+    let scene = crate::common::repo("scenes/soft-shadows.toml");
     for (out, extra) in [(&fast, None), (&reference, Some("--reference"))] {
         let mut args = vec!["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap()];
         args.extend(["--width", "64", "--height", "48", "-q"]);
         args.extend(extra);
-        let run = common::lumiere(&args);
+        let run = crate::common::lumiere(&args);
         assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     }
     let (a, b) = (std::fs::read(&fast).unwrap(), std::fs::read(&reference).unwrap());
     assert!(a.len() > 1000);
     assert_eq!(a, b, "render --reference must write the bytes of render");
     // The reference counts nothing but camera rays, so it takes no --stats.
-    let run = common::lumiere(&[
+    let run = crate::common::lumiere(&[
         "render",
         scene.to_str().unwrap(),
         "-o",

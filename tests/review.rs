@@ -2,8 +2,7 @@
 //! image snapshots: `NAME.snap` + `NAME.snap.png` accepted, `NAME.snap.new` +
 //! `NAME.snap.new.png` pending; labelled, enlarged sheets and the review page.
 
-mod common;
-use common::*;
+use crate::common::*;
 use lumiere::compare::load_rgb8;
 use lumiere::film::encode_png;
 use std::fs;

@@ -4,8 +4,7 @@
 //! pointed at instead; a file without any of the optional tables (`[render]`,
 //! `[materials.*]`, `[[shapes]]`, `[[lights]]`, `[[generate]]`) is a scene.
 
-mod common;
-use common::*;
+use crate::common::*;
 use lumiere::scene::{SceneError, parse};
 
 fn reference_text() -> String {

@@ -1,8 +1,7 @@
 //! Chapter 7.4b's shadow rays on exact points of the reference scene, with its directional
 //! light d = (1, 1, -1): the shadow ray from a floor point goes along L = (-1, -1, 1)/sqrt 3.
 
-mod common;
-use common::*;
+use crate::common::*;
 use glam::DVec3;
 use lumiere::light::Light;
 use lumiere::trace::Tracer;

@@ -5,8 +5,7 @@
 //! one-machine render), and `lumiere merge` refuses a shard with one flipped bit (exit 2,
 //! the file named, nothing written).
 
-mod common;
-use common::*;
+use crate::common::*;
 use glam::DVec3;
 use lumiere::film::Film;
 use lumiere::render::{render, render_rows};

@@ -4,8 +4,7 @@
 //! or wholly new.
 #![cfg(unix)]
 
-mod common;
-use common::*;
+use crate::common::*;
 use std::collections::BTreeMap;
 use std::fs;
 use std::io::{BufRead, BufReader};

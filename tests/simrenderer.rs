@@ -3,8 +3,7 @@
 //! reference scene in SIMRenderer's format giving the scene and the bytes of its TOML twin;
 //! errors located and named, warnings under `--lenient`; the two formats told apart.
 
-mod common;
-use common::*;
+use crate::common::*;
 use glam::DVec3;
 use lumiere::conventions::{Conventions, SamplePosition};
 use lumiere::light::{Attenuation, Light, PointLight};

@@ -3,8 +3,7 @@
 //! value and image; what SIMRenderer cannot say is refused by name; `lumiere convert` and
 //! `lumiere figures --export-scenes` write what they say and nothing else.
 
-mod common;
-use common::*;
+use crate::common::*;
 use lumiere::conventions::Conventions;
 use lumiere::figures::files;
 use lumiere::scene::simrenderer::{self, Options, differences};

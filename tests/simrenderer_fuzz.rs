@@ -5,7 +5,7 @@
 //! text (`file:line:column: block.keyword: message`), never a panic; under `--lenient`,
 //! always a scene, each warning at such a place. Every scene read renders with no NaN or
 //! infinity in any pixel. 256 cases per property; the long run:
-//! `PROPTEST_CASES=50000 nice -n 10 cargo test --release --test simrenderer_fuzz`.
+//! `PROPTEST_CASES=50000 nice -n 10 cargo test --release --test suite simrenderer_fuzz::`.
 
 use lumiere::render::render;
 use lumiere::scene::simrenderer::{self, Options, lex};

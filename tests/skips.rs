@@ -8,9 +8,7 @@
 //! `default_adaptive_threshold_changes_at_most_one_level_on_0_1_percent` in
 //! tests/recursion.rs and tabled in BENCHMARKS.md ("Adaptive depth control").
 
-mod common;
-
-use common::scene;
+use crate::common::scene;
 use glam::DVec3;
 use lumiere::figures::{registry, scaled};
 use lumiere::film::Film;

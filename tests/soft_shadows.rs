@@ -9,9 +9,7 @@
 //! 4. `per_sample` points differ from `fixed` and are deterministic too.
 //! 5. `lumiere study soft-shadows`: CSV columns, error falling with N, bad input.
 
-mod common;
-
-use common::{lumiere, render_small, repo, scene, temp_dir};
+use crate::common::{lumiere, render_small, repo, scene, temp_dir};
 use glam::DVec3;
 use lumiere::area_light::{AreaLight, AreaShape, PointMode};
 use lumiere::light::{Attenuation, Light, PointLight, point_incidence};

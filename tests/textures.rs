@@ -4,8 +4,7 @@
 //! not an image, too large), in both scene formats; a material without images keeps its
 //! bytes in the scene's serialised form.
 
-mod common;
-use common::*;
+use crate::common::*;
 use glam::DVec3;
 use lumiere::scene::{self, parse};
 use std::path::Path;
