@@ -7,7 +7,8 @@
 //! - [`report`]: the HTML report with the images, heat-maps and ranking.
 //! - Here: [`diagnose`], which renders the oracle and every mistake on the same pixels,
 //!   counts in each the pixels off edges ([`crate::edges`]) that differ from the image by
-//!   more than the tolerance, and ranks the mistakes by it.
+//!   more than the tolerance, and ranks the mistakes by it; [`Oracle`] holds those renders
+//!   to diagnose many images of one scene (a class's) for the price of one.
 //!
 //! The image matches the oracle, "no mistake found", when at most `max_fraction` of the
 //! judged pixels are *beyond any sampling*: some channel lies more than the tolerance
@@ -387,118 +388,164 @@ fn findings(gains: &[Gain]) -> Vec<String> {
 /// Diagnoses `image` (8-bit RGB, row-major, at the scene's size) against the scene's
 /// oracle render with every mistake of the catalogue, on the current rayon pool.
 pub fn diagnose(scene: &Scene, image: &[u8], options: &Options) -> Diagnosis {
-    let s = &scene.settings;
-    let (width, height) = (s.width, s.height);
-    assert_eq!(
-        image.len(),
-        width as usize * height as usize * 3,
-        "image at the scene's size"
-    );
-    let grid = Grid::new(width, height, options.max_pixels);
-    let pixels = grid.pixels();
-    let world = World::new(scene);
-    let edge_mask: Vec<bool> = pixels.par_iter().map(|&(x, y)| is_edge(&world, x, y)).collect();
-    let judged: Vec<bool> = edge_mask.iter().map(|e| !e).collect();
-    let image_rgb: Vec<u8> = pixels
-        .iter()
-        .flat_map(|&(x, y)| {
-            let i = 3 * (y as usize * width as usize + x as usize);
-            [image[i], image[i + 1], image[i + 2]]
-        })
-        .collect();
-    let oracle = render_pixels_with(&world, Formulas::CHAPTER, &pixels);
-    let oracle_rgb = to_rgb8(&oracle, output_encoding(options.srgb));
-    let tol = options.tolerance;
-    let oracle_score = score(&image_rgb, &oracle_rgb, &judged, tol);
-    let ranges = footprint_ranges(&world, &pixels, output_encoding(options.srgb));
-    let judged_count = judged.iter().filter(|j| **j).count().max(1) as f64;
-    let matches = |rgb: &[u8]| beyond_ranges(rgb, &ranges, &judged, tol) as f64 / judged_count <= options.max_fraction;
+    Oracle::new(scene, options).diagnose(image)
+}
 
-    let layers: Vec<PixelLayers> = pixels
-        .par_iter()
-        .with_min_len(64)
-        .map_init(|| Tracer::new(&world), |tracer, &(x, y)| pixel_layers(tracer, x, y))
-        .collect();
-    let fit_pixels: Vec<(&PixelLayers, DVec3)> = layers
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| judged[*i])
-        .map(|(i, l)| {
-            let rgb = &image_rgb[3 * i..3 * i + 3];
-            let decode = |level: u8| {
-                let v = level as f64 / 255.0;
-                if options.srgb { srgb_decode(v) } else { v }
-            };
-            (l, DVec3::new(decode(rgb[0]), decode(rgb[1]), decode(rgb[2])))
-        })
-        .collect();
-    let gains = gains::fit(&fit_pixels);
+/// What a diagnosis needs of the scene alone, rendered once for any number of images: the
+/// grid and its edges, the oracle's render and the range of each pixel's footprint, the
+/// oracle's layers, and the render of every mistake of the catalogue.
+pub struct Oracle {
+    options: Options,
+    width: u32,
+    height: u32,
+    grid: Grid,
+    pixels: Vec<(u32, u32)>,
+    edge_mask: Vec<bool>,
+    judged: Vec<bool>,
+    oracle_rgb: Vec<u8>,
+    ranges: Vec<[[u8; 3]; 2]>,
+    layers: Vec<PixelLayers>,
+    /// Each mistake of the catalogue and its render on the grid (`None`: not applicable).
+    mistakes: Vec<(Mistake, Option<Vec<u8>>)>,
+}
 
-    let list: Vec<Mistake> = catalogue();
-    let rendered: Vec<Option<Vec<u8>>> = list
-        .par_iter()
-        .map(|m| {
-            render_change(scene, &world, &pixels, &oracle, m.change, options.srgb)
-                .map(|(r, encode)| to_rgb8(&r, encode))
-        })
-        .collect();
-    let mut ranking = Vec::new();
-    let (mut not_visible, mut within_sampling, mut not_applicable) = (Vec::new(), Vec::new(), Vec::new());
-    for (m, rgb) in list.iter().zip(rendered) {
-        let Some(rgb) = rgb else {
-            not_applicable.push(m.name);
-            continue;
-        };
-        let visible = !matches(&rgb);
-        let candidate = Candidate {
-            name: m.name,
-            description: m.description,
-            score: score(&image_rgb, &rgb, &judged, tol),
-            fixes: fixed_region(&image_rgb, &oracle_rgb, &rgb, &judged, &pixels, tol),
-            visible,
-            rgb,
-        };
-        if visible {
-            ranking.push(candidate);
-        } else if candidate.score.beyond < oracle_score.beyond {
-            within_sampling.push(candidate);
-        } else {
-            not_visible.push(m.name);
+impl Oracle {
+    /// Renders the scene's oracle and every mistake on the grid, on the current rayon pool.
+    pub fn new(scene: &Scene, options: &Options) -> Oracle {
+        let s = &scene.settings;
+        let (width, height) = (s.width, s.height);
+        let grid = Grid::new(width, height, options.max_pixels);
+        let pixels = grid.pixels();
+        let world = World::new(scene);
+        let edge_mask: Vec<bool> = pixels.par_iter().map(|&(x, y)| is_edge(&world, x, y)).collect();
+        let judged: Vec<bool> = edge_mask.iter().map(|e| !e).collect();
+        let oracle = render_pixels_with(&world, Formulas::CHAPTER, &pixels);
+        let oracle_rgb = to_rgb8(&oracle, output_encoding(options.srgb));
+        let ranges = footprint_ranges(&world, &pixels, output_encoding(options.srgb));
+        let layers: Vec<PixelLayers> = pixels
+            .par_iter()
+            .with_min_len(64)
+            .map_init(|| Tracer::new(&world), |tracer, &(x, y)| pixel_layers(tracer, x, y))
+            .collect();
+        let list: Vec<Mistake> = catalogue();
+        let rendered: Vec<Option<Vec<u8>>> = list
+            .par_iter()
+            .map(|m| {
+                render_change(scene, &world, &pixels, &oracle, m.change, options.srgb)
+                    .map(|(r, encode)| to_rgb8(&r, encode))
+            })
+            .collect();
+        Oracle {
+            options: *options,
+            width,
+            height,
+            grid,
+            pixels,
+            edge_mask,
+            judged,
+            oracle_rgb,
+            ranges,
+            layers,
+            mistakes: list.into_iter().zip(rendered).collect(),
         }
     }
-    best_first(&mut ranking);
-    best_first(&mut within_sampling);
-    let mut diagnosis = Diagnosis {
-        width,
-        height,
-        grid,
-        tolerance: tol,
-        max_fraction: options.max_fraction,
-        edges: edge_mask.iter().filter(|e| **e).count(),
-        oracle: oracle_score,
-        beyond_sampling: beyond_ranges(&image_rgb, &ranges, &judged, tol),
-        verdict: Verdict::Unexplained,
-        findings: Vec::new(),
-        gains,
-        ranking,
-        not_visible,
-        within_sampling,
-        not_applicable,
-        image_rgb,
-        oracle_rgb,
-        edge_mask,
-    };
-    diagnosis.verdict = if diagnosis.beyond_sampling as f64 / judged_count <= options.max_fraction {
-        Verdict::NoMistakeFound
-    } else if diagnosis.top(1).next().is_some() {
-        Verdict::MistakeFound
-    } else {
-        Verdict::Unexplained
-    };
-    if diagnosis.verdict != Verdict::NoMistakeFound {
-        diagnosis.findings = findings(&diagnosis.gains);
+
+    /// Diagnoses `image` (8-bit RGB, row-major, at the scene's size).
+    pub fn diagnose(&self, image: &[u8]) -> Diagnosis {
+        let (width, height, options) = (self.width, self.height, &self.options);
+        assert_eq!(
+            image.len(),
+            width as usize * height as usize * 3,
+            "image at the scene's size"
+        );
+        let (pixels, judged) = (&self.pixels, &self.judged);
+        let image_rgb: Vec<u8> = pixels
+            .iter()
+            .flat_map(|&(x, y)| {
+                let i = 3 * (y as usize * width as usize + x as usize);
+                [image[i], image[i + 1], image[i + 2]]
+            })
+            .collect();
+        let tol = options.tolerance;
+        let oracle_score = score(&image_rgb, &self.oracle_rgb, judged, tol);
+        let judged_count = judged.iter().filter(|j| **j).count().max(1) as f64;
+        let matches =
+            |rgb: &[u8]| beyond_ranges(rgb, &self.ranges, judged, tol) as f64 / judged_count <= options.max_fraction;
+
+        let fit_pixels: Vec<(&PixelLayers, DVec3)> = self
+            .layers
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| judged[*i])
+            .map(|(i, l)| {
+                let rgb = &image_rgb[3 * i..3 * i + 3];
+                let decode = |level: u8| {
+                    let v = level as f64 / 255.0;
+                    if options.srgb { srgb_decode(v) } else { v }
+                };
+                (l, DVec3::new(decode(rgb[0]), decode(rgb[1]), decode(rgb[2])))
+            })
+            .collect();
+        let gains = gains::fit(&fit_pixels);
+
+        let mut ranking = Vec::new();
+        let (mut not_visible, mut within_sampling, mut not_applicable) = (Vec::new(), Vec::new(), Vec::new());
+        for (m, rgb) in &self.mistakes {
+            let Some(rgb) = rgb else {
+                not_applicable.push(m.name);
+                continue;
+            };
+            let visible = !matches(rgb);
+            let candidate = Candidate {
+                name: m.name,
+                description: m.description,
+                score: score(&image_rgb, rgb, judged, tol),
+                fixes: fixed_region(&image_rgb, &self.oracle_rgb, rgb, judged, pixels, tol),
+                visible,
+                rgb: rgb.clone(),
+            };
+            if visible {
+                ranking.push(candidate);
+            } else if candidate.score.beyond < oracle_score.beyond {
+                within_sampling.push(candidate);
+            } else {
+                not_visible.push(m.name);
+            }
+        }
+        best_first(&mut ranking);
+        best_first(&mut within_sampling);
+        let mut diagnosis = Diagnosis {
+            width,
+            height,
+            grid: self.grid.clone(),
+            tolerance: tol,
+            max_fraction: options.max_fraction,
+            edges: self.edge_mask.iter().filter(|e| **e).count(),
+            oracle: oracle_score,
+            beyond_sampling: beyond_ranges(&image_rgb, &self.ranges, judged, tol),
+            verdict: Verdict::Unexplained,
+            findings: Vec::new(),
+            gains,
+            ranking,
+            not_visible,
+            within_sampling,
+            not_applicable,
+            image_rgb,
+            oracle_rgb: self.oracle_rgb.clone(),
+            edge_mask: self.edge_mask.clone(),
+        };
+        diagnosis.verdict = if diagnosis.beyond_sampling as f64 / judged_count <= options.max_fraction {
+            Verdict::NoMistakeFound
+        } else if diagnosis.top(1).next().is_some() {
+            Verdict::MistakeFound
+        } else {
+            Verdict::Unexplained
+        };
+        if diagnosis.verdict != Verdict::NoMistakeFound {
+            diagnosis.findings = findings(&diagnosis.gains);
+        }
+        diagnosis
     }
-    diagnosis
 }
 
 #[cfg(test)]

@@ -9,12 +9,12 @@
 //! corner-sampled one naming SIMRenderer's sample position within sampling). The mistakes
 //! again in images sampled on a jittered grid (not equal to any render). The gains of a
 //! doubled specular term and of opaque filters; an sRGB oracle; the README's fixture; the
-//! same diagnosis for any thread count; the command line's text, JSON and report, and its
-//! bad input.
+//! same diagnosis for any thread count and from one oracle for many images; the command
+//! line's text, JSON and report, and its bad input.
 
 use crate::common::*;
 use lumiere::diagnose::mistakes::catalogue;
-use lumiere::diagnose::{Options, Verdict, diagnose, render_mistake};
+use lumiere::diagnose::{Options, Oracle, Verdict, diagnose, render_mistake};
 use lumiere::film::Film;
 use lumiere::render::render;
 use lumiere::scene::{self, Scene};
@@ -68,12 +68,13 @@ fn every_mistake_is_found_where_it_shows() {
     let mut misses = Vec::new();
     for path in SCENES {
         let scene = centred(path);
+        let oracle = Oracle::new(&scene, &Options::default());
         let (mut c, mut t1, mut t3, mut h) = (0, 0, 0, 0);
         for (k, mistake) in list.iter().enumerate() {
             let Some(image) = render_mistake(&scene, mistake) else {
                 continue;
             };
-            let d = diagnose(&scene, &image, &Options::default());
+            let d = oracle.diagnose(&image);
             if d.oracle.beyond == 0 {
                 h += 1;
                 continue;
@@ -134,6 +135,7 @@ fn a_correct_image_has_no_mistake_at_any_sampling() {
     let mut corner_named = 0;
     for path in SCENES {
         let oracle = centred(path);
+        let diagnosis = Oracle::new(&oracle, &Options::default());
         for (position, spp, seed) in [
             ("jittered", 4, None),
             ("regular", 4, None),
@@ -149,7 +151,7 @@ fn a_correct_image_has_no_mistake_at_any_sampling() {
             let mut c = student.settings.conventions;
             c.set("sample_position", position).unwrap();
             student.set_conventions(c);
-            let d = diagnose(&oracle, &rendered(&student), &Options::default());
+            let d = diagnosis.diagnose(&rendered(&student));
             assert_eq!(
                 d.verdict,
                 Verdict::NoMistakeFound,
@@ -350,6 +352,36 @@ fn same_diagnosis_for_any_thread_count() {
 }
 
 #[test]
+fn one_oracle_diagnoses_each_image_as_diagnose_does() {
+    // The renders an oracle holds serve any number of images: each diagnosis is the one a
+    // fresh `diagnose` gives, field for field, whatever came before it.
+    let scene = centred("tests/fixtures/diagnose/spot.toml");
+    let oracle = Oracle::new(&scene, &Options::default());
+    let black = catalogue()
+        .into_iter()
+        .find(|m| m.name == "transparent-black-shadows")
+        .unwrap();
+    let images = [render_mistake(&scene, &black).unwrap(), rendered(&scene)];
+    let verdicts: Vec<Verdict> = images
+        .iter()
+        .map(|image| {
+            let held = oracle.diagnose(image);
+            let fresh = diagnose(&scene, image, &Options::default());
+            assert_eq!(
+                serde_json::to_string(&held).unwrap(),
+                serde_json::to_string(&fresh).unwrap()
+            );
+            assert_eq!(
+                (&held.image_rgb, &held.oracle_rgb, &held.edge_mask),
+                (&fresh.image_rgb, &fresh.oracle_rgb, &fresh.edge_mask)
+            );
+            held.verdict
+        })
+        .collect();
+    assert_eq!(verdicts, [Verdict::MistakeFound, Verdict::NoMistakeFound]);
+}
+
+#[test]
 fn srgb_images_against_an_srgb_oracle() {
     // A correct image written sRGB-encoded (render --srgb) matches with --srgb, and its
     // gains, fitted after decoding, are 1; without --srgb it is far off.
@@ -379,6 +411,7 @@ fn mistakes_found_in_images_sampled_otherwise() {
     let mut misses = Vec::new();
     for path in SCENES {
         let oracle = centred(path);
+        let diagnosis = Oracle::new(&oracle, &Options::default());
         let mut student = oracle.clone();
         student.settings.samples_per_pixel = 4;
         let mut c = student.settings.conventions;
@@ -388,7 +421,7 @@ fn mistakes_found_in_images_sampled_otherwise() {
             let Some(image) = render_mistake(&student, mistake) else {
                 continue;
             };
-            let d = diagnose(&oracle, &image, &Options::default());
+            let d = diagnosis.diagnose(&image);
             if d.verdict == Verdict::NoMistakeFound || !d.ranking.iter().any(|r| r.name == mistake.name) {
                 continue;
             }
