@@ -10,7 +10,7 @@
 //! again in images sampled on a jittered grid (not equal to any render). The gains of a
 //! doubled specular term and of opaque filters; an sRGB oracle; the README's fixture; the
 //! same diagnosis for any thread count and from one oracle for many images; the command
-//! line's text, JSON and report, and its bad input.
+//! line's text, JSON and report, for one image and for several, and its bad input.
 
 use crate::common::*;
 use lumiere::diagnose::mistakes::catalogue;
@@ -309,6 +309,90 @@ fn command_line_text_json_report_and_errors() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains(message), "{extra:?}: {err}");
     }
+}
+
+#[test]
+fn command_line_diagnoses_several_images_against_one_oracle() {
+    // A mistake's image and a correct one: each text, JSON line and report is the one the
+    // image alone gets.
+    let dir = temp_dir("diagnose-several");
+    let scene = centred("scenes/reference.toml");
+    let phong = catalogue().into_iter().find(|m| m.name == "phong-for-blinn").unwrap();
+    let (mistaken, correct) = (dir.join("phong.png"), dir.join("correct.png"));
+    std::fs::write(
+        &mistaken,
+        lumiere::film::encode_png(W, H, &render_mistake(&scene, &phong).unwrap()).unwrap(),
+    )
+    .unwrap();
+    std::fs::write(&correct, lumiere::film::encode_png(W, H, &rendered(&scene)).unwrap()).unwrap();
+    let alone = |image: &std::path::Path, extra: &[&str]| {
+        let args = diagnose_reference_centred(image);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = lumiere(&[&args[..], extra].concat());
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let args = diagnose_reference_centred(&mistaken);
+    let mut both: Vec<&str> = args.iter().map(String::as_str).collect();
+    both.insert(3, correct.to_str().unwrap());
+    let report = dir.join("report");
+    let o = lumiere(&[&both[..], &["--report", report.to_str().unwrap()]].concat());
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert_eq!(text, format!("{}\n{}", alone(&mistaken, &[]), alone(&correct, &[])));
+    assert!(text.contains("verdict            mistake found") && text.contains("verdict            no mistake found"));
+    for name in ["phong", "correct"] {
+        let html = std::fs::read_to_string(report.join(name).join("index.html")).unwrap();
+        assert!(html.contains(&format!("{name}.png")), "{name}");
+        assert!(report.join(name).join("oracle.png").is_file(), "{name}");
+    }
+    // The mistake's report ranks it; the correct image's shows no mistake image.
+    assert!(report.join("phong").join("mistake-1.png").is_file());
+    assert!(!report.join("correct").join("mistake-1.png").exists());
+    let o = lumiere(&[&both[..], &["--json"]].concat());
+    let lines: Vec<String> = String::from_utf8(o.stdout).unwrap().lines().map(String::from).collect();
+    assert_eq!(
+        lines,
+        [alone(&mistaken, &["--json"]), alone(&correct, &["--json"])].map(|l| l.trim_end().to_string())
+    );
+    let verdicts: Vec<String> = lines
+        .iter()
+        .map(|l| {
+            serde_json::from_str::<serde_json::Value>(l).unwrap()["verdict"]
+                .as_str()
+                .unwrap()
+                .to_string()
+        })
+        .collect();
+    assert_eq!(verdicts, ["mistake_found", "no_mistake_found"]);
+
+    // Bad input, before anything is rendered or written: images of two sizes, and two
+    // images whose reports would share a folder.
+    let small = dir.join("small.png");
+    std::fs::write(&small, lumiere::film::encode_png(2, 1, &[0; 6]).unwrap()).unwrap();
+    let twin_dir = dir.join("twin");
+    std::fs::create_dir_all(&twin_dir).unwrap();
+    let twin = twin_dir.join("phong.png");
+    std::fs::copy(&mistaken, &twin).unwrap();
+    let elsewhere = dir.join("elsewhere");
+    for (images, flags, message) in [
+        (
+            [mistaken.to_str().unwrap(), small.to_str().unwrap()],
+            vec![],
+            "small.png: the image is 2 x 1, the first image".to_string(),
+        ),
+        (
+            [mistaken.to_str().unwrap(), twin.to_str().unwrap()],
+            vec!["--report", elsewhere.to_str().unwrap()],
+            format!("would both write {}", elsewhere.join("phong").display()),
+        ),
+    ] {
+        let o = lumiere(&[&both[..2], &images[..], &both[4..], &flags[..]].concat());
+        assert_eq!(o.status.code(), Some(2), "{images:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(&message), "{images:?}: {err}");
+    }
+    assert!(!elsewhere.exists());
 }
 
 #[test]

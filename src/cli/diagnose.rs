@@ -1,11 +1,13 @@
-//! `lumiere diagnose SCENE IMAGE`: what is most likely wrong in a student's image. Prints
+//! `lumiere diagnose SCENE IMAGE...`: what is most likely wrong in a student's image. Prints
 //! the gains per term, the verdict, the top mistakes with their evidence and what the image
-//! follows within sampling (or JSON), and writes the HTML report with `--report DIR`. Exit 0 whatever the verdict, 2 bad input.
+//! follows within sampling (or JSON), and writes the HTML report with `--report DIR`.
+//! Several images of one size (a class's) are diagnosed against one oracle, rendered once.
+//! Exit 0 whatever the verdict, 2 bad input.
 
 use super::{CliError, Overrides, load_scene};
 use clap::Args;
-use lumiere::compare::read::read_image;
-use lumiere::diagnose::{Diagnosis, Options, Score, Verdict, diagnose, report};
+use lumiere::compare::read::{Image, read_image};
+use lumiere::diagnose::{Diagnosis, Options, Oracle, Score, Verdict, report};
 use lumiere::film::WriteError;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -14,8 +16,12 @@ use std::path::{Path, PathBuf};
 pub struct DiagnoseArgs {
     /// The scene the image renders (TOML or SIMRenderer's format); loaded at the image's size.
     pub scene: PathBuf,
-    /// Your image: PNG, PPM / PGM / PBM, PFM, EXR, JPEG, BMP or TGA.
-    pub image: PathBuf,
+    /// Your image: PNG, PPM / PGM / PBM, PFM, EXR, JPEG, BMP or TGA. Several images, all of
+    /// one size, are each diagnosed against the oracle rendered once: their texts follow one
+    /// another, their JSON is one line each, and `--report DIR` writes one folder each, named
+    /// after the image's file name.
+    #[arg(required = true, value_name = "IMAGE")]
+    pub images: Vec<PathBuf>,
     /// Largest per-channel difference (8-bit levels) that counts as equal.
     #[arg(long, default_value_t = Options::default().tolerance)]
     pub tolerance: u8,
@@ -30,7 +36,7 @@ pub struct DiagnoseArgs {
     #[arg(long, default_value_t = 3, value_name = "N")]
     pub top: usize,
     /// Write an HTML report (index.html, the images and heat-maps) into this folder (made if
-    /// its parent exists).
+    /// its parent exists); with several images, into a folder of it per image.
     #[arg(long, value_name = "DIR")]
     pub report: Option<PathBuf>,
     /// The oracle's images are sRGB-encoded (as `render --srgb` writes them): compare
@@ -77,24 +83,22 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
             )));
         }
     }
-    let image = read_image(&args.image).map_err(CliError::BadInput)?;
-    for note in &image.notes {
-        eprintln!("lumiere: {}: {note}", args.image.display());
-    }
+    let images = read_images(&args.images)?;
+    let reports = report_folders(args.report.as_deref(), &args.images)?;
+    let (width, height) = (images[0].width, images[0].height);
     let mut overrides = args.overrides.clone();
     for (given, actual, flag) in [
-        (overrides.width, image.width, "--width"),
-        (overrides.height, image.height, "--height"),
+        (overrides.width, width, "--width"),
+        (overrides.height, height, "--height"),
     ] {
         if given.is_some_and(|g| g != actual) {
             return Err(CliError::BadInput(format!(
-                "{flag}: the image is {} x {}; the oracle renders at the image's size",
-                image.width, image.height
+                "{flag}: the image is {width} x {height}; the oracle renders at the image's size"
             )));
         }
     }
-    overrides.width = Some(image.width);
-    overrides.height = Some(image.height);
+    overrides.width = Some(width);
+    overrides.height = Some(height);
     let scene = load_scene(&args.scene, &overrides)?;
     let options = Options {
         tolerance: args.tolerance,
@@ -102,25 +106,90 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
         max_pixels: args.max_pixels,
         srgb: args.srgb,
     };
-    let d = super::with_threads(args.threads, || diagnose(&scene, &image.rgb, &options))?;
-    let (scene_name, image_name) = (args.scene.display().to_string(), args.image.display().to_string());
-    if let Some(dir) = &args.report {
-        if !dir.exists() {
-            std::fs::create_dir(dir).map_err(|e| WriteError::new(dir, "cannot create the report's folder", e))?;
+    let diagnoses = super::with_threads(args.threads, || {
+        let oracle = Oracle::new(&scene, &options);
+        images
+            .iter()
+            .map(|image| oracle.diagnose(&image.rgb))
+            .collect::<Vec<_>>()
+    })?;
+    let scene_name = args.scene.display().to_string();
+    for (k, (d, path)) in diagnoses.iter().zip(&args.images).enumerate() {
+        let image_name = path.display().to_string();
+        if let Some(dir) = reports.get(k) {
+            if !dir.exists() {
+                std::fs::create_dir_all(dir)
+                    .map_err(|e| WriteError::new(dir, "cannot create the report's folder", e))?;
+            }
+            report::write(dir, d, &scene_name, &image_name, args.top)
+                .map_err(|e| WriteError::new(dir, "cannot write the report", e))?;
         }
-        report::write(dir, &d, &scene_name, &image_name, args.top)
-            .map_err(|e| WriteError::new(dir, "cannot write the report", e))?;
-    }
-    if args.json {
-        let mut value = serde_json::to_value(&d).map_err(|e| CliError::Failed(e.to_string()))?;
-        value["scene"] = scene_name.into();
-        value["image"] = image_name.into();
-        value["top"] = d.top(args.top).map(|c| c.name).collect::<Vec<_>>().into();
-        println!("{value}");
-    } else {
-        print!("{}", text(&d, &scene_name, &image_name, args.top));
+        if args.json {
+            let mut value = serde_json::to_value(d).map_err(|e| CliError::Failed(e.to_string()))?;
+            value["scene"] = scene_name.as_str().into();
+            value["image"] = image_name.into();
+            value["top"] = d.top(args.top).map(|c| c.name).collect::<Vec<_>>().into();
+            println!("{value}");
+        } else {
+            if k > 0 {
+                println!();
+            }
+            print!("{}", text(d, &scene_name, &image_name, args.top));
+        }
     }
     Ok(())
+}
+
+/// Reads every image, all of the first's size, before anything is rendered.
+fn read_images(paths: &[PathBuf]) -> Result<Vec<Image>, CliError> {
+    let mut images: Vec<Image> = Vec::with_capacity(paths.len());
+    for path in paths {
+        let image = read_image(path).map_err(CliError::BadInput)?;
+        for note in &image.notes {
+            eprintln!("lumiere: {}: {note}", path.display());
+        }
+        if let Some(first) = images.first()
+            && (image.width, image.height) != (first.width, first.height)
+        {
+            return Err(CliError::BadInput(format!(
+                "{}: the image is {} x {}, the first image ({}) {} x {}: the images diagnosed together share one size",
+                path.display(),
+                image.width,
+                image.height,
+                paths[0].display(),
+                first.width,
+                first.height
+            )));
+        }
+        images.push(image);
+    }
+    Ok(images)
+}
+
+/// The report's folder of each image: `dir` itself for one image, `dir/NAME` for several
+/// (NAME the image's file name without its extension, which must differ between images).
+fn report_folders(dir: Option<&Path>, images: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
+    let Some(dir) = dir else {
+        return Ok(Vec::new());
+    };
+    if images.len() == 1 {
+        return Ok(vec![dir.to_path_buf()]);
+    }
+    let mut folders: Vec<PathBuf> = Vec::with_capacity(images.len());
+    for image in images {
+        let name = image.file_stem().unwrap_or(image.as_os_str());
+        let folder = dir.join(name);
+        if let Some(same) = folders.iter().position(|f| *f == folder) {
+            return Err(CliError::BadInput(format!(
+                "--report: {} and {} would both write {}: the images diagnosed together need different file names",
+                images[same].display(),
+                image.display(),
+                folder.display()
+            )));
+        }
+        folders.push(folder);
+    }
+    Ok(folders)
 }
 
 /// `B of J pixels beyond T levels (F %), RMS R`.
