@@ -44,3 +44,27 @@ mod skips;
 mod soft_shadows;
 mod stress;
 mod textures;
+
+/// With `autotests` off, a file of `tests/` that is not declared above is never compiled:
+/// every one must be a module here, or a test target of Cargo.toml.
+#[test]
+fn every_test_file_is_compiled() {
+    let tests = common::repo("tests");
+    let suite = std::fs::read_to_string(tests.join("suite.rs")).unwrap();
+    let manifest = std::fs::read_to_string(common::repo("Cargo.toml")).unwrap();
+    let mut files = 0;
+    for entry in std::fs::read_dir(&tests).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "rs") {
+            continue;
+        }
+        let name = path.file_stem().unwrap().to_str().unwrap();
+        let target = format!("path = \"tests/{name}.rs\"");
+        assert!(
+            suite.contains(&format!("\nmod {name};\n")) || manifest.contains(&target),
+            "tests/{name}.rs is neither a module of tests/suite.rs nor a test target of Cargo.toml"
+        );
+        files += 1;
+    }
+    assert!(files >= 40, "{files} test files");
+}
