@@ -135,7 +135,7 @@ fn a_correct_image_has_no_mistake_at_any_sampling() {
     let mut corner_named = 0;
     for path in SCENES {
         let oracle = centred(path);
-        let diagnosis = Oracle::new(&oracle, &Options::default());
+        let renders = Oracle::new(&oracle, &Options::default());
         for (position, spp, seed) in [
             ("jittered", 4, None),
             ("regular", 4, None),
@@ -151,7 +151,7 @@ fn a_correct_image_has_no_mistake_at_any_sampling() {
             let mut c = student.settings.conventions;
             c.set("sample_position", position).unwrap();
             student.set_conventions(c);
-            let d = diagnosis.diagnose(&rendered(&student));
+            let d = renders.diagnose(&rendered(&student));
             assert_eq!(
                 d.verdict,
                 Verdict::NoMistakeFound,
@@ -495,7 +495,7 @@ fn mistakes_found_in_images_sampled_otherwise() {
     let mut misses = Vec::new();
     for path in SCENES {
         let oracle = centred(path);
-        let diagnosis = Oracle::new(&oracle, &Options::default());
+        let renders = Oracle::new(&oracle, &Options::default());
         let mut student = oracle.clone();
         student.settings.samples_per_pixel = 4;
         let mut c = student.settings.conventions;
@@ -505,7 +505,7 @@ fn mistakes_found_in_images_sampled_otherwise() {
             let Some(image) = render_mistake(&student, mistake) else {
                 continue;
             };
-            let d = diagnosis.diagnose(&image);
+            let d = renders.diagnose(&image);
             if d.verdict == Verdict::NoMistakeFound || !d.ranking.iter().any(|r| r.name == mistake.name) {
                 continue;
             }
