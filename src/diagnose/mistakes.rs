@@ -9,12 +9,14 @@
 
 use crate::conventions::{Conventions, ShadowFilter};
 use crate::material::Material;
-use crate::math::mirror;
+use crate::math::{Ray, mirror};
 use crate::scene::Specular;
 use crate::shading::{phong, positive_part, pow, transparent_filter};
+use crate::shape::{Shape, SurfaceHit};
 use crate::trace::Formulas;
 use crate::trace::formulas::AmbientContext;
 use crate::trace::specular_term;
+use crate::world::World;
 use glam::DVec3;
 
 /// How a mistake changes the oracle's render.
@@ -54,6 +56,58 @@ fn unnormalised_half_vector(model: Specular, n: DVec3, l: DVec3, e: DVec3, expon
         Specular::Blinn => pow(positive_part(n.dot(l + e)), exponent),
         other => specular_term(other, n, l, e, exponent),
     }
+}
+
+/// The specular term with `E` taken along the ray (`v`) instead of towards the eye (`-v`).
+fn eye_reversed(model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
+    specular_term(model, n, l, -e, exponent)
+}
+
+/// The closest hit before `t_max` with each sphere met at the root `pick` chooses of its
+/// two, `t0 <= t1` (`None`: no hit), every other shape as the chapter meets it: the
+/// objects scanned in order, the nearest kept, the lowest index on equal `t`.
+fn closest_with_sphere_root(
+    world: &World<'_>,
+    ray: &Ray,
+    t_max: f64,
+    pick: fn((f64, f64)) -> Option<f64>,
+) -> Option<(usize, SurfaceHit)> {
+    let mut best: Option<(usize, SurfaceHit)> = None;
+    for (j, object) in world.objects().iter().enumerate() {
+        let limit = best.map_or(t_max, |(_, h)| h.t);
+        let hit = match &object.shape {
+            Shape::Sphere(s) => s
+                .roots(ray)
+                .and_then(pick)
+                .filter(|&t| t > 0.0 && t < limit)
+                .map(|t| SurfaceHit {
+                    t,
+                    normal: ((ray.at(t) - s.center) / s.radius).normalize(),
+                }),
+            shape => shape.intersect(ray, 0.0, limit),
+        };
+        if let Some(h) = hit {
+            best = Some((j, h));
+        }
+    }
+    best
+}
+
+/// Spheres met at their farther root only: a sphere in front of the eye is seen from
+/// inside, its far side.
+fn sphere_far_root(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
+    closest_with_sphere_root(world, ray, t_max, |(_, t1)| Some(t1))
+}
+
+/// Spheres met at their nearer root only, dropped when it is behind the ray: a ray inside a
+/// sphere (refracted into glass) never finds its way out.
+fn sphere_near_root_only(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
+    closest_with_sphere_root(world, ray, t_max, |(t0, _)| Some(t0))
+}
+
+/// Shadow rays not stopped at a point light: an object beyond the light shadows the point.
+fn past_the_light(_distance: f64) -> f64 {
+    f64::INFINITY
 }
 
 /// The law of reflection with the sign of its normal term flipped: `R = v - 2 (E.N) N`.
@@ -163,10 +217,34 @@ pub fn catalogue() -> Vec<Mistake> {
             }),
         ),
         m(
+            "eye-direction-reversed",
+            "E taken along the ray (v) instead of towards the eye (-v) in the specular term",
+            with(|f| Formulas {
+                specular: eye_reversed,
+                ..f
+            }),
+        ),
+        m(
             "reflection-wrong-sign",
             "the reflected ray R = v - 2 (E.N) N instead of v + 2 (E.N) N",
             with(|f| Formulas {
                 reflect: reflection_wrong_sign,
+                ..f
+            }),
+        ),
+        m(
+            "sphere-far-root",
+            "a sphere met at the larger root of its quadratic: seen from inside, its far side",
+            with(|f| Formulas {
+                closest: sphere_far_root,
+                ..f
+            }),
+        ),
+        m(
+            "sphere-near-root-only",
+            "a sphere met at the smaller root only, none when it is behind: no way out of glass",
+            with(|f| Formulas {
+                closest: sphere_near_root_only,
                 ..f
             }),
         ),
@@ -207,6 +285,14 @@ pub fn catalogue() -> Vec<Mistake> {
             "a transparent object's filter counted at each surface crossed (S^2 for a sphere)",
             with(|f| Formulas {
                 transparent_filter: filter_twice,
+                ..f
+            }),
+        ),
+        m(
+            "shadow-ray-past-the-light",
+            "shadow rays not stopped at a point light's distance: objects beyond it cast shadows",
+            with(|f| Formulas {
+                shadow_reach: past_the_light,
                 ..f
             }),
         ),
@@ -337,6 +423,75 @@ mod tests {
         assert_eq!(cosine_spot(0.9, 0.8, 0.0, 1.0), 0.9);
         assert_eq!(cosine_spot(0.7, 0.8, 0.0, 1.0), 0.0);
         assert_eq!(clamp_each(DVec3::new(1.5, -0.0, 0.25)), DVec3::new(1.0, 0.0, 0.25));
+    }
+
+    #[test]
+    fn eye_reversed_and_past_the_light_by_hand() {
+        // N = z, L = (1, 0, 1) / sqrt 2, E = (-1, 0, 1) / sqrt 2: the mirror position, where
+        // H = N and R = E (both terms 1). With -E, L - E = (sqrt 2, 0, 0) is perpendicular
+        // to N and R.(-E) = -1: both terms 0.
+        let (n, l, e) = (
+            DVec3::Z,
+            DVec3::new(1.0, 0.0, 1.0).normalize(),
+            DVec3::new(-1.0, 0.0, 1.0).normalize(),
+        );
+        for model in [Specular::Blinn, Specular::Phong] {
+            assert!((specular_term(model, n, l, e, 20.0) - 1.0).abs() < 1e-12, "{model:?}");
+            assert_eq!(eye_reversed(model, n, l, e, 20.0), 0.0, "{model:?}");
+        }
+        assert_eq!(past_the_light(5.0), f64::INFINITY);
+    }
+
+    #[test]
+    fn sphere_roots_by_hand() {
+        // A unit sphere at the origin behind a plane z = 3 facing it.
+        let text = r#"
+[image]
+width = 8
+height = 6
+
+[camera]
+position = [0, 0, -5]
+look_at = [0, 0, 0]
+up = [0, 1, 0]
+vfov = 40
+
+[[shapes]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 1
+
+[[shapes]]
+type = "plane"
+point = [0, 0, 3]
+normal = [0, 0, -1]
+"#;
+        let scene = crate::scene::parse(text, "roots.toml").unwrap();
+        let world = World::new(&scene);
+        let hit = |closest: fn(&World<'_>, &Ray, f64) -> Option<(usize, SurfaceHit)>, o: [f64; 3], t_max: f64| {
+            closest(&world, &Ray::new(DVec3::from(o), DVec3::Z), t_max).map(|(j, h)| (j, h.t, h.normal))
+        };
+        let chapter = Formulas::CHAPTER.closest;
+        // From z = -5 along +z: the roots are t = 4 and 6 (z = -1 and z = 1).
+        assert_eq!(hit(chapter, [0.0, 0.0, -5.0], f64::INFINITY), Some((0, 4.0, -DVec3::Z)));
+        assert_eq!(
+            hit(sphere_far_root, [0.0, 0.0, -5.0], f64::INFINITY),
+            Some((0, 6.0, DVec3::Z))
+        );
+        assert_eq!(
+            hit(sphere_near_root_only, [0.0, 0.0, -5.0], f64::INFINITY),
+            Some((0, 4.0, -DVec3::Z))
+        );
+        // The far root beyond t_max: the plane is not reached either.
+        assert_eq!(hit(sphere_far_root, [0.0, 0.0, -5.0], 5.0), None);
+        // From the centre (inside, as a refracted ray): the roots are -1 and 1; the chapter
+        // and the far root leave at t = 1, the near root only finds the plane at t = 3.
+        assert_eq!(hit(chapter, [0.0; 3], f64::INFINITY), Some((0, 1.0, DVec3::Z)));
+        assert_eq!(hit(sphere_far_root, [0.0; 3], f64::INFINITY), Some((0, 1.0, DVec3::Z)));
+        assert_eq!(
+            hit(sphere_near_root_only, [0.0; 3], f64::INFINITY),
+            Some((1, 3.0, -DVec3::Z))
+        );
     }
 
     #[test]

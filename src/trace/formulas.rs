@@ -11,9 +11,12 @@
 use super::specular_term;
 use crate::conventions::ShadowFilter;
 use crate::material::Material;
+use crate::math::Ray;
 use crate::math::{offset_origin, reflect, refract};
 use crate::scene::Specular;
 use crate::shading::{spot_factor, transparent_filter};
+use crate::shape::SurfaceHit;
+use crate::world::World;
 use glam::DVec3;
 
 /// What the ambient entry knows of a hit besides its ambient term.
@@ -29,6 +32,9 @@ pub struct AmbientContext {
 /// The table of formulas of one rendering.
 #[derive(Clone, Copy, Debug)]
 pub struct Formulas {
+    /// The closest hit of a camera or secondary ray before `t_max` (object index and
+    /// hit): [`World::closest_before`].
+    pub closest: fn(&World<'_>, &Ray, f64) -> Option<(usize, SurfaceHit)>,
     /// The specular term `spec` of a model: [`specular_term`].
     pub specular: fn(Specular, DVec3, DVec3, DVec3, f64) -> f64,
     /// The law of reflection of an incident direction about the normal on its side:
@@ -45,6 +51,8 @@ pub struct Formulas {
     /// The origin of a shadow ray from a point (point, outward normal, error bound,
     /// direction): [`offset_origin`].
     pub shadow_origin: fn(DVec3, DVec3, f64, DVec3) -> DVec3,
+    /// How far a shadow ray looks for blockers, from the light's distance: the identity.
+    pub shadow_reach: fn(f64) -> f64,
     /// The direction `L` used for a light, from the unit direction towards it: the identity.
     pub light_direction: fn(DVec3) -> DVec3,
     /// A spotlight's angular factor `C_theta` (`o.d`, `cos(theta/2)`, `C_min`, `C_max`):
@@ -60,6 +68,14 @@ fn same_direction(l: DVec3) -> DVec3 {
     l
 }
 
+fn closest_before(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
+    world.closest_before(ray, t_max)
+}
+
+fn same_distance(distance: f64) -> f64 {
+    distance
+}
+
 fn same_share(share: DVec3) -> DVec3 {
     share
 }
@@ -71,12 +87,14 @@ fn same_ambient(term: DVec3, _: AmbientContext) -> DVec3 {
 impl Formulas {
     /// Chapter 7.4b's and the slides' formulas: what lumiere renders.
     pub const CHAPTER: Formulas = Formulas {
+        closest: closest_before,
         specular: specular_term,
         reflect,
         refract,
         eta: Material::eta,
         transparent_filter,
         shadow_origin: offset_origin,
+        shadow_reach: same_distance,
         light_direction: same_direction,
         spot_factor,
         light_share: same_share,
@@ -89,12 +107,14 @@ pub trait FormulaTable: Copy + Send + Sync {
     /// Whether the `ambient` entry reads its [`AmbientContext`] (the tracer gathers it
     /// only then): false for the chapter's, whose entry is the identity.
     const AMBIENT_CONTEXT: bool = true;
+    fn closest(&self, world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)>;
     fn specular(&self, model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64;
     fn reflect(&self, v: DVec3, n: DVec3) -> DVec3;
     fn refract(&self, v: DVec3, n: DVec3, eta: f64) -> Option<DVec3>;
     fn eta(&self, mat: &Material, entering: bool) -> f64;
     fn transparent_filter(&self, rule: ShadowFilter, kt: f64, s: DVec3) -> DVec3;
     fn shadow_origin(&self, point: DVec3, outward: DVec3, err: f64, dir: DVec3) -> DVec3;
+    fn shadow_reach(&self, distance: f64) -> f64;
     fn light_direction(&self, l: DVec3) -> DVec3;
     fn spot_factor(&self) -> fn(f64, f64, f64, f64) -> f64;
     fn light_share(&self, share: DVec3) -> DVec3;
@@ -107,6 +127,10 @@ pub struct Chapter;
 
 impl FormulaTable for Chapter {
     const AMBIENT_CONTEXT: bool = false;
+    #[inline(always)]
+    fn closest(&self, world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
+        closest_before(world, ray, t_max)
+    }
     #[inline(always)]
     fn specular(&self, model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
         specular_term(model, n, l, e, exponent)
@@ -132,6 +156,10 @@ impl FormulaTable for Chapter {
         offset_origin(point, outward, err, dir)
     }
     #[inline(always)]
+    fn shadow_reach(&self, distance: f64) -> f64 {
+        same_distance(distance)
+    }
+    #[inline(always)]
     fn light_direction(&self, l: DVec3) -> DVec3 {
         same_direction(l)
     }
@@ -150,6 +178,9 @@ impl FormulaTable for Chapter {
 }
 
 impl FormulaTable for Formulas {
+    fn closest(&self, world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
+        (self.closest)(world, ray, t_max)
+    }
     fn specular(&self, model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
         (self.specular)(model, n, l, e, exponent)
     }
@@ -167,6 +198,9 @@ impl FormulaTable for Formulas {
     }
     fn shadow_origin(&self, point: DVec3, outward: DVec3, err: f64, dir: DVec3) -> DVec3 {
         (self.shadow_origin)(point, outward, err, dir)
+    }
+    fn shadow_reach(&self, distance: f64) -> f64 {
+        (self.shadow_reach)(distance)
     }
     fn light_direction(&self, l: DVec3) -> DVec3 {
         (self.light_direction)(l)

@@ -73,7 +73,7 @@ impl<'w, 's, F: FormulaTable> Reference<'w, 's, F> {
         let settings = &self.world.scene.settings;
         let conventions = &settings.conventions;
         let t_max = if level == 1 { conventions.far } else { f64::INFINITY };
-        let Some((object, hit)) = self.world.closest_before(ray, t_max) else {
+        let Some((object, hit)) = self.formulas.closest(self.world, ray, t_max) else {
             return settings.background;
         };
         let at = Surface::hit(self.world, ray, object, &hit);
@@ -240,12 +240,13 @@ impl<'w, 's, F: FormulaTable> Reference<'w, 's, F> {
             f.shadow_origin(at.point, at.outward, at.err, inc.to_light),
             inc.to_light,
         );
+        let reach = f.shadow_reach(inc.distance);
         let transparent = |i: usize| world.filters_shadows(i);
-        if world.any_hit(&ray, inc.distance, &|i| !transparent(i)) {
+        if world.any_hit(&ray, reach, &|i| !transparent(i)) {
             return DVec3::ZERO;
         }
         let mut crossed = Vec::new();
-        world.each_hit(&ray, inc.distance, &transparent, &mut |i| crossed.push(i));
+        world.each_hit(&ray, reach, &transparent, &mut |i| crossed.push(i));
         crossed.sort_unstable();
         let rule = world.scene.settings.conventions.shadow_filter;
         shadow_filter(crossed.into_iter().map(|i| {
