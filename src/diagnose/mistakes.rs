@@ -63,28 +63,37 @@ fn eye_reversed(model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) ->
     specular_term(model, n, l, -e, exponent)
 }
 
-/// The closest hit before `t_max` with each sphere met at the root `pick` chooses of its
-/// two, `t0 <= t1` (`None`: no hit), every other shape as the chapter meets it: the
-/// objects scanned in order, the nearest kept, the lowest index on equal `t`.
-fn closest_with_sphere_root(
+/// Whether SIMRenderer's lab has the student write the shape's intersection: the sphere,
+/// the tube and cylinder, the cone and the torus.
+fn lab_written(shape: &Shape) -> bool {
+    matches!(
+        shape,
+        Shape::Sphere(_) | Shape::Cylinder(_) | Shape::Cone(_) | Shape::Torus(_)
+    )
+}
+
+/// Most hits a ray has on one of the lab's shapes: a torus's four roots, a capped shape's
+/// side and caps.
+const MOST_HITS: usize = 4;
+
+/// The closest hit before `t_max` with each of the lab's shapes met at the hit `pick`
+/// finds for it along the whole ray (kept when it is in `(0, t_max)` and nearer than the
+/// best so far, as a student's routine keeps the root it chose), every other shape as the
+/// chapter meets it: the objects scanned in order, the nearest kept, the lowest index on
+/// equal `t`.
+fn closest_with_lab_hit(
     world: &World<'_>,
     ray: &Ray,
     t_max: f64,
-    pick: fn((f64, f64)) -> Option<f64>,
+    pick: fn(&Shape, &Ray) -> Option<SurfaceHit>,
 ) -> Option<(usize, SurfaceHit)> {
     let mut best: Option<(usize, SurfaceHit)> = None;
     for (j, object) in world.objects().iter().enumerate() {
         let limit = best.map_or(t_max, |(_, h)| h.t);
-        let hit = match &object.shape {
-            Shape::Sphere(s) => s
-                .roots(ray)
-                .and_then(pick)
-                .filter(|&t| t > 0.0 && t < limit)
-                .map(|t| SurfaceHit {
-                    t,
-                    normal: ((ray.at(t) - s.center) / s.radius).normalize(),
-                }),
-            shape => shape.intersect(ray, 0.0, limit),
+        let hit = if lab_written(&object.shape) {
+            pick(&object.shape, ray).filter(|h| h.t > 0.0 && h.t < limit)
+        } else {
+            object.shape.intersect(ray, 0.0, limit)
         };
         if let Some(h) = hit {
             best = Some((j, h));
@@ -93,16 +102,35 @@ fn closest_with_sphere_root(
     best
 }
 
-/// Spheres met at their farther root only: a sphere in front of the eye is seen from
-/// inside, its far side.
-fn sphere_far_root(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
-    closest_with_sphere_root(world, ray, t_max, |(_, t1)| Some(t1))
+/// The last of the shape's hits with `t > 0`, each hit searched beyond the one before (the
+/// larger root of a sphere's quadratic).
+fn last_hit(shape: &Shape, ray: &Ray) -> Option<SurfaceHit> {
+    let mut last: Option<SurfaceHit> = None;
+    for _ in 0..MOST_HITS {
+        match shape.intersect(ray, last.map_or(0.0, |h| h.t), f64::INFINITY) {
+            Some(h) => last = Some(h),
+            None => break,
+        }
+    }
+    last
 }
 
-/// Spheres met at their nearer root only, dropped when it is behind the ray: a ray inside a
-/// sphere (refracted into glass) never finds its way out.
-fn sphere_near_root_only(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
-    closest_with_sphere_root(world, ray, t_max, |(t0, _)| Some(t0))
+/// The shape's first hit along the whole line, behind the ray's origin or not (the smaller
+/// root of a sphere's quadratic, however negative).
+fn first_hit_on_the_line(shape: &Shape, ray: &Ray) -> Option<SurfaceHit> {
+    shape.intersect(ray, f64::NEG_INFINITY, f64::INFINITY)
+}
+
+/// The lab's shapes met at their last hit: a sphere in front of the eye is seen from
+/// inside, its far side.
+fn far_root(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
+    closest_with_lab_hit(world, ray, t_max, last_hit)
+}
+
+/// The lab's shapes met at their first hit on the ray's line only, none when it is behind
+/// the origin: a ray inside a sphere (refracted into glass) never finds its way out.
+fn near_root_only(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
+    closest_with_lab_hit(world, ray, t_max, first_hit_on_the_line)
 }
 
 /// Shadow rays not stopped at a point light: an object beyond the light shadows the point.
@@ -233,18 +261,15 @@ pub fn catalogue() -> Vec<Mistake> {
             }),
         ),
         m(
-            "sphere-far-root",
-            "a sphere met at the larger root of its quadratic: seen from inside, its far side",
-            with(|f| Formulas {
-                closest: sphere_far_root,
-                ..f
-            }),
+            "far-root",
+            "spheres, tubes, cylinders, cones and tori met at their last root: seen from inside",
+            with(|f| Formulas { closest: far_root, ..f }),
         ),
         m(
-            "sphere-near-root-only",
-            "a sphere met at the smaller root only, none when it is behind: no way out of glass",
+            "near-root-only",
+            "spheres, tubes, cylinders, cones and tori met at their first root only, none when behind: no way out of glass",
             with(|f| Formulas {
-                closest: sphere_near_root_only,
+                closest: near_root_only,
                 ..f
             }),
         ),
@@ -474,24 +499,68 @@ normal = [0, 0, -1]
         let chapter = Formulas::CHAPTER.closest;
         // From z = -5 along +z: the roots are t = 4 and 6 (z = -1 and z = 1).
         assert_eq!(hit(chapter, [0.0, 0.0, -5.0], f64::INFINITY), Some((0, 4.0, -DVec3::Z)));
+        assert_eq!(hit(far_root, [0.0, 0.0, -5.0], f64::INFINITY), Some((0, 6.0, DVec3::Z)));
         assert_eq!(
-            hit(sphere_far_root, [0.0, 0.0, -5.0], f64::INFINITY),
-            Some((0, 6.0, DVec3::Z))
-        );
-        assert_eq!(
-            hit(sphere_near_root_only, [0.0, 0.0, -5.0], f64::INFINITY),
+            hit(near_root_only, [0.0, 0.0, -5.0], f64::INFINITY),
             Some((0, 4.0, -DVec3::Z))
         );
         // The far root beyond t_max: the plane is not reached either.
-        assert_eq!(hit(sphere_far_root, [0.0, 0.0, -5.0], 5.0), None);
+        assert_eq!(hit(far_root, [0.0, 0.0, -5.0], 5.0), None);
         // From the centre (inside, as a refracted ray): the roots are -1 and 1; the chapter
         // and the far root leave at t = 1, the near root only finds the plane at t = 3.
         assert_eq!(hit(chapter, [0.0; 3], f64::INFINITY), Some((0, 1.0, DVec3::Z)));
-        assert_eq!(hit(sphere_far_root, [0.0; 3], f64::INFINITY), Some((0, 1.0, DVec3::Z)));
-        assert_eq!(
-            hit(sphere_near_root_only, [0.0; 3], f64::INFINITY),
-            Some((1, 3.0, -DVec3::Z))
-        );
+        assert_eq!(hit(far_root, [0.0; 3], f64::INFINITY), Some((0, 1.0, DVec3::Z)));
+        assert_eq!(hit(near_root_only, [0.0; 3], f64::INFINITY), Some((1, 3.0, -DVec3::Z)));
+    }
+
+    #[test]
+    fn torus_and_cylinder_roots_by_hand() {
+        // A torus about z (major radius 2, minor 0.5) at the origin, and a capped cylinder
+        // (radius 1, z from 10 to 12) on the axis x = 10.
+        let text = r#"
+[image]
+width = 8
+height = 6
+
+[camera]
+position = [0, 0, -5]
+look_at = [0, 0, 0]
+up = [0, 1, 0]
+vfov = 40
+
+[[shapes]]
+type = "torus"
+center = [0, 0, 0]
+axis = [0, 0, 1]
+major_radius = 2
+minor_radius = 0.5
+
+[[shapes]]
+type = "cylinder"
+base = [10, 0, 10]
+axis = [0, 0, 1]
+height = 2
+radius = 1
+"#;
+        let scene = crate::scene::parse(text, "roots.toml").unwrap();
+        let world = World::new(&scene);
+        let t = |closest: fn(&World<'_>, &Ray, f64) -> Option<(usize, SurfaceHit)>, o: [f64; 3], d: DVec3| {
+            closest(&world, &Ray::new(DVec3::from(o), d), f64::INFINITY).map(|(j, h)| (j, h.t))
+        };
+        let chapter = Formulas::CHAPTER.closest;
+        let close =
+            |a: Option<(usize, f64)>, b: (usize, f64)| a.is_some_and(|(j, t)| j == b.0 && (t - b.1).abs() < 1e-9);
+        // Along x from x = -5 the torus is met at x = -2.5, -1.5, 1.5 and 2.5.
+        assert!(close(t(chapter, [-5.0, 0.0, 0.0], DVec3::X), (0, 2.5)));
+        assert!(close(t(far_root, [-5.0, 0.0, 0.0], DVec3::X), (0, 7.5)));
+        assert!(close(t(near_root_only, [-5.0, 0.0, 0.0], DVec3::X), (0, 2.5)));
+        // From the centre the line's first root is behind (x = -2.5): the torus is missed.
+        assert!(close(t(chapter, [0.0; 3], DVec3::X), (0, 1.5)));
+        assert!(close(t(far_root, [0.0; 3], DVec3::X), (0, 2.5)));
+        assert_eq!(t(near_root_only, [0.0; 3], DVec3::X), None);
+        // Up the cylinder's axis from z = 5: the bottom cap at t = 5, the top cap at t = 7.
+        assert!(close(t(chapter, [10.0, 0.0, 5.0], DVec3::Z), (1, 5.0)));
+        assert!(close(t(far_root, [10.0, 0.0, 5.0], DVec3::Z), (1, 7.0)));
     }
 
     #[test]

@@ -49,7 +49,7 @@ impl Sphere {
 
     /// The two roots of the sphere's equation ([`sphere_roots`]).
     #[inline]
-    pub(crate) fn roots(&self, ray: &Ray) -> Option<(f64, f64)> {
+    fn roots(&self, ray: &Ray) -> Option<(f64, f64)> {
         sphere_roots(self.center, self.radius, ray)
     }
 
