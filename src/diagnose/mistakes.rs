@@ -9,7 +9,7 @@
 
 use crate::conventions::{Conventions, ShadowFilter};
 use crate::material::Material;
-use crate::math::{Ray, mirror};
+use crate::math::{Ray, mirror, refract};
 use crate::scene::Specular;
 use crate::shading::{phong, positive_part, pow, transparent_filter};
 use crate::shape::{Shape, SurfaceHit};
@@ -146,6 +146,14 @@ fn reflection_wrong_sign(v: DVec3, n: DVec3) -> DVec3 {
 /// The ratio of indices inverted: `n2 / n1` where the law takes `n1 / n2`.
 fn inverted_index(mat: &Material, entering: bool) -> f64 {
     1.0 / mat.eta(entering)
+}
+
+/// The law of refraction with `E.N` taken as `v.N` in its linear term:
+/// `T = n v + (n (v.N) - sqrt(1 - n^2 (1 - (E.N)^2))) N`, the chapter's `T` less
+/// `2 n (E.N) N`. At `n = 1` the chapter's ray goes straight on, this one turns.
+fn refraction_cosine_sign(v: DVec3, n_normal: DVec3, eta: f64) -> Option<DVec3> {
+    let cos_i = (-v).dot(n_normal);
+    refract(v, n_normal, eta).map(|t| t - 2.0 * eta * cos_i * n_normal)
 }
 
 /// The law of refraction with no total internal reflection: the root's argument taken as
@@ -286,6 +294,14 @@ pub fn catalogue() -> Vec<Mistake> {
             "the law of refraction given n2 / n1 instead of n1 / n2",
             with(|f| Formulas {
                 eta: inverted_index,
+                ..f
+            }),
+        ),
+        m(
+            "refraction-cosine-sign",
+            "the law of refraction with E.N taken as v.N in its term n (E.N) N",
+            with(|f| Formulas {
+                refract: refraction_cosine_sign,
                 ..f
             }),
         ),
@@ -441,8 +457,17 @@ mod tests {
         // Past the critical angle (eta 1.5, 60 degrees: 1 - 2.25 * 0.75 = -0.6875) the
         // chapter's law has no ray, this one has.
         let grazing = DVec3::new(60f64.to_radians().sin(), -60f64.to_radians().cos(), 0.0);
-        assert!(crate::math::refract(grazing, n, 1.5).is_none());
+        assert!(refract(grazing, n, 1.5).is_none());
         assert!(refract_always(grazing, n, 1.5).is_some());
+        assert_eq!(refraction_cosine_sign(grazing, n, 1.5), None);
+        // At n = 1 the chapter's ray goes on as v = (sin 60, -cos 60, 0); with v.N for E.N
+        // it gains -2 cos 60 N: (0.8660, -1.5, 0).
+        assert!((refract(grazing, n, 1.0).unwrap() - grazing).length() < 1e-15);
+        let turned = refraction_cosine_sign(grazing, n, 1.0).unwrap();
+        assert!(
+            (turned - DVec3::new(0.75f64.sqrt(), -1.5, 0.0)).length() < 1e-15,
+            "{turned}"
+        );
         let s = DVec3::new(0.5, 0.25, 1.0);
         assert_eq!(filter_twice(ShadowFilter::Color, 0.7, s), DVec3::new(0.25, 0.0625, 1.0));
         assert_eq!(cosine_spot(0.9, 0.8, 0.0, 1.0), 0.9);
