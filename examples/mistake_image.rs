@@ -6,7 +6,7 @@
 //! `cargo run --release --example mistake_image -- SCENE MISTAKE OUT.png WIDTH HEIGHT`
 //!
 //! The scene is rendered at WIDTH x HEIGHT with one sample at each pixel's centre
-//! (`sample_position = center`). With no arguments it lists the mistakes.
+//! (`sample_position = center`). `lumiere diagnose --list` lists the mistakes.
 
 use lumiere::diagnose::mistakes::catalogue;
 use lumiere::diagnose::render_mistake;
@@ -17,15 +17,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let list = catalogue();
     let [scene, name, out, width, height] = &args[..] else {
-        for m in &list {
-            println!("{:<30} {}", m.name, m.description);
-        }
-        return Ok(());
+        return Err(
+            "usage: mistake_image SCENE MISTAKE OUT.png WIDTH HEIGHT (`lumiere diagnose --list` lists the mistakes)"
+                .into(),
+        );
     };
     let mistake = list
         .iter()
         .find(|m| m.name == name)
-        .ok_or_else(|| format!("no mistake {name:?} (run with no arguments for the list)"))?;
+        .ok_or_else(|| format!("no mistake {name:?} (`lumiere diagnose --list` lists them)"))?;
     let mut scene = lumiere::scene::load(Path::new(scene))?;
     scene.settings.width = width.parse()?;
     scene.settings.height = height.parse()?;

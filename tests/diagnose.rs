@@ -556,3 +556,40 @@ fn command_line_names_what_is_within_sampling() {
     assert_eq!(json["within_sampling"][0]["score"]["beyond"], 0);
     assert_eq!(json["findings"].as_array().unwrap().len(), 0);
 }
+
+#[test]
+fn command_line_lists_the_catalogue() {
+    let list = catalogue();
+    let o = lumiere(&["diagnose", "--list"]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), list.len());
+    for (line, m) in lines.iter().zip(&list) {
+        let fields: Vec<&str> = line.split_whitespace().take(2).collect();
+        assert_eq!(fields[0], m.name, "{line}");
+        assert!(line.ends_with(m.description), "{line}");
+    }
+    assert_eq!(lines[0].split_whitespace().nth(1), Some("formula"));
+    let o = lumiere(&["diagnose", "--list", "--json"]);
+    assert_eq!(o.status.code(), Some(0));
+    let entries: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let entries = entries.as_array().unwrap();
+    let names: Vec<&str> = entries.iter().map(|e| e["name"].as_str().unwrap()).collect();
+    assert_eq!(names, list.iter().map(|m| m.name).collect::<Vec<_>>());
+    let kinds = |kind: &str| entries.iter().filter(|e| e["kind"] == kind).count();
+    // Two post-processes (gamma, the flip), one mistake per convention where SIMRenderer's
+    // preset differs from the chapter's, the rest formulas.
+    let conventions = lumiere::conventions::Conventions::CHAPTER
+        .describe()
+        .into_iter()
+        .zip(lumiere::conventions::Conventions::SIMRENDERER.describe())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(kinds("post-process"), 2);
+    assert_eq!(kinds("convention"), conventions);
+    assert_eq!(kinds("formula"), list.len() - 2 - conventions);
+    // With a scene it is refused: --list renders nothing.
+    let o = lumiere(&["diagnose", "--list", "scenes/reference.toml"]);
+    assert_eq!(o.status.code(), Some(2));
+}

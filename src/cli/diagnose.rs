@@ -7,6 +7,7 @@
 use super::{CliError, Overrides, load_scene};
 use clap::Args;
 use lumiere::compare::read::{Image, read_image};
+use lumiere::diagnose::mistakes::{Change, catalogue};
 use lumiere::diagnose::{Diagnosis, Options, Oracle, Score, Verdict, report};
 use lumiere::film::WriteError;
 use std::fmt::Write as _;
@@ -15,13 +16,19 @@ use std::path::{Path, PathBuf};
 #[derive(Args, Debug)]
 pub struct DiagnoseArgs {
     /// The scene the image renders (TOML or SIMRenderer's format); loaded at the image's size.
-    pub scene: PathBuf,
+    #[arg(required_unless_present = "list")]
+    pub scene: Option<PathBuf>,
     /// Your image: PNG, PPM / PGM / PBM, PFM, EXR, JPEG, BMP or TGA. Several images, all of
     /// one size, are each diagnosed against the oracle rendered once: their texts follow one
     /// another, their JSON is one line each, and `--report DIR` writes one folder each, named
     /// after the image's file name.
-    #[arg(required = true, value_name = "IMAGE")]
+    #[arg(required_unless_present = "list", value_name = "IMAGE")]
     pub images: Vec<PathBuf>,
+    /// Print the catalogue of named mistakes instead, one a line: its name, what kind of
+    /// change it is (formula, convention, post-process) and what the wrong code does (JSON
+    /// with `--json`).
+    #[arg(long, conflicts_with_all = ["scene", "images", "report"])]
+    pub list: bool,
     /// Largest per-channel difference (8-bit levels) that counts as equal.
     #[arg(long, default_value_t = Options::default().tolerance)]
     pub tolerance: u8,
@@ -55,6 +62,15 @@ pub struct DiagnoseArgs {
 }
 
 pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
+    if args.list {
+        print!("{}", catalogue_listing(args.json)?);
+        return Ok(());
+    }
+    let Some(scene_path) = &args.scene else {
+        return Err(CliError::BadInput(
+            "diagnose: a scene and an image are needed (or --list)".into(),
+        ));
+    };
     if !(0.0..=1.0).contains(&args.max_fraction) {
         return Err(CliError::BadInput(format!(
             "--max-fraction: must be in [0, 1], got {}",
@@ -99,7 +115,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
     }
     overrides.width = Some(width);
     overrides.height = Some(height);
-    let scene = load_scene(&args.scene, &overrides)?;
+    let scene = load_scene(scene_path, &overrides)?;
     let options = Options {
         tolerance: args.tolerance,
         max_fraction: args.max_fraction,
@@ -113,7 +129,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
             .map(|image| oracle.diagnose(&image.rgb))
             .collect::<Vec<_>>()
     })?;
-    let scene_name = args.scene.display().to_string();
+    let scene_name = scene_path.display().to_string();
     for (k, (d, path)) in diagnoses.iter().zip(&args.images).enumerate() {
         let image_name = path.display().to_string();
         if let Some(dir) = reports.get(k) {
@@ -141,6 +157,41 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
 }
 
 /// Reads every image, all of the first's size, before anything is rendered.
+/// What kind of change a mistake makes to the oracle's render, as `--list` names it.
+fn change_kind(change: &Change) -> &'static str {
+    match change {
+        Change::Formulas(_) => "formula",
+        Change::Convention(_) => "convention",
+        Change::Gamma | Change::FlipVertical => "post-process",
+    }
+}
+
+/// The catalogue as `--list` prints it: a line a mistake (name, kind, description), or one
+/// JSON array of `{name, kind, description}`.
+fn catalogue_listing(json: bool) -> Result<String, CliError> {
+    let list = catalogue();
+    if json {
+        let entries: Vec<_> = list
+            .iter()
+            .map(|m| serde_json::json!({"name": m.name, "kind": change_kind(&m.change), "description": m.description}))
+            .collect();
+        let text = serde_json::to_string(&entries).map_err(|e| CliError::Failed(e.to_string()))?;
+        return Ok(text + "\n");
+    }
+    let width = list.iter().map(|m| m.name.len()).max().unwrap_or(0);
+    Ok(list
+        .iter()
+        .map(|m| {
+            format!(
+                "{:<width$}  {:<12}  {}\n",
+                m.name,
+                change_kind(&m.change),
+                m.description
+            )
+        })
+        .collect())
+}
+
 fn read_images(paths: &[PathBuf]) -> Result<Vec<Image>, CliError> {
     let mut images: Vec<Image> = Vec::with_capacity(paths.len());
     for path in paths {
