@@ -133,6 +133,17 @@ fn near_root_only(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, Su
     closest_with_lab_hit(world, ray, t_max, first_hit_on_the_line)
 }
 
+/// The chapter's closest hit with a sphere's normal left as `P - C`, of length `r`: every
+/// term that reads the normal scaled (the diffuse term by `r`, Blinn's by `r^n`).
+fn sphere_normal_unnormalised(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
+    let (j, hit) = world.closest_before(ray, t_max)?;
+    let normal = match &world.objects()[j].shape {
+        Shape::Sphere(s) => hit.normal * s.radius,
+        _ => hit.normal,
+    };
+    Some((j, SurfaceHit { t: hit.t, normal }))
+}
+
 /// Shadow rays not stopped at a point light: an object beyond the light shadows the point.
 fn past_the_light(_distance: f64) -> f64 {
     f64::INFINITY
@@ -278,6 +289,14 @@ pub fn catalogue() -> Vec<Mistake> {
             "spheres, tubes, cylinders, cones and tori met at their first root only, none when behind: no way out of glass",
             with(|f| Formulas {
                 closest: near_root_only,
+                ..f
+            }),
+        ),
+        m(
+            "sphere-normal-unnormalised",
+            "a sphere's normal left as P - C, of length r, not divided by the radius",
+            with(|f| Formulas {
+                closest: sphere_normal_unnormalised,
                 ..f
             }),
         ),
@@ -586,6 +605,44 @@ radius = 1
         // Up the cylinder's axis from z = 5: the bottom cap at t = 5, the top cap at t = 7.
         assert!(close(t(chapter, [10.0, 0.0, 5.0], DVec3::Z), (1, 5.0)));
         assert!(close(t(far_root, [10.0, 0.0, 5.0], DVec3::Z), (1, 7.0)));
+    }
+
+    #[test]
+    fn unnormalised_sphere_normal_by_hand() {
+        // A sphere of radius 2 at the origin and a cylinder: from z = -5 along +z the sphere
+        // is met at t = 3, its normal (0, 0, -1) left as P - C = (0, 0, -2); the cylinder's
+        // is left alone.
+        let text = r#"
+[image]
+width = 8
+height = 6
+
+[camera]
+position = [0, 0, -5]
+look_at = [0, 0, 0]
+up = [0, 1, 0]
+vfov = 40
+
+[[shapes]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 2
+
+[[shapes]]
+type = "cylinder"
+base = [10, 0, 10]
+axis = [0, 0, 1]
+height = 2
+radius = 3
+"#;
+        let scene = crate::scene::parse(text, "normal.toml").unwrap();
+        let world = World::new(&scene);
+        let ray = Ray::new(DVec3::new(0.0, 0.0, -5.0), DVec3::Z);
+        let (j, h) = sphere_normal_unnormalised(&world, &ray, f64::INFINITY).unwrap();
+        assert_eq!((j, h.t, h.normal), (0, 3.0, DVec3::new(0.0, 0.0, -2.0)));
+        let up = Ray::new(DVec3::new(10.0, 0.0, 5.0), DVec3::Z);
+        let (j, h) = sphere_normal_unnormalised(&world, &up, f64::INFINITY).unwrap();
+        assert_eq!((j, h.t, h.normal), (1, 5.0, -DVec3::Z));
     }
 
     #[test]
