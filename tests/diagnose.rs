@@ -10,7 +10,8 @@
 //! again in images sampled on a jittered grid (not equal to any render). The gains of a
 //! doubled specular term and of opaque filters; an sRGB oracle; the README's fixture; the
 //! same diagnosis for any thread count and from one oracle for many images; the command
-//! line's text, JSON and report, for one image and for several, and its bad input.
+//! line's text, JSON and report, for one image and for several, its bad input, and the
+//! catalogue it lists.
 
 use crate::common::*;
 use lumiere::diagnose::mistakes::catalogue;
