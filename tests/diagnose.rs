@@ -398,7 +398,7 @@ fn command_line_diagnoses_several_images_against_one_oracle() {
 
 #[test]
 fn readme_fixture_is_the_mistake_rendered() {
-    // tests/fixtures/diagnose/phong-for-blinn.png, made by examples/mistake_image.rs.
+    // tests/fixtures/diagnose/phong-for-blinn.png, made by `lumiere render --mistake` (README).
     let mut scene = scene::load(&repo("scenes/reference.toml")).unwrap();
     scene.settings.width = 160;
     scene.settings.height = 120;
@@ -593,4 +593,56 @@ fn command_line_lists_the_catalogue() {
     // With a scene it is refused: --list renders nothing.
     let o = lumiere(&["diagnose", "--list", "scenes/reference.toml"]);
     assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn command_line_renders_a_mistake_that_diagnose_then_names() {
+    // A teacher's exercise: the reference scene as a ray tracer with the far root renders it
+    // (the bytes render_mistake gives), then diagnosed: the mistake first, nothing left.
+    let dir = temp_dir("render-mistake");
+    let image = dir.join("far.png");
+    let reference = repo("scenes/reference.toml");
+    let (w, h) = (W.to_string(), H.to_string());
+    let settings = [
+        "--width",
+        &w,
+        "--height",
+        &h,
+        "--spp",
+        "1",
+        "--convention",
+        "sample_position=center",
+    ];
+    let render = |mistake: &str, out: &std::path::Path| {
+        let args = [
+            "render",
+            reference.to_str().unwrap(),
+            "--mistake",
+            mistake,
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        lumiere(&[&args[..], &settings[..]].concat())
+    };
+    let o = render("far-root", &image);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let far = catalogue().into_iter().find(|m| m.name == "far-root").unwrap();
+    let expected = render_mistake(&centred("scenes/reference.toml"), &far).unwrap();
+    assert_eq!(
+        lumiere::film::encode_png(W, H, &expected).unwrap(),
+        std::fs::read(&image).unwrap()
+    );
+    let args = diagnose_reference_centred(&image);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = lumiere(&[&args[..], &["--json"]].concat());
+    let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(d["verdict"], "mistake_found");
+    assert_eq!(d["ranking"][0]["name"], "far-root");
+    assert_eq!(d["ranking"][0]["score"]["beyond"], 0);
+    // An unknown name, or an output that is not PNG: exit 2, nothing written.
+    for (mistake, out) in [("no-such-mistake", dir.join("x.png")), ("far-root", dir.join("x.pfm"))] {
+        let o = render(mistake, &out);
+        assert_eq!(o.status.code(), Some(2), "{mistake} {}", out.display());
+        assert!(!out.exists());
+    }
 }

@@ -51,6 +51,15 @@ pub struct RenderArgs {
     /// shortcut): the same image, bit for bit, more slowly. It counts only camera rays.
     #[arg(long, conflicts_with_all = ["stats", "json", "no_skip"])]
     pub reference: bool,
+    /// Render the image a ray tracer with this named mistake writes (the catalogue of
+    /// `lumiere diagnose`: `lumiere diagnose --list`), with the reference tracer; PNG only.
+    #[arg(
+        long,
+        value_name = "NAME",
+        requires = "output",
+        conflicts_with_all = ["layers", "shard", "stats", "json", "no_skip", "reference", "srgb"]
+    )]
+    pub mistake: Option<String>,
 }
 
 fn progress_bar(rows: u64, quiet: bool) -> ProgressBar {
@@ -79,6 +88,9 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
         let layers = layers.expect("clap asks for -o or --layers");
         return write_layers(&scene, &layers, args, v);
     };
+    if let Some(name) = &args.mistake {
+        return write_mistake(&scene, name, output, args);
+    }
     let format = match args.shard {
         None => Some(check_output(output, &args.scene)?),
         Some(_) => {
@@ -168,6 +180,39 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
             stats.counts.non_finite
         );
     }
+    Ok(())
+}
+
+/// `render --mistake NAME`: the scene as a ray tracer with that mistake renders it, written
+/// as PNG; nothing is written when the name is unknown, the mistake does not apply to the
+/// scene (a convention it already follows) or a signal stops the render.
+fn write_mistake(scene: &lumiere::scene::Scene, name: &str, output: &Path, args: &RenderArgs) -> Result<(), CliError> {
+    if check_output(output, &args.scene)? != lumiere::output::Format::Png {
+        return Err(CliError::BadInput(format!(
+            "{}: --mistake writes PNG only (an 8-bit image, as a student's ray tracer writes)",
+            output.display()
+        )));
+    }
+    let list = lumiere::diagnose::mistakes::catalogue();
+    let Some(mistake) = list.iter().find(|m| m.name == name) else {
+        return Err(CliError::BadInput(format!(
+            "--mistake: no mistake named {name:?} (`lumiere diagnose --list` lists the {})",
+            list.len()
+        )));
+    };
+    let rgb = super::with_threads(args.threads, || lumiere::diagnose::render_mistake(scene, mistake))?;
+    let Some(rgb) = rgb else {
+        return Err(CliError::BadInput(format!(
+            "--mistake {name}: {} already follows this convention, so the mistake changes nothing",
+            args.scene.display()
+        )));
+    };
+    if let Some(signal) = signals::received() {
+        return Err(CliError::Interrupted(signal));
+    }
+    let bytes = lumiere::film::encode_png(scene.settings.width, scene.settings.height, &rgb)
+        .map_err(|e| CliError::Failed(format!("cannot encode the image: {e}")))?;
+    write_atomic(output, &bytes).map_err(|e| WriteError::new(output, "cannot write the image", e))?;
     Ok(())
 }
 
