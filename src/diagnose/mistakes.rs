@@ -511,20 +511,19 @@ mod tests {
         assert_eq!(past_the_light(5.0), f64::INFINITY);
     }
 
+    /// A scene of `shapes` (TOML `[[shapes]]` tables) with a camera at z = -5, for the
+    /// hand tests of the closest-hit entries.
+    fn scene_of(shapes: &str) -> crate::scene::Scene {
+        let header = "[image]\nwidth = 8\nheight = 6\n\n[camera]\nposition = [0, 0, -5]\n\
+                      look_at = [0, 0, 0]\nup = [0, 1, 0]\nvfov = 40\n";
+        crate::scene::parse(&format!("{header}{shapes}"), "shapes.toml").unwrap()
+    }
+
     #[test]
     fn sphere_roots_by_hand() {
         // A unit sphere at the origin behind a plane z = 3 facing it.
-        let text = r#"
-[image]
-width = 8
-height = 6
-
-[camera]
-position = [0, 0, -5]
-look_at = [0, 0, 0]
-up = [0, 1, 0]
-vfov = 40
-
+        let scene = scene_of(
+            r#"
 [[shapes]]
 type = "sphere"
 center = [0, 0, 0]
@@ -534,8 +533,8 @@ radius = 1
 type = "plane"
 point = [0, 0, 3]
 normal = [0, 0, -1]
-"#;
-        let scene = crate::scene::parse(text, "roots.toml").unwrap();
+"#,
+        );
         let world = World::new(&scene);
         let hit = |closest: fn(&World<'_>, &Ray, f64) -> Option<(usize, SurfaceHit)>, o: [f64; 3], t_max: f64| {
             closest(&world, &Ray::new(DVec3::from(o), DVec3::Z), t_max).map(|(j, h)| (j, h.t, h.normal))
@@ -561,17 +560,8 @@ normal = [0, 0, -1]
     fn torus_and_cylinder_roots_by_hand() {
         // A torus about z (major radius 2, minor 0.5) at the origin, and a capped cylinder
         // (radius 1, z from 10 to 12) on the axis x = 10.
-        let text = r#"
-[image]
-width = 8
-height = 6
-
-[camera]
-position = [0, 0, -5]
-look_at = [0, 0, 0]
-up = [0, 1, 0]
-vfov = 40
-
+        let scene = scene_of(
+            r#"
 [[shapes]]
 type = "torus"
 center = [0, 0, 0]
@@ -585,8 +575,8 @@ base = [10, 0, 10]
 axis = [0, 0, 1]
 height = 2
 radius = 1
-"#;
-        let scene = crate::scene::parse(text, "roots.toml").unwrap();
+"#,
+        );
         let world = World::new(&scene);
         let t = |closest: fn(&World<'_>, &Ray, f64) -> Option<(usize, SurfaceHit)>, o: [f64; 3], d: DVec3| {
             closest(&world, &Ray::new(DVec3::from(o), d), f64::INFINITY).map(|(j, h)| (j, h.t))
@@ -612,17 +602,8 @@ radius = 1
         // A sphere of radius 2 at the origin and a cylinder: from z = -5 along +z the sphere
         // is met at t = 3, its normal (0, 0, -1) left as P - C = (0, 0, -2); the cylinder's
         // is left alone.
-        let text = r#"
-[image]
-width = 8
-height = 6
-
-[camera]
-position = [0, 0, -5]
-look_at = [0, 0, 0]
-up = [0, 1, 0]
-vfov = 40
-
+        let scene = scene_of(
+            r#"
 [[shapes]]
 type = "sphere"
 center = [0, 0, 0]
@@ -634,8 +615,8 @@ base = [10, 0, 10]
 axis = [0, 0, 1]
 height = 2
 radius = 3
-"#;
-        let scene = crate::scene::parse(text, "normal.toml").unwrap();
+"#,
+        );
         let world = World::new(&scene);
         let ray = Ray::new(DVec3::new(0.0, 0.0, -5.0), DVec3::Z);
         let (j, h) = sphere_normal_unnormalised(&world, &ray, f64::INFINITY).unwrap();
