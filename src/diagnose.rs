@@ -156,6 +156,9 @@ pub struct Diagnosis {
     pub max_fraction: f64,
     /// Grid pixels on an edge (left out of every score).
     pub edges: usize,
+    /// Grid pixels the image leaves fully transparent, never drawn (left out of every
+    /// score).
+    pub undrawn: usize,
     /// The image against the oracle.
     pub oracle: Score,
     /// Judged pixels of the image beyond any sampling of the oracle (see the module's
@@ -452,13 +455,30 @@ impl Oracle {
 
     /// Diagnoses `image` (8-bit RGB, row-major, at the scene's size).
     pub fn diagnose(&self, image: &[u8]) -> Diagnosis {
+        self.diagnose_drawn(image, &[])
+    }
+
+    /// Diagnoses `image` with the pixels `transparent` marks (one per image pixel, or none
+    /// at all) left out: never drawn, as SIMRenderer's console mode leaves the last rows of
+    /// an image wider than tall.
+    pub fn diagnose_drawn(&self, image: &[u8], transparent: &[bool]) -> Diagnosis {
         let (width, height, options) = (self.width, self.height, &self.options);
         assert_eq!(
             image.len(),
             width as usize * height as usize * 3,
             "image at the scene's size"
         );
-        let (pixels, judged) = (&self.pixels, &self.judged);
+        assert!(
+            transparent.is_empty() || transparent.len() == width as usize * height as usize,
+            "a transparency mask at the scene's size"
+        );
+        let pixels = &self.pixels;
+        let undrawn: Vec<bool> = pixels
+            .iter()
+            .map(|&(x, y)| !transparent.is_empty() && transparent[y as usize * width as usize + x as usize])
+            .collect();
+        let judged: Vec<bool> = self.judged.iter().zip(&undrawn).map(|(&j, &u)| j && !u).collect();
+        let judged = &judged;
         let image_rgb: Vec<u8> = pixels
             .iter()
             .flat_map(|&(x, y)| {
@@ -521,6 +541,7 @@ impl Oracle {
             tolerance: tol,
             max_fraction: options.max_fraction,
             edges: self.edge_mask.iter().filter(|e| **e).count(),
+            undrawn: undrawn.iter().filter(|u| **u).count(),
             oracle: oracle_score,
             beyond_sampling: beyond_ranges(&image_rgb, &self.ranges, judged, tol),
             verdict: Verdict::Unexplained,

@@ -646,3 +646,74 @@ fn command_line_renders_a_mistake_that_diagnose_then_names() {
         assert!(!out.exists());
     }
 }
+
+#[test]
+fn fully_transparent_pixels_are_left_out_as_undrawn() {
+    // SIMRenderer's console mode leaves the last rows of a wide image transparent. The
+    // phong-for-blinn image with its last 18 of 72 rows cleared (alpha 0, black) is judged
+    // on the rows drawn: phong-for-blinn first with nothing left beyond, 18 x 96 = 1728
+    // pixels undrawn. Read as opaque black, the same rows would be beyond the tolerance.
+    let scene = centred("scenes/reference.toml");
+    let phong = catalogue().into_iter().find(|m| m.name == "phong-for-blinn").unwrap();
+    let rgb = render_mistake(&scene, &phong).unwrap();
+    let drawn_rows = 54;
+    let undrawn = |i: usize| i / W as usize >= drawn_rows;
+    let rgba: Vec<u8> = rgb
+        .chunks(3)
+        .enumerate()
+        .flat_map(|(i, p)| {
+            if undrawn(i) {
+                [0, 0, 0, 0]
+            } else {
+                [p[0], p[1], p[2], 255]
+            }
+        })
+        .collect();
+    let dir = temp_dir("undrawn");
+    let path = dir.join("wide.png");
+    image::RgbaImage::from_raw(W, H, rgba.clone())
+        .unwrap()
+        .save(&path)
+        .unwrap();
+    let args = diagnose_reference_centred(&path);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = lumiere(&[&args[..], &["--json"]].concat());
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(d["undrawn"], 1728);
+    assert_eq!(d["verdict"], "mistake_found");
+    assert_eq!(d["ranking"][0]["name"], "phong-for-blinn");
+    assert_eq!(d["ranking"][0]["score"]["beyond"], 0);
+    let report = dir.join("report");
+    let o = lumiere(&[&args[..], &["--report", report.to_str().unwrap()]].concat());
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(text.contains("undrawn            1728 pixels left out"), "{text}");
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert!(html.contains("1728 undrawn (fully transparent) apart"));
+    // The library, on the same pixels: with the mask as the command line reads it, and
+    // without (the cleared rows black).
+    let oracle = Oracle::new(&scene, &Options::default());
+    let black: Vec<u8> = rgba.chunks(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
+    let mask: Vec<bool> = (0..(W * H) as usize).map(undrawn).collect();
+    let drawn = oracle.diagnose_drawn(&black, &mask);
+    let whole = oracle.diagnose(&black);
+    assert_eq!(drawn.undrawn, 1728);
+    assert_eq!(whole.undrawn, 0);
+    assert!(drawn.oracle.judged < whole.oracle.judged);
+    let phong_beyond = |d: &lumiere::diagnose::Diagnosis| {
+        d.ranking
+            .iter()
+            .find(|c| c.name == "phong-for-blinn")
+            .unwrap()
+            .score
+            .beyond
+    };
+    assert_eq!(phong_beyond(&drawn), 0);
+    assert!(phong_beyond(&whole) > 0);
+    // Nothing drawn at all: refused.
+    let empty = dir.join("empty.png");
+    image::RgbaImage::new(W, H).save(&empty).unwrap();
+    let args = diagnose_reference_centred(&empty);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    assert_eq!(lumiere(&args).status.code(), Some(2));
+}

@@ -126,7 +126,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
         let oracle = Oracle::new(&scene, &options);
         images
             .iter()
-            .map(|image| oracle.diagnose(&image.rgb))
+            .map(|image| oracle.diagnose_drawn(&image.rgb, &image.transparent))
             .collect::<Vec<_>>()
     })?;
     let scene_name = scene_path.display().to_string();
@@ -199,6 +199,12 @@ fn read_images(paths: &[PathBuf]) -> Result<Vec<Image>, CliError> {
         for note in &image.notes {
             eprintln!("lumiere: {}: {note}", path.display());
         }
+        if !image.transparent.is_empty() && image.transparent.iter().all(|&t| t) {
+            return Err(CliError::BadInput(format!(
+                "{}: every pixel is fully transparent: nothing was drawn",
+                path.display()
+            )));
+        }
         if let Some(first) = images.first()
             && (image.width, image.height) != (first.width, first.height)
         {
@@ -270,6 +276,13 @@ fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
         "diagnosis          {image} against {scene} at {} x {}: {judged}, {} on edges apart",
         d.width, d.height, d.edges
     );
+    if d.undrawn > 0 {
+        let _ = writeln!(
+            out,
+            "undrawn            {} pixels left out: fully transparent, never drawn (SIMRenderer's console mode leaves the last rows of a wide image so)",
+            d.undrawn
+        );
+    }
     let _ = writeln!(
         out,
         "oracle             {}; {} beyond any sampling of the pixel",

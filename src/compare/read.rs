@@ -5,7 +5,8 @@
 //! - PNG, PPM / PGM / PBM (ASCII or binary), BMP, TGA, JPEG at 8 bits: as stored;
 //! - 16-bit PNG or PPM / PGM: each value `v` to `round(255 v / 65535)`;
 //! - grey (PGM, grey PNG, ...): the grey level in R, G and B;
-//! - alpha: dropped, the colour compared as stored (not composited);
+//! - alpha: dropped, the colour compared as stored (not composited); the fully transparent
+//!   pixels are marked ([`Image::transparent`]), which `diagnose` leaves out;
 //! - PFM and EXR (float radiance, as `lumiere render -o X.pfm` writes): each channel clamped
 //!   to [0, 1] and quantised to 8 bits exactly as lumiere's film does
 //!   ([`crate::film::quantize`], no gamma), so a float image compares as the PNG it would
@@ -30,6 +31,9 @@ pub struct Image {
     pub format: &'static str,
     /// Every conversion made on the way to 8-bit RGB, in words.
     pub notes: Vec<String>,
+    /// Per pixel, whether its alpha is 0 (never drawn: SIMRenderer's console mode leaves
+    /// the last rows of an image wider than tall so); empty when no pixel is.
+    pub transparent: Vec<bool>,
 }
 
 /// Reads an image file; errors name the file, what is wrong and what is read.
@@ -65,6 +69,7 @@ pub fn decode(bytes: &[u8], extension: &str) -> Result<Image, String> {
             rgb,
             format: "PFM",
             notes,
+            transparent: Vec::new(),
         });
     }
     let format = match image::guess_format(bytes) {
@@ -105,6 +110,7 @@ pub fn decode(bytes: &[u8], extension: &str) -> Result<Image, String> {
         notes.push("JPEG is lossy: its compression alone changes pixels by a few levels".into());
     }
     let (width, height) = (img.width(), img.height());
+    let transparent = fully_transparent(&img);
     let rgb = to_rgb8(img, name, &mut notes);
     Ok(Image {
         width,
@@ -112,7 +118,18 @@ pub fn decode(bytes: &[u8], extension: &str) -> Result<Image, String> {
         rgb,
         format: name,
         notes,
+        transparent,
     })
+}
+
+/// Per pixel, whether its alpha is 0 once at 8 bits; empty when the image has no alpha
+/// channel or no such pixel.
+fn fully_transparent(img: &DynamicImage) -> Vec<bool> {
+    if !img.color().has_alpha() {
+        return Vec::new();
+    }
+    let mask: Vec<bool> = img.to_rgba8().pixels().map(|p| p.0[3] == 0).collect();
+    if mask.contains(&true) { mask } else { Vec::new() }
 }
 
 fn float_note(format: &str) -> String {
