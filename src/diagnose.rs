@@ -404,7 +404,6 @@ pub struct Oracle {
     grid: Grid,
     pixels: Vec<(u32, u32)>,
     edge_mask: Vec<bool>,
-    judged: Vec<bool>,
     oracle_rgb: Vec<u8>,
     ranges: Vec<[[u8; 3]; 2]>,
     layers: Vec<PixelLayers>,
@@ -421,7 +420,6 @@ impl Oracle {
         let pixels = grid.pixels();
         let world = World::new(scene);
         let edge_mask: Vec<bool> = pixels.par_iter().map(|&(x, y)| is_edge(&world, x, y)).collect();
-        let judged: Vec<bool> = edge_mask.iter().map(|e| !e).collect();
         let oracle = render_pixels_with(&world, Formulas::CHAPTER, &pixels);
         let oracle_rgb = to_rgb8(&oracle, output_encoding(options.srgb));
         let ranges = footprint_ranges(&world, &pixels, output_encoding(options.srgb));
@@ -445,7 +443,6 @@ impl Oracle {
             grid,
             pixels,
             edge_mask,
-            judged,
             oracle_rgb,
             ranges,
             layers,
@@ -477,7 +474,8 @@ impl Oracle {
             .iter()
             .map(|&(x, y)| !transparent.is_empty() && transparent[y as usize * width as usize + x as usize])
             .collect();
-        let judged: Vec<bool> = self.judged.iter().zip(&undrawn).map(|(&j, &u)| j && !u).collect();
+        // The pixels judged: off edges and drawn.
+        let judged: Vec<bool> = self.edge_mask.iter().zip(&undrawn).map(|(&e, &u)| !e && !u).collect();
         let judged = &judged;
         let image_rgb: Vec<u8> = pixels
             .iter()

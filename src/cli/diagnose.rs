@@ -156,7 +156,6 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Reads every image, all of the first's size, before anything is rendered.
 /// What kind of change a mistake makes to the oracle's render, as `--list` names it.
 fn change_kind(change: &Change) -> &'static str {
     match change {
@@ -192,6 +191,8 @@ fn catalogue_listing(json: bool) -> Result<String, CliError> {
         .collect())
 }
 
+/// Reads every image, all of the first's size and each with something drawn, before
+/// anything is rendered.
 fn read_images(paths: &[PathBuf]) -> Result<Vec<Image>, CliError> {
     let mut images: Vec<Image> = Vec::with_capacity(paths.len());
     for path in paths {

@@ -11,8 +11,7 @@
 use super::specular_term;
 use crate::conventions::ShadowFilter;
 use crate::material::Material;
-use crate::math::Ray;
-use crate::math::{offset_origin, reflect, refract};
+use crate::math::{Ray, offset_origin, reflect, refract};
 use crate::scene::Specular;
 use crate::shading::{spot_factor, transparent_filter};
 use crate::shape::SurfaceHit;
