@@ -64,12 +64,14 @@ fn eye_reversed(model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) ->
 }
 
 /// Whether SIMRenderer's lab has the student write the shape's intersection: the sphere,
-/// the tube and cylinder, the cone and the torus.
+/// the tube and cylinder, the cone and the torus, also through a transform (an ellipsoid),
+/// which SIMRenderer meets by the shape's own routine on the ray taken into its frame.
 fn lab_written(shape: &Shape) -> bool {
-    matches!(
-        shape,
-        Shape::Sphere(_) | Shape::Cylinder(_) | Shape::Cone(_) | Shape::Torus(_)
-    )
+    match shape {
+        Shape::Sphere(_) | Shape::Cylinder(_) | Shape::Cone(_) | Shape::Torus(_) => true,
+        Shape::Transformed(t) => lab_written(&t.shape),
+        _ => false,
+    }
 }
 
 /// Most hits a ray has on one of the lab's shapes: a torus's four roots, a capped shape's
@@ -595,6 +597,33 @@ radius = 1
         // Up the cylinder's axis from z = 5: the bottom cap at t = 5, the top cap at t = 7.
         assert!(close(t(chapter, [10.0, 0.0, 5.0], DVec3::Z), (1, 5.0)));
         assert!(close(t(far_root, [10.0, 0.0, 5.0], DVec3::Z), (1, 7.0)));
+    }
+
+    #[test]
+    fn an_ellipsoids_roots_by_hand() {
+        // A unit sphere scaled by 2 along x (semi-axes 2, 1, 1) at the origin.
+        let scene = scene_of(
+            r#"
+[[shapes]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 1
+transform = { scale = [2, 1, 1] }
+"#,
+        );
+        let world = World::new(&scene);
+        let t = |closest: fn(&World<'_>, &Ray, f64) -> Option<(usize, SurfaceHit)>, o: [f64; 3]| {
+            closest(&world, &Ray::new(DVec3::from(o), DVec3::X), f64::INFINITY).map(|(j, h)| (j, h.t))
+        };
+        let chapter = Formulas::CHAPTER.closest;
+        // Along x from x = -5 it is met at x = -2 and x = 2: t = 3 and 7.
+        assert_eq!(t(chapter, [-5.0, 0.0, 0.0]), Some((0, 3.0)));
+        assert_eq!(t(far_root, [-5.0, 0.0, 0.0]), Some((0, 7.0)));
+        assert_eq!(t(near_root_only, [-5.0, 0.0, 0.0]), Some((0, 3.0)));
+        // From the centre the line's first root is behind (t = -2): missed.
+        assert_eq!(t(chapter, [0.0; 3]), Some((0, 2.0)));
+        assert_eq!(t(far_root, [0.0; 3]), Some((0, 2.0)));
+        assert_eq!(t(near_root_only, [0.0; 3]), None);
     }
 
     #[test]
