@@ -23,6 +23,7 @@ pub use metrics::{PixelDiffs, Psnr, Stats, stats};
 pub use read::{Image, read_image};
 
 use serde::Serialize;
+use std::borrow::Cow;
 use std::path::Path;
 
 /// Differences between two images of the same size.
@@ -153,10 +154,10 @@ pub enum Judged {
     OffEdges,
 }
 
-/// The metrics on and off edges.
+/// The metrics on and off edges (of the drawn pixels).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct EdgeReport {
-    /// Pixels spanning an edge.
+    /// Drawn pixels spanning an edge.
     pub pixels: u64,
     /// The metrics of the pixels off edges (`None` when every pixel is an edge).
     pub off_edges: Option<Stats>,
@@ -174,44 +175,66 @@ pub struct Report {
     pub pass: bool,
     /// Why the images fail (empty when they pass).
     pub failures: Vec<String>,
-    /// The metrics of every pixel.
+    /// Pixels left out of every metric: fully transparent, never drawn.
+    pub undrawn: u64,
+    /// The metrics of every drawn pixel.
     pub metrics: Stats,
     pub edges: Option<EdgeReport>,
     /// The judged pixels differing most, largest difference first (then top to bottom, left
     /// to right); only pixels that differ.
     pub worst: Vec<WorstPixel>,
-    /// Every pixel's FLIP value, row-major (for its heat-map).
+    /// Every pixel's FLIP value, row-major (for its heat-map); 0 where undrawn.
     #[serde(skip)]
     pub flip: Vec<f32>,
 }
 
-/// Compares `a` (yours) with `b` (the oracle), RGB8 of `width * height` pixels (at least
-/// one), by `rule`, judging the pixels off `edges` when given (a row-major mask, true on
-/// edges), and lists the `worst` judged pixels.
-pub fn compare(
-    a: &[u8],
-    b: &[u8],
-    width: u32,
-    height: u32,
-    rule: &Rule,
-    edges: Option<&[bool]>,
-    worst: usize,
-) -> Report {
-    let diffs = PixelDiffs::new(a, b, width, height, flip::flip_map(b, a, width, height));
-    let all = stats(&diffs, rule.tolerance, |_| true).expect("at least one pixel");
+/// The pixels a comparison leaves out or judges apart: row-major masks of one flag a pixel.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Masks<'a> {
+    /// True on the pixels spanning an edge, when the scene is known.
+    pub edges: Option<&'a [bool]>,
+    /// True on the pixels never drawn (fully transparent), as SIMRenderer's console mode
+    /// leaves the last rows of an image wider than tall; empty when every pixel is drawn.
+    pub undrawn: &'a [bool],
+}
+
+/// Compares `a` (yours) with `b` (the oracle), RGB8 of `width * height` pixels, by `rule`:
+/// the undrawn pixels of `masks` are left out of every metric (at least one pixel must be
+/// drawn), the others judged off its edges when they are given, and the `worst` judged
+/// pixels listed.
+pub fn compare(a: &[u8], b: &[u8], width: u32, height: u32, rule: &Rule, masks: Masks, worst: usize) -> Report {
+    let Masks { edges, undrawn } = masks;
+    let n = width as usize * height as usize;
+    assert!(undrawn.is_empty() || undrawn.len() == n, "one undrawn flag a pixel");
+    let drawn = |i: usize| undrawn.is_empty() || !undrawn[i];
+    let a = &*undrawn_from_oracle(a, b, undrawn);
+    let mut flip = flip::flip_map(b, a, width, height);
+    for (i, v) in flip.iter_mut().enumerate() {
+        if !drawn(i) {
+            *v = 0.0;
+        }
+    }
+    let diffs = PixelDiffs::new(a, b, width, height, flip);
+    let all = stats(&diffs, rule.tolerance, drawn).expect("at least one drawn pixel");
     let edge_report = edges.map(|e| EdgeReport {
-        pixels: e.iter().filter(|&&e| e).count() as u64,
-        off_edges: stats(&diffs, rule.tolerance, |i| !e[i]),
-        on_edges: stats(&diffs, rule.tolerance, |i| e[i]),
+        pixels: (0..n).filter(|&i| drawn(i) && e[i]).count() as u64,
+        off_edges: stats(&diffs, rule.tolerance, |i| drawn(i) && !e[i]),
+        on_edges: stats(&diffs, rule.tolerance, |i| drawn(i) && e[i]),
     });
-    let judged_pixel = |i: usize| edges.is_none_or(|e| !e[i]);
+    let judged_pixel = |i: usize| drawn(i) && edges.is_none_or(|e| !e[i]);
     let (judged, judged_stats) = match &edge_report {
         Some(e) => (Judged::OffEdges, e.off_edges.as_ref()),
         None => (Judged::All, Some(&all)),
     };
+    let undrawn = (n - all.pixels as usize) as u64;
     let mut failures = Vec::new();
     if let Some(s) = judged_stats {
-        let which = if judged == Judged::OffEdges { " non-edge" } else { "" };
+        let which = match (undrawn > 0, judged == Judged::OffEdges) {
+            (false, false) => "",
+            (false, true) => " non-edge",
+            (true, false) => " drawn",
+            (true, true) => " drawn non-edge",
+        };
         if s.fraction_beyond_tolerance > rule.max_fraction {
             failures.push(format!(
                 "{} of {}{which} pixels ({:.4} %) differ by more than {} levels; allowed: {} % (--max-fraction {})",
@@ -257,11 +280,26 @@ pub fn compare(
         judged,
         pass: failures.is_empty(),
         failures,
+        undrawn,
         metrics: all,
         edges: edge_report,
         worst,
         flip: diffs.flip,
     }
+}
+
+/// `a` (yours) with its `undrawn` pixels (a row-major mask, or empty) in the oracle's
+/// colour from `b`: they differ by nothing, and FLIP's filters see no difference spreading
+/// from them into the drawn pixels around them.
+pub fn undrawn_from_oracle<'a>(a: &'a [u8], b: &[u8], undrawn: &[bool]) -> Cow<'a, [u8]> {
+    if !undrawn.contains(&true) {
+        return Cow::Borrowed(a);
+    }
+    let mut filled = a.to_vec();
+    for (i, _) in undrawn.iter().enumerate().filter(|(_, u)| **u) {
+        filled[3 * i..3 * i + 3].copy_from_slice(&b[3 * i..3 * i + 3]);
+    }
+    Cow::Owned(filled)
 }
 
 /// Loads an image file as RGB8 (any format [`read_image`] reads, converted as it says),
@@ -290,6 +328,46 @@ mod tests {
         assert_eq!(compare_rgb8(&a, &b, 2, 1, 4).differing_pixels, 0);
         let same = compare_rgb8(&a, &a, 2, 1, 0);
         assert!(same.psnr_db.is_infinite() && same.max_diff == 0);
+    }
+
+    #[test]
+    fn undrawn_pixels_are_left_out_of_every_metric() {
+        // Four pixels; yours leaves the last undrawn (black), where the oracle is
+        // (200, 100, 50), and the first differs by (2, 0, 0). Drawn: 3 pixels, max 2,
+        // MSE = 4 / 9, RMS 0.6667, one beyond 0 levels.
+        let a = [10, 10, 10, 20, 20, 20, 30, 30, 30, 0, 0, 0];
+        let b = [12, 10, 10, 20, 20, 20, 30, 30, 30, 200, 100, 50];
+        let undrawn = [false, false, false, true];
+        let masks = Masks {
+            edges: None,
+            undrawn: &undrawn,
+        };
+        let r = compare(&a, &b, 2, 2, &Rule::default(), masks, 10);
+        assert_eq!((r.undrawn, r.metrics.pixels, r.metrics.max), (1, 3, 2));
+        assert!((r.metrics.rms - 2.0 / 3.0).abs() < 1e-12, "{}", r.metrics.rms);
+        assert_eq!(r.metrics.beyond_tolerance, 1);
+        assert_eq!(r.worst.iter().map(|p| (p.x, p.y)).collect::<Vec<_>>(), [(0, 0)]);
+        assert_eq!(
+            r.failures,
+            ["1 of 3 drawn pixels (33.3333 %) differ by more than 0 levels; allowed: 0 % (--max-fraction 0)"]
+        );
+        assert_eq!(r.flip[3], 0.0);
+        // Read as drawn, the black pixel is 200 levels off.
+        let whole = compare(&a, &b, 2, 2, &Rule::default(), Masks::default(), 10);
+        assert_eq!((whole.undrawn, whole.metrics.pixels, whole.metrics.max), (0, 4, 200));
+        // With edges, an undrawn edge pixel is in neither set.
+        let edges = [true, false, false, true];
+        let masks = Masks {
+            edges: Some(&edges),
+            undrawn: &undrawn,
+        };
+        let e = compare(&a, &b, 2, 2, &Rule::default(), masks, 10).edges.unwrap();
+        assert_eq!(e.pixels, 1);
+        assert_eq!(e.on_edges.map(|s| (s.pixels, s.max)), Some((1, 2)));
+        assert_eq!(e.off_edges.map(|s| (s.pixels, s.max)), Some((2, 0)));
+        // The level heat-map's input: the undrawn pixel in the oracle's colour.
+        assert_eq!(&undrawn_from_oracle(&a, &b, &undrawn)[9..], [200, 100, 50]);
+        assert!(matches!(undrawn_from_oracle(&a, &b, &[]), Cow::Borrowed(_)));
     }
 
     #[test]

@@ -350,6 +350,76 @@ fn metrics_rule_and_json_by_hand() {
 }
 
 #[test]
+fn fully_transparent_pixels_are_left_out_as_undrawn() {
+    // An 8 x 6 oracle, and yours drawn on its first 4 rows (one pixel there 9 levels off)
+    // with the last 2 rows left fully transparent and black, as SIMRenderer's console mode
+    // leaves a wide image: 16 pixels undrawn, 1 of the 32 drawn beyond 0 levels.
+    let dir = temp_dir("compare-undrawn");
+    let (w, h) = (8u32, 6u32);
+    let oracle: Vec<u8> = (0..w * h).flat_map(|i| [(5 * i) as u8, 100, 200]).collect();
+    let mut yours: Vec<u8> = oracle
+        .chunks(3)
+        .enumerate()
+        .flat_map(|(i, p)| if i >= 32 { [0, 0, 0, 0] } else { [p[0], p[1], p[2], 255] })
+        .collect();
+    yours[4 * 9] += 9;
+    let (a, b) = (dir.join("yours.png"), dir.join("oracle.png"));
+    fs::write(
+        &a,
+        encode_with(image::ImageFormat::Png, w, h, &yours, image::ExtendedColorType::Rgba8),
+    )
+    .unwrap();
+    fs::write(&b, encode_png(w, h, &oracle).unwrap()).unwrap();
+    let heat = dir.join("heat.png");
+    let (code, out, err) = compare(&[s(&a), s(&b), "--heatmap", s(&heat)]);
+    assert_eq!(code, 1, "{out} {err}");
+    assert!(out.contains("undrawn            16 pixels left out"), "{out}");
+    assert!(
+        out.contains("differing pixels   1 of 32 (3.1250 %) beyond 0 levels"),
+        "{out}"
+    );
+    assert!(out.contains("max difference     9 levels"), "{out}");
+    assert!(
+        out.contains("rule               at most 0 % of the drawn pixels beyond 0 levels"),
+        "{out}"
+    );
+    assert!(
+        err.contains("1 of 32 drawn pixels (3.1250 %) differ by more than 0 levels"),
+        "{err}"
+    );
+    // The heat-map shows the drawn difference and nothing on the undrawn rows.
+    let map = image::open(&heat).unwrap().to_rgb8();
+    assert_ne!(map.get_pixel(1, 1).0, [0, 0, 0]);
+    assert!((4..6).all(|y| (0..w).all(|x| map.get_pixel(x, y).0 == [0, 0, 0])));
+    // Transparent in the oracle's place counts too; the JSON says how many.
+    let (code, j) = compare_json(&[s(&b), s(&a), "--tolerance", "9"]);
+    assert_eq!(
+        (code, &j["undrawn"], &j["metrics"]["pixels"]),
+        (0, &16.into(), &32.into())
+    );
+    // Opaque, the same black rows are 16 more pixels beyond the tolerance.
+    let opaque: Vec<u8> = yours.chunks(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
+    let c = dir.join("opaque.png");
+    fs::write(&c, encode_png(w, h, &opaque).unwrap()).unwrap();
+    let (_, j) = compare_json(&[s(&c), s(&b)]);
+    assert_eq!(
+        (&j["undrawn"], &j["metrics"]["beyond_tolerance"]),
+        (&0.into(), &17.into())
+    );
+    // Nothing drawn at all: bad input, exit 2.
+    let clear = dir.join("clear.png");
+    let none = vec![0u8; 4 * (w * h) as usize];
+    fs::write(
+        &clear,
+        encode_with(image::ImageFormat::Png, w, h, &none, image::ExtendedColorType::Rgba8),
+    )
+    .unwrap();
+    let (code, _, err) = compare(&[s(&clear), s(&b)]);
+    assert_eq!(code, 2);
+    assert!(err.contains("every pixel is fully transparent"), "{err}");
+}
+
+#[test]
 fn text_output_and_heat_maps() {
     let dir = temp_dir("compare-text");
     let (a, b) = two_by_two(&dir);

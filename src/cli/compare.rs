@@ -7,7 +7,7 @@ use super::{CliError, Overrides, check_output_path, load_scene};
 use clap::Args;
 use lumiere::compare::flip::flip_heat_map;
 use lumiere::compare::read::{Image, read_image};
-use lumiere::compare::{Judged, Report, Rule, Stats, compare, heat_map};
+use lumiere::compare::{Judged, Masks, Report, Rule, Stats, compare, heat_map, undrawn_from_oracle};
 use lumiere::edges::edge_mask;
 use lumiere::film::{WriteError, encode_png, write_atomic};
 use lumiere::world::World;
@@ -64,6 +64,7 @@ struct Json<'a> {
     height: u32,
     verdict: &'static str,
     failures: &'a [String],
+    undrawn: u64,
     rule: JsonRule,
     metrics: &'a Stats,
     edges: Option<JsonEdges<'a>>,
@@ -98,6 +99,22 @@ struct JsonWorst<'a> {
 /// Reads an image; errors are bad input.
 fn read(path: &Path) -> Result<Image, CliError> {
     read_image(path).map_err(CliError::BadInput)
+}
+
+/// The pixels fully transparent in either image (never drawn), left out of the comparison;
+/// empty when there are none.
+fn undrawn_pixels(a: &Image, b: &Image) -> Vec<bool> {
+    match (a.transparent.is_empty(), b.transparent.is_empty()) {
+        (true, true) => Vec::new(),
+        (false, true) => a.transparent.clone(),
+        (true, false) => b.transparent.clone(),
+        (false, false) => a
+            .transparent
+            .iter()
+            .zip(&b.transparent)
+            .map(|(&x, &y)| x || y)
+            .collect(),
+    }
 }
 
 /// Checks a heat-map's path: a PNG that overwrites neither input.
@@ -237,7 +254,19 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         max_fraction: args.max_fraction,
         max_flip: args.max_flip,
     };
-    let report = compare(&a.rgb, &b.rgb, w, h, &rule, edges.as_deref(), args.worst);
+    let undrawn = undrawn_pixels(&a, &b);
+    if !undrawn.is_empty() && undrawn.iter().all(|&u| u) {
+        return Err(CliError::BadInput(format!(
+            "every pixel is fully transparent in {} or {}: nothing was drawn to compare",
+            args.a.display(),
+            args.b.display()
+        )));
+    }
+    let masks = Masks {
+        edges: edges.as_deref(),
+        undrawn: &undrawn,
+    };
+    let report = compare(&a.rgb, &b.rgb, w, h, &rule, masks, args.worst);
     let notes: Vec<String> = [(&args.a, &a), (&args.b, &b)]
         .iter()
         .flat_map(|(path, img)| img.notes.iter().map(move |n| format!("{}: {n}", path.display())))
@@ -251,7 +280,9 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         }
         Ok(())
     };
-    write_png(&args.heatmap, &|| heat_map(&a.rgb, &b.rgb, 16))?;
+    write_png(&args.heatmap, &|| {
+        heat_map(&undrawn_from_oracle(&a.rgb, &b.rgb, &undrawn), &b.rgb, 16)
+    })?;
     write_png(&args.flip_heatmap, &|| flip_heat_map(&report.flip, w, h))?;
     if let Some(mask) = &edges {
         write_png(&args.edge_map, &|| {
@@ -278,6 +309,7 @@ fn print_json(args: &CompareArgs, r: &Report, notes: &[String]) -> Result<(), Cl
         height: r.height,
         verdict: if r.pass { "pass" } else { "fail" },
         failures: &r.failures,
+        undrawn: r.undrawn,
         rule: JsonRule {
             tolerance: r.rule.tolerance,
             max_fraction: r.rule.max_fraction,
@@ -334,6 +366,12 @@ fn print_text(args: &CompareArgs, a: &Image, b: &Image, r: &Report, notes: &[Str
         println!("note               {n}");
     }
     println!("size               {} x {}", r.width, r.height);
+    if r.undrawn > 0 {
+        println!(
+            "undrawn            {} pixels left out: fully transparent (alpha 0), never drawn; the rest are compared",
+            r.undrawn
+        );
+    }
     println!("max difference     {} levels", m.max);
     println!("RMS difference     {:.4} levels", m.rms);
     println!("PSNR               {}", m.psnr_db);
@@ -367,9 +405,11 @@ fn print_text(args: &CompareArgs, a: &Image, b: &Image, r: &Report, notes: &[Str
             e.on_edges.as_ref().map_or_else(|| none("edge"), summary)
         );
     }
-    let judged = match r.judged {
-        Judged::All => "all pixels",
-        Judged::OffEdges => "the pixels off edges",
+    let judged = match (r.judged, r.undrawn > 0) {
+        (Judged::All, false) => "all pixels",
+        (Judged::All, true) => "the drawn pixels",
+        (Judged::OffEdges, false) => "the pixels off edges",
+        (Judged::OffEdges, true) => "the drawn pixels off edges",
     };
     let flip_rule = r
         .rule

@@ -6,7 +6,7 @@
 //! - 16-bit PNG or PPM / PGM: each value `v` to `round(255 v / 65535)`;
 //! - grey (PGM, grey PNG, ...): the grey level in R, G and B;
 //! - alpha: dropped, the colour compared as stored (not composited); the fully transparent
-//!   pixels are marked ([`Image::transparent`]), which `diagnose` leaves out;
+//!   pixels are marked ([`Image::transparent`]), which `compare` and `diagnose` leave out;
 //! - PFM and EXR (float radiance, as `lumiere render -o X.pfm` writes): each channel clamped
 //!   to [0, 1] and quantised to 8 bits exactly as lumiere's film does
 //!   ([`crate::film::quantize`], no gamma), so a float image compares as the PNG it would
