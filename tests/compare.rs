@@ -178,7 +178,7 @@ fn grey_translucent_and_scaled_inputs_say_how_they_were_read() {
     assert_eq!(img.rgb, [10, 20, 30, 40, 50, 60]);
     assert_eq!(
         img.notes,
-        ["alpha channel dropped: 1 pixels not opaque, their colour compared as stored (not composited)"]
+        ["alpha channel dropped: 1 pixels partly transparent, their colour compared as stored (not composited)"]
     );
     // A grey PFM, big-endian, scale 2 (not applied), one NaN.
     let pfm = dir.join("grey.pfm");
@@ -374,6 +374,10 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     let (code, out, err) = compare(&[s(&a), s(&b), "--heatmap", s(&heat)]);
     assert_eq!(code, 1, "{out} {err}");
     assert!(out.contains("undrawn            16 pixels left out"), "{out}");
+    assert!(
+        out.contains("alpha channel dropped (every pixel opaque or fully transparent)"),
+        "{out}"
+    );
     assert!(
         out.contains("differing pixels   1 of 32 (3.1250 %) beyond 0 levels"),
         "{out}"
@@ -612,7 +616,7 @@ fn shadow_edges_are_edges() {
     );
 }
 
-/// The two cases at 160 x 120 and 1 sample per pixel: another seed (a sampling
+/// Two cases at 160 x 120 and 1 sample per pixel: another seed (a sampling
 /// difference) against the sRGB transfer applied (a real bug). Beyond 16 levels off edges,
 /// the seed's image stays under 1 % of pixels and the bug's exceeds 80 %; FLIP's means are
 /// far apart; and the seed's largest difference off edges is well under its largest on

@@ -111,7 +111,8 @@ pub fn decode(bytes: &[u8], extension: &str) -> Result<Image, String> {
     }
     let (width, height) = (img.width(), img.height());
     let transparent = fully_transparent(&img);
-    let rgb = to_rgb8(img, name, &mut notes);
+    let clear = transparent.iter().filter(|&&t| t).count();
+    let rgb = to_rgb8(img, name, clear, &mut notes);
     Ok(Image {
         width,
         height,
@@ -154,25 +155,29 @@ pub fn level_from_16(v: u16) -> u8 {
     ((v as u32 * 255 + 32767) / 65535) as u8
 }
 
-/// The note on a dropped alpha channel, `translucent` pixels of which were not opaque.
-fn alpha_note(translucent: usize) -> String {
-    if translucent == 0 {
-        "alpha channel dropped (every pixel opaque)".into()
-    } else {
-        format!(
-            "alpha channel dropped: {translucent} pixels not opaque, their colour compared as stored (not composited)"
-        )
+/// The note on a dropped alpha channel, of which `not_opaque` pixels are not opaque and
+/// `clear` of those fully transparent (alpha 0 once at 8 bits, [`Image::transparent`], left
+/// to the commands that leave them out): the others, partly transparent, are compared as
+/// stored.
+fn alpha_note(not_opaque: usize, clear: usize) -> String {
+    match (not_opaque.saturating_sub(clear), clear) {
+        (0, 0) => "alpha channel dropped (every pixel opaque)".into(),
+        (0, _) => "alpha channel dropped (every pixel opaque or fully transparent)".into(),
+        (partly, _) => format!(
+            "alpha channel dropped: {partly} pixels partly transparent, their colour compared as stored (not composited)"
+        ),
     }
 }
 
-/// The 8-bit RGB of a decoded image, noting each conversion.
-fn to_rgb8(img: DynamicImage, format: &str, notes: &mut Vec<String>) -> Vec<u8> {
+/// The 8-bit RGB of a decoded image, noting each conversion; `clear` of its pixels are
+/// fully transparent.
+fn to_rgb8(img: DynamicImage, format: &str, clear: usize, notes: &mut Vec<String>) -> Vec<u8> {
     let grey = "grey input: its level used for R, G and B";
     let sixteen = "16-bit input converted to 8 bits (round(255 v / 65535))";
     match img {
         DynamicImage::ImageRgb8(i) => i.into_raw(),
         DynamicImage::ImageRgba8(i) => {
-            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != u8::MAX).count()));
+            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != u8::MAX).count(), clear));
             i.pixels().flat_map(|p| [p.0[0], p.0[1], p.0[2]]).collect()
         }
         DynamicImage::ImageLuma8(i) => {
@@ -181,7 +186,7 @@ fn to_rgb8(img: DynamicImage, format: &str, notes: &mut Vec<String>) -> Vec<u8> 
         }
         DynamicImage::ImageLumaA8(i) => {
             notes.push(grey.into());
-            notes.push(alpha_note(i.pixels().filter(|p| p.0[1] != u8::MAX).count()));
+            notes.push(alpha_note(i.pixels().filter(|p| p.0[1] != u8::MAX).count(), clear));
             i.pixels().flat_map(|p| [p.0[0]; 3]).collect()
         }
         DynamicImage::ImageRgb16(i) => {
@@ -190,7 +195,7 @@ fn to_rgb8(img: DynamicImage, format: &str, notes: &mut Vec<String>) -> Vec<u8> 
         }
         DynamicImage::ImageRgba16(i) => {
             notes.push(sixteen.into());
-            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != u16::MAX).count()));
+            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != u16::MAX).count(), clear));
             i.pixels()
                 .flat_map(|p| [0, 1, 2].map(|c| level_from_16(p.0[c])))
                 .collect()
@@ -203,13 +208,13 @@ fn to_rgb8(img: DynamicImage, format: &str, notes: &mut Vec<String>) -> Vec<u8> 
         DynamicImage::ImageLumaA16(i) => {
             notes.push(sixteen.into());
             notes.push(grey.into());
-            notes.push(alpha_note(i.pixels().filter(|p| p.0[1] != u16::MAX).count()));
+            notes.push(alpha_note(i.pixels().filter(|p| p.0[1] != u16::MAX).count(), clear));
             i.pixels().flat_map(|p| [level_from_16(p.0[0]); 3]).collect()
         }
         DynamicImage::ImageRgb32F(i) => float_rgb(i.as_raw(), 3, format, notes),
         DynamicImage::ImageRgba32F(i) => {
             let rgb = float_rgb(i.as_raw(), 4, format, notes);
-            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != 1.0).count()));
+            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != 1.0).count(), clear));
             rgb
         }
         other => {
