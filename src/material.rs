@@ -28,8 +28,8 @@ pub struct Material {
     /// Index of refraction of the object's interior (the outside is air, n = 1).
     pub ior: f64,
     /// SIMRenderer's texture material: images that give the ambient, diffuse and specular
-    /// colours at each point ([`Material::reflectance`]). Absent, the material is
-    /// serialised as it always was.
+    /// colours at each point ([`Material::reflectance`]). Absent, the `texture` key is left
+    /// out of the serialised material.
     #[serde(skip_serializing_if = "Option::is_none", serialize_with = "maps")]
     pub texture: Option<SharedMaps>,
 }

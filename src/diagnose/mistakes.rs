@@ -283,12 +283,12 @@ pub fn catalogue() -> Vec<Mistake> {
         ),
         m(
             "far-root",
-            "spheres, tubes, cylinders, cones and tori met at their last root: seen from inside",
+            "spheres, tubes, cylinders, cones and tori, plain or transformed, met at their last root: seen from inside",
             with(|f| Formulas { closest: far_root, ..f }),
         ),
         m(
             "near-root-only",
-            "spheres, tubes, cylinders, cones and tori met at their first root only, none when behind: no way out of glass",
+            "spheres, tubes, cylinders, cones and tori, plain or transformed, met at their first root only, none when behind: no way out of glass",
             with(|f| Formulas {
                 closest: near_root_only,
                 ..f

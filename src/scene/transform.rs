@@ -1,5 +1,5 @@
 //! Similarity transforms of whole scenes, `p -> s p + offset` (uniform scale `s > 0`, then
-//! a translation), for the invariance tests of issue 7: a scene moved far from the origin
+//! a translation), for the invariance tests (`tests/invariance.rs`): a scene moved far from the origin
 //! or scaled by 1e3 must render the same image. Directions (normals, axes, light
 //! directions, spot orientations, the camera's up) are unchanged; lengths scale by `s`;
 //! point and spot attenuation coefficients are rescaled so that `A` at corresponding
