@@ -559,9 +559,10 @@ normal = [0, 0, -1]
     }
 
     #[test]
-    fn torus_and_cylinder_roots_by_hand() {
-        // A torus about z (major radius 2, minor 0.5) at the origin, and a capped cylinder
-        // (radius 1, z from 10 to 12) on the axis x = 10.
+    fn torus_cylinder_and_ellipsoid_roots_by_hand() {
+        // A torus about z (major radius 2, minor 0.5) at the origin, a capped cylinder
+        // (radius 1, z from 10 to 12) on the axis x = 10, and an ellipsoid (a unit sphere
+        // scaled by 2 along x: semi-axes 2, 1, 1) centred at (0, 20, 0).
         let scene = scene_of(
             r#"
 [[shapes]]
@@ -577,6 +578,12 @@ base = [10, 0, 10]
 axis = [0, 0, 1]
 height = 2
 radius = 1
+
+[[shapes]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 1
+transform = { scale = [2, 1, 1], translation = [0, 20, 0] }
 "#,
         );
         let world = World::new(&scene);
@@ -597,33 +604,14 @@ radius = 1
         // Up the cylinder's axis from z = 5: the bottom cap at t = 5, the top cap at t = 7.
         assert!(close(t(chapter, [10.0, 0.0, 5.0], DVec3::Z), (1, 5.0)));
         assert!(close(t(far_root, [10.0, 0.0, 5.0], DVec3::Z), (1, 7.0)));
-    }
-
-    #[test]
-    fn an_ellipsoids_roots_by_hand() {
-        // A unit sphere scaled by 2 along x (semi-axes 2, 1, 1) at the origin.
-        let scene = scene_of(
-            r#"
-[[shapes]]
-type = "sphere"
-center = [0, 0, 0]
-radius = 1
-transform = { scale = [2, 1, 1] }
-"#,
-        );
-        let world = World::new(&scene);
-        let t = |closest: fn(&World<'_>, &Ray, f64) -> Option<(usize, SurfaceHit)>, o: [f64; 3]| {
-            closest(&world, &Ray::new(DVec3::from(o), DVec3::X), f64::INFINITY).map(|(j, h)| (j, h.t))
-        };
-        let chapter = Formulas::CHAPTER.closest;
-        // Along x from x = -5 it is met at x = -2 and x = 2: t = 3 and 7.
-        assert_eq!(t(chapter, [-5.0, 0.0, 0.0]), Some((0, 3.0)));
-        assert_eq!(t(far_root, [-5.0, 0.0, 0.0]), Some((0, 7.0)));
-        assert_eq!(t(near_root_only, [-5.0, 0.0, 0.0]), Some((0, 3.0)));
-        // From the centre the line's first root is behind (t = -2): missed.
-        assert_eq!(t(chapter, [0.0; 3]), Some((0, 2.0)));
-        assert_eq!(t(far_root, [0.0; 3]), Some((0, 2.0)));
-        assert_eq!(t(near_root_only, [0.0; 3]), None);
+        // Along x from x = -5 the ellipsoid is met at x = -2 and x = 2: t = 3 and 7; from
+        // its centre the line's first root is behind (t = -2), so near-root-only misses it.
+        assert_eq!(t(chapter, [-5.0, 20.0, 0.0], DVec3::X), Some((2, 3.0)));
+        assert_eq!(t(far_root, [-5.0, 20.0, 0.0], DVec3::X), Some((2, 7.0)));
+        assert_eq!(t(near_root_only, [-5.0, 20.0, 0.0], DVec3::X), Some((2, 3.0)));
+        assert_eq!(t(chapter, [0.0, 20.0, 0.0], DVec3::X), Some((2, 2.0)));
+        assert_eq!(t(far_root, [0.0, 20.0, 0.0], DVec3::X), Some((2, 2.0)));
+        assert_eq!(t(near_root_only, [0.0, 20.0, 0.0], DVec3::X), None);
     }
 
     #[test]
