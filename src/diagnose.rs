@@ -31,6 +31,7 @@ pub mod report;
 use crate::edges::{footprint, is_edge};
 use crate::film::quantize;
 use crate::layers::{PixelLayers, pixel_layers};
+use crate::limits::MAX_DEPTH;
 use crate::output::{srgb_decode, srgb_encode};
 use crate::render::{camera_ray, render_pixels_with};
 use crate::scene::Scene;
@@ -320,6 +321,17 @@ fn render_change(
             let h = scene.settings.height;
             let flipped: Vec<(u32, u32)> = pixels.iter().map(|&(x, y)| (x, h - 1 - y)).collect();
             Some((render_pixels_with(world, Formulas::CHAPTER, &flipped), output))
+        }
+        Change::Depth(step) => {
+            let depth = scene
+                .settings
+                .depth
+                .checked_add_signed(step)
+                .filter(|d| (1..=MAX_DEPTH).contains(d))?;
+            let mut changed = scene.clone();
+            changed.settings.depth = depth;
+            let world = World::new(&changed);
+            Some((render_pixels_with(&world, Formulas::CHAPTER, pixels), output))
         }
         Change::Convention(key) => {
             let value = convention_value(&scene.settings.conventions, key)?;

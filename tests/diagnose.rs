@@ -579,8 +579,9 @@ fn command_line_lists_the_catalogue() {
     let names: Vec<&str> = entries.iter().map(|e| e["name"].as_str().unwrap()).collect();
     assert_eq!(names, list.iter().map(|m| m.name).collect::<Vec<_>>());
     let kinds = |kind: &str| entries.iter().filter(|e| e["kind"] == kind).count();
-    // Two post-processes (gamma, the flip), one mistake per convention where SIMRenderer's
-    // preset differs from the chapter's, the rest formulas.
+    // Two post-processes (gamma, the flip), two recursion depths (one level short, one
+    // over), one mistake per convention where SIMRenderer's preset differs from the
+    // chapter's, the rest formulas.
     let conventions = lumiere::conventions::Conventions::CHAPTER
         .describe()
         .into_iter()
@@ -588,8 +589,9 @@ fn command_line_lists_the_catalogue() {
         .filter(|(a, b)| a != b)
         .count();
     assert_eq!(kinds("post-process"), 2);
+    assert_eq!(kinds("recursion"), 2);
     assert_eq!(kinds("convention"), conventions);
-    assert_eq!(kinds("formula"), list.len() - 2 - conventions);
+    assert_eq!(kinds("formula"), list.len() - 4 - conventions);
     // With a scene it is refused: --list renders nothing.
     let o = lumiere(&["diagnose", "--list", "scenes/reference.toml"]);
     assert_eq!(o.status.code(), Some(2));
@@ -645,6 +647,26 @@ fn command_line_renders_a_mistake_that_diagnose_then_names() {
         assert_eq!(o.status.code(), Some(2), "{mistake} {}", out.display());
         assert!(!out.exists());
     }
+    // One level short of a depth of 1: nothing to render, exit 2, nothing written.
+    let out = dir.join("short.png");
+    let args = [
+        "render",
+        reference.to_str().unwrap(),
+        "--mistake",
+        "depth-one-short",
+        "--depth",
+        "1",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let o = lumiere(&[&args[..], &settings[..]].concat());
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("its depth is 1, which the mistake would take out of [1, 64]"),
+        "{err}"
+    );
+    assert!(!out.exists());
 }
 
 #[test]

@@ -161,6 +161,7 @@ fn change_kind(change: &Change) -> &'static str {
     match change {
         Change::Formulas(_) => "formula",
         Change::Convention(_) => "convention",
+        Change::Depth(_) => "recursion",
         Change::Gamma | Change::FlipVertical => "post-process",
     }
 }

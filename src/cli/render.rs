@@ -202,8 +202,16 @@ fn write_mistake(scene: &lumiere::scene::Scene, name: &str, output: &Path, args:
     };
     let rgb = super::with_threads(args.threads, || lumiere::diagnose::render_mistake(scene, mistake))?;
     let Some(rgb) = rgb else {
+        let why = match mistake.change {
+            lumiere::diagnose::mistakes::Change::Depth(_) => format!(
+                "its depth is {}, which the mistake would take out of [1, {}]",
+                scene.settings.depth,
+                lumiere::limits::MAX_DEPTH
+            ),
+            _ => "it already follows this convention".to_string(),
+        };
         return Err(CliError::BadInput(format!(
-            "--mistake {name}: {} already follows this convention, so the mistake changes nothing",
+            "--mistake {name}: nothing to render on {}: {why}",
             args.scene.display()
         )));
     };

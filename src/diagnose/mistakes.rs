@@ -3,6 +3,7 @@
 //!   the wrong formula written here, the chapter's own functions left alone;
 //! - a convention switch ([`crate::conventions`]) set to SIMRenderer's value where the
 //!   oracle follows the chapter's (and to the chapter's where it follows SIMRenderer's);
+//! - the recursion depth one level short or over;
 //! - a post-process of the oracle's image (the sRGB transfer, a vertical flip).
 //!
 //! Nothing outside this module and its parent knows about mistakes.
@@ -26,6 +27,9 @@ pub enum Change {
     Formulas(Formulas),
     /// The convention switch `key` takes the other preset's value.
     Convention(&'static str),
+    /// The recursion depth off by this many levels: the depth test compared one way where
+    /// the other is meant, or the levels counted from 0.
+    Depth(i32),
     /// The sRGB transfer function applied before quantisation.
     Gamma,
     /// The image upside down.
@@ -399,6 +403,16 @@ pub fn catalogue() -> Vec<Mistake> {
             }),
         ),
         m(
+            "depth-one-short",
+            "secondary rays stopped one level early: depth - 1 levels traced",
+            Change::Depth(-1),
+        ),
+        m(
+            "depth-one-over",
+            "one level more than the scene's depth traced: depth + 1 levels",
+            Change::Depth(1),
+        ),
+        m(
             "gamma-applied",
             "the sRGB transfer (gamma) applied before quantisation",
             Change::Gamma,
@@ -454,6 +468,7 @@ pub fn catalogue() -> Vec<Mistake> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diagnose::render_mistake;
     use crate::math::reflect;
 
     #[test]
@@ -612,6 +627,60 @@ transform = { scale = [2, 1, 1], translation = [0, 20, 0] }
         assert_eq!(t(chapter, [0.0, 20.0, 0.0], DVec3::X), Some((2, 2.0)));
         assert_eq!(t(far_root, [0.0, 20.0, 0.0], DVec3::X), Some((2, 2.0)));
         assert_eq!(t(near_root_only, [0.0, 20.0, 0.0], DVec3::X), None);
+    }
+
+    #[test]
+    fn depth_off_by_one_by_hand() {
+        // The eye at z = -5 looks at a perfect mirror (k_r = 1, nothing else) at z = 1; the
+        // reflected rays meet a wall at z = -10 lit by the ambient light alone, k_a = 1,
+        // S = 0.4. At depth 2 every pixel is 1 x 0.4 -> level 102; one level short (depth 1)
+        // the mirror shows its own black; one level over, the wall reflects nothing more.
+        let scene = |depth: u32| {
+            scene_of(&format!(
+                r#"
+[render]
+depth = {depth}
+
+[materials.mirror]
+color = [1, 1, 1]
+ka = 0
+kd = 0
+ks = 0
+kr = 1
+
+[materials.wall]
+color = [0.4, 0.4, 0.4]
+ka = 1
+kd = 0
+ks = 0
+
+[[shapes]]
+type = "plane"
+point = [0, 0, 1]
+normal = [0, 0, -1]
+material = "mirror"
+
+[[shapes]]
+type = "plane"
+point = [0, 0, -10]
+normal = [0, 0, 1]
+material = "wall"
+
+[[lights]]
+type = "ambient"
+"#
+            ))
+        };
+        let list = catalogue();
+        let named = |name: &str| *list.iter().find(|m| m.name == name).unwrap();
+        let (short, over) = (named("depth-one-short"), named("depth-one-over"));
+        let pixels = 8 * 6 * 3;
+        assert_eq!(render_mistake(&scene(2), &short), Some(vec![0; pixels]));
+        assert_eq!(render_mistake(&scene(2), &over), Some(vec![102; pixels]));
+        // Out of [1, 64] the mistake does not apply.
+        assert_eq!(render_mistake(&scene(1), &short), None);
+        assert_eq!(render_mistake(&scene(64), &over), None);
+        assert_eq!(render_mistake(&scene(1), &over), Some(vec![102; pixels]));
     }
 
     #[test]
