@@ -615,7 +615,7 @@ fn command_line_renders_a_mistake_that_diagnose_then_names() {
         "--convention",
         "sample_position=center",
     ];
-    let render = |mistake: &str, out: &std::path::Path| {
+    let render = |mistake: &str, out: &std::path::Path, more: &[&str]| {
         let args = [
             "render",
             reference.to_str().unwrap(),
@@ -624,9 +624,9 @@ fn command_line_renders_a_mistake_that_diagnose_then_names() {
             "-o",
             out.to_str().unwrap(),
         ];
-        lumiere(&[&args[..], &settings[..]].concat())
+        lumiere(&[&args[..], &settings[..], more].concat())
     };
-    let o = render("far-root", &image);
+    let o = render("far-root", &image, &[]);
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     let far = catalogue().into_iter().find(|m| m.name == "far-root").unwrap();
     let expected = render_mistake(&centred("scenes/reference.toml"), &far).unwrap();
@@ -643,23 +643,13 @@ fn command_line_renders_a_mistake_that_diagnose_then_names() {
     assert_eq!(d["ranking"][0]["score"]["beyond"], 0);
     // An unknown name, or an output that is not PNG: exit 2, nothing written.
     for (mistake, out) in [("no-such-mistake", dir.join("x.png")), ("far-root", dir.join("x.pfm"))] {
-        let o = render(mistake, &out);
+        let o = render(mistake, &out, &[]);
         assert_eq!(o.status.code(), Some(2), "{mistake} {}", out.display());
         assert!(!out.exists());
     }
     // One level short of a depth of 1: nothing to render, exit 2, nothing written.
     let out = dir.join("short.png");
-    let args = [
-        "render",
-        reference.to_str().unwrap(),
-        "--mistake",
-        "depth-one-short",
-        "--depth",
-        "1",
-        "-o",
-        out.to_str().unwrap(),
-    ];
-    let o = lumiere(&[&args[..], &settings[..]].concat());
+    let o = render("depth-one-short", &out, &["--depth", "1"]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
