@@ -165,6 +165,12 @@ fn inverted_index(mat: &Material, entering: bool) -> f64 {
     1.0 / mat.eta(entering)
 }
 
+/// The entering ratio `n1 / n2 = 1 / n` on both sides: a ray leaving glass bends as if it
+/// entered it (the ratio not inverted on the way out).
+fn exit_index_not_inverted(mat: &Material, _entering: bool) -> f64 {
+    mat.eta(true)
+}
+
 /// The law of refraction with `E.N` taken as `v.N` in its linear term:
 /// `T = n v + (n (v.N) - sqrt(1 - n^2 (1 - (E.N)^2))) N`, the chapter's `T` less
 /// `2 n (E.N) N`. At `n = 1` the chapter's ray goes straight on, this one turns.
@@ -319,6 +325,14 @@ pub fn catalogue() -> Vec<Mistake> {
             "the law of refraction given n2 / n1 instead of n1 / n2",
             with(|f| Formulas {
                 eta: inverted_index,
+                ..f
+            }),
+        ),
+        m(
+            "exit-index-not-inverted",
+            "the ratio 1 / n used leaving glass too, where the law takes n: the ray bends as if entering",
+            with(|f| Formulas {
+                eta: exit_index_not_inverted,
                 ..f
             }),
         ),
@@ -490,6 +504,15 @@ mod tests {
             ..Material::default()
         };
         assert_eq!(inverted_index(&glass, true), 1.5);
+        // Leaving it, the law takes 1.5; the exit not inverted keeps 1 / 1.5. At 30 degrees
+        // from the normal the refracted ray's sine is 1.5 x 0.5 = 0.75 by the law, 0.5 / 1.5
+        // = 1/3 with the mistake.
+        assert_eq!(exit_index_not_inverted(&glass, false), 1.0 / 1.5);
+        assert_eq!(exit_index_not_inverted(&glass, true), glass.eta(true));
+        let thirty = DVec3::new(0.5, -0.75f64.sqrt(), 0.0);
+        let sine = |eta: f64| refract(thirty, n, eta).unwrap().normalize().x;
+        assert!((sine(glass.eta(false)) - 0.75).abs() < 1e-15);
+        assert!((sine(exit_index_not_inverted(&glass, false)) - 1.0 / 3.0).abs() < 1e-15);
         // Past the critical angle (eta 1.5, 60 degrees: 1 - 2.25 * 0.75 = -0.6875) the
         // chapter's law has no ray, this one has.
         let grazing = DVec3::new(60f64.to_radians().sin(), -60f64.to_radians().cos(), 0.0);
