@@ -171,6 +171,12 @@ fn exit_index_not_inverted(mat: &Material, _entering: bool) -> f64 {
     mat.eta(true)
 }
 
+/// The outward normal given to the law of refraction whichever side the ray comes from:
+/// a ray leaving glass is refracted about the normal on the far side, and turns back in.
+fn outward_refraction_normal(_facing: DVec3, outward: DVec3) -> DVec3 {
+    outward
+}
+
 /// The law of refraction with `E.N` taken as `v.N` in its linear term:
 /// `T = n v + (n (v.N) - sqrt(1 - n^2 (1 - (E.N)^2))) N`, the chapter's `T` less
 /// `2 n (E.N) N`. At `n = 1` the chapter's ray goes straight on, this one turns.
@@ -333,6 +339,14 @@ pub fn catalogue() -> Vec<Mistake> {
             "the ratio 1 / n used leaving glass too, where the law takes n: the ray bends as if entering",
             with(|f| Formulas {
                 eta: exit_index_not_inverted,
+                ..f
+            }),
+        ),
+        m(
+            "refraction-normal-not-flipped",
+            "the outward normal given to the law of refraction as a ray leaves glass: it turns back inside",
+            with(|f| Formulas {
+                refraction_normal: outward_refraction_normal,
                 ..f
             }),
         ),
@@ -513,6 +527,16 @@ mod tests {
         let sine = |eta: f64| refract(thirty, n, eta).unwrap().normalize().x;
         assert!((sine(glass.eta(false)) - 0.75).abs() < 1e-15);
         assert!((sine(exit_index_not_inverted(&glass, false)) - 1.0 / 3.0).abs() < 1e-15);
+        // The same ray given the outward normal -y: T = 1.5 v + (1.5 (-0.8660) - 0.6614)(-y)
+        // = (0.75, +0.6614, 0), the law's ray (0.75, -0.6614, 0) mirrored back inside.
+        let outward = outward_refraction_normal(n, -n);
+        assert_eq!(outward, -n);
+        let back = refract(thirty, outward, 1.5).unwrap();
+        assert!(
+            (back - DVec3::new(0.75, 0.4375f64.sqrt(), 0.0)).length() < 1e-15,
+            "{back}"
+        );
+        assert!((refract(thirty, n, 1.5).unwrap() - DVec3::new(0.75, -0.4375f64.sqrt(), 0.0)).length() < 1e-15);
         // Past the critical angle (eta 1.5, 60 degrees: 1 - 2.25 * 0.75 = -0.6875) the
         // chapter's law has no ray, this one has.
         let grazing = DVec3::new(60f64.to_radians().sin(), -60f64.to_radians().cos(), 0.0);

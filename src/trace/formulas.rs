@@ -41,6 +41,9 @@ pub struct Formulas {
     pub reflect: fn(DVec3, DVec3) -> DVec3,
     /// The law of refraction (`None`: total internal reflection): [`refract`].
     pub refract: fn(DVec3, DVec3, f64) -> Option<DVec3>,
+    /// The normal the law of refraction is given, from the normal on the incident ray's side
+    /// and the outward one: the one on the ray's side.
+    pub refraction_normal: fn(DVec3, DVec3) -> DVec3,
     /// The ratio `n1 / n2` at a material's surface for a ray entering or not:
     /// [`Material::eta`].
     pub eta: fn(&Material, bool) -> f64,
@@ -67,6 +70,10 @@ fn same_direction(l: DVec3) -> DVec3 {
     l
 }
 
+fn normal_on_the_rays_side(facing: DVec3, _outward: DVec3) -> DVec3 {
+    facing
+}
+
 fn closest_before(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
     world.closest_before(ray, t_max)
 }
@@ -90,6 +97,7 @@ impl Formulas {
         specular: specular_term,
         reflect,
         refract,
+        refraction_normal: normal_on_the_rays_side,
         eta: Material::eta,
         transparent_filter,
         shadow_origin: offset_origin,
@@ -110,6 +118,7 @@ pub trait FormulaTable: Copy + Send + Sync {
     fn specular(&self, model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64;
     fn reflect(&self, v: DVec3, n: DVec3) -> DVec3;
     fn refract(&self, v: DVec3, n: DVec3, eta: f64) -> Option<DVec3>;
+    fn refraction_normal(&self, facing: DVec3, outward: DVec3) -> DVec3;
     fn eta(&self, mat: &Material, entering: bool) -> f64;
     fn transparent_filter(&self, rule: ShadowFilter, kt: f64, s: DVec3) -> DVec3;
     fn shadow_origin(&self, point: DVec3, outward: DVec3, err: f64, dir: DVec3) -> DVec3;
@@ -141,6 +150,10 @@ impl FormulaTable for Chapter {
     #[inline(always)]
     fn refract(&self, v: DVec3, n: DVec3, eta: f64) -> Option<DVec3> {
         refract(v, n, eta)
+    }
+    #[inline(always)]
+    fn refraction_normal(&self, facing: DVec3, outward: DVec3) -> DVec3 {
+        normal_on_the_rays_side(facing, outward)
     }
     #[inline(always)]
     fn eta(&self, mat: &Material, entering: bool) -> f64 {
@@ -188,6 +201,9 @@ impl FormulaTable for Formulas {
     }
     fn refract(&self, v: DVec3, n: DVec3, eta: f64) -> Option<DVec3> {
         (self.refract)(v, n, eta)
+    }
+    fn refraction_normal(&self, facing: DVec3, outward: DVec3) -> DVec3 {
+        (self.refraction_normal)(facing, outward)
     }
     fn eta(&self, mat: &Material, entering: bool) -> f64 {
         (self.eta)(mat, entering)

@@ -84,10 +84,11 @@ impl<'w, 's, F: FormulaTable> Reference<'w, 's, F> {
             let mut refracted = None;
             let closed = self.world.objects()[object].shape.is_closed();
             if mat.kt > 0.0 && conventions.refracting.admits(closed) {
-                match self
-                    .formulas
-                    .refract(ray.dir, at.n, self.formulas.eta(mat, at.entering))
-                {
+                match self.formulas.refract(
+                    ray.dir,
+                    self.formulas.refraction_normal(at.n, at.outward),
+                    self.formulas.eta(mat, at.entering),
+                ) {
                     Some(t) => refracted = Some(t.normalize()),
                     // Total internal reflection: the transmitted energy is reflected, or lost.
                     None => {
