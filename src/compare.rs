@@ -216,10 +216,13 @@ pub fn compare(a: &[u8], b: &[u8], width: u32, height: u32, rule: &Rule, masks: 
     }
     let diffs = PixelDiffs::new(a, b, width, height, flip);
     let all = stats(&diffs, rule.tolerance, drawn).expect("at least one drawn pixel");
-    let edge_report = edges.map(|e| EdgeReport {
-        pixels: (0..n).filter(|&i| drawn(i) && e[i]).count() as u64,
-        off_edges: stats(&diffs, rule.tolerance, |i| drawn(i) && !e[i]),
-        on_edges: stats(&diffs, rule.tolerance, |i| drawn(i) && e[i]),
+    let edge_report = edges.map(|e| {
+        let on_edges = stats(&diffs, rule.tolerance, |i| drawn(i) && e[i]);
+        EdgeReport {
+            pixels: on_edges.as_ref().map_or(0, |s| s.pixels),
+            off_edges: stats(&diffs, rule.tolerance, |i| drawn(i) && !e[i]),
+            on_edges,
+        }
     });
     let judged_pixel = |i: usize| drawn(i) && edges.is_none_or(|e| !e[i]);
     let (judged, judged_stats) = match &edge_report {

@@ -328,21 +328,26 @@ fn render_change(
                 .depth
                 .checked_add_signed(step)
                 .filter(|d| (1..=MAX_DEPTH).contains(d))?;
-            let mut changed = scene.clone();
-            changed.settings.depth = depth;
-            let world = World::new(&changed);
-            Some((render_pixels_with(&world, Formulas::CHAPTER, pixels), output))
+            Some((render_changed(scene, pixels, |s| s.settings.depth = depth), output))
         }
         Change::Convention(key) => {
             let value = convention_value(&scene.settings.conventions, key)?;
             let mut conventions = scene.settings.conventions;
             conventions.set(key, &value).ok()?;
-            let mut changed = scene.clone();
-            changed.set_conventions(conventions);
-            let world = World::new(&changed);
-            Some((render_pixels_with(&world, Formulas::CHAPTER, pixels), output))
+            Some((
+                render_changed(scene, pixels, |s| s.set_conventions(conventions)),
+                output,
+            ))
         }
     }
+}
+
+/// The radiance of `pixels` with the chapter's formulas on a copy of `scene` whose settings
+/// `change` sets as the mistake does (a convention, the depth).
+fn render_changed(scene: &Scene, pixels: &[(u32, u32)], change: impl FnOnce(&mut Scene)) -> Vec<DVec3> {
+    let mut changed = scene.clone();
+    change(&mut changed);
+    render_pixels_with(&World::new(&changed), Formulas::CHAPTER, pixels)
 }
 
 /// The whole image of `scene` rendered with `mistake`, 8-bit RGB (what a student's ray
