@@ -19,8 +19,10 @@ use rayon::prelude::*;
 
 /// Bins per axis.
 pub const BINS: usize = 32;
-/// Most objects in a leaf.
-pub const MAX_LEAF: usize = 4;
+/// Most objects in a leaf whose objects are tested one after another.
+const MAX_SCANNED_LEAF: usize = 4;
+/// Most objects in a leaf of a sifted tree ([`LeafTest::Sifted`]), and in any leaf.
+pub const MAX_LEAF: usize = 7;
 /// Below this depth nodes split by the SAH; deeper ones (degenerate inputs only) split at
 /// the middle of their range, so no tree is deeper than this plus `log2(MAX_OBJECTS)`.
 pub const MAX_SAH_DEPTH: usize = 64;
@@ -40,30 +42,51 @@ const TRAVERSE_COST: f32 = 3.0;
 /// whose four boxes are tested at once, smaller leaves cull more object tests (BENCHMARKS.md,
 /// "Memory and node cost").
 const FINE_TRAVERSE_COST: f32 = 1.0;
+/// The node cost in sifted trees ([`LeafTest::Sifted`]): their leaves' spheres are sifted
+/// in one vector pass, so an object in a leaf costs a fraction of a node visit, and fuller
+/// leaves of up to [`MAX_LEAF`] make the tree of 1 000 000 spheres 10.7 MB smaller and its
+/// walks no slower (BENCHMARKS.md, "Memory and node cost"; a cost of 8 builds the same
+/// leaves).
+const SIFTED_TRAVERSE_COST: f32 = 5.0;
 /// Trees over at most this many objects take [`FINE_TRAVERSE_COST`]. Their many small leaves
 /// leave nodes less full: 44 to 56 bytes per object at N = 64 to 4096 on the bench's scenes
 /// (spheres and mixed), but 61 to 63 at 10 000 and 65 to 67 at 100 000, at or beyond the
 /// 64-byte budget.
 pub const FINE_LEAVES_UP_TO: usize = 4096;
 
-/// How a tree of a given size is built (see [`ALL_AXES_UP_TO`], [`FINE_LEAVES_UP_TO`]).
+/// How the walks test a leaf's objects, which sets what the SAH charges for them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LeafTest {
+    /// One object after another.
+    Scanned,
+    /// All of a leaf's entries in one vector pass, then the few it keeps one by one: the
+    /// sift of the sphere copies ([`super::leaf`]), for trees of spheres only over
+    /// [`FINE_LEAVES_UP_TO`] objects. A sifted tree's leaves hold up to [`MAX_LEAF`].
+    Sifted,
+}
+
+/// How a tree is built (see [`ALL_AXES_UP_TO`], [`FINE_LEAVES_UP_TO`], [`LeafTest`]).
 #[derive(Clone, Copy, Debug)]
 struct Policy {
     /// Whether nodes are binned along all three axes.
     all_axes: bool,
     /// Cost of a node visit relative to one object test, in the SAH.
     traverse_cost: f32,
+    /// Most objects in a leaf.
+    max_leaf: usize,
 }
 
 impl Policy {
-    fn for_count(n: usize) -> Self {
+    fn for_tree(n: usize, leaves: LeafTest) -> Self {
+        let (traverse_cost, max_leaf) = match leaves {
+            _ if n <= FINE_LEAVES_UP_TO => (FINE_TRAVERSE_COST, MAX_SCANNED_LEAF),
+            LeafTest::Scanned => (TRAVERSE_COST, MAX_SCANNED_LEAF),
+            LeafTest::Sifted => (SIFTED_TRAVERSE_COST, MAX_LEAF),
+        };
         Policy {
             all_axes: n <= ALL_AXES_UP_TO,
-            traverse_cost: if n <= FINE_LEAVES_UP_TO {
-                FINE_TRAVERSE_COST
-            } else {
-                TRAVERSE_COST
-            },
+            traverse_cost,
+            max_leaf,
         }
     }
 }
@@ -374,7 +397,7 @@ fn decide(
     match split {
         Some((s, binner)) => {
             let split_cost = policy.traverse_cost + s.cost / boxes.half_area().max(f32::MIN_POSITIVE);
-            if n <= MAX_LEAF && leaf_cost <= split_cost {
+            if n <= policy.max_leaf && leaf_cost <= split_cost {
                 return Decision::Leaf;
             }
             let count = partition(refs, &binner, &s);
@@ -384,7 +407,7 @@ fn decide(
                 right: s.right,
             }
         }
-        None if n <= MAX_LEAF => Decision::Leaf,
+        None if n <= policy.max_leaf => Decision::Leaf,
         None => {
             // Identical centroids (or the depth guard): halve by position.
             let count = n / 2;
@@ -424,10 +447,10 @@ pub struct Built {
     pub order: Vec<u32>,
 }
 
-/// Builds the tree over `refs`. The boxes are freed once the subtrees are built, before
-/// they are spliced into one array, so a large tree's boxes, subtrees and final array are
-/// never all held at once.
-pub fn build(mut refs: Vec<PrimRef>) -> Built {
+/// Builds the tree over `refs`, whose leaves the walks test as `leaves` says. The boxes
+/// are freed once the subtrees are built, before they are spliced into one array, so a
+/// large tree's boxes, subtrees and final array are never all held at once.
+pub fn build(mut refs: Vec<PrimRef>, leaves: LeafTest) -> Built {
     if refs.is_empty() {
         return Built {
             nodes: Vec::new(),
@@ -439,7 +462,7 @@ pub fn build(mut refs: Vec<PrimRef>) -> Built {
         |a, b| (a.0.union(b.0), a.1.union(b.1)),
     );
     // Ranges up to this size are one task; it depends on the object count only.
-    let policy = Policy::for_count(refs.len());
+    let policy = Policy::for_tree(refs.len(), leaves);
     let mut top = Builder::new(vec![Node::default(); 2], (refs.len() / 64).max(4096), policy);
     top.grow(&mut refs, 0, boxes, centroids, 0, 0);
     let (mut nodes, tasks) = (top.nodes, top.tasks);
@@ -615,7 +638,7 @@ mod tests {
                 PrimRef::new(i, [x - 0.1, y - 0.1, -0.1], [x + 0.1, y + 0.1, 0.1])
             })
             .collect();
-        let nodes = build(refs).nodes;
+        let nodes = build(refs, LeafTest::Scanned).nodes;
         let first = nodes[0].first as usize;
         let (a, b) = (&nodes[first], &nodes[first + 1]);
         let (low, high) = if a.min[1] < b.min[1] { (a, b) } else { (b, a) };
@@ -625,5 +648,40 @@ mod tests {
             (low.min[0], low.max[0], high.min[0], high.max[0]),
             (-0.1, 7.1, -0.1, 7.1)
         );
+    }
+
+    /// `n` boxes of side 0.2 centred uniformly at random in a cube of side 20: the largest
+    /// leaf and the mean.
+    fn leaf_sizes(n: u32, leaves: LeafTest) -> (u32, f64) {
+        let mut s = crate::sampling::Stream::new(3, crate::sampling::Purpose::Generator, 0);
+        let refs: Vec<PrimRef> = (0..n)
+            .map(|i| {
+                let c = [(); 3].map(|_| 20.0 * s.next_f64() as f32);
+                PrimRef::new(i, c.map(|x| x - 0.1), c.map(|x| x + 0.1))
+            })
+            .collect();
+        let nodes = build(refs, leaves).nodes;
+        let counts: Vec<u32> = nodes.iter().skip(2).filter(|n| n.is_leaf()).map(|n| n.count).collect();
+        assert_eq!(counts.iter().sum::<u32>(), n, "every object in one leaf");
+        let largest = *counts.iter().max().unwrap();
+        (largest, n as f64 / counts.len() as f64)
+    }
+
+    /// A sifted tree over more than `FINE_LEAVES_UP_TO` objects takes leaves of up to
+    /// `MAX_LEAF`; a scanned one, and any tree of at most `FINE_LEAVES_UP_TO`, up to four.
+    #[test]
+    fn sifted_trees_take_fuller_leaves() {
+        let (largest, mean) = leaf_sizes(8192, LeafTest::Sifted);
+        assert!(
+            largest == MAX_LEAF as u32 && mean > 4.0,
+            "sifted: largest {largest}, mean {mean}"
+        );
+        for (n, leaves) in [(8192, LeafTest::Scanned), (4096, LeafTest::Sifted)] {
+            let (largest, mean) = leaf_sizes(n, leaves);
+            assert!(
+                largest <= 4 && mean <= 4.0,
+                "{n} {leaves:?}: largest {largest}, mean {mean}"
+            );
+        }
     }
 }

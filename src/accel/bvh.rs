@@ -19,8 +19,9 @@
 //!
 //! A tree of more than 4096 objects with spheres among them keeps a copy of the spheres in
 //! leaf order ([`SphereLanes`]): a leaf's spheres are read from one run of memory and
-//! sifted four at a time by the first test of the sphere's routine, and the ones left are
-//! tested by the routine itself. The
+//! sifted all at once by the first test of the sphere's routine, and the ones left are
+//! tested by the routine itself. When every object is a sphere, the leaves hold up to 7
+//! ([`LeafTest::Sifted`]). The
 //! walks are compiled for AVX-512, AVX2 and baseline x86-64, the widest the processor
 //! has chosen at run time (`multiversion`), or the baseline as a [`Kernel`] says. As it
 //! pushes a child, a walk asks the caches for the child's node or leaf spheres, which it
@@ -28,7 +29,7 @@
 //! for 2 MiB pages (`madvise`) made the incoherent walks 5 % faster but a render no faster,
 //! and where the kernel compacts memory to serve them it stalled the build by 0.1 s.
 
-use super::build::{Built, MAX_SAH_DEPTH, PrimRef, build};
+use super::build::{Built, FINE_LEAVES_UP_TO, LeafTest, MAX_SAH_DEPTH, PrimRef, build};
 use super::leaf::{LaneEntry, SphereLanes};
 use super::node::stored_box;
 use super::wide::{F32_RANGE, F32Slots, F64Slots, Node4, SlotTest, WIDTH, collapse, unpack};
@@ -171,11 +172,21 @@ impl Bvh {
             unbounded.extend(next as u32..i as u32);
             next = i + 1;
         }
+        // Leaves whose every entry is a sphere copy are sifted whole.
+        let leaves = if refs.len() > FINE_LEAVES_UP_TO
+            && refs
+                .par_iter()
+                .all(|r| matches!(objects[r.index as usize].shape, Shape::Sphere(_)))
+        {
+            LeafTest::Sifted
+        } else {
+            LeafTest::Scanned
+        };
         let Built {
             nodes: binary,
             order: prims,
             ..
-        } = build(refs);
+        } = build(refs, leaves);
         let fits_f32 = binary
             .first()
             .is_none_or(|root| (0..3).all(|a| root.min[a].abs().max(root.max[a].abs()) <= F32_RANGE));

@@ -1,5 +1,5 @@
 //! The BVH's spheres side by side in leaf order, so that a leaf's spheres are read from one
-//! run of memory and tested four at a time.
+//! run of memory and tested four or eight at a time.
 //!
 //! A walk through a million-sphere tree waits on memory: the objects, met in leaf order,
 //! lie scattered, and reading an object's first byte costs more than its sphere test. So
@@ -12,7 +12,8 @@
 //! caches, and its fine leaves already take up to 56 bytes an object, which the copies would
 //! take past the tree's budget of 64 (BENCHMARKS.md, "Memory and node cost").
 //!
-//! [`SphereLanes::candidates`] computes, for the four lanes of a leaf at once, the
+//! [`SphereLanes::candidates`] computes, for the lanes of a leaf at once (four, or eight
+//! for the larger leaves of a sifted tree, [`super::build::LeafTest::Sifted`]), the
 //! discriminant of the sphere's test ([`sphere_discriminant`], the first step of
 //! `sphere_roots`) lane by lane (no fused multiply-add, nothing reassociated), so each lane
 //! has the scalar routine's bits, and drops the lanes whose discriminant is negative: those
@@ -26,7 +27,9 @@ use crate::shape::{Shape, Sphere, sphere_discriminant};
 use glam::DVec3;
 use rayon::prelude::*;
 
-const LANES: usize = 4;
+/// Lanes of the widest sift, and the values of padding past the last leaf's run (one
+/// fewer).
+const LANES: usize = 8;
 const _: () = assert!(MAX_LEAF <= LANES, "a leaf's spheres are tested in one pass");
 
 /// The spheres of the leaf order, per leaf as four runs (see the module doc).
@@ -109,23 +112,37 @@ impl SphereLanes {
     /// The lanes (bit `l` for entry `first + l`) of the leaf of entries `first..first +
     /// count` that the ray may hit: every entry but the spheres whose discriminant is
     /// negative (see the module doc).
+    /// Leaves of up to four entries are sifted four lanes at a time, larger ones eight.
     #[inline(always)]
     pub fn candidates(&self, first: usize, count: usize, ray: &Ray) -> u32 {
-        let v = &self.values[4 * first..4 * first + 3 * count + LANES];
-        let lanes = |k: usize| -> [f64; LANES] { v[k * count..k * count + LANES].try_into().unwrap() };
+        let keep = if count <= 4 {
+            self.sift::<4>(first, count, ray)
+        } else {
+            self.sift::<LANES>(first, count, ray)
+        };
+        keep & ((1 << count) - 1)
+    }
+
+    /// The discriminant test of [`SphereLanes::candidates`] on `N` lanes from the leaf's
+    /// first entry (lanes past its count read the next run or the padding; the caller
+    /// masks them).
+    #[inline(always)]
+    fn sift<const N: usize>(&self, first: usize, count: usize, ray: &Ray) -> u32 {
+        let v = &self.values[4 * first..4 * first + 3 * count + N];
+        let lanes = |k: usize| -> [f64; N] { v[k * count..k * count + N].try_into().unwrap() };
         let (cx, cy, cz, r) = (lanes(0), lanes(1), lanes(2), lanes(3));
         let mut keep = 0u32;
         // A plain loop over the lanes, vectorised by the compiler: the sphere test's own
         // discriminant, lane by lane.
-        let mut disc = [0.0f64; LANES];
-        for l in 0..LANES {
+        let mut disc = [0.0f64; N];
+        for l in 0..N {
             disc[l] = sphere_discriminant(DVec3::new(cx[l], cy[l], cz[l]), r[l], ray).0;
         }
         for (l, &x) in disc.iter().enumerate() {
             // Dropped only when negative: a NaN (a non-sphere's radius) is kept.
             keep |= u32::from((x >= 0.0) | x.is_nan()) << l;
         }
-        keep & ((1 << count) - 1)
+        keep
     }
 }
 
@@ -187,7 +204,7 @@ mod tests {
         // Leaf order: objects 7, 6, 5 | 3 | 0, 1, 2, 4.
         let prims = [7, 6, 5, 3, 0, 1, 2, 4];
         let lanes = SphereLanes::copied(&objects, &prims, vec![(4, 4), (0, 3), (3, 1)]);
-        assert_eq!(lanes.bytes(), (4 * 8 + 3) * 8);
+        assert_eq!(lanes.bytes(), (4 * 8 + LANES - 1) * 8);
         assert_eq!(
             &lanes.values[..12],
             &[7.0, 6.0, 5.0, 17.0, 16.0, 15.0, 27.0, 26.0, 25.0, 7.5, 6.5, 5.5]
@@ -228,7 +245,7 @@ mod tests {
         let mut next = || s.next_f64();
         let (mut dropped, mut kept) = (0, 0);
         for trial in 0..2000 {
-            let count = 1 + trial % 4;
+            let count = 1 + trial % MAX_LEAF;
             let spheres: Vec<Sphere> = (0..count)
                 .map(|_| {
                     let c = DVec3::new(next(), next(), next()) * 20.0 - 10.0;
