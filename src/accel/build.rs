@@ -22,7 +22,7 @@ pub const BINS: usize = 32;
 /// Most objects in a leaf whose objects are tested one after another.
 const MAX_SCANNED_LEAF: usize = 4;
 /// Most objects in a leaf of a sifted tree ([`LeafTest::Sifted`]), and in any leaf.
-pub const MAX_LEAF: usize = 7;
+pub const MAX_LEAF: usize = 31;
 /// Below this depth nodes split by the SAH; deeper ones (degenerate inputs only) split at
 /// the middle of their range, so no tree is deeper than this plus `log2(MAX_OBJECTS)`.
 pub const MAX_SAH_DEPTH: usize = 64;
@@ -43,11 +43,13 @@ const TRAVERSE_COST: f32 = 3.0;
 /// "Memory and node cost").
 const FINE_TRAVERSE_COST: f32 = 1.0;
 /// The node cost in sifted trees ([`LeafTest::Sifted`]): their leaves' spheres are sifted
-/// in one vector pass, so an object in a leaf costs a fraction of a node visit, and fuller
-/// leaves of up to [`MAX_LEAF`] make the tree of 1 000 000 spheres 10.7 MB smaller and its
-/// walks no slower (BENCHMARKS.md, "Memory and node cost"; a cost of 8 builds the same
-/// leaves).
-const SIFTED_TRAVERSE_COST: f32 = 5.0;
+/// in vector passes, so an object in a leaf costs a small fraction of a node visit. Leaves
+/// of up to [`MAX_LEAF`] at this cost make the tree of 1 000 000 spheres 38.8 MB instead of
+/// 58.3 with leaves of at most 4, and the Embree bench's rates 16 to 48 % higher than with
+/// leaves of up to 7 at a cost of 5, themselves as fast as leaves of at most 4
+/// (BENCHMARKS.md, "Memory and node cost", where leaves of up to 15 and 63 are measured
+/// too).
+const SIFTED_TRAVERSE_COST: f32 = 20.0;
 /// Trees over at most this many objects take [`FINE_TRAVERSE_COST`]. Their many small leaves
 /// leave nodes less full: 44 to 56 bytes per object at N = 64 to 4096 on the bench's scenes
 /// (spheres and mixed), but 61 to 63 at 10 000 and 65 to 67 at 100 000, at or beyond the

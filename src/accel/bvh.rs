@@ -20,7 +20,7 @@
 //! A tree of more than 4096 objects with spheres among them keeps a copy of the spheres in
 //! leaf order ([`SphereLanes`]): a leaf's spheres are read from one run of memory and
 //! sifted all at once by the first test of the sphere's routine, and the ones left are
-//! tested by the routine itself. When every object is a sphere, the leaves hold up to 7
+//! tested by the routine itself. When every object is a sphere, the leaves hold up to 31
 //! ([`LeafTest::Sifted`]). The
 //! walks are compiled for AVX-512, AVX2 and baseline x86-64, the widest the processor
 //! has chosen at run time (`multiversion`), or the baseline as a [`Kernel`] says. As it

@@ -1,5 +1,5 @@
 //! The BVH's spheres side by side in leaf order, so that a leaf's spheres are read from one
-//! run of memory and tested four or eight at a time.
+//! run of memory and tested 4, 8, 16 or 32 at a time.
 //!
 //! A walk through a million-sphere tree waits on memory: the objects, met in leaf order,
 //! lie scattered, and reading an object's first byte costs more than its sphere test. So
@@ -12,11 +12,12 @@
 //! caches, and its fine leaves already take up to 56 bytes an object, which the copies would
 //! take past the tree's budget of 64 (BENCHMARKS.md, "Memory and node cost").
 //!
-//! [`SphereLanes::candidates`] computes, for the lanes of a leaf at once (four, or eight
-//! for the larger leaves of a sifted tree, [`super::build::LeafTest::Sifted`]), the
-//! discriminant of the sphere's test ([`sphere_discriminant`], the first step of
-//! `sphere_roots`) lane by lane (no fused multiply-add, nothing reassociated), so each lane
-//! has the scalar routine's bits, and drops the lanes whose discriminant is negative: those
+//! [`SphereLanes::candidates`] computes, for the lanes of a leaf at once (the fewest of 4,
+//! 8, 16 or 32 that hold it: a sifted tree's leaves hold up to [`MAX_LEAF`],
+//! [`super::build::LeafTest::Sifted`]), the discriminant of the sphere's test
+//! ([`sphere_discriminant`], the first step of `sphere_roots`) lane by lane (no fused
+//! multiply-add, nothing reassociated), so each lane has the scalar routine's bits, and
+//! drops the lanes whose discriminant is negative: those
 //! the scalar routine misses at its first test. Every other lane is tested by the sphere's
 //! own routine, which gives its hit, so the walk's answer is the scalar walk's to the bit.
 
@@ -29,7 +30,7 @@ use rayon::prelude::*;
 
 /// Lanes of the widest sift, and the values of padding past the last leaf's run (one
 /// fewer).
-const LANES: usize = 8;
+const LANES: usize = 32;
 const _: () = assert!(MAX_LEAF <= LANES, "a leaf's spheres are tested in one pass");
 
 /// The spheres of the leaf order, per leaf as four runs (see the module doc).
@@ -112,11 +113,15 @@ impl SphereLanes {
     /// The lanes (bit `l` for entry `first + l`) of the leaf of entries `first..first +
     /// count` that the ray may hit: every entry but the spheres whose discriminant is
     /// negative (see the module doc).
-    /// Leaves of up to four entries are sifted four lanes at a time, larger ones eight.
+    /// A leaf is sifted on the fewest of 4, 8, 16 or 32 lanes that hold it.
     #[inline(always)]
     pub fn candidates(&self, first: usize, count: usize, ray: &Ray) -> u32 {
         let keep = if count <= 4 {
             self.sift::<4>(first, count, ray)
+        } else if count <= 8 {
+            self.sift::<8>(first, count, ray)
+        } else if count <= 16 {
+            self.sift::<16>(first, count, ray)
         } else {
             self.sift::<LANES>(first, count, ray)
         };

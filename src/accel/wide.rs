@@ -32,16 +32,16 @@ use super::build::MAX_LEAF;
 use super::node::{Node, down, up};
 use glam::{BVec4A, Vec4};
 
-// A leaf's count must fit the three bits of a child reference.
-const _: () = assert!(MAX_LEAF < 8);
+// A leaf's count must fit the five bits of a child reference.
+const _: () = assert!(MAX_LEAF < 32);
 
 /// Children per node.
 pub const WIDTH: usize = 4;
 
-/// A child reference ([`Node4::child`]): bits 29 to 31 hold the object count of a leaf (0
-/// for an interior node), bits 0 to 28 the leaf's first entry in the leaf order or the
+/// A child reference ([`Node4::child`]): bits 27 to 31 hold the object count of a leaf (0
+/// for an interior node), bits 0 to 26 the leaf's first entry in the leaf order or the
 /// interior node's index.
-const COUNT_SHIFT: u32 = 29;
+const COUNT_SHIFT: u32 = 27;
 const INDEX_MASK: u32 = (1 << COUNT_SHIFT) - 1;
 
 /// One 4-wide node: its children's boxes side by side per axis and side, so that one vector
@@ -61,7 +61,7 @@ pub struct Node4 {
 
 /// A leaf: `count` objects from `first` in the leaf order.
 pub fn leaf_ref(first: u32, count: u32) -> u32 {
-    debug_assert!(first <= INDEX_MASK && (1..8).contains(&count));
+    debug_assert!(first <= INDEX_MASK && (1..32).contains(&count));
     (count << COUNT_SHIFT) | first
 }
 
