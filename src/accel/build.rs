@@ -61,7 +61,7 @@ pub const FINE_LEAVES_UP_TO: usize = 4096;
 pub enum LeafTest {
     /// One object after another.
     Scanned,
-    /// All of a leaf's entries in one vector pass, then the few it keeps one by one: the
+    /// All of a leaf's entries a vector at a time, then the few it keeps one by one: the
     /// sift of the sphere copies ([`super::leaf`]), for trees of spheres only over
     /// [`FINE_LEAVES_UP_TO`] objects. A sifted tree's leaves hold up to [`MAX_LEAF`].
     Sifted,

@@ -31,7 +31,7 @@ use rayon::prelude::*;
 /// Lanes of the widest sift, and the values of padding past the last leaf's run (one
 /// fewer).
 const LANES: usize = 32;
-const _: () = assert!(MAX_LEAF <= LANES, "a leaf's spheres are tested in one pass");
+const _: () = assert!(MAX_LEAF <= LANES, "a leaf's spheres fit the widest sift");
 
 /// The spheres of the leaf order, per leaf as four runs (see the module doc).
 #[derive(Clone, Debug, Default)]
