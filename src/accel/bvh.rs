@@ -29,7 +29,7 @@
 //! for 2 MiB pages (`madvise`) made the incoherent walks 5 % faster but a render no faster,
 //! and where the kernel compacts memory to serve them it stalled the build by 0.1 s.
 
-use super::build::{Built, FINE_LEAVES_UP_TO, LeafTest, MAX_SAH_DEPTH, PrimRef, build};
+use super::build::{Built, MAX_SAH_DEPTH, PrimRef, build};
 use super::leaf::{LaneEntry, SphereLanes};
 use super::node::stored_box;
 use super::wide::{F32_RANGE, F32Slots, F64Slots, Node4, SlotTest, WIDTH, collapse, unpack};
@@ -172,16 +172,7 @@ impl Bvh {
             unbounded.extend(next as u32..i as u32);
             next = i + 1;
         }
-        // Leaves whose every entry is a sphere copy are sifted whole.
-        let leaves = if refs.len() > FINE_LEAVES_UP_TO
-            && refs
-                .par_iter()
-                .all(|r| matches!(objects[r.index as usize].shape, Shape::Sphere(_)))
-        {
-            LeafTest::Sifted
-        } else {
-            LeafTest::Scanned
-        };
+        let leaves = SphereLanes::leaf_test(objects, &refs);
         let Built {
             nodes: binary,
             order: prims,

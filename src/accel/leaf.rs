@@ -21,7 +21,7 @@
 //! the scalar routine misses at its first test. Every other lane is tested by the sphere's
 //! own routine, which gives its hit, so the walk's answer is the scalar walk's to the bit.
 
-use super::build::{FINE_LEAVES_UP_TO, MAX_LEAF};
+use super::build::{FINE_LEAVES_UP_TO, LeafTest, MAX_LEAF, PrimRef};
 use crate::math::Ray;
 use crate::scene::Object;
 use crate::shape::{Shape, Sphere, sphere_discriminant};
@@ -70,6 +70,20 @@ impl SphereLanes {
             return None;
         }
         Some(Self::copied(objects, prims, leaves()))
+    }
+
+    /// How the walks will test the leaves of the tree over `refs`: sifted whole when the
+    /// tree will have copies ([`SphereLanes::new`]) and every entry is a sphere.
+    pub fn leaf_test(objects: &[Object], refs: &[PrimRef]) -> LeafTest {
+        let all_spheres = || {
+            refs.par_iter()
+                .all(|r| matches!(objects[r.index as usize].shape, Shape::Sphere(_)))
+        };
+        if refs.len() > FINE_LEAVES_UP_TO && all_spheres() {
+            LeafTest::Sifted
+        } else {
+            LeafTest::Scanned
+        }
     }
 
     /// The copies for the leaf order `prims`, whose leaves (first entry and count, in any
