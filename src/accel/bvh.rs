@@ -30,7 +30,7 @@
 //! and where the kernel compacts memory to serve them it stalled the build by 0.1 s.
 
 use super::build::{Built, MAX_SAH_DEPTH, PrimRef, build};
-use super::leaf::{LaneEntry, SphereLanes};
+use super::leaf::{LaneEntry, Masks, SphereLanes};
 use super::node::stored_box;
 use super::wide::{F32_RANGE, F32Slots, F64Slots, Node4, SlotTest, WIDTH, collapse, unpack};
 use crate::math::Ray;
@@ -185,20 +185,29 @@ impl Bvh {
         // The binary tree is freed before the spheres are copied: the two are never held
         // at once.
         drop(binary);
-        let spheres = SphereLanes::new(objects, &prims, || {
-            let leaves = || {
-                nodes
-                    .iter()
-                    .flat_map(|n| n.child)
-                    .map(unpack)
-                    .filter(|&(_, count)| count > 0)
-                    .map(|(first, count)| (first as u32, count as u32))
-            };
-            // Counted first, so that the list takes no more than it holds.
-            let mut list = Vec::with_capacity(leaves().count());
-            list.extend(leaves());
-            list
-        });
+        let masks = match kernel {
+            Kernel::Widest => Masks::fastest(),
+            Kernel::Baseline => Masks::Portable,
+        };
+        let spheres = SphereLanes::new(
+            objects,
+            &prims,
+            || {
+                let leaves = || {
+                    nodes
+                        .iter()
+                        .flat_map(|n| n.child)
+                        .map(unpack)
+                        .filter(|&(_, count)| count > 0)
+                        .map(|(first, count)| (first as u32, count as u32))
+                };
+                // Counted first, so that the list takes no more than it holds.
+                let mut list = Vec::with_capacity(leaves().count());
+                list.extend(leaves());
+                list
+            },
+            masks,
+        );
         Bvh {
             depth,
             nodes,

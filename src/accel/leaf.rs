@@ -18,7 +18,10 @@
 //! ([`sphere_discriminant`], the first step of `sphere_roots`) lane by lane (no fused
 //! multiply-add, nothing reassociated), so each lane has the scalar routine's bits, and
 //! drops the lanes whose discriminant is negative: those
-//! the scalar routine misses at its first test. Every other lane is tested by the sphere's
+//! the scalar routine misses at its first test. With AVX-512 the mask of the lanes kept is
+//! made by one comparison into a mask register per eight lanes ([`Masks`]); the compiler's
+//! own mask, built bit by bit, stored the discriminants and read them back at other offsets,
+//! which the processor cannot forward. Every other lane is tested by the sphere's
 //! own routine, which gives its hit, so the walk's answer is the scalar walk's to the bit.
 
 use super::build::{FINE_LEAVES_UP_TO, LeafTest, MAX_LEAF, PrimRef};
@@ -39,6 +42,62 @@ pub struct SphereLanes {
     /// `4 * entries` values, then `LANES - 1` of padding, so that every lane load of the
     /// last leaf stays in the array.
     values: Vec<f64>,
+    masks: Masks,
+}
+
+/// How a sift turns its lanes' discriminants into the bit mask of the lanes kept.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Masks {
+    /// Lane by lane, on any processor.
+    #[default]
+    Portable,
+    /// Up to eight lanes a comparison into a mask register (AVX-512 F and VL), on a
+    /// processor that has them: the compiler builds the portable mask from single bits.
+    Avx512,
+}
+
+impl Masks {
+    /// [`Masks::Avx512`] where the processor has it, else [`Masks::Portable`].
+    pub fn fastest() -> Masks {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx512f") && std::arch::is_x86_feature_detected!("avx512vl") {
+            return Masks::Avx512;
+        }
+        Masks::Portable
+    }
+
+    /// The lanes of `disc` (bit `l` for lane `l`) that are not negative: a NaN (a
+    /// non-sphere's radius) is kept, `-0` too.
+    #[inline(always)]
+    fn not_negative<const N: usize>(self, disc: &[f64; N]) -> u32 {
+        #[cfg(target_arch = "x86_64")]
+        if self == Masks::Avx512 {
+            use std::arch::x86_64::{
+                _CMP_NLT_UQ, _mm256_cmp_pd_mask, _mm256_loadu_pd, _mm256_setzero_pd, _mm512_cmp_pd_mask,
+                _mm512_loadu_pd, _mm512_setzero_pd,
+            };
+            // SAFETY: `Masks::Avx512` is chosen only where the processor has AVX-512 F and
+            // VL, and every load is within `disc` (`N` is 4 or a multiple of 8).
+            return unsafe {
+                if N == 4 {
+                    u32::from(_mm256_cmp_pd_mask::<_CMP_NLT_UQ>(
+                        _mm256_loadu_pd(disc.as_ptr()),
+                        _mm256_setzero_pd(),
+                    ))
+                } else {
+                    (0..N / 8).fold(0, |keep, k| {
+                        let lanes = _mm512_loadu_pd(disc.as_ptr().add(8 * k));
+                        keep | u32::from(_mm512_cmp_pd_mask::<_CMP_NLT_UQ>(lanes, _mm512_setzero_pd())) << (8 * k)
+                    })
+                }
+            };
+        }
+        let mut keep = 0;
+        for (l, &x) in disc.iter().enumerate() {
+            keep |= u32::from((x >= 0.0) | x.is_nan()) << l;
+        }
+        keep
+    }
 }
 
 impl PartialEq for SphereLanes {
@@ -65,11 +124,17 @@ impl SphereLanes {
     /// The copies for the leaf order `prims`; `None` when no object is a sphere or the
     /// tree holds at most [`FINE_LEAVES_UP_TO`] objects. `leaves` lists the leaves (first
     /// entry and count, in any order), asked for only when there are copies to make.
-    pub fn new(objects: &[Object], prims: &[u32], leaves: impl FnOnce() -> Vec<(u32, u32)>) -> Option<Self> {
+    /// Its sifts make their masks as `masks` says.
+    pub fn new(
+        objects: &[Object],
+        prims: &[u32],
+        leaves: impl FnOnce() -> Vec<(u32, u32)>,
+        masks: Masks,
+    ) -> Option<Self> {
         if prims.len() <= FINE_LEAVES_UP_TO || !objects.iter().any(|o| matches!(o.shape, Shape::Sphere(_))) {
             return None;
         }
-        Some(Self::copied(objects, prims, leaves()))
+        Some(Self::copied(objects, prims, leaves(), masks))
     }
 
     /// How the walks will test the leaves of the tree over `refs`: sifted whole when the
@@ -88,7 +153,7 @@ impl SphereLanes {
 
     /// The copies for the leaf order `prims`, whose leaves (first entry and count, in any
     /// order) are `leaves`.
-    fn copied(objects: &[Object], prims: &[u32], mut leaves: Vec<(u32, u32)>) -> Self {
+    fn copied(objects: &[Object], prims: &[u32], mut leaves: Vec<(u32, u32)>, masks: Masks) -> Self {
         let len = 4 * prims.len() + LANES - 1;
         let mut values = Vec::with_capacity(len);
         values.resize(len, f64::NAN);
@@ -96,7 +161,7 @@ impl SphereLanes {
         // one another.
         leaves.par_sort_unstable();
         fill(&mut values, 0, &leaves, prims, objects);
-        SphereLanes { values }
+        SphereLanes { values, masks }
     }
 
     /// Bytes held.
@@ -150,18 +215,13 @@ impl SphereLanes {
         let v = &self.values[4 * first..4 * first + 3 * count + N];
         let lanes = |k: usize| -> [f64; N] { v[k * count..k * count + N].try_into().unwrap() };
         let (cx, cy, cz, r) = (lanes(0), lanes(1), lanes(2), lanes(3));
-        let mut keep = 0u32;
         // A plain loop over the lanes, vectorised by the compiler: the sphere test's own
         // discriminant, lane by lane.
         let mut disc = [0.0f64; N];
         for l in 0..N {
             disc[l] = sphere_discriminant(DVec3::new(cx[l], cy[l], cz[l]), r[l], ray).0;
         }
-        for (l, &x) in disc.iter().enumerate() {
-            // Dropped only when negative: a NaN (a non-sphere's radius) is kept.
-            keep |= u32::from((x >= 0.0) | x.is_nan()) << l;
-        }
-        keep
+        self.masks.not_negative(&disc)
     }
 }
 
@@ -222,7 +282,7 @@ mod tests {
         ))));
         // Leaf order: objects 7, 6, 5 | 3 | 0, 1, 2, 4.
         let prims = [7, 6, 5, 3, 0, 1, 2, 4];
-        let lanes = SphereLanes::copied(&objects, &prims, vec![(4, 4), (0, 3), (3, 1)]);
+        let lanes = SphereLanes::copied(&objects, &prims, vec![(4, 4), (0, 3), (3, 1)], Masks::Portable);
         assert_eq!(lanes.bytes(), (4 * 8 + LANES - 1) * 8);
         assert_eq!(
             &lanes.values[..12],
@@ -246,13 +306,49 @@ mod tests {
         }
         // Without a sphere, or in a tree of at most `FINE_LEAVES_UP_TO` objects, there are
         // no copies.
-        assert!(SphereLanes::new(&objects, &prims, || vec![(4, 4), (0, 3), (3, 1)]).is_none());
+        assert!(SphereLanes::new(&objects, &prims, || vec![(4, 4), (0, 3), (3, 1)], Masks::Portable).is_none());
         let many = vec![objects[3].clone(); FINE_LEAVES_UP_TO + 1];
         let order: Vec<u32> = (0..many.len() as u32).collect();
-        assert!(SphereLanes::new(&many, &order, || vec![(0, 1)]).is_none());
+        assert!(SphereLanes::new(&many, &order, || vec![(0, 1)], Masks::Portable).is_none());
         let many = vec![objects[0].clone(); FINE_LEAVES_UP_TO + 1];
         let leaves = (0..many.len() as u32).map(|i| (i, 1)).collect();
-        assert!(SphereLanes::new(&many, &order, || leaves).is_some());
+        assert!(SphereLanes::new(&many, &order, || leaves, Masks::Portable).is_some());
+    }
+
+    /// A lane is dropped only when its discriminant is negative: `-0`, NaNs of either sign
+    /// and `+inf` are kept, `-inf` and the smallest negative subnormal dropped, by both
+    /// masks and on every width.
+    #[test]
+    fn masks_drop_only_negative_lanes() {
+        let pattern = [
+            -1.0,
+            -0.0,
+            0.0,
+            f64::NAN,
+            -f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            -5e-324,
+        ];
+        // Kept: lanes 1 to 5 of each group of eight.
+        let want = |n: usize| {
+            (0..n)
+                .filter(|l| (1..=5).contains(&(l % 8)))
+                .fold(0u32, |m, l| m | 1 << l)
+        };
+        for masks in [Masks::Portable, Masks::fastest()] {
+            let four: [f64; 4] = std::array::from_fn(|l| pattern[l]);
+            assert_eq!(masks.not_negative(&four), want(4), "{masks:?}");
+            let eight: [f64; 8] = std::array::from_fn(|l| pattern[l % 8]);
+            assert_eq!(masks.not_negative(&eight), want(8), "{masks:?}");
+            let sixteen: [f64; 16] = std::array::from_fn(|l| pattern[l % 8]);
+            assert_eq!(masks.not_negative(&sixteen), want(16), "{masks:?}");
+            let mut wide: [f64; 32] = std::array::from_fn(|l| pattern[l % 8]);
+            assert_eq!(masks.not_negative(&wide), want(32), "{masks:?}");
+            wide[31] = -2.0;
+            wide[30] = 3.0;
+            assert_eq!(masks.not_negative(&wide), want(32) & !(1 << 31) | 1 << 30, "{masks:?}");
+        }
     }
 
     /// Rays along the rim of a leaf's spheres, a few units in the last place inside and
@@ -273,7 +369,8 @@ mod tests {
                 .collect();
             let objects: Vec<Object> = spheres.iter().map(|s| object(Shape::Sphere(s.clone()))).collect();
             let prims: Vec<u32> = (0..count as u32).collect();
-            let lanes = SphereLanes::copied(&objects, &prims, vec![(0, count as u32)]);
+            let lanes = SphereLanes::copied(&objects, &prims, vec![(0, count as u32)], Masks::Portable);
+            let fastest = SphereLanes::copied(&objects, &prims, vec![(0, count as u32)], Masks::fastest());
             // Along a random direction past sphere 0's rim.
             let d = DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
             let across = d.any_orthonormal_vector();
@@ -282,6 +379,7 @@ mod tests {
             let ray = Ray::new(spheres[0].center + across * reach - 30.0 * d, d);
             let keep = lanes.candidates(0, count, &ray);
             assert_eq!(keep >> count, 0, "lanes past the leaf");
+            assert_eq!(fastest.candidates(0, count, &ray), keep, "{:?}", Masks::fastest());
             for (l, sphere) in spheres.iter().enumerate() {
                 if keep >> l & 1 == 0 {
                     let hit = sphere.intersect(&ray, f64::NEG_INFINITY, f64::INFINITY);
