@@ -81,6 +81,13 @@ pub fn lambert(n_dot_l: f64) -> f64 {
     positive_part(n_dot_l)
 }
 
+/// Whether a surface faces away from a light, from `N.L`: `N.L <= 0`, where the slides
+/// count neither the light's diffuse term nor its specular one (and cast no shadow ray).
+#[inline(always)]
+pub fn faces_away(n_dot_l: f64) -> bool {
+    n_dot_l <= 0.0
+}
+
 /// Phong's specular term (slides): `max(R.E, 0)^n` with `R = 2 (N.L) N - L`.
 pub fn phong(n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
     pow(phong_cosine(n, l, e, n.dot(l)), exponent)

@@ -216,6 +216,14 @@ fn reversed_direction(l: DVec3) -> DVec3 {
     -l
 }
 
+/// No surface facing away from a light: its share computed at any `N.L`, the shadow ray
+/// cast, the diffuse term 0 through `max(N.L, 0)` but Phong's `max(R.E, 0)^n` or Blinn's
+/// `max(N.H, 0)^n` not. Seen where the shadow ray gets through: an open surface lit from
+/// behind, a transparent object's far side.
+fn never_faces_away(_n_dot_l: f64) -> bool {
+    false
+}
+
 /// A spotlight falling off as the cosine, `C_theta = C_max (o.d)`, inside the cone.
 fn cosine_spot(o_dot_d: f64, cos_half: f64, _c_min: f64, c_max: f64) -> f64 {
     if o_dot_d < cos_half || cos_half >= 1.0 {
@@ -323,6 +331,14 @@ pub fn catalogue() -> Vec<Mistake> {
             "L taken from the light to the point instead of towards the light",
             with(|f| Formulas {
                 light_direction: reversed_direction,
+                ..f
+            }),
+        ),
+        m(
+            "specular-facing-away",
+            "a light's share computed where N.L <= 0: max(N.L, 0) zeroes the diffuse term, not the specular one",
+            with(|f| Formulas {
+                faces_away: never_faces_away,
                 ..f
             }),
         ),
@@ -573,6 +589,91 @@ mod tests {
             assert_eq!(eye_reversed(model, n, l, e, 20.0), 0.0, "{model:?}");
         }
         assert_eq!(past_the_light(5.0), f64::INFINITY);
+    }
+
+    #[test]
+    fn specular_facing_away_by_hand() {
+        // An open plane z = 0 seen from the eye at (0, -3, 4), lit from behind by a point
+        // light of colour 2 at (0, 12, -5); k_s = 0.5, m = 0.25, S = (0.5, 0.25, 1), n = 4.
+        // At P = 0: N = z (the eye's side), E = (0, -3, 4) / 5, L = (0, 12, -5) / 13, so
+        // N.L = -5/13: the chapter counts nothing. The mistake's shadow ray meets nothing
+        // below the plane, max(N.L, 0) = 0 leaves no diffuse term, and the specular share is
+        // L k_s [m S + (1 - m)] spec = 1 x (0.875, 0.8125, 1) x spec, with
+        // - Blinn: L + E = (0, 21, 27) / 65, N.H = 27 / sqrt(1170), spec = (729 / 1170)^2;
+        // - Phong: R = 2 (N.L) N - L = (0, -12, -5) / 13, R.E = (36 - 20) / 65 = 16/65,
+        //   spec = (16/65)^4.
+        // Blinn's share is (0.340, 0.315, 0.388), 99 levels of 255 in blue; Phong's at most
+        // 0.0037, under one level.
+        use crate::shading::diffuse;
+        use crate::trace::{Reference, SampleKey};
+        let scene = |specular: &str| {
+            crate::scene::parse(
+                &format!(
+                    r#"
+[image]
+width = 8
+height = 6
+
+[camera]
+position = [0, -3, 4]
+look_at = [0, 0, 0]
+up = [0, 0, 1]
+
+[render]
+specular = "{specular}"
+
+[materials.shiny]
+color = [0.5, 0.25, 1]
+ka = 0
+kd = 0.8
+ks = 0.5
+shininess = 4
+m = 0.25
+
+[[shapes]]
+type = "plane"
+point = [0, 0, 0]
+normal = [0, 0, 1]
+material = "shiny"
+
+[[lights]]
+type = "point"
+position = [0, 12, -5]
+color = [2, 2, 2]
+"#
+                ),
+                "behind.toml",
+            )
+            .unwrap()
+        };
+        let list = catalogue();
+        let Change::Formulas(wrong) = list.iter().find(|m| m.name == "specular-facing-away").unwrap().change else {
+            panic!("specular-facing-away is a formula");
+        };
+        let ray = Ray::new(DVec3::new(0.0, -3.0, 4.0), DVec3::new(0.0, 3.0, -4.0).normalize());
+        let tint = DVec3::new(0.875, 0.8125, 1.0);
+        for (specular, spec) in [
+            ("blinn", (729.0f64 / 1170.0).powi(2)),
+            ("phong", (16.0f64 / 65.0).powi(4)),
+        ] {
+            let scene = scene(specular);
+            let world = World::new(&scene);
+            assert_eq!(Reference::new(&world).camera(&ray, SampleKey::default()), DVec3::ZERO);
+            let seen = Reference::with_formulas(&world, wrong).camera(&ray, SampleKey::default());
+            assert!(
+                (seen - tint * spec).length() < 1e-15,
+                "{specular}: {seen} {}",
+                tint * spec
+            );
+        }
+        // The diffuse term at N.L = -5/13 is 0, not negative: L k_d S max(N.L, 0).
+        assert_eq!(
+            diffuse(DVec3::splat(2.0), 0.8, DVec3::new(0.5, 0.25, 1.0), -5.0 / 13.0),
+            DVec3::ZERO
+        );
+        let chapter = Formulas::CHAPTER.faces_away;
+        assert!(chapter(-5.0 / 13.0) && chapter(0.0) && !chapter(1e-300));
+        assert!(!never_faces_away(-5.0 / 13.0));
     }
 
     /// A scene of `shapes` (TOML `[[shapes]]` tables) with a camera at z = -5, for the

@@ -13,7 +13,7 @@ use crate::conventions::ShadowFilter;
 use crate::material::Material;
 use crate::math::{Ray, offset_origin, reflect, refract};
 use crate::scene::Specular;
-use crate::shading::{spot_factor, transparent_filter};
+use crate::shading::{faces_away, spot_factor, transparent_filter};
 use crate::shape::SurfaceHit;
 use crate::world::World;
 use glam::DVec3;
@@ -57,6 +57,12 @@ pub struct Formulas {
     pub shadow_reach: fn(f64) -> f64,
     /// The direction `L` used for a light, from the unit direction towards it: the identity.
     pub light_direction: fn(DVec3) -> DVec3,
+    /// Whether a point, spot or directional light, or one point of an area light, is left
+    /// out at a hit from its `N.L` (no shadow ray, neither diffuse nor specular term):
+    /// [`faces_away`], `N.L <= 0`. An aperture light's own test of `N.L` towards its
+    /// centre does not read it: its share is its arriving light whole, with no specular
+    /// term.
+    pub faces_away: fn(f64) -> bool,
     /// A spotlight's angular factor `C_theta` (`o.d`, `cos(theta/2)`, `C_min`, `C_max`):
     /// [`spot_factor`].
     pub spot_factor: fn(f64, f64, f64, f64) -> f64,
@@ -103,6 +109,7 @@ impl Formulas {
         shadow_origin: offset_origin,
         shadow_reach: same_distance,
         light_direction: same_direction,
+        faces_away,
         spot_factor,
         light_share: same_share,
         ambient: same_ambient,
@@ -124,6 +131,7 @@ pub trait FormulaTable: Copy + Send + Sync {
     fn shadow_origin(&self, point: DVec3, outward: DVec3, err: f64, dir: DVec3) -> DVec3;
     fn shadow_reach(&self, distance: f64) -> f64;
     fn light_direction(&self, l: DVec3) -> DVec3;
+    fn faces_away(&self, n_dot_l: f64) -> bool;
     fn spot_factor(&self) -> fn(f64, f64, f64, f64) -> f64;
     fn light_share(&self, share: DVec3) -> DVec3;
     fn ambient(&self, term: DVec3, context: AmbientContext) -> DVec3;
@@ -176,6 +184,10 @@ impl FormulaTable for Chapter {
         same_direction(l)
     }
     #[inline(always)]
+    fn faces_away(&self, n_dot_l: f64) -> bool {
+        faces_away(n_dot_l)
+    }
+    #[inline(always)]
     fn spot_factor(&self) -> fn(f64, f64, f64, f64) -> f64 {
         spot_factor
     }
@@ -219,6 +231,9 @@ impl FormulaTable for Formulas {
     }
     fn light_direction(&self, l: DVec3) -> DVec3 {
         (self.light_direction)(l)
+    }
+    fn faces_away(&self, n_dot_l: f64) -> bool {
+        (self.faces_away)(n_dot_l)
     }
     fn spot_factor(&self) -> fn(f64, f64, f64, f64) -> f64 {
         self.spot_factor

@@ -27,7 +27,7 @@ use super::{SampleKey, Surface, caustic_share, point_light_terms_with};
 use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, aperture_share, point_incidence};
 use crate::math::Ray;
-use crate::shading::{ambient, beneath_notice, local_weight, shadow_filter, transmission_weight};
+use crate::shading::{ambient, beneath_notice, faces_away, local_weight, shadow_filter, transmission_weight};
 use crate::world::World;
 use glam::DVec3;
 
@@ -176,8 +176,8 @@ impl<'w, 's, F: FormulaTable> Reference<'w, 's, F> {
 
     /// One point light's share, `A L filter [k_d S max(N.L, 0) + k_s [m S + (1 - m)] spec]`:
     /// nothing when no light arrives (the point is at the light) or the surface faces away
-    /// (`N.L <= 0`: the slides count neither term there); otherwise the light that the
-    /// shadow ray lets through.
+    /// (the `faces_away` entry: `N.L <= 0`, where the slides count neither term); otherwise
+    /// the light that the shadow ray lets through.
     fn light_share(&self, incidence: Option<Incidence>, at: &Surface, shadowing: &mut Shadowing) -> DVec3 {
         let world = self.world;
         let f = &self.formulas;
@@ -186,7 +186,7 @@ impl<'w, 's, F: FormulaTable> Reference<'w, 's, F> {
         };
         inc.to_light = f.light_direction(inc.to_light);
         let n_dot_l = at.n.dot(inc.to_light);
-        if n_dot_l <= 0.0 {
+        if f.faces_away(n_dot_l) {
             return DVec3::ZERO;
         }
         let filter = if world.scene.settings.shadows {
@@ -213,13 +213,14 @@ impl<'w, 's, F: FormulaTable> Reference<'w, 's, F> {
     }
 
     /// The share of an aperture light of colour `light` ([`aperture_share`]): nothing when
-    /// no light arrives or the surface faces away from the aperture's centre (`N.L <= 0`),
-    /// else its arriving light unless the shadow ray towards the centre blackens it.
+    /// no light arrives or the surface faces away from the aperture's centre (`N.L <= 0`,
+    /// [`faces_away`] itself, not the table's entry: this share has no specular term), else
+    /// its arriving light unless the shadow ray towards the centre blackens it.
     fn aperture_light(&self, light: DVec3, incidence: Option<Incidence>, at: &Surface) -> DVec3 {
         let Some(inc) = incidence else {
             return DVec3::ZERO;
         };
-        if at.n.dot(inc.to_light) <= 0.0 {
+        if faces_away(at.n.dot(inc.to_light)) {
             return DVec3::ZERO;
         }
         let filter = if self.world.scene.settings.shadows {
