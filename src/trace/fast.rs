@@ -25,7 +25,9 @@ use crate::light::{Incidence, Light, aperture_share};
 use crate::material::Material;
 use crate::math::{Ray, offset_origin, reflect, refract};
 use crate::scene::ShadingModel;
-use crate::shading::{ambient, beneath_notice, local_weight, shadow_filter, transmission_weight, transparent_filter};
+use crate::shading::{
+    ambient, beneath_notice, faces_away, local_weight, shadow_filter, transmission_weight, transparent_filter,
+};
 use crate::skips::Skip;
 use crate::world::{Candidate, World};
 use glam::DVec3;
@@ -54,7 +56,11 @@ impl Facing {
     /// instructions only so.
     #[inline(always)]
     fn of(arrives: bool, black: bool, n_dot_l: f64) -> Facing {
-        let lit = if n_dot_l <= 0.0 { Facing::Away } else { Facing::Towards };
+        let lit = if faces_away(n_dot_l) {
+            Facing::Away
+        } else {
+            Facing::Towards
+        };
         let unblack = if black { Facing::Black } else { lit };
         if arrives { unblack } else { Facing::NoLight }
     }
