@@ -78,19 +78,23 @@ impl Masks {
             };
             // SAFETY: `Masks::Avx512` is chosen only where the processor has AVX-512 F and
             // VL, and every load is within `disc` (`N` is 4 or a multiple of 8).
-            return unsafe {
+            // A plain loop, not a closure: a closure compiled apart from the walk would not
+            // have the walk's instructions and would call each intrinsic.
+            let mut keep = 0;
+            unsafe {
                 if N == 4 {
-                    u32::from(_mm256_cmp_pd_mask::<_CMP_NLT_UQ>(
+                    keep = u32::from(_mm256_cmp_pd_mask::<_CMP_NLT_UQ>(
                         _mm256_loadu_pd(disc.as_ptr()),
                         _mm256_setzero_pd(),
-                    ))
+                    ));
                 } else {
-                    (0..N / 8).fold(0, |keep, k| {
+                    for k in 0..N / 8 {
                         let lanes = _mm512_loadu_pd(disc.as_ptr().add(8 * k));
-                        keep | u32::from(_mm512_cmp_pd_mask::<_CMP_NLT_UQ>(lanes, _mm512_setzero_pd())) << (8 * k)
-                    })
+                        keep |= u32::from(_mm512_cmp_pd_mask::<_CMP_NLT_UQ>(lanes, _mm512_setzero_pd())) << (8 * k);
+                    }
                 }
-            };
+            }
+            return keep;
         }
         let mut keep = 0;
         for (l, &x) in disc.iter().enumerate() {
