@@ -75,13 +75,11 @@ fn consider(
         Some((i, h)) if j < i => h.t.next_up(),
         Some((_, h)) => h.t,
     };
-    // The sphere's test inlined here: a million-sphere walk spends a third of its time in it.
+    // A copied sphere's test is called directly (a million-sphere walk spends a third of its
+    // time in it); forced inline into the walk, it made the closest-hit walk a fifth slower.
     let hit = match sphere {
         Some(s) => s.intersect(ray, t_min, limit),
-        None => match &objects[j].shape {
-            Shape::Sphere(s) => s.intersect(ray, t_min, limit),
-            shape => shape.intersect(ray, t_min, limit),
-        },
+        None => object_hit(objects, ray, t_min, limit, j),
     };
     if let Some(h) = hit {
         let wins = best.is_none_or(|(i, b)| h.t < b.t || (h.t == b.t && j < i));
@@ -91,6 +89,17 @@ fn consider(
         wins
     } else {
         false
+    }
+}
+
+/// Object `j`'s hit in `(t_min, t_max)`, read from `objects`. A call of its own, so that
+/// the walk's leaf test, with a copied sphere's test inlined, stays small enough to be
+/// inlined into the walk and run on its instructions.
+#[inline(never)]
+fn object_hit(objects: &[Object], ray: &Ray, t_min: f64, t_max: f64, j: usize) -> Option<SurfaceHit> {
+    match &objects[j].shape {
+        Shape::Sphere(s) => s.intersect(ray, t_min, t_max),
+        shape => shape.intersect(ray, t_min, t_max),
     }
 }
 
@@ -104,6 +113,68 @@ fn occludes(objects: &[Object], ray: &Ray, t_min: f64, t_max: f64, j: usize, sph
             Shape::Sphere(s) => s.occludes(ray, t_min, t_max),
             shape => shape.occludes(ray, t_min, t_max),
         },
+    }
+}
+
+/// What a walk does with each object of a leaf it enters: `test(j, sphere)` tests object
+/// `j` (`sphere`: the leaf order's copy of its sphere, if any) and returns whether the walk
+/// stops there. A trait whose implementations are inlined into the walk (a closure, the
+/// compiler's to inline or not, was compiled apart from it, on the baseline instructions).
+trait LeafObjects {
+    fn test(&mut self, j: usize, sphere: Option<&Sphere>) -> bool;
+}
+
+/// A closest-hit walk's objects: each tested by [`consider`]; `closer` records whether one
+/// won since it was last cleared. Never stops the walk.
+struct Closest<'a> {
+    objects: &'a [Object],
+    ray: &'a Ray,
+    t_min: f64,
+    t_max: f64,
+    best: Option<(usize, SurfaceHit)>,
+    closer: bool,
+}
+
+impl LeafObjects for Closest<'_> {
+    #[inline(always)]
+    fn test(&mut self, j: usize, sphere: Option<&Sphere>) -> bool {
+        self.closer |= consider(
+            self.objects,
+            self.ray,
+            self.t_min,
+            self.t_max,
+            j,
+            sphere,
+            &mut self.best,
+        );
+        false
+    }
+}
+
+/// The objects accepted by `filter` that the ray meets in `(t_min, t_max)`: the walk stops
+/// at the first, or, with `each`, passes every one to it and never stops.
+struct Hits<'a> {
+    objects: &'a [Object],
+    ray: &'a Ray,
+    t_min: f64,
+    t_max: f64,
+    filter: &'a dyn Fn(usize) -> bool,
+    each: Option<&'a mut dyn FnMut(usize)>,
+}
+
+impl LeafObjects for Hits<'_> {
+    #[inline(always)]
+    fn test(&mut self, j: usize, sphere: Option<&Sphere>) -> bool {
+        if !((self.filter)(j) && occludes(self.objects, self.ray, self.t_min, self.t_max, j, sphere)) {
+            return false;
+        }
+        match &mut self.each {
+            None => true,
+            Some(each) => {
+                each(j);
+                false
+            }
+        }
     }
 }
 
@@ -258,15 +329,11 @@ impl Bvh {
     /// it returns true; returns whether it did. The spheres that the first step of their
     /// test rules out are passed by ([`SphereLanes::candidates`]).
     #[inline(always)]
-    fn leaf_until(
-        &self,
-        first: usize,
-        count: usize,
-        ray: &Ray,
-        mut hit: impl FnMut(usize, Option<&Sphere>) -> bool,
-    ) -> bool {
+    fn leaf_until(&self, first: usize, count: usize, ray: &Ray, leaf: &mut impl LeafObjects) -> bool {
         let Some(spheres) = &self.spheres else {
-            return self.prims[first..first + count].iter().any(|&j| hit(j as usize, None));
+            return self.prims[first..first + count]
+                .iter()
+                .any(|&j| leaf.test(j as usize, None));
         };
         let mut lanes = spheres.candidates(first, count, ray);
         while lanes != 0 {
@@ -274,8 +341,8 @@ impl Bvh {
             lanes &= lanes - 1;
             let j = self.prims[first + l] as usize;
             let found = match spheres.entry(first, count, l) {
-                LaneEntry::Sphere(s) => hit(j, Some(&s)),
-                LaneEntry::Object => hit(j, None),
+                LaneEntry::Sphere(s) => leaf.test(j, Some(&s)),
+                LaneEntry::Object => leaf.test(j, None),
             };
             if found {
                 return true;
@@ -325,19 +392,22 @@ impl Bvh {
         t_max: f64,
         mut slots: T,
     ) -> Option<(usize, SurfaceHit)> {
-        let mut best: Option<(usize, SurfaceHit)> = None;
-        let consider = |j: usize, sphere: Option<&Sphere>, best: &mut Option<(usize, SurfaceHit)>| {
-            consider(objects, ray, t_min, t_max, j, sphere, best)
+        let mut leaf = Closest {
+            objects,
+            ray,
+            t_min,
+            t_max,
+            best: None,
+            closer: false,
         };
         for &j in &self.unbounded {
-            consider(j as usize, None, &mut best);
+            leaf.test(j as usize, None);
         }
         if self.nodes.is_empty() {
-            return best;
+            return leaf.best;
         }
-        let bound = |best: &Option<(usize, SurfaceHit)>| bound(best, t_max);
-        if best.is_some() {
-            slots.set_t_max(bound(&best));
+        if leaf.best.is_some() {
+            slots.set_t_max(bound(&leaf.best, t_max));
         }
         let mut stack = [(0u32, 0.0f32); S];
         let mut depth = 0;
@@ -360,11 +430,11 @@ impl Bvh {
             // as they come, an interior node is the next visit.
             loop {
                 if depth == 0 {
-                    return best;
+                    return leaf.best;
                 }
                 depth -= 1;
                 let (child, entry) = stack[depth];
-                if entry as f64 > bound(&best) {
+                if entry as f64 > bound(&leaf.best, t_max) {
                     continue;
                 }
                 let (first, count) = unpack(child);
@@ -372,47 +442,38 @@ impl Bvh {
                     at = first;
                     break;
                 }
-                let mut closer = false;
-                self.leaf_until(first, count, ray, |j, sphere| {
-                    closer |= consider(j, sphere, &mut best);
-                    false
-                });
-                if closer {
-                    slots.set_t_max(bound(&best));
+                leaf.closer = false;
+                self.leaf_until(first, count, ray, &mut leaf);
+                if leaf.closer {
+                    slots.set_t_max(bound(&leaf.best, t_max));
                 }
             }
         }
     }
 
-    /// Calls `hit(j, sphere)` for objects whose boxes the ray meets in `[t_min, t_max]`
-    /// (`sphere`: the leaf order's copy of object `j`'s sphere, if any), until it returns
-    /// true; returns whether it did. The spheres that the first step of their test rules
-    /// out are passed by ([`SphereLanes::candidates`]): `hit` is their test.
-    /// Generic over `hit`, so each caller's test is inlined into the walk (no call through
-    /// a pointer per object).
+    /// Calls `leaf.test(j, sphere)` for objects whose boxes the ray meets in `[t_min,
+    /// t_max]` (`sphere`: the leaf order's copy of object `j`'s sphere, if any), until it
+    /// returns true; returns whether it did. The spheres that the first step of their test
+    /// rules out are passed by ([`SphereLanes::candidates`]). Generic over `leaf`, so each
+    /// caller's test is inlined into the walk (no call through a pointer per object).
     #[inline(always)]
-    fn visit(&self, ray: &Ray, t_min: f64, t_max: f64, hit: impl FnMut(usize, Option<&Sphere>) -> bool) -> bool {
+    fn visit(&self, ray: &Ray, t_min: f64, t_max: f64, mut leaf: impl LeafObjects) -> bool {
         match self.f32_slots(ray, t_min, t_max) {
-            Some(s) if stack_for(self.depth) <= SMALL => self.visit_with::<_, SMALL>(ray, s, hit),
-            Some(s) if stack_for(self.depth) <= MEDIUM => self.visit_with::<_, MEDIUM>(ray, s, hit),
-            Some(s) => self.visit_with::<_, FULL>(ray, s, hit),
+            Some(s) if stack_for(self.depth) <= SMALL => self.visit_with::<_, SMALL>(ray, s, &mut leaf),
+            Some(s) if stack_for(self.depth) <= MEDIUM => self.visit_with::<_, MEDIUM>(ray, s, &mut leaf),
+            Some(s) => self.visit_with::<_, FULL>(ray, s, &mut leaf),
             None => self.visit_with::<_, FULL>(
                 ray,
                 F64Slots::new(ray.origin.to_array(), ray.dir.to_array(), t_min, t_max),
-                hit,
+                &mut leaf,
             ),
         }
     }
 
     /// [`Bvh::visit`] with the test `slots` and a stack of `S` entries.
     #[inline(always)]
-    fn visit_with<T: SlotTest, const S: usize>(
-        &self,
-        ray: &Ray,
-        slots: T,
-        mut hit: impl FnMut(usize, Option<&Sphere>) -> bool,
-    ) -> bool {
-        if self.unbounded.iter().any(|&j| hit(j as usize, None)) {
+    fn visit_with<T: SlotTest, const S: usize>(&self, ray: &Ray, slots: T, leaf: &mut impl LeafObjects) -> bool {
+        if self.unbounded.iter().any(|&j| leaf.test(j as usize, None)) {
             return true;
         }
         if self.nodes.is_empty() {
@@ -443,7 +504,7 @@ impl Bvh {
                     at = first;
                     break;
                 }
-                if self.leaf_until(first, count, ray, &mut hit) {
+                if self.leaf_until(first, count, ray, leaf) {
                     return true;
                 }
             }
@@ -476,9 +537,15 @@ impl Bvh {
         t_max: f64,
         filter: &dyn Fn(usize) -> bool,
     ) -> bool {
-        self.visit(ray, t_min, t_max, |j, sphere| {
-            filter(j) && occludes(objects, ray, t_min, t_max, j, sphere)
-        })
+        let hits = Hits {
+            objects,
+            ray,
+            t_min,
+            t_max,
+            filter,
+            each: None,
+        };
+        self.visit(ray, t_min, t_max, hits)
     }
 
     /// Calls `visit` for every object accepted by `filter` hit in `(t_min, t_max)`, in tree
@@ -492,12 +559,15 @@ impl Bvh {
         filter: &dyn Fn(usize) -> bool,
         visit: &mut dyn FnMut(usize),
     ) {
-        self.visit(ray, t_min, t_max, |j, sphere| {
-            if filter(j) && occludes(objects, ray, t_min, t_max, j, sphere) {
-                visit(j);
-            }
-            false
-        });
+        let hits = Hits {
+            objects,
+            ray,
+            t_min,
+            t_max,
+            filter,
+            each: Some(visit),
+        };
+        self.visit(ray, t_min, t_max, hits);
     }
 
     /// Checks the structure against `objects`: every bounded object in exactly one leaf and

@@ -217,8 +217,12 @@ impl SphereLanes {
     #[inline(always)]
     fn sift<const N: usize>(&self, first: usize, count: usize, ray: &Ray) -> u32 {
         let v = &self.values[4 * first..4 * first + 3 * count + N];
-        let lanes = |k: usize| -> [f64; N] { v[k * count..k * count + N].try_into().unwrap() };
-        let (cx, cy, cz, r) = (lanes(0), lanes(1), lanes(2), lanes(3));
+        let (cx, cy, cz, r) = (
+            run::<N>(v, 0),
+            run::<N>(v, count),
+            run::<N>(v, 2 * count),
+            run::<N>(v, 3 * count),
+        );
         // A plain loop over the lanes, vectorised by the compiler: the sphere test's own
         // discriminant, lane by lane.
         let mut disc = [0.0f64; N];
@@ -227,6 +231,15 @@ impl SphereLanes {
         }
         self.masks.not_negative(&disc)
     }
+}
+
+/// The `N` values of `v` from `start`: a function, not a closure, so that it is inlined into
+/// the walk (a closure was compiled apart from it for some widths).
+#[inline(always)]
+fn run<const N: usize>(v: &[f64], start: usize) -> &[f64; N] {
+    v[start..start + N]
+        .try_into()
+        .expect("a sift's lanes lie in the values")
 }
 
 /// Fills the runs of `leaves` (in order, the first starting at entry `base`) in `values`,

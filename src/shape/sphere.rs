@@ -10,7 +10,7 @@ use glam::DVec3;
 /// `b = (o - c).v`. The discriminant is computed as `r^2 - |f - b v|^2` with `f = o - c`
 /// (Haines et al., Ray Tracing Gems ch. 7), which keeps precision for far-away origins.
 /// Shared by the sphere and the shapes cut from spheres (spherical cap, lens).
-#[inline]
+#[inline(always)]
 pub(crate) fn sphere_roots(center: DVec3, radius: f64, ray: &Ray) -> Option<(f64, f64)> {
     let (disc, f, b) = sphere_discriminant(center, radius, ray);
     if disc < 0.0 {
@@ -48,7 +48,7 @@ impl Sphere {
     }
 
     /// The two roots of the sphere's equation ([`sphere_roots`]).
-    #[inline]
+    #[inline(always)]
     fn roots(&self, ray: &Ray) -> Option<(f64, f64)> {
         sphere_roots(self.center, self.radius, ray)
     }
@@ -63,7 +63,7 @@ impl Sphere {
         })
     }
 
-    #[inline]
+    #[inline(always)]
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         self.roots(ray).and_then(|r| first_root_in(r, t_min, t_max)).is_some()
     }
