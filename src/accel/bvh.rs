@@ -537,13 +537,28 @@ impl Bvh {
         t_max: f64,
         filter: &dyn Fn(usize) -> bool,
     ) -> bool {
+        self.visit_hits(objects, ray, t_min, t_max, filter, None)
+    }
+
+    /// [`Bvh::visit`] for [`Hits`]: stops at the first object accepted by `filter` that
+    /// the ray meets in `(t_min, t_max)`, or passes every one to `each`.
+    #[inline(always)]
+    fn visit_hits<'a>(
+        &self,
+        objects: &'a [Object],
+        ray: &'a Ray,
+        t_min: f64,
+        t_max: f64,
+        filter: &'a dyn Fn(usize) -> bool,
+        each: Option<&'a mut dyn FnMut(usize)>,
+    ) -> bool {
         let hits = Hits {
             objects,
             ray,
             t_min,
             t_max,
             filter,
-            each: None,
+            each,
         };
         self.visit(ray, t_min, t_max, hits)
     }
@@ -559,15 +574,7 @@ impl Bvh {
         filter: &dyn Fn(usize) -> bool,
         visit: &mut dyn FnMut(usize),
     ) {
-        let hits = Hits {
-            objects,
-            ray,
-            t_min,
-            t_max,
-            filter,
-            each: Some(visit),
-        };
-        self.visit(ray, t_min, t_max, hits);
+        self.visit_hits(objects, ray, t_min, t_max, filter, Some(visit));
     }
 
     /// Checks the structure against `objects`: every bounded object in exactly one leaf and
