@@ -330,10 +330,14 @@ impl Bvh {
     /// test rules out are passed by ([`SphereLanes::candidates`]).
     #[inline(always)]
     fn leaf_until(&self, first: usize, count: usize, ray: &Ray, leaf: &mut impl LeafObjects) -> bool {
+        // Plain loops, not `Iterator::any`: its closure was compiled apart from the walk.
         let Some(spheres) = &self.spheres else {
-            return self.prims[first..first + count]
-                .iter()
-                .any(|&j| leaf.test(j as usize, None));
+            for &j in &self.prims[first..first + count] {
+                if leaf.test(j as usize, None) {
+                    return true;
+                }
+            }
+            return false;
         };
         let mut lanes = spheres.candidates(first, count, ray);
         while lanes != 0 {
@@ -473,8 +477,10 @@ impl Bvh {
     /// [`Bvh::visit`] with the test `slots` and a stack of `S` entries.
     #[inline(always)]
     fn visit_with<T: SlotTest, const S: usize>(&self, ray: &Ray, slots: T, leaf: &mut impl LeafObjects) -> bool {
-        if self.unbounded.iter().any(|&j| leaf.test(j as usize, None)) {
-            return true;
+        for &j in &self.unbounded {
+            if leaf.test(j as usize, None) {
+                return true;
+            }
         }
         if self.nodes.is_empty() {
             return false;
