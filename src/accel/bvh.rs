@@ -76,7 +76,8 @@ fn consider(
         Some((_, h)) => h.t,
     };
     // A copied sphere's test is called directly (a million-sphere walk spends a third of its
-    // time in it); forced inline into the walk, it made the closest-hit walk a fifth slower.
+    // time in it); forced inline into the walk, it makes the closest-hit walk a fifth slower
+    // (BENCHMARKS.md, "Against Embree 3").
     let hit = match sphere {
         Some(s) => s.intersect(ray, t_min, limit),
         None => object_hit(objects, ray, t_min, limit, j),
@@ -93,8 +94,8 @@ fn consider(
 }
 
 /// Object `j`'s hit in `(t_min, t_max)`, read from `objects`. A call of its own, so that
-/// the walk's leaf test, with a copied sphere's test inlined, stays small enough to be
-/// inlined into the walk and run on its instructions.
+/// the walk's leaf test stays small enough to be inlined into the walk and run on its
+/// instructions.
 #[inline(never)]
 fn object_hit(objects: &[Object], ray: &Ray, t_min: f64, t_max: f64, j: usize) -> Option<SurfaceHit> {
     match &objects[j].shape {
@@ -118,8 +119,9 @@ fn occludes(objects: &[Object], ray: &Ray, t_min: f64, t_max: f64, j: usize, sph
 
 /// What a walk does with each object of a leaf it enters: `test(j, sphere)` tests object
 /// `j` (`sphere`: the leaf order's copy of its sphere, if any) and returns whether the walk
-/// stops there. A trait whose implementations are inlined into the walk (a closure, the
-/// compiler's to inline or not, was compiled apart from it, on the baseline instructions).
+/// stops there. A trait whose implementations are always inlined into the walk: a closure
+/// is the compiler's to inline or not, and one it does not inline is compiled apart from
+/// the walk, on baseline instructions, every call losing the vector registers.
 trait LeafObjects {
     fn test(&mut self, j: usize, sphere: Option<&Sphere>) -> bool;
 }
@@ -330,7 +332,7 @@ impl Bvh {
     /// test rules out are passed by ([`SphereLanes::candidates`]).
     #[inline(always)]
     fn leaf_until(&self, first: usize, count: usize, ray: &Ray, leaf: &mut impl LeafObjects) -> bool {
-        // Plain loops, not `Iterator::any`: its closure was compiled apart from the walk.
+        // Plain loops, not `Iterator::any`, whose closure the compiler may compile apart.
         let Some(spheres) = &self.spheres else {
             for &j in &self.prims[first..first + count] {
                 if leaf.test(j as usize, None) {

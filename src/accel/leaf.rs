@@ -19,10 +19,11 @@
 //! multiply-add, nothing reassociated), so each lane has the scalar routine's bits, and
 //! drops the lanes whose discriminant is negative: those
 //! the scalar routine misses at its first test. With AVX-512 the mask of the lanes kept is
-//! made by one comparison into a mask register per eight lanes ([`Masks`]); the compiler's
-//! own mask, built bit by bit, stored the discriminants and read them back at other offsets,
-//! which the processor cannot forward. Every other lane is tested by the sphere's
-//! own routine, which gives its hit, so the walk's answer is the scalar walk's to the bit.
+//! made by one comparison into a mask register per eight lanes ([`Masks`]); for the portable
+//! loop the compiler builds the mask bit by bit, storing the discriminants and reading them
+//! back at other offsets, which the processor cannot forward. Every other lane is tested by
+//! the sphere's own routine, which gives its hit, so the walk's answer is the scalar walk's
+//! to the bit.
 
 use super::build::{FINE_LEAVES_UP_TO, LeafTest, MAX_LEAF, PrimRef};
 use crate::math::Ray;
@@ -76,11 +77,11 @@ impl Masks {
                 _CMP_NLT_UQ, _mm256_cmp_pd_mask, _mm256_loadu_pd, _mm256_setzero_pd, _mm512_cmp_pd_mask,
                 _mm512_loadu_pd, _mm512_setzero_pd,
             };
+            // A plain loop, not a closure: a closure is compiled apart from the walk, without
+            // its instructions, and would call each intrinsic.
+            let mut keep = 0;
             // SAFETY: `Masks::Avx512` is chosen only where the processor has AVX-512 F and
             // VL, and every load is within `disc` (`N` is 4 or a multiple of 8).
-            // A plain loop, not a closure: a closure compiled apart from the walk would not
-            // have the walk's instructions and would call each intrinsic.
-            let mut keep = 0;
             unsafe {
                 if N == 4 {
                     keep = u32::from(_mm256_cmp_pd_mask::<_CMP_NLT_UQ>(
@@ -234,7 +235,7 @@ impl SphereLanes {
 }
 
 /// The `N` values of `v` from `start`: a function, not a closure, so that it is inlined into
-/// the walk (a closure was compiled apart from it for some widths).
+/// the walk (the compiler may compile a closure apart from it).
 #[inline(always)]
 fn run<const N: usize>(v: &[f64], start: usize) -> &[f64; N] {
     v[start..start + N]
