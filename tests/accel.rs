@@ -352,6 +352,58 @@ fn sphere_lanes_agree_with_the_scan_on_tangent_rays() {
     assert!(hits > 500 && misses > 100, "{hits} hits, {misses} misses");
 }
 
+/// The `f32` sift of a leaf's spheres where rounding to `f32` matters most: 5000 spheres
+/// of radius `1e-4` to `1e-2` a million units from the world's origin, some tiny
+/// (`1e-9`), and rays grazing them from near, from `1e12` away (still sifted in `f32`),
+/// from `3e15` away (beyond the sift: every object of a leaf tested), and a few starting
+/// inside with `t_min < 0`: the BVH gives the linear scan's hits to the bit, on both
+/// kernels.
+#[test]
+fn sphere_sift_agrees_with_the_scan_far_from_the_origin() {
+    let mut s = Stream::new(47, Purpose::Generator, 5);
+    let centre = DVec3::new(1e6, -2e6, 5e5);
+    let objects: Vec<Object> = (0..5000)
+        .map(|i| {
+            let r = if i % 50 == 0 { 1e-9 } else { 1e-4 + 1e-2 * s.next_f64() };
+            object(Shape::Sphere(Sphere::new(centre + point(&mut s, 0.5), r)))
+        })
+        .collect();
+    let linear = Accel::build_with(&objects, AccelChoice::Linear);
+    let kernels = [Kernel::Widest, Kernel::Baseline].map(|k| Accel::Bvh(Bvh::with_kernel(&objects, k)));
+    Bvh::new(&objects).check(&objects).unwrap();
+    let (mut hits, mut misses) = (0, 0);
+    for (i, o) in objects.iter().enumerate().take(400) {
+        let Shape::Sphere(sphere) = &o.shape else {
+            unreachable!()
+        };
+        let d = unit(&mut s);
+        let across = d.cross(unit(&mut s)).normalize();
+        let back = [1.0, 1e12, 3e15][i % 3];
+        for ulps in [-2i64, 0, 2] {
+            let reach = f64::from_bits((sphere.radius.to_bits() as i64 + ulps) as u64);
+            let ray = Ray::new(sphere.center + across * reach - d * back, d);
+            for bvh in &kernels {
+                match assert_agree(&objects, &linear, bvh, &ray, "far from the origin") {
+                    true => hits += 1,
+                    false => misses += 1,
+                }
+            }
+        }
+        // From inside the sphere, the interval starting behind the origin.
+        let inside = Ray::new(sphere.center + across * 0.5 * sphere.radius, d);
+        for (t_min, t_max) in [(-1.0, 1.0), (-1e-3, f64::INFINITY)] {
+            let key = |a: &Accel| {
+                a.closest(&objects, &inside, t_min, t_max)
+                    .map(|(j, h)| (j, h.t.to_bits()))
+            };
+            for bvh in &kernels {
+                assert_eq!(key(&linear), key(bvh), "t_min {t_min}: {inside:?}");
+            }
+        }
+    }
+    assert!(hits > 1000 && misses > 200, "{hits} hits, {misses} misses");
+}
+
 #[test]
 fn cores_agree_on_small_random_scenes() {
     for (seed, n) in [(1, 1), (2, 2), (3, 5), (4, 9), (5, 17), (6, 40)] {
@@ -518,10 +570,10 @@ fn bvh_invariants_on_degenerate_inputs() {
         let bvh = Bvh::new(&objects);
         bvh.check(&objects).unwrap();
         // 64 bytes an object at most, past the root node (a tree of one object has one),
-        // and with spheres their copies in leaf order: 32 bytes an object and 31 values of
-        // padding.
+        // and with spheres their copies in leaf order: at most 48 bytes an object and 31
+        // `f32` values of padding.
         let spheres = objects.iter().any(|o| matches!(o.shape, Shape::Sphere(_)));
-        let copies = if spheres { 32 * objects.len() + 248 } else { 0 };
+        let copies = if spheres { 48 * objects.len() + 124 } else { 0 };
         assert!(
             bvh.bytes() <= 64 * objects.len() + 128 + copies,
             "{} bytes",

@@ -19,8 +19,9 @@
 //!
 //! A tree of more than 4096 objects with spheres among them keeps a copy of the spheres in
 //! leaf order ([`SphereLanes`]): a leaf's spheres are read from one run of memory and
-//! sifted all at once by the first test of the sphere's routine, and the ones left are
-//! tested by the routine itself. When every object is a sphere, the leaves hold up to 31
+//! sifted all at once in `f32` by a test that drops only spheres the routine misses
+//! ([`super::sift`]), and the ones left are tested by the routine itself on their `f64`
+//! copies. When every object is a sphere, the leaves hold up to 31
 //! ([`LeafTest::Sifted`]). The
 //! walks are compiled for AVX-512, AVX2 and baseline x86-64, the widest the processor
 //! has chosen at run time (`multiversion`), or the baseline as a [`Kernel`] says. As it
@@ -30,8 +31,9 @@
 //! and where the kernel compacts memory to serve them it stalled the build by 0.1 s.
 
 use super::build::{Built, MAX_SAH_DEPTH, PrimRef, build};
-use super::leaf::{LaneEntry, Masks, SphereLanes};
+use super::leaf::{Masks, SphereLanes};
 use super::node::stored_box;
+use super::sift::NarrowRay;
 use super::wide::{F32_RANGE, F32Slots, F64Slots, Node4, SlotTest, WIDTH, collapse, unpack};
 use crate::math::Ray;
 use crate::scene::Object;
@@ -75,9 +77,8 @@ fn consider(
         Some((i, h)) if j < i => h.t.next_up(),
         Some((_, h)) => h.t,
     };
-    // A copied sphere's test is called directly (a million-sphere walk spends a third of its
-    // time in it); forced inline into the walk, it makes the closest-hit walk a fifth slower
-    // (BENCHMARKS.md, "Against Embree 3").
+    // A copied sphere's test is called directly; forced inline into the walk, it makes the
+    // closest-hit walk a fifth slower (BENCHMARKS.md, "Against Embree 3").
     let hit = match sphere {
         Some(s) => s.intersect(ray, t_min, limit),
         None => object_hit(objects, ray, t_min, limit, j),
@@ -265,6 +266,8 @@ impl Bvh {
         let spheres = SphereLanes::new(
             objects,
             &prims,
+            leaves,
+            fits_f32,
             || {
                 let leaves = || {
                     nodes
@@ -326,14 +329,14 @@ impl Bvh {
         prefetch_line(line.wrapping_add(64));
     }
 
-    /// Calls `hit(j, sphere)` for the objects of the leaf of entries `first..first + count`
-    /// in leaf order (`sphere`: the leaf order's copy of object `j`'s sphere, if any), until
-    /// it returns true; returns whether it did. The spheres that the first step of their
-    /// test rules out are passed by ([`SphereLanes::candidates`]).
+    /// Calls `leaf.test(j, sphere)` for the objects of the leaf of entries `first..first +
+    /// count` in leaf order, until it returns true; returns whether it did. With `sift` (the
+    /// ray prepared for the tree's sphere copies), the spheres it rules out are passed by
+    /// ([`SphereLanes::candidates`]) and the others tested on their copies (`sphere`).
     #[inline(always)]
-    fn leaf_until(&self, first: usize, count: usize, ray: &Ray, leaf: &mut impl LeafObjects) -> bool {
+    fn leaf_until(&self, first: usize, count: usize, sift: Option<&NarrowRay>, leaf: &mut impl LeafObjects) -> bool {
         // Plain loops, not `Iterator::any`, whose closure the compiler may compile apart.
-        let Some(spheres) = &self.spheres else {
+        let (Some(spheres), Some(ray)) = (&self.spheres, sift) else {
             for &j in &self.prims[first..first + count] {
                 if leaf.test(j as usize, None) {
                     return true;
@@ -345,16 +348,18 @@ impl Bvh {
         while lanes != 0 {
             let l = lanes.trailing_zeros() as usize;
             lanes &= lanes - 1;
-            let j = self.prims[first + l] as usize;
-            let found = match spheres.entry(first, count, l) {
-                LaneEntry::Sphere(s) => leaf.test(j, Some(&s)),
-                LaneEntry::Object => leaf.test(j, None),
-            };
-            if found {
+            if leaf.test(self.prims[first + l] as usize, spheres.sphere(first + l)) {
                 return true;
             }
         }
         false
+    }
+
+    /// The ray prepared for sifting this tree's leaves, if it has sphere copies and the ray
+    /// is within the sift's range.
+    #[inline(always)]
+    fn sift(&self, ray: &Ray) -> Option<NarrowRay> {
+        self.spheres.as_ref().and_then(|s| s.narrow(ray))
     }
 
     /// The `f32` test for this ray when it and the tree fit it, else `None`.
@@ -415,6 +420,7 @@ impl Bvh {
         if leaf.best.is_some() {
             slots.set_t_max(bound(&leaf.best, t_max));
         }
+        let sift = self.sift(ray);
         let mut stack = [(0u32, 0.0f32); S];
         let mut depth = 0;
         let mut at = 0usize;
@@ -449,7 +455,7 @@ impl Bvh {
                     break;
                 }
                 leaf.closer = false;
-                self.leaf_until(first, count, ray, &mut leaf);
+                self.leaf_until(first, count, sift.as_ref(), &mut leaf);
                 if leaf.closer {
                     slots.set_t_max(bound(&leaf.best, t_max));
                 }
@@ -487,6 +493,7 @@ impl Bvh {
         if self.nodes.is_empty() {
             return false;
         }
+        let sift = self.sift(ray);
         let mut stack = [0u32; S];
         let mut depth = 0;
         let mut at = 0usize;
@@ -512,7 +519,7 @@ impl Bvh {
                     at = first;
                     break;
                 }
-                if self.leaf_until(first, count, ray, leaf) {
+                if self.leaf_until(first, count, sift.as_ref(), leaf) {
                     return true;
                 }
             }
@@ -638,15 +645,10 @@ impl Bvh {
                     continue;
                 }
                 for (l, &j) in self.prims[first..first + count].iter().enumerate() {
-                    if let Some(spheres) = &self.spheres {
-                        let copied = match (spheres.entry(first, count, l), &objects[j as usize].shape) {
-                            (LaneEntry::Sphere(s), Shape::Sphere(o)) => s == *o,
-                            (LaneEntry::Object, shape) => !matches!(shape, Shape::Sphere(_)),
-                            (LaneEntry::Sphere(_), _) => false,
-                        };
-                        if !copied {
-                            return Err(format!("entry {} of the leaf order is not object {j}", first + l));
-                        }
+                    if let Some(spheres) = &self.spheres
+                        && !spheres.holds(first, count, l, &objects[j as usize].shape)
+                    {
+                        return Err(format!("entry {} of the leaf order is not object {j}", first + l));
                     }
                     let o = stored_box(&objects[j as usize].shape.bounds().ok_or("unbounded in a leaf")?);
                     if !contains(b, o) {

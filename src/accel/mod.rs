@@ -9,6 +9,7 @@ mod bvh;
 mod leaf;
 mod linear;
 mod node;
+mod sift;
 mod wide;
 
 pub use bvh::{Bvh, Kernel};

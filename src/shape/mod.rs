@@ -31,6 +31,7 @@ pub use lens::Lens;
 pub use plane::Plane;
 pub use rectangle::Rectangle;
 pub use sphere::Sphere;
+#[cfg(test)]
 pub(crate) use sphere::sphere_discriminant;
 pub use spherical_cap::SphericalCap;
 pub use torus::{QuarticMethod, Torus};
