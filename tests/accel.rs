@@ -313,9 +313,9 @@ fn check_objects(seed: u64, objects: &[Object], half: f64) {
 
 /// Rays tangent to spheres, and passing a few units in the last place inside and outside
 /// the tangent, through a dense pile of spheres: the BVH's leaf test, which sifts a leaf's
-/// spheres (up to 31 in this tree of spheres only) by their discriminant, 4 to 32 lanes at
-/// a time, gives the linear scan's object, `t` and
-/// normal to the bit with either kernel, and both outcomes of the sift are exercised.
+/// spheres (up to 31 in this tree of spheres only) in `f32`, 4 to 32 lanes at a time, and
+/// tests the ones it keeps in `f64`, gives the linear scan's object, `t` and normal to the
+/// bit with either kernel, and rays both hit and miss.
 #[test]
 fn sphere_lanes_agree_with_the_scan_on_tangent_rays() {
     let mut s = Stream::new(31, Purpose::Generator, 4);
@@ -327,29 +327,47 @@ fn sphere_lanes_agree_with_the_scan_on_tangent_rays() {
             object(Shape::Sphere(Sphere::new(point(&mut s, 4.1), r)))
         })
         .collect();
-    let linear = Accel::build_with(&objects, AccelChoice::Linear);
-    let kernels = [Kernel::Widest, Kernel::Baseline].map(|k| Accel::Bvh(Bvh::with_kernel(&objects, k)));
+    let back = |i: usize| 2.0 + i as f64 * 1e-3;
+    let ((hits, misses), _) = rim_rays(&objects, &mut s, 300, &[-4, -1, 0, 1, 4], back, "tangent");
+    assert!(hits > 500 && misses > 100, "{hits} hits, {misses} misses");
+}
+
+/// For each of the first `take` spheres of `objects`, a random direction `d` and a unit
+/// vector `across` it, and rays along `d` through the sphere's rim, `ulps` units in the last
+/// place of its radius inside or outside it, from `back(i)` behind: both BVH kernels give
+/// the linear scan's hits. Returns the rays that hit and missed, and per sphere its `d` and
+/// `across`.
+fn rim_rays(
+    objects: &[Object],
+    s: &mut Stream,
+    take: usize,
+    ulps: &[i64],
+    back: impl Fn(usize) -> f64,
+    what: &str,
+) -> ((u32, u32), Vec<(DVec3, DVec3)>) {
+    let linear = Accel::build_with(objects, AccelChoice::Linear);
+    let kernels = [Kernel::Widest, Kernel::Baseline].map(|k| Accel::Bvh(Bvh::with_kernel(objects, k)));
     let (mut hits, mut misses) = (0, 0);
-    for (i, o) in objects.iter().enumerate().take(300) {
+    let mut directions = Vec::new();
+    for (i, o) in objects.iter().enumerate().take(take) {
         let Shape::Sphere(sphere) = &o.shape else {
             unreachable!()
         };
-        let d = unit(&mut s);
-        // A unit vector across `d`, and the line through the sphere's rim along `d`.
-        let across = d.cross(unit(&mut s)).normalize();
-        for ulps in [-4i64, -1, 0, 1, 4] {
-            let reach = f64::from_bits((sphere.radius.to_bits() as i64 + ulps) as u64);
-            let rim = sphere.center + across * reach;
-            let ray = Ray::new(rim - d * (2.0 + i as f64 * 1e-3), d);
+        let d = unit(s);
+        let across = d.cross(unit(s)).normalize();
+        for &u in ulps {
+            let reach = f64::from_bits((sphere.radius.to_bits() as i64 + u) as u64);
+            let ray = Ray::new(sphere.center + across * reach - d * back(i), d);
             for bvh in &kernels {
-                match assert_agree(&objects, &linear, bvh, &ray, "tangent") {
+                match assert_agree(objects, &linear, bvh, &ray, what) {
                     true => hits += 1,
                     false => misses += 1,
                 }
             }
         }
+        directions.push((d, across));
     }
-    assert!(hits > 500 && misses > 100, "{hits} hits, {misses} misses");
+    ((hits, misses), directions)
 }
 
 /// The `f32` sift of a leaf's spheres where rounding to `f32` matters most: 5000 spheres
@@ -368,28 +386,17 @@ fn sphere_sift_agrees_with_the_scan_far_from_the_origin() {
             object(Shape::Sphere(Sphere::new(centre + point(&mut s, 0.5), r)))
         })
         .collect();
+    Bvh::new(&objects).check(&objects).unwrap();
+    let back = |i: usize| [1.0, 1e12, 3e15][i % 3];
+    let ((hits, misses), directions) = rim_rays(&objects, &mut s, 400, &[-2, 0, 2], back, "far from the origin");
+    assert!(hits > 1000 && misses > 200, "{hits} hits, {misses} misses");
+    // From inside the sphere, the interval starting behind the origin.
     let linear = Accel::build_with(&objects, AccelChoice::Linear);
     let kernels = [Kernel::Widest, Kernel::Baseline].map(|k| Accel::Bvh(Bvh::with_kernel(&objects, k)));
-    Bvh::new(&objects).check(&objects).unwrap();
-    let (mut hits, mut misses) = (0, 0);
-    for (i, o) in objects.iter().enumerate().take(400) {
+    for (o, (d, across)) in objects.iter().zip(directions) {
         let Shape::Sphere(sphere) = &o.shape else {
             unreachable!()
         };
-        let d = unit(&mut s);
-        let across = d.cross(unit(&mut s)).normalize();
-        let back = [1.0, 1e12, 3e15][i % 3];
-        for ulps in [-2i64, 0, 2] {
-            let reach = f64::from_bits((sphere.radius.to_bits() as i64 + ulps) as u64);
-            let ray = Ray::new(sphere.center + across * reach - d * back, d);
-            for bvh in &kernels {
-                match assert_agree(&objects, &linear, bvh, &ray, "far from the origin") {
-                    true => hits += 1,
-                    false => misses += 1,
-                }
-            }
-        }
-        // From inside the sphere, the interval starting behind the origin.
         let inside = Ray::new(sphere.center + across * 0.5 * sphere.radius, d);
         for (t_min, t_max) in [(-1.0, 1.0), (-1e-3, f64::INFINITY)] {
             let key = |a: &Accel| {
@@ -401,7 +408,6 @@ fn sphere_sift_agrees_with_the_scan_far_from_the_origin() {
             }
         }
     }
-    assert!(hits > 1000 && misses > 200, "{hits} hits, {misses} misses");
 }
 
 #[test]
