@@ -246,15 +246,15 @@ impl Bvh {
             unbounded.extend(next as u32..i as u32);
             next = i + 1;
         }
-        let leaves = SphereLanes::leaf_test(objects, &refs);
+        let fits_f32 = refs
+            .par_iter()
+            .all(|r| r.min.iter().chain(&r.max).all(|x| x.abs() <= F32_RANGE));
+        let leaves = SphereLanes::leaf_test(objects, &refs, fits_f32);
         let Built {
             nodes: binary,
             order: prims,
             ..
         } = build(refs, leaves);
-        let fits_f32 = binary
-            .first()
-            .is_none_or(|root| (0..3).all(|a| root.min[a].abs().max(root.max[a].abs()) <= F32_RANGE));
         let (nodes, depth) = collapse(&binary);
         // The binary tree is freed before the spheres are copied: the two are never held
         // at once.

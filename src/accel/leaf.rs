@@ -27,7 +27,6 @@
 
 use super::build::{FINE_LEAVES_UP_TO, LeafTest, MAX_LEAF, PrimRef};
 use super::sift::{NarrowRay, radius_term};
-use super::wide::F32_RANGE;
 use crate::math::Ray;
 use crate::scene::Object;
 use crate::shape::{Shape, Sphere};
@@ -157,13 +156,10 @@ impl SphereLanes {
 
     /// How the walks will test the leaves of the tree over `refs`: sifted whole when the
     /// tree will have copies ([`SphereLanes::new`]: more than [`FINE_LEAVES_UP_TO`] objects,
-    /// every box within [`F32_RANGE`]) and every entry is a sphere.
-    pub fn leaf_test(objects: &[Object], refs: &[PrimRef]) -> LeafTest {
-        let sifted = |r: &PrimRef| {
-            matches!(objects[r.index as usize].shape, Shape::Sphere(_))
-                && r.min.iter().chain(&r.max).all(|x| x.abs() <= F32_RANGE)
-        };
-        if refs.len() > FINE_LEAVES_UP_TO && refs.par_iter().all(sifted) {
+    /// boxes that fit `f32`) and every entry is a sphere.
+    pub fn leaf_test(objects: &[Object], refs: &[PrimRef], fits_f32: bool) -> LeafTest {
+        let sphere = |r: &PrimRef| matches!(objects[r.index as usize].shape, Shape::Sphere(_));
+        if fits_f32 && refs.len() > FINE_LEAVES_UP_TO && refs.par_iter().all(sphere) {
             LeafTest::Sifted
         } else {
             LeafTest::Scanned
