@@ -38,7 +38,8 @@ use rayon::prelude::*;
 const LANES: usize = 32;
 const _: () = assert!(MAX_LEAF <= LANES, "a leaf's spheres fit the widest sift");
 
-/// The spheres of the leaf order, per leaf as four runs (see the module doc).
+/// The spheres of the leaf order: per leaf four `f32` runs for the sift, and in a sifted tree
+/// each sphere in `f64` (see the module doc).
 #[derive(Clone, Debug, Default)]
 pub struct SphereLanes {
     /// `4 * entries` values, then `LANES - 1` of padding, so that every lane load of the
