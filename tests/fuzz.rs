@@ -9,6 +9,7 @@
 //! `PROPTEST_CASES=50000 nice -n 10 cargo test --release --test suite -- fuzz:: --skip
 //! simrenderer_fuzz` (see BENCHMARKS.md).
 
+use crate::common::mutate::{apply, mutation};
 use lumiere::render::render;
 use lumiere::scene::{self};
 use lumiere::world::World;
@@ -293,67 +294,6 @@ fn hostile_value() -> impl Strategy<Value = String> {
     ]
 }
 
-/// One edit of the valid scene's text.
-#[derive(Clone, Debug)]
-enum Mutation {
-    /// Replace the value of the `line`-th `key = value` line.
-    Value(usize, String),
-    DeleteLine(usize),
-    DuplicateLine(usize),
-    /// Add `key = value` after a line (unknown keys, repeated keys).
-    InsertKey(usize, String, String),
-    Truncate(usize),
-    Byte(usize, u8),
-}
-
-fn mutation() -> impl Strategy<Value = Mutation> {
-    prop_oneof![
-        4 => (any::<usize>(), hostile_value()).prop_map(|(l, v)| Mutation::Value(l, v)),
-        1 => any::<usize>().prop_map(Mutation::DeleteLine),
-        1 => any::<usize>().prop_map(Mutation::DuplicateLine),
-        1 => (any::<usize>(), "[a-z_]{1,12}", hostile_value()).prop_map(|(l, k, v)| Mutation::InsertKey(l, k, v)),
-        1 => any::<usize>().prop_map(Mutation::Truncate),
-        1 => (any::<usize>(), any::<u8>()).prop_map(|(i, b)| Mutation::Byte(i, b)),
-    ]
-}
-
-fn apply(text: &str, m: &Mutation) -> String {
-    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    let n = lines.len();
-    match m {
-        Mutation::Value(l, v) => {
-            let keyed: Vec<usize> = (0..n).filter(|&i| lines[i].contains(" = ")).collect();
-            let i = keyed[l % keyed.len()];
-            let key = lines[i].split(" = ").next().unwrap_or_default().to_string();
-            lines[i] = format!("{key} = {v}");
-        }
-        Mutation::DeleteLine(l) => {
-            lines.remove(l % n);
-        }
-        Mutation::DuplicateLine(l) => {
-            let line = lines[l % n].clone();
-            lines.insert(l % n, line);
-        }
-        Mutation::InsertKey(l, k, v) => lines.insert(l % n + 1, format!("{k} = {v}")),
-        Mutation::Truncate(i) => {
-            let mut t = lines.join("\n");
-            let mut cut = i % (t.len() + 1);
-            while !t.is_char_boundary(cut) {
-                cut -= 1;
-            }
-            t.truncate(cut);
-            return t;
-        }
-        Mutation::Byte(i, b) => {
-            let mut bytes = lines.join("\n").into_bytes();
-            let at = i % bytes.len();
-            bytes[at] = *b;
-            return String::from_utf8_lossy(&bytes).into_owned();
-        }
-    }
-    lines.join("\n")
-}
-
 /// One valid area light: a random shape (sphere, tube or window), placement, mode and 1 to 8
 /// points. Tube ends differ by at least 1e-3 and window edges are orthogonal, so that every
 /// light passes validation.
@@ -414,8 +354,8 @@ fn the_fuzz_seed_scene_is_valid() {
 
 proptest! {
     #[test]
-    fn mutated_scenes_give_a_scene_or_a_located_error(m in mutation()) {
-        let text = apply(VALID, &m);
+    fn mutated_scenes_give_a_scene_or_a_located_error(m in mutation(hostile_value, "[a-z_]{1,12}", 1)) {
+        let text = apply(VALID, &m, " = ");
         match scene::parse(&text, "fuzz.toml") {
             Ok(s) => render_tiny(s),
             Err(scene::SceneError::MissingTables { file, tables }) => {

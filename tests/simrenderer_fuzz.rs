@@ -7,6 +7,7 @@
 //! infinity in any pixel. 256 cases per property; the long run:
 //! `PROPTEST_CASES=50000 nice -n 10 cargo test --release --test suite simrenderer_fuzz::`.
 
+use crate::common::mutate::{apply, mutation};
 use lumiere::render::render;
 use lumiere::scene::simrenderer::{self, Options, lex};
 use lumiere::scene::{Scene, SceneError};
@@ -304,66 +305,6 @@ fn keyword() -> impl Strategy<Value = String> {
     ]
 }
 
-#[derive(Clone, Debug)]
-enum Mutation {
-    /// Replace the value of the `line`-th line that has one.
-    Value(usize, String),
-    DeleteLine(usize),
-    DuplicateLine(usize),
-    /// Insert `keyword value` after a line.
-    Insert(usize, String, String),
-    Truncate(usize),
-    Byte(usize, u8),
-}
-
-fn mutation() -> impl Strategy<Value = Mutation> {
-    prop_oneof![
-        4 => (any::<usize>(), hostile_value()).prop_map(|(l, v)| Mutation::Value(l, v)),
-        1 => any::<usize>().prop_map(Mutation::DeleteLine),
-        1 => any::<usize>().prop_map(Mutation::DuplicateLine),
-        2 => (any::<usize>(), keyword(), hostile_value()).prop_map(|(l, k, v)| Mutation::Insert(l, k, v)),
-        1 => any::<usize>().prop_map(Mutation::Truncate),
-        1 => (any::<usize>(), any::<u8>()).prop_map(|(i, b)| Mutation::Byte(i, b)),
-    ]
-}
-
-fn apply(text: &str, m: &Mutation) -> String {
-    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    let n = lines.len();
-    match m {
-        Mutation::Value(l, v) => {
-            let valued: Vec<usize> = (0..n).filter(|&i| lines[i].contains(' ')).collect();
-            let i = valued[l % valued.len()];
-            let key = lines[i].split(' ').next().unwrap_or_default().to_string();
-            lines[i] = format!("{key} {v}");
-        }
-        Mutation::DeleteLine(l) => {
-            lines.remove(l % n);
-        }
-        Mutation::DuplicateLine(l) => {
-            let line = lines[l % n].clone();
-            lines.insert(l % n, line);
-        }
-        Mutation::Insert(l, k, v) => lines.insert(l % n + 1, format!("{k} {v}")),
-        Mutation::Truncate(i) => {
-            let mut t = lines.join("\n");
-            let mut cut = i % (t.len() + 1);
-            while !t.is_char_boundary(cut) {
-                cut -= 1;
-            }
-            t.truncate(cut);
-            return t;
-        }
-        Mutation::Byte(i, b) => {
-            let mut bytes = lines.join("\n").into_bytes();
-            let at = i % bytes.len();
-            bytes[at] = *b;
-            return String::from_utf8_lossy(&bytes).into_owned();
-        }
-    }
-    lines.join("\n")
-}
-
 /// Renders a scene at 6 x 4, 1 sample, depth at most 4, and checks every pixel.
 fn render_tiny(mut s: Scene) -> Result<(), TestCaseError> {
     s.settings.width = 6;
@@ -417,8 +358,8 @@ fn the_fuzz_seed_scene_is_valid() {
 
 proptest! {
     #[test]
-    fn mutated_files_give_a_scene_or_a_placed_error(m in mutation()) {
-        let text = apply(VALID, &m);
+    fn mutated_files_give_a_scene_or_a_placed_error(m in mutation(hostile_value, keyword(), 2)) {
+        let text = apply(VALID, &m, " ");
         match simrenderer::parse(&text, "fuzz.txt", &Options::default()) {
             Ok(p) => {
                 for w in &p.warnings {
@@ -435,8 +376,8 @@ proptest! {
     }
 
     #[test]
-    fn lenient_always_gives_a_scene_and_placed_warnings(m in mutation()) {
-        let text = apply(VALID, &m);
+    fn lenient_always_gives_a_scene_and_placed_warnings(m in mutation(hostile_value, keyword(), 2)) {
+        let text = apply(VALID, &m, " ");
         let options = Options { lenient: true, ..Options::default() };
         let p = simrenderer::parse(&text, "fuzz.txt", &options).map_err(|e| TestCaseError::fail(e.to_string()))?;
         for w in &p.warnings {

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod mutate;
+
 use lumiere::film::Film;
 use lumiere::render::render;
 use lumiere::scene::{self, Scene};
