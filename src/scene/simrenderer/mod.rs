@@ -11,6 +11,7 @@ pub mod lex;
 mod read;
 mod toml;
 mod write;
+mod writer;
 
 pub use read::{
     DEFAULT_SEED, Options, PIXEL_COORDINATES, Parsed, REFLEXION_ALGORITHMS, TOP_BLOCKS, canonical, grey_default, load,

@@ -6,6 +6,7 @@
 //! transform.
 
 use super::exact::{self, number, unit_once, unit_twice};
+use super::writer::{Format, Writer};
 use super::{Refused, Written, object_label};
 use crate::area_light::AreaShape;
 use crate::conventions::Conventions;
@@ -68,50 +69,27 @@ fn variant(v: &impl serde::Serialize) -> String {
 /// The scene as a TOML scene file; `source` names where it came from (in the header
 /// comment).
 pub fn to_toml(scene: &Scene, source: &str) -> Result<Written, Refused> {
-    let mut w = Writer {
-        out: String::new(),
-        refused: Vec::new(),
-        notes: Vec::new(),
-    };
+    let mut w = Writer::<Toml>::new();
     w.line(format!("# Scene written by lumiere from {source}."));
     w.line("");
     w.settings(scene);
     w.materials(scene);
     w.objects(scene);
     w.lights(scene);
-    if !w.refused.is_empty() {
-        return Err(Refused {
-            format: "the TOML format",
-            reasons: w.refused,
-        });
-    }
-    Ok(Written {
-        text: w.out,
-        notes: w.notes,
-    })
+    w.finish()
 }
 
-struct Writer {
-    out: String,
-    refused: Vec<String>,
-    notes: Vec<String>,
+/// lumiere's TOML scene files.
+struct Toml;
+
+impl Format for Toml {
+    const NAME: &'static str = "the TOML format";
+    fn vec3(v: DVec3) -> String {
+        vec3(v)
+    }
 }
 
-impl Writer {
-    fn line(&mut self, text: impl AsRef<str>) {
-        self.out.push_str(text.as_ref());
-        self.out.push('\n');
-    }
-
-    fn direction(&mut self, what: impl FnOnce() -> String, v: DVec3, reads: fn(DVec3) -> DVec3) -> String {
-        let (w, exact) = exact::direction(v, reads);
-        if !exact {
-            self.notes
-                .push(format!("{}: reads back within rounding, not to the bit", what()));
-        }
-        vec3(w)
-    }
-
+impl Writer<Toml> {
     fn settings(&mut self, scene: &Scene) {
         let s = &scene.settings;
         let c = &scene.camera;

@@ -5,6 +5,7 @@
 //! renders the file as the original.
 
 use super::exact::{self, number, unit_once, unit_twice};
+use super::writer::{Format, Writer};
 use super::{DEFAULT_SEED, Refused, Written, object_label};
 use crate::conventions::{Conventions, SamplePosition};
 use crate::interference::{Aperture, ApertureLight};
@@ -67,50 +68,26 @@ fn bad_name(name: &str) -> Option<&'static str> {
 /// The scene as a SIMRenderer file; `source` names where it came from (in the header
 /// comment) and `image` is the viewport's `image_file_name`.
 pub fn to_simrenderer(scene: &Scene, source: &str, image: &str) -> Result<Written, Refused> {
-    let mut w = Writer {
-        out: String::new(),
-        refused: Vec::new(),
-        notes: Vec::new(),
-    };
+    let mut w = Writer::<SimRenderer>::new();
     w.header(scene, source);
     w.settings(scene, image);
     w.lights(scene);
     w.materials(scene);
     w.objects(scene);
-    if !w.refused.is_empty() {
-        return Err(Refused {
-            format: "SIMRenderer",
-            reasons: w.refused,
-        });
-    }
-    Ok(Written {
-        text: w.out,
-        notes: w.notes,
-    })
+    w.finish()
 }
 
-struct Writer {
-    out: String,
-    refused: Vec<String>,
-    notes: Vec<String>,
+/// SIMRenderer's scene files.
+struct SimRenderer;
+
+impl Format for SimRenderer {
+    const NAME: &'static str = "SIMRenderer";
+    fn vec3(v: DVec3) -> String {
+        vec3(v)
+    }
 }
 
-impl Writer {
-    fn line(&mut self, text: impl AsRef<str>) {
-        self.out.push_str(text.as_ref());
-        self.out.push('\n');
-    }
-
-    /// A unit vector the reader rebuilds through `reads`; a note when it cannot to the bit.
-    fn direction(&mut self, what: impl FnOnce() -> String, v: DVec3, reads: fn(DVec3) -> DVec3) -> String {
-        let (w, exact) = exact::direction(v, reads);
-        if !exact {
-            self.notes
-                .push(format!("{}: reads back within rounding, not to the bit", what()));
-        }
-        vec3(w)
-    }
-
+impl Writer<SimRenderer> {
     fn header(&mut self, scene: &Scene, source: &str) {
         self.line(format!("# SIMRenderer scene written by lumiere from {source}."));
         let foreign = foreign_conventions(&scene.settings.conventions);
