@@ -634,6 +634,21 @@ impl<'a> Reader<'a> {
         }
     }
 
+    /// Sets `slot` to the value read from `line`, or leaves it after a problem
+    /// ([`Reader::value`]).
+    fn set<T>(
+        &mut self,
+        block: &str,
+        line: &Line,
+        read: Result<T, ValueError>,
+        slot: &mut T,
+    ) -> Result<(), SceneError> {
+        if let Some(v) = self.value(block, line, read)? {
+            *slot = v;
+        }
+        Ok(())
+    }
+
     /// The top level of the file, up to a top-level `end` or the end of the file.
     fn scene_body(&mut self) -> Result<Raw, SceneError> {
         let mut raw = Raw::default();
@@ -940,21 +955,9 @@ impl<'a> Reader<'a> {
                         name = Some((n, at(&l, &block)));
                     }
                 }
-                "color" => {
-                    if let Some(c) = self.value(&block, &l, color(&l, 1.0))? {
-                        m.color = c;
-                    }
-                }
-                "shininess" => {
-                    if let Some(x) = self.value(&block, &l, number_in(&l, 0.0, 200.0))? {
-                        m.shininess = x;
-                    }
-                }
-                "refractive_index" => {
-                    if let Some(x) = self.value(&block, &l, number_in(&l, 0.0, limits::MAX_IOR))? {
-                        m.ior = x;
-                    }
-                }
+                "color" => self.set(&block, &l, color(&l, 1.0), &mut m.color)?,
+                "shininess" => self.set(&block, &l, number_in(&l, 0.0, 200.0), &mut m.shininess)?,
+                "refractive_index" => self.set(&block, &l, number_in(&l, 0.0, limits::MAX_IOR), &mut m.ior)?,
                 "texture_ka" | "texture_kd" | "texture_ks" => {
                     let Some(file) = self.value(&block, &l, lex::name(l.value, l.value_column))? else {
                         continue;
@@ -1182,36 +1185,12 @@ impl<'a> Reader<'a> {
                         points.push((p, here.clone()));
                     }
                 }
-                "position" => {
-                    if let Some(p) = self.value(&block, &l, point(&l))? {
-                        position = p;
-                    }
-                }
-                "normal" => {
-                    if let Some(n) = self.value(&block, &l, direction(&l))? {
-                        normal = n;
-                    }
-                }
-                "ray" => {
-                    if let Some(r) = self.value(&block, &l, positive(&l, limits::MAX_COORDINATE))? {
-                        ray = r;
-                    }
-                }
-                "size" => {
-                    if let Some(s) = self.value(&block, &l, positive(&l, limits::MAX_COORDINATE))? {
-                        size = s;
-                    }
-                }
-                "major_radius" => {
-                    if let Some(r) = self.value(&block, &l, positive(&l, limits::MAX_COORDINATE))? {
-                        major = r;
-                    }
-                }
-                "minor_radius" => {
-                    if let Some(r) = self.value(&block, &l, positive(&l, limits::MAX_COORDINATE))? {
-                        minor = r;
-                    }
-                }
+                "position" => self.set(&block, &l, point(&l), &mut position)?,
+                "normal" => self.set(&block, &l, direction(&l), &mut normal)?,
+                "ray" => self.set(&block, &l, positive(&l, limits::MAX_COORDINATE), &mut ray)?,
+                "size" => self.set(&block, &l, positive(&l, limits::MAX_COORDINATE), &mut size)?,
+                "major_radius" => self.set(&block, &l, positive(&l, limits::MAX_COORDINATE), &mut major)?,
+                "minor_radius" => self.set(&block, &l, positive(&l, limits::MAX_COORDINATE), &mut minor)?,
                 "curvature" => {
                     let most = if kind == "lens" { 2 } else { 1 };
                     let c = self.value(
@@ -1230,21 +1209,9 @@ impl<'a> Reader<'a> {
                         }
                     }
                 }
-                "scale" => {
-                    if let Some(s) = self.value(&block, &l, scale_factors(&l))? {
-                        scale = s;
-                    }
-                }
-                "rotation" => {
-                    if let Some(r) = self.value(&block, &l, angles(&l))? {
-                        rotation = r;
-                    }
-                }
-                "translation" => {
-                    if let Some(t) = self.value(&block, &l, point(&l))? {
-                        translation = t;
-                    }
-                }
+                "scale" => self.set(&block, &l, scale_factors(&l), &mut scale)?,
+                "rotation" => self.set(&block, &l, angles(&l), &mut rotation)?,
+                "translation" => self.set(&block, &l, point(&l), &mut translation)?,
                 geometry => {
                     if inner_seen {
                         let m = "a geometry block holds one geometry; this is a second one".to_string();
@@ -1381,21 +1348,9 @@ impl<'a> Reader<'a> {
                         file = Some((f, at_value(&l, &block, l.value_column)));
                     }
                 }
-                "scale" => {
-                    if let Some(s) = self.value(&block, &l, scale_factors(&l))? {
-                        scale = s;
-                    }
-                }
-                "rotation" => {
-                    if let Some(r) = self.value(&block, &l, angles(&l))? {
-                        rotation = r;
-                    }
-                }
-                "translation" => {
-                    if let Some(t) = self.value(&block, &l, point(&l))? {
-                        translation = t;
-                    }
-                }
+                "scale" => self.set(&block, &l, scale_factors(&l), &mut scale)?,
+                "rotation" => self.set(&block, &l, angles(&l), &mut rotation)?,
+                "translation" => self.set(&block, &l, point(&l), &mut translation)?,
                 // Texture coordinates: lumiere draws no texture.
                 _ => {}
             }
