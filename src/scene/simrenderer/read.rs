@@ -209,9 +209,11 @@ pub const TOP_BLOCKS: &[&str] = &[
     "aperture_mask_light",
 ];
 
-/// The geometry blocks of a primitive or a `geometry` wrapper; `btriangle` is refused as not
-/// supported yet.
-const GEOMETRIES: &[&str] = &[
+/// What a `geometry` wrapper holds: its transform's keywords, then [`GEOMETRIES`].
+const WRAPPER: &[&str] = &[
+    "scale",
+    "rotation",
+    "translation",
     "sphere",
     "plane",
     "disk",
@@ -226,6 +228,10 @@ const GEOMETRIES: &[&str] = &[
     "spherical_cap",
     "lens",
 ];
+
+/// The geometry blocks of a primitive or a `geometry` wrapper; `btriangle` is refused as not
+/// supported yet.
+const GEOMETRIES: &[&str] = WRAPPER.split_at(3).1;
 
 const CAMERA: &[&str] = &[
     "position",
@@ -1133,24 +1139,7 @@ impl<'a> Reader<'a> {
             "torus" => &["position", "normal", "major_radius", "minor_radius"],
             "spherical_cap" => &["position", "normal", "ray", "curvature"],
             "lens" => &["point", "position", "ray", "curvature"],
-            _ => &[
-                "scale",
-                "rotation",
-                "translation",
-                "sphere",
-                "plane",
-                "disk",
-                "triangle",
-                "tube",
-                "cylinder",
-                "cone",
-                "cube",
-                "torus",
-                "geometry",
-                "btriangle",
-                "spherical_cap",
-                "lens",
-            ],
+            _ => WRAPPER,
         };
         let mut position = DVec3::ZERO;
         let mut normal = DVec3::Z;
