@@ -212,8 +212,6 @@ impl SphereLanes {
         self.values.as_ptr().wrapping_add(4 * first).cast()
     }
 
-    /// The ray prepared for [`SphereLanes::candidates`], or `None` when it is beyond the
-    /// sift's range (its leaves' objects are then all tested).
     /// The sphere of entry `entry` of the leaf order in `f64`, or `None` when the entry is
     /// not a sphere or the tree is not sifted (it is tested as its object).
     #[inline(always)]
@@ -221,6 +219,8 @@ impl SphereLanes {
         self.exact.get(entry).filter(|s| !s.radius.is_nan())
     }
 
+    /// The ray prepared for [`SphereLanes::candidates`], or `None` when it is beyond the
+    /// sift's range (its leaves' objects are then all tested).
     #[inline(always)]
     pub fn narrow(&self, ray: &Ray) -> Option<NarrowRay> {
         NarrowRay::new(ray, self.center_reach)
