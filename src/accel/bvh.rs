@@ -249,12 +249,12 @@ impl Bvh {
         let fits_f32 = refs
             .par_iter()
             .all(|r| r.min.iter().chain(&r.max).all(|x| x.abs() <= F32_RANGE));
-        let leaves = SphereLanes::leaf_test(objects, &refs, fits_f32);
+        let leaf_test = SphereLanes::leaf_test(objects, &refs, fits_f32);
         let Built {
             nodes: binary,
             order: prims,
             ..
-        } = build(refs, leaves);
+        } = build(refs, leaf_test);
         let (nodes, depth) = collapse(&binary);
         // The binary tree is freed before the spheres are copied: the two are never held
         // at once.
@@ -266,7 +266,7 @@ impl Bvh {
         let spheres = SphereLanes::new(
             objects,
             &prims,
-            leaves,
+            leaf_test,
             fits_f32,
             || {
                 let leaves = || {
