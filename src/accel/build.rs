@@ -79,8 +79,8 @@ struct Policy {
 }
 
 impl Policy {
-    fn for_tree(n: usize, leaves: LeafTest) -> Self {
-        let (traverse_cost, max_leaf) = match leaves {
+    fn for_tree(n: usize, leaf_test: LeafTest) -> Self {
+        let (traverse_cost, max_leaf) = match leaf_test {
             _ if n <= FINE_LEAVES_UP_TO => (FINE_TRAVERSE_COST, MAX_SCANNED_LEAF),
             LeafTest::Scanned => (TRAVERSE_COST, MAX_SCANNED_LEAF),
             LeafTest::Sifted => (SIFTED_TRAVERSE_COST, MAX_LEAF),
@@ -449,10 +449,10 @@ pub struct Built {
     pub order: Vec<u32>,
 }
 
-/// Builds the tree over `refs`, whose leaves the walks test as `leaves` says. The boxes
+/// Builds the tree over `refs`, whose leaves the walks test as `leaf_test` says. The boxes
 /// are freed once the subtrees are built, before they are spliced into one array, so a
 /// large tree's boxes, subtrees and final array are never all held at once.
-pub fn build(mut refs: Vec<PrimRef>, leaves: LeafTest) -> Built {
+pub fn build(mut refs: Vec<PrimRef>, leaf_test: LeafTest) -> Built {
     if refs.is_empty() {
         return Built {
             nodes: Vec::new(),
@@ -464,7 +464,7 @@ pub fn build(mut refs: Vec<PrimRef>, leaves: LeafTest) -> Built {
         |a, b| (a.0.union(b.0), a.1.union(b.1)),
     );
     // Ranges up to this size are one task; it depends on the object count only.
-    let policy = Policy::for_tree(refs.len(), leaves);
+    let policy = Policy::for_tree(refs.len(), leaf_test);
     let mut top = Builder::new(vec![Node::default(); 2], (refs.len() / 64).max(4096), policy);
     top.grow(&mut refs, 0, boxes, centroids, 0, 0);
     let (mut nodes, tasks) = (top.nodes, top.tasks);
@@ -654,7 +654,7 @@ mod tests {
 
     /// `n` boxes of side 0.2 centred uniformly at random in a cube of side 20: the largest
     /// leaf and the mean.
-    fn leaf_sizes(n: u32, leaves: LeafTest) -> (u32, f64) {
+    fn leaf_sizes(n: u32, leaf_test: LeafTest) -> (u32, f64) {
         let mut s = crate::sampling::Stream::new(3, crate::sampling::Purpose::Generator, 0);
         let refs: Vec<PrimRef> = (0..n)
             .map(|i| {
@@ -662,7 +662,7 @@ mod tests {
                 PrimRef::new(i, c.map(|x| x - 0.1), c.map(|x| x + 0.1))
             })
             .collect();
-        let nodes = build(refs, leaves).nodes;
+        let nodes = build(refs, leaf_test).nodes;
         let counts: Vec<u32> = nodes.iter().skip(2).filter(|n| n.is_leaf()).map(|n| n.count).collect();
         assert_eq!(counts.iter().sum::<u32>(), n, "every object in one leaf");
         let largest = *counts.iter().max().unwrap();
@@ -678,11 +678,11 @@ mod tests {
             largest == MAX_LEAF as u32 && mean > 4.0,
             "sifted: largest {largest}, mean {mean}"
         );
-        for (n, leaves) in [(8192, LeafTest::Scanned), (4096, LeafTest::Sifted)] {
-            let (largest, mean) = leaf_sizes(n, leaves);
+        for (n, leaf_test) in [(8192, LeafTest::Scanned), (4096, LeafTest::Sifted)] {
+            let (largest, mean) = leaf_sizes(n, leaf_test);
             assert!(
                 largest <= 4 && mean <= 4.0,
-                "{n} {leaves:?}: largest {largest}, mean {mean}"
+                "{n} {leaf_test:?}: largest {largest}, mean {mean}"
             );
         }
     }
