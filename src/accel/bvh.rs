@@ -595,7 +595,8 @@ impl Bvh {
     /// Checks the structure against `objects`: every bounded object in exactly one leaf and
     /// every unbounded one in the separate list, each slot's box containing its child's
     /// slots (a leaf's, the stored boxes of its objects), the occupied slots first and each
-    /// octant's order a permutation of the slots, and the depth as recorded. For tests.
+    /// octant's order a permutation of the slots, each leaf entry's sphere copies those of
+    /// its object, and the depth as recorded. For tests.
     pub fn check(&self, objects: &[Object]) -> Result<(), String> {
         let mut seen = vec![0u32; objects.len()];
         for &j in &self.unbounded {
@@ -648,7 +649,7 @@ impl Bvh {
                     if let Some(spheres) = &self.spheres
                         && !spheres.holds(first, count, l, &objects[j as usize].shape)
                     {
-                        return Err(format!("entry {} of the leaf order is not object {j}", first + l));
+                        return Err(format!("the copies of leaf entry {} are not object {j}'s", first + l));
                     }
                     let o = stored_box(&objects[j as usize].shape.bounds().ok_or("unbounded in a leaf")?);
                     if !contains(b, o) {
