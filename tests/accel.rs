@@ -278,26 +278,40 @@ fn check_scene(seed: u64, n: usize) {
     check_objects(seed, &random_scene(seed, n, half), half);
 }
 
+/// The linear scan and the BVH on both kernels over the same objects.
+struct Cores {
+    linear: Accel,
+    kernels: [Accel; 2],
+}
+
+impl Cores {
+    fn new(objects: &[Object]) -> Self {
+        Cores {
+            linear: Accel::build_with(objects, AccelChoice::Linear),
+            kernels: [Kernel::Widest, Kernel::Baseline].map(|k| Accel::Bvh(Bvh::with_kernel(objects, k))),
+        }
+    }
+}
+
 /// [`assert_agree`] on random, grazing and surface rays (and their far and tiny-component
 /// variants) for `objects` within a cube of half-side `half`.
 fn check_objects(seed: u64, objects: &[Object], half: f64) {
     let objects = objects.to_vec();
-    let linear = Accel::build_with(&objects, AccelChoice::Linear);
+    let Cores { linear, kernels } = Cores::new(&objects);
     Bvh::new(&objects).check(&objects).unwrap();
     // The walks on the widest vectors the processor has, and on baseline x86-64.
-    for kernel in [Kernel::Widest, Kernel::Baseline] {
-        let bvh = Accel::Bvh(Bvh::with_kernel(&objects, kernel));
+    for bvh in &kernels {
         let random = random_rays(seed, &objects, 300, half);
         let mut hits = 0;
         for r in &random {
-            hits += assert_agree(&objects, &linear, &bvh, r, "random") as usize;
+            hits += assert_agree(&objects, &linear, bvh, r, "random") as usize;
         }
         assert!(hits > 100, "only {hits} of 300 random rays hit something");
         for r in grazing_rays(&objects).iter().take(600) {
-            assert_agree(&objects, &linear, &bvh, r, "grazing");
+            assert_agree(&objects, &linear, bvh, r, "grazing");
         }
         for r in &surface_rays(&objects, &random) {
-            assert_agree(&objects, &linear, &bvh, r, "from a surface");
+            assert_agree(&objects, &linear, bvh, r, "from a surface");
         }
         // Rays the `f32` box test cannot carry, tested in `f64`: a direction component too
         // small for it (but not zero), and an origin beyond `2^50` (the same line, from far
@@ -305,8 +319,8 @@ fn check_objects(seed: u64, objects: &[Object], half: f64) {
         for r in random.iter().take(60) {
             let tiny = Ray::new(r.origin, DVec3::new(1e-20, r.dir.y, r.dir.z));
             let far = Ray::new(r.origin - r.dir * 3e15, r.dir);
-            assert_agree(&objects, &linear, &bvh, &tiny, "a tiny component");
-            assert_agree(&objects, &linear, &bvh, &far, "from far away");
+            assert_agree(&objects, &linear, bvh, &tiny, "a tiny component");
+            assert_agree(&objects, &linear, bvh, &far, "from far away");
         }
     }
 }
@@ -328,25 +342,33 @@ fn sphere_lanes_agree_with_the_scan_on_tangent_rays() {
         })
         .collect();
     let back = |i: usize| 2.0 + i as f64 * 1e-3;
-    let ((hits, misses), _) = rim_rays(&objects, &mut s, 300, &[-4, -1, 0, 1, 4], back, "tangent");
+    let ((hits, misses), _) = rim_rays(
+        &objects,
+        &Cores::new(&objects),
+        &mut s,
+        300,
+        &[-4, -1, 0, 1, 4],
+        back,
+        "tangent",
+    );
     assert!(hits > 500 && misses > 100, "{hits} hits, {misses} misses");
 }
 
 /// For each of the first `take` spheres of `objects`, a random direction `d` and a unit
 /// vector `across` it, and rays along `d` through the sphere's rim, `ulps` units in the last
-/// place of its radius inside or outside it, from `back(i)` behind: both BVH kernels give
-/// the linear scan's hits. Returns the rays that hit and missed, and per sphere its `d` and
-/// `across`.
+/// place of its radius inside or outside it, from `back(i)` behind: both BVH kernels of
+/// `cores` give the linear scan's hits. Returns the rays that hit and missed, and per
+/// sphere its `d` and `across`.
 fn rim_rays(
     objects: &[Object],
+    cores: &Cores,
     s: &mut Stream,
     take: usize,
     ulps: &[i64],
     back: impl Fn(usize) -> f64,
     what: &str,
 ) -> ((u32, u32), Vec<(DVec3, DVec3)>) {
-    let linear = Accel::build_with(objects, AccelChoice::Linear);
-    let kernels = [Kernel::Widest, Kernel::Baseline].map(|k| Accel::Bvh(Bvh::with_kernel(objects, k)));
+    let Cores { linear, kernels } = cores;
     let (mut hits, mut misses) = (0, 0);
     let mut directions = Vec::new();
     for (i, o) in objects.iter().enumerate().take(take) {
@@ -358,8 +380,8 @@ fn rim_rays(
         for &u in ulps {
             let reach = f64::from_bits((sphere.radius.to_bits() as i64 + u) as u64);
             let ray = Ray::new(sphere.center + across * reach - d * back(i), d);
-            for bvh in &kernels {
-                match assert_agree(objects, &linear, bvh, &ray, what) {
+            for bvh in kernels {
+                match assert_agree(objects, linear, bvh, &ray, what) {
                     true => hits += 1,
                     false => misses += 1,
                 }
@@ -388,11 +410,12 @@ fn sphere_sift_agrees_with_the_scan_far_from_the_origin() {
         .collect();
     Bvh::new(&objects).check(&objects).unwrap();
     let back = |i: usize| [1.0, 1e12, 3e15][i % 3];
-    let ((hits, misses), directions) = rim_rays(&objects, &mut s, 400, &[-2, 0, 2], back, "far from the origin");
+    let cores = Cores::new(&objects);
+    let ((hits, misses), directions) =
+        rim_rays(&objects, &cores, &mut s, 400, &[-2, 0, 2], back, "far from the origin");
     assert!(hits > 1000 && misses > 200, "{hits} hits, {misses} misses");
     // From inside the sphere, the interval starting behind the origin.
-    let linear = Accel::build_with(&objects, AccelChoice::Linear);
-    let kernels = [Kernel::Widest, Kernel::Baseline].map(|k| Accel::Bvh(Bvh::with_kernel(&objects, k)));
+    let Cores { linear, kernels } = &cores;
     for (o, (d, across)) in objects.iter().zip(directions) {
         let Shape::Sphere(sphere) = &o.shape else {
             unreachable!()
@@ -403,8 +426,8 @@ fn sphere_sift_agrees_with_the_scan_far_from_the_origin() {
                 a.closest(&objects, &inside, t_min, t_max)
                     .map(|(j, h)| (j, h.t.to_bits()))
             };
-            for bvh in &kernels {
-                assert_eq!(key(&linear), key(bvh), "t_min {t_min}: {inside:?}");
+            for bvh in kernels {
+                assert_eq!(key(linear), key(bvh), "t_min {t_min}: {inside:?}");
             }
         }
     }
