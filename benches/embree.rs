@@ -14,9 +14,14 @@
 //!
 //! Embree's spheres are f32 (`RTC_GEOMETRY_TYPE_SPHERE_POINT`), lumiere's f64, so the hits
 //! are compared by object: the bench prints the share of rays on which both kernels report
-//! the same closest object (or both miss), and the same any-hit answer. Each timing is the
-//! median of 5 runs, the two kernels alternating; the table is printed as BENCHMARKS.md
-//! holds it.
+//! the same closest object (or both miss), and the same any-hit answer.
+//!
+//! The two kernels are timed in pairs: in each of [`ROUNDS`] rounds the rays are traced in
+//! slices of [`SLICE`], each slice by both kernels one after the other (which goes first
+//! alternates from slice to slice), so that both meet the machine in the same state and its
+//! drift cancels out of their ratio. A rate is all the rays traced over the kernel's summed
+//! time; the last column is the smallest and largest ratio of one round's sums. The table is
+//! printed as BENCHMARKS.md holds it.
 
 #[path = "common/rays.rs"]
 mod rays;
@@ -38,7 +43,9 @@ use std::time::Instant;
 
 const SIDE: u32 = 1000;
 const INCOHERENT: usize = 1_000_000;
-const RUNS: usize = 5;
+const ROUNDS: usize = 5;
+/// Rays the two kernels trace in turn (16 tasks).
+const SLICE: usize = 65_536;
 /// Rays a task traces in a row (a chunk of 8-ray packets for Embree's packet calls).
 const TASK: usize = 4096;
 const MISS: u32 = u32::MAX;
@@ -179,9 +186,34 @@ fn timed(pool: &rayon::ThreadPool, rays: &[Ray], out: &mut [u32], trace: &(dyn F
     start.elapsed().as_secs_f64()
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+/// Times of lumiere and of Embree over every ray, round by round: each slice of [`SLICE`]
+/// rays traced by both, the first to go alternating.
+fn paired(
+    pool: &rayon::ThreadPool,
+    rays: &[Ray],
+    ours: &mut [u32],
+    theirs: &mut [u32],
+    lumiere: &(dyn Fn(&[Ray], &mut [u32]) + Sync),
+    embree: &(dyn Fn(&[Ray], &mut [u32]) + Sync),
+) -> Vec<(f64, f64)> {
+    (0..ROUNDS)
+        .map(|round| {
+            let (mut a, mut b) = (0.0, 0.0);
+            for (k, start) in (0..rays.len()).step_by(SLICE).enumerate() {
+                let slice = start..(start + SLICE).min(rays.len());
+                let mut trace_ours = || a += timed(pool, &rays[slice.clone()], &mut ours[slice.clone()], lumiere);
+                let mut trace_theirs = || b += timed(pool, &rays[slice.clone()], &mut theirs[slice.clone()], embree);
+                if (k + round) % 2 == 0 {
+                    trace_ours();
+                    trace_theirs();
+                } else {
+                    trace_theirs();
+                    trace_ours();
+                }
+            }
+            (a, b)
+        })
+        .collect()
 }
 
 fn agreement(a: &[u32], b: &[u32]) -> f64 {
@@ -211,9 +243,9 @@ fn main() {
     );
     println!();
     println!(
-        "| rays | query | Embree call | threads | lumiere (Mrays/s) | Embree (Mrays/s) | lumiere / Embree | same answer |"
+        "| rays | query | Embree call | threads | lumiere (Mrays/s) | Embree (Mrays/s) | lumiere / Embree | rounds' range | same answer |"
     );
-    println!("|---|---|---|---:|---:|---:|---:|---:|");
+    println!("|---|---|---|---:|---:|---:|---:|---:|---:|");
     let sets = [
         ("coherent", true, coherent_rays(&camera)),
         ("incoherent", false, incoherent_rays(INCOHERENT)),
@@ -233,21 +265,26 @@ fn main() {
             }
             for (query_name, call, query, packets) in calls {
                 let (mut ours, mut theirs) = (vec![0; rays.len()], vec![0; rays.len()]);
-                let (mut t_ours, mut t_theirs) = (Vec::new(), Vec::new());
-                for _ in 0..RUNS {
-                    t_ours.push(timed(&pool, rays, &mut ours, &|r, o| kernels.lumiere(query, r, o)));
-                    t_theirs.push(timed(&pool, rays, &mut theirs, &|r, o| {
+                let rounds = paired(
+                    &pool,
+                    rays,
+                    &mut ours,
+                    &mut theirs,
+                    &|r, o| kernels.lumiere(query, r, o),
+                    &|r, o| {
                         if packets {
                             kernels.embree_packets(r, o)
                         } else {
                             kernels.embree_single(query, *coherent, r, o)
                         }
-                    }));
-                }
-                let (a, b) = (median(t_ours), median(t_theirs));
-                let rate = |t: f64| rays.len() as f64 / t / 1e6;
+                    },
+                );
+                let (a, b) = rounds.iter().fold((0.0, 0.0), |(a, b), r| (a + r.0, b + r.1));
+                let ratios = rounds.iter().map(|r| r.1 / r.0);
+                let (low, high) = ratios.fold((f64::INFINITY, 0.0f64), |(l, h), x| (l.min(x), h.max(x)));
+                let rate = |t: f64| (ROUNDS * rays.len()) as f64 / t / 1e6;
                 println!(
-                    "| {name} | {query_name} | {call} | {threads} | {:.2} | {:.2} | {:.2} | {:.4} % |",
+                    "| {name} | {query_name} | {call} | {threads} | {:.2} | {:.2} | {:.2} | {low:.2} – {high:.2} | {:.4} % |",
                     rate(a),
                     rate(b),
                     b / a,
