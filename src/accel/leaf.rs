@@ -57,20 +57,28 @@ pub struct SphereLanes {
 /// How a sift turns its lanes' discriminants into the bit mask of the lanes kept.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Masks {
-    /// Lane by lane, on any processor.
+    /// Four lanes a comparison on x86-64 (SSE, which every x86-64 processor has), lane by
+    /// lane elsewhere: the compiler's own mask, built from single bits, takes two
+    /// instructions a lane.
     #[default]
     Portable,
+    /// Eight lanes a comparison and its sign bits (AVX), where the walks run on AVX2.
+    Avx,
     /// Up to sixteen lanes a comparison into a mask register (AVX-512 F and VL), on a
-    /// processor that has them: the compiler builds the portable mask from single bits.
+    /// processor that has them.
     Avx512,
 }
 
 impl Masks {
-    /// [`Masks::Avx512`] where the processor has it, else [`Masks::Portable`].
+    /// The masks of the walks' widest instructions on this processor (see
+    /// [`super::Kernel::Widest`]): [`Masks::Avx512`], [`Masks::Avx`] where it has AVX2, else
+    /// [`Masks::Portable`].
     pub fn fastest() -> Masks {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx512f") && std::arch::is_x86_feature_detected!("avx512vl") {
             return Masks::Avx512;
+        } else if std::arch::is_x86_feature_detected!("avx2") {
+            return Masks::Avx;
         }
         Masks::Portable
     }
@@ -108,7 +116,42 @@ impl Masks {
             }
             return keep;
         }
+        #[cfg(target_arch = "x86_64")]
+        if self == Masks::Avx && N >= 8 {
+            use std::arch::x86_64::{
+                _CMP_NLT_UQ, _mm256_cmp_ps, _mm256_loadu_ps, _mm256_movemask_ps, _mm256_setzero_ps,
+            };
+            let mut keep = 0;
+            for k in 0..N / 8 {
+                // SAFETY: `Masks::Avx` is chosen only where the processor has AVX2 (and so
+                // AVX), and the load is within `margin` (`N` is 8 or a multiple of 16).
+                let lanes = unsafe {
+                    _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_NLT_UQ>(
+                        _mm256_loadu_ps(margin.as_ptr().add(8 * k)),
+                        _mm256_setzero_ps(),
+                    ))
+                };
+                keep |= (lanes as u32) << (8 * k);
+            }
+            return keep;
+        }
         let mut keep = 0;
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::{_mm_cmpnlt_ps, _mm_loadu_ps, _mm_movemask_ps, _mm_setzero_ps};
+            for k in 0..N / 4 {
+                // SAFETY: SSE is part of x86-64, and the load is within `margin` (`N` is 4, 8
+                // or a multiple of 16).
+                let lanes = unsafe {
+                    _mm_movemask_ps(_mm_cmpnlt_ps(
+                        _mm_loadu_ps(margin.as_ptr().add(4 * k)),
+                        _mm_setzero_ps(),
+                    ))
+                };
+                keep |= (lanes as u32) << (4 * k);
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
         for (l, &x) in margin.iter().enumerate() {
             keep |= u32::from((x >= 0.0) | x.is_nan()) << l;
         }
@@ -426,8 +469,17 @@ mod tests {
     }
 
     /// A lane is dropped only when its margin is negative: `-0`, NaNs of either sign and
-    /// `+inf` are kept, `-inf` and the smallest negative subnormal dropped, by both masks
-    /// and on every width.
+    /// `+inf` are kept, `-inf` and the smallest negative subnormal dropped, by every mask
+    /// this processor runs and on every width.
+    /// The masks this processor can run: the portable one and those of its vector
+    /// extensions.
+    fn runnable_masks() -> impl Iterator<Item = Masks> {
+        let fastest = Masks::fastest();
+        [Masks::Portable, Masks::Avx, Masks::Avx512]
+            .into_iter()
+            .filter(move |&m| m == Masks::Portable || m == fastest || (m == Masks::Avx && fastest == Masks::Avx512))
+    }
+
     #[test]
     fn masks_drop_only_negative_lanes() {
         let pattern = [
@@ -446,7 +498,7 @@ mod tests {
                 .filter(|l| (1..=5).contains(&(l % 8)))
                 .fold(0u32, |m, l| m | 1 << l)
         };
-        for masks in [Masks::Portable, Masks::fastest()] {
+        for masks in runnable_masks() {
             let four: [f32; 4] = std::array::from_fn(|l| pattern[l]);
             assert_eq!(masks.not_negative(&four), want(4), "{masks:?}");
             let eight: [f32; 8] = std::array::from_fn(|l| pattern[l % 8]);
@@ -484,7 +536,9 @@ mod tests {
             let prims: Vec<u32> = (0..count as u32).collect();
             let leaf = || vec![(0, count as u32)];
             let lanes = SphereLanes::copied(&objects, &prims, LeafTest::Sifted, leaf(), Masks::Portable);
-            let fastest = SphereLanes::copied(&objects, &prims, LeafTest::Sifted, leaf(), Masks::fastest());
+            let others: Vec<SphereLanes> = runnable_masks()
+                .map(|m| SphereLanes::copied(&objects, &prims, LeafTest::Sifted, leaf(), m))
+                .collect();
             // Along a random direction past sphere 0's rim.
             let d = DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5).normalize();
             let across = d.any_orthonormal_vector();
@@ -500,7 +554,9 @@ mod tests {
             let narrow = lanes.narrow(&ray).expect("a ray within the sift");
             let keep = lanes.candidates(0, count, &narrow);
             assert_eq!(keep >> count, 0, "lanes past the leaf");
-            assert_eq!(fastest.candidates(0, count, &narrow), keep, "{:?}", Masks::fastest());
+            for other in &others {
+                assert_eq!(other.candidates(0, count, &narrow), keep, "{:?}", other.masks);
+            }
             for (l, sphere) in spheres.iter().enumerate() {
                 if keep >> l & 1 == 0 {
                     let hit = sphere.intersect(&ray, f64::NEG_INFINITY, f64::INFINITY);
