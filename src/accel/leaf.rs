@@ -19,9 +19,9 @@
 //! leaf at once (the fewest of 4, 8, 16 or 32 that hold it: a sifted tree's leaves hold up
 //! to [`MAX_LEAF`], [`super::build::LeafTest::Sifted`]) and drops the spheres it proves the
 //! `f64` sphere test misses at its first step: a walk reads 16 bytes of each sphere of a
-//! leaf it enters and 32 more of the few the sift keeps. With AVX-512 the mask of the
-//! lanes kept is made by one comparison into a mask register per sixteen lanes
-//! ([`Masks`]); for the portable loop the compiler builds the mask bit by bit. Every lane
+//! leaf it enters and 32 more of the few the sift keeps. The mask of the lanes kept is
+//! made by one comparison per sixteen lanes into a mask register with AVX-512, per eight
+//! lanes with AVX2 and per four with SSE, then its sign bits ([`Masks`]). Every lane
 //! kept is tested by the sphere's own `f64` routine, so the walk's answer is the scalar
 //! walk's to the bit; a ray beyond the sift's range has every entry of a leaf tested so.
 
