@@ -1,0 +1,164 @@
+//! The harness of benches/paired/run: the working tree's BVH (`lumiere`) against a base
+//! revision's (`lumiere_base`) in one process, on the million spheres of
+//! scenes/spheres-1m.toml (its floor left out, as benches/embree.rs does) with the rays of
+//! benches/embree.rs: 1000 x 1000 coherent camera rays and the 1 000 000 incoherent rays of
+//! benches/common/rays.rs; closest hit and any hit, one thread.
+//!
+//! It first checks that the two builds give the same hits (the same object and `t` to the
+//! bit, the same any-hit answers). Then in each round the rays are traced in slices of
+//! [`SLICE`], each slice by both builds one after the other (which goes first alternates
+//! from slice to slice and round to round), their times summed per build. The table gives
+//! each build's rate (all the rays over its summed time), this tree's speed over the base's,
+//! and the smallest and largest ratio of one round's sums.
+
+mod rays;
+
+use std::path::Path;
+use std::process::ExitCode;
+use std::time::Instant;
+
+const SIDE: u32 = 1000;
+const INCOHERENT: usize = 1_000_000;
+/// Rays the two builds trace in turn.
+const SLICE: usize = 50_000;
+
+/// The rays of one set, as origins and directions (each build makes its own `Ray`s).
+type Rays = Vec<(glam::DVec3, glam::DVec3)>;
+
+/// Loads the spheres of scenes/spheres-1m.toml with crate `$c` and builds its BVH; the
+/// scene's camera is read by the working tree's crate only.
+macro_rules! spheres_and_tree {
+    ($c:ident, $path:expr) => {{
+        let scene = match $c::scene::load($path) {
+            Ok(scene) => scene,
+            Err(e) => {
+                eprintln!("paired: {}: {e}", stringify!($c));
+                return ExitCode::FAILURE;
+            }
+        };
+        let spheres: Vec<$c::scene::Object> = scene
+            .objects
+            .into_iter()
+            .filter(|o| matches!(o.shape, $c::shape::Shape::Sphere(_)))
+            .collect();
+        let tree = $c::accel::Accel::build_with(&spheres, $c::accel::AccelChoice::Bvh);
+        (spheres, tree)
+    }};
+}
+
+/// Traces `$rays` with crate `$c`'s tree: a sum of the answers (the closest object's
+/// index, or 1 for a ray that hits anything), so that no query is optimised away.
+macro_rules! trace {
+    ($c:ident, $spheres:expr, $tree:expr, $rays:expr, $any:expr) => {{
+        let mut sum = 0u64;
+        for &(origin, dir) in $rays {
+            let ray = $c::math::Ray::new(origin, dir);
+            sum += if $any {
+                $tree.any_hit($spheres, &ray, 0.0, f64::INFINITY, &|_| true) as u64
+            } else {
+                $tree
+                    .closest($spheres, &ray, 0.0, f64::INFINITY)
+                    .map_or(0, |(i, _)| i as u64 + 1)
+            };
+        }
+        sum
+    }};
+}
+
+fn main() -> ExitCode {
+    let rounds = match std::env::args().nth(1).map(|a| a.parse::<usize>()) {
+        None => 6,
+        Some(Ok(n)) if n > 0 => n,
+        Some(_) => {
+            eprintln!("paired: the number of rounds must be a whole number from 1 on");
+            return ExitCode::FAILURE;
+        }
+    };
+    let path = Path::new("scenes/spheres-1m.toml");
+    let camera = match lumiere::scene::load(path) {
+        Ok(scene) => {
+            let c = &scene.camera;
+            lumiere::camera::Camera::new(c.position, c.look_at, c.up, c.vfov_deg, 1.0)
+        }
+        Err(e) => {
+            eprintln!("paired: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let (these, this_tree) = spheres_and_tree!(lumiere, path);
+    let (base_spheres, base_tree) = spheres_and_tree!(lumiere_base, path);
+    let coherent: Rays = (0..SIDE * SIDE)
+        .map(|i| camera.ray((i % SIDE) as f64 + 0.5, (i / SIDE) as f64 + 0.5, SIDE, SIDE))
+        .map(|r| (r.origin, r.dir))
+        .collect();
+    let incoherent: Rays = rays::incoherent_rays(INCOHERENT)
+        .into_iter()
+        .map(|r| (r.origin, r.dir))
+        .collect();
+
+    let mut differ = 0;
+    for rays in [&coherent, &incoherent] {
+        for &(origin, dir) in rays {
+            let (a, b) = (
+                lumiere::math::Ray::new(origin, dir),
+                lumiere_base::math::Ray::new(origin, dir),
+            );
+            let this = this_tree
+                .closest(&these, &a, 0.0, f64::INFINITY)
+                .map(|(i, h)| (i, h.t.to_bits()));
+            let base = base_tree
+                .closest(&base_spheres, &b, 0.0, f64::INFINITY)
+                .map(|(i, h)| (i, h.t.to_bits()));
+            let this_any = this_tree.any_hit(&these, &a, 0.0, f64::INFINITY, &|_| true);
+            let base_any = base_tree.any_hit(&base_spheres, &b, 0.0, f64::INFINITY, &|_| true);
+            differ += usize::from(this != base) + usize::from(this_any != base_any);
+        }
+    }
+    println!(
+        "hits: {differ} of {} rays' answers (closest and any) differ between this tree and the base\n",
+        2 * (coherent.len() + incoherent.len())
+    );
+
+    println!("| rays | query | this tree (Mrays/s) | base (Mrays/s) | this / base | rounds' range |");
+    println!("|---|---|---:|---:|---:|---:|");
+    let mut check = 0u64;
+    for (name, rays) in [("coherent", &coherent), ("incoherent", &incoherent)] {
+        for (query, any) in [("closest", false), ("any", true)] {
+            // Per round, the summed seconds of this tree and of the base.
+            let mut sums = vec![[0.0f64; 2]; rounds];
+            for (round, sum) in sums.iter_mut().enumerate() {
+                for (k, slice) in rays.chunks(SLICE).enumerate() {
+                    for turn in 0..2 {
+                        let which = (turn + k + round) % 2;
+                        let start = Instant::now();
+                        check += if which == 0 {
+                            trace!(lumiere, &these, this_tree, slice, any)
+                        } else {
+                            trace!(lumiere_base, &base_spheres, base_tree, slice, any)
+                        };
+                        sum[which] += start.elapsed().as_secs_f64();
+                    }
+                }
+            }
+            let total = |which: usize| sums.iter().map(|s| s[which]).sum::<f64>();
+            let rate = |which: usize| (rays.len() * rounds) as f64 / total(which) / 1e6;
+            let ratios: Vec<f64> = sums.iter().map(|s| s[1] / s[0]).collect();
+            let (low, high) = ratios
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |(l, h), &r| (l.min(r), h.max(r)));
+            println!(
+                "| {name} | {query} | {:.3} | {:.3} | {:.3} | {low:.3} – {high:.3} |",
+                rate(0),
+                rate(1),
+                total(1) / total(0)
+            );
+        }
+    }
+    // Printed so that the traces are not optimised away; equal builds print equal halves.
+    eprintln!("answers' sum: {check}");
+    if differ > 0 {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}
