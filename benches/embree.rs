@@ -37,7 +37,7 @@ use lumiere::math::Ray;
 use lumiere::scene::Object;
 use lumiere::shape::Shape;
 use rayon::prelude::*;
-use rays::incoherent_rays;
+use rays::{camera_rays, incoherent_rays};
 use std::path::Path;
 use std::time::Instant;
 
@@ -62,12 +62,6 @@ fn spheres_and_camera() -> (Vec<Object>, Camera) {
         .collect();
     let c = &scene.camera;
     (spheres, Camera::new(c.position, c.look_at, c.up, c.vfov_deg, 1.0))
-}
-
-fn coherent_rays(camera: &Camera) -> Vec<Ray> {
-    (0..SIDE * SIDE)
-        .map(|i| camera.ray((i % SIDE) as f64 + 0.5, (i / SIDE) as f64 + 0.5, SIDE, SIDE))
-        .collect()
 }
 
 fn embree_scene<'a>(device: &Device, spheres: &[Object]) -> Scene<'a> {
@@ -247,7 +241,7 @@ fn main() {
     );
     println!("|---|---|---|---:|---:|---:|---:|---:|---:|");
     let sets = [
-        ("coherent", true, coherent_rays(&camera)),
+        ("coherent", true, camera_rays(&camera, SIDE)),
         ("incoherent", false, incoherent_rays(INCOHERENT)),
     ];
     for threads in [1, 2] {

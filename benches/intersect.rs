@@ -26,12 +26,12 @@ use lumiere::scene::generate::{Generate, GenerateKind};
 use lumiere::shape::{Plane, Shape, SurfaceHit};
 use obvhs::cwbvh::{CwBvh, builder::build_cwbvh};
 use obvhs::{Boundable, BvhBuildParams};
-use rays::incoherent_rays;
+use rays::{camera_rays, incoherent_rays};
 use std::hint::black_box;
 use std::time::Duration;
 
 const SIZES: [usize; 5] = [8, 64, 1_000, 100_000, 1_000_000];
-const RAYS: usize = 4096;
+const RAYS: usize = 64 * 64;
 /// Object tests the linear scan may spend per timed iteration (bounds its ray count).
 const LINEAR_BUDGET: usize = 20_000_000;
 
@@ -52,9 +52,7 @@ fn objects(kind: GenerateKind, n: usize) -> Vec<Object> {
 /// 64 x 64 camera rays of the scenes/spheres-1k.toml camera.
 fn coherent_rays() -> Vec<Ray> {
     let cam = Camera::new(DVec3::new(0.0, -16.0, 8.0), DVec3::ZERO, DVec3::Z, 50.0, 1.0);
-    (0..RAYS)
-        .map(|i| cam.ray((i % 64) as f64 + 0.5, (i / 64) as f64 + 0.5, 64, 64))
-        .collect()
+    camera_rays(&cam, 64)
 }
 
 /// An object's box for obvhs: our f64 bounds, widened by a relative 1e-6 and converted to

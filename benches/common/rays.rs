@@ -1,9 +1,17 @@
-//! The incoherent rays the intersection benches share (benches/intersect.rs and
-//! benches/embree.rs), so both measure the same rays.
+//! The rays the intersection benches share (benches/intersect.rs, benches/embree.rs and
+//! benches/paired), so that they measure the same rays.
 
 use glam::DVec3;
+use lumiere::camera::Camera;
 use lumiere::math::Ray;
 use lumiere::sampling::{Purpose, Stream};
+
+/// `camera`'s rays through the centres of a `side` x `side` image's pixels, row by row.
+pub fn camera_rays(camera: &Camera, side: u32) -> Vec<Ray> {
+    (0..side * side)
+        .map(|i| camera.ray((i % side) as f64 + 0.5, (i / side) as f64 + 0.5, side, side))
+        .collect()
+}
 
 /// `count` rays for the slab of scenes/spheres-1k.toml and spheres-1m.toml: origins uniform
 /// in the slab's box grown by 2 ([-12, 12]^2 x [-2, 3]), directions uniform on the sphere.

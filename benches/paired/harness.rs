@@ -25,8 +25,7 @@ const SLICE: usize = 50_000;
 /// The rays of one set, as origins and directions (each build makes its own `Ray`s).
 type Rays = Vec<(glam::DVec3, glam::DVec3)>;
 
-/// Loads the spheres of scenes/spheres-1m.toml with crate `$c` and builds its BVH; the
-/// scene's camera is read by the working tree's crate only.
+/// Loads scenes/spheres-1m.toml with crate `$c`: its spheres, their BVH and its camera.
 macro_rules! spheres_and_tree {
     ($c:ident, $path:expr) => {{
         let scene = match $c::scene::load($path) {
@@ -42,7 +41,7 @@ macro_rules! spheres_and_tree {
             .filter(|o| matches!(o.shape, $c::shape::Shape::Sphere(_)))
             .collect();
         let tree = $c::accel::Accel::build_with(&spheres, $c::accel::AccelChoice::Bvh);
-        (spheres, tree)
+        (spheres, tree, scene.camera)
     }};
 }
 
@@ -75,20 +74,11 @@ fn main() -> ExitCode {
         }
     };
     let path = Path::new("scenes/spheres-1m.toml");
-    let camera = match lumiere::scene::load(path) {
-        Ok(scene) => {
-            let c = &scene.camera;
-            lumiere::camera::Camera::new(c.position, c.look_at, c.up, c.vfov_deg, 1.0)
-        }
-        Err(e) => {
-            eprintln!("paired: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
-    let (these, this_tree) = spheres_and_tree!(lumiere, path);
-    let (base_spheres, base_tree) = spheres_and_tree!(lumiere_base, path);
-    let coherent: Rays = (0..SIDE * SIDE)
-        .map(|i| camera.ray((i % SIDE) as f64 + 0.5, (i / SIDE) as f64 + 0.5, SIDE, SIDE))
+    let (these, this_tree, c) = spheres_and_tree!(lumiere, path);
+    let (base_spheres, base_tree, _) = spheres_and_tree!(lumiere_base, path);
+    let camera = lumiere::camera::Camera::new(c.position, c.look_at, c.up, c.vfov_deg, 1.0);
+    let coherent: Rays = rays::camera_rays(&camera, SIDE)
+        .into_iter()
         .map(|r| (r.origin, r.dir))
         .collect();
     let incoherent: Rays = rays::incoherent_rays(INCOHERENT)
