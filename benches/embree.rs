@@ -2,7 +2,9 @@
 //! same rays: 1000 x 1000 coherent camera rays of the scene's camera, and 1 000 000
 //! incoherent rays made as benches/intersect.rs makes them (origins in the slab grown by 2,
 //! directions uniform on the sphere). Closest hit and any hit (to infinity), on 1 and 2
-//! threads; Embree through its single-ray calls and, for coherent rays, 8-ray packets.
+//! threads; both kernels one ray a call and, for coherent rays, in packets of 16
+//! consecutive rays (lumiere's `closest_packet` and `any_hit_packet`, Embree's
+//! `rtcIntersect16` and `rtcOccluded16`).
 //!
 //! Embree comes from Debian's libembree-dev (3.13.5) through the embree3 crate, behind the
 //! `embree` feature (off in CI):
@@ -27,8 +29,8 @@
 mod rays;
 
 use embree3::{
-    BufferUsage, Device, Format, GeometryKind, Hit8, IntersectContext, Ray as EmbreeRay, Ray8, RayHit, RayHit8, Scene,
-    ValidMask, ValidMaskN,
+    BufferUsage, Device, Format, GeometryKind, Hit16, IntersectContext, Ray as EmbreeRay, Ray16, RayHit, RayHit16,
+    Scene, ValidMask, ValidMaskN,
 };
 use glam::DVec3;
 use lumiere::accel::{Accel, AccelChoice};
@@ -46,9 +48,12 @@ const INCOHERENT: usize = 1_000_000;
 const ROUNDS: usize = 5;
 /// Rays the two kernels trace in turn (16 tasks).
 const SLICE: usize = 65_536;
-/// Rays a task traces in a row (a chunk of 8-ray packets for Embree's packet calls).
+/// Rays a task traces in a row (a chunk of [`PACKET`]-ray packets for the packet calls).
 const TASK: usize = 4096;
 const MISS: u32 = u32::MAX;
+/// Rays a packet holds: lumiere's widest and Embree's.
+const PACKET: usize = 16;
+const _: () = assert!(PACKET == lumiere::accel::PACKET);
 
 /// The spheres of scenes/spheres-1m.toml (its floor plane left out: Embree gets spheres
 /// only) and its camera.
@@ -136,14 +141,38 @@ impl Kernels<'_, '_> {
         }
     }
 
-    /// Closest hits by 8-ray packets (the rays of a task in consecutive groups of 8).
-    fn embree_packets(&self, rays: &[Ray], out: &mut [u32]) {
+    /// lumiere's answers by packets of [`PACKET`] consecutive rays.
+    fn lumiere_packets(&self, query: Query, rays: &[Ray], out: &mut [u32]) {
+        let mut hits = [None; PACKET];
+        for (rays, out) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
+            match query {
+                Query::Closest => {
+                    let hits = &mut hits[..rays.len()];
+                    self.accel.closest_packet(self.spheres, rays, 0.0, f64::INFINITY, hits);
+                    for (out, hit) in out.iter_mut().zip(hits) {
+                        *out = hit.map_or(MISS, |(i, _)| i as u32);
+                    }
+                }
+                Query::Any => {
+                    let any = self
+                        .accel
+                        .any_hit_packet(self.spheres, rays, 0.0, f64::INFINITY, &|_| true);
+                    for (k, out) in out.iter_mut().enumerate() {
+                        *out = any >> k & 1;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Embree's answers by packets of [`PACKET`] consecutive rays.
+    fn embree_packets(&self, query: Query, rays: &[Ray], out: &mut [u32]) {
         let mut ctx = IntersectContext::coherent();
-        for (rays, out) in rays.chunks(8).zip(out.chunks_mut(8)) {
-            let mut valid = AlignedMask(ValidMaskN::new([ValidMask::Invalid; 8]));
-            let mut packet = RayHit8 {
-                ray: Ray8::default(),
-                hit: Hit8::new(),
+        for (rays, out) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
+            let mut valid = AlignedMask(ValidMaskN::new([ValidMask::Invalid; PACKET]));
+            let mut packet = RayHit16 {
+                ray: Ray16::default(),
+                hit: Hit16::new(),
             };
             for (k, ray) in rays.iter().enumerate() {
                 valid.0.lanes_mut()[k] = ValidMask::Valid;
@@ -153,21 +182,32 @@ impl Kernels<'_, '_> {
                 (p.dir_x[k], p.dir_y[k], p.dir_z[k]) = (d[0], d[1], d[2]);
                 (p.tnear[k], p.tfar[k], p.mask[k]) = (0.0, f32::INFINITY, u32::MAX);
             }
-            self.embree.intersect8(&mut ctx, &mut packet, &valid.0);
-            for (k, out) in out.iter_mut().enumerate() {
-                *out = if packet.hit.geomID[k] == MISS {
-                    MISS
-                } else {
-                    packet.hit.primID[k]
-                };
+            match query {
+                Query::Closest => {
+                    self.embree.intersect16(&mut ctx, &mut packet, &valid.0);
+                    for (k, out) in out.iter_mut().enumerate() {
+                        *out = if packet.hit.geomID[k] == MISS {
+                            MISS
+                        } else {
+                            packet.hit.primID[k]
+                        };
+                    }
+                }
+                Query::Any => {
+                    // An occluded ray comes back with `tfar = -inf`.
+                    self.embree.occluded16(&mut ctx, &mut packet.ray, &valid.0);
+                    for (k, out) in out.iter_mut().enumerate() {
+                        *out = u32::from(packet.ray.tfar[k] == f32::NEG_INFINITY);
+                    }
+                }
             }
         }
     }
 }
 
-/// Embree reads an 8-wide valid mask at 32-byte alignment.
-#[repr(C, align(32))]
-struct AlignedMask(ValidMaskN<8>);
+/// Embree reads a 16-wide valid mask at 64-byte alignment.
+#[repr(C, align(64))]
+struct AlignedMask(ValidMaskN<PACKET>);
 
 /// Wall time of `trace` over every ray on `pool`, one task per [`TASK`] rays.
 fn timed(pool: &rayon::ThreadPool, rays: &[Ray], out: &mut [u32], trace: &(dyn Fn(&[Ray], &mut [u32]) + Sync)) -> f64 {
@@ -237,9 +277,9 @@ fn main() {
     );
     println!();
     println!(
-        "| rays | query | Embree call | threads | lumiere (Mrays/s) | Embree (Mrays/s) | lumiere / Embree | rounds' range | same answer |"
+        "| rays | query | lumiere call | Embree call | threads | lumiere (Mrays/s) | Embree (Mrays/s) | lumiere / Embree | rounds' range | same answer |"
     );
-    println!("|---|---|---|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---|---|---|---:|---:|---:|---:|---:|---:|");
     let sets = [
         ("coherent", true, camera_rays(&camera, SIDE)),
         ("incoherent", false, incoherent_rays(INCOHERENT)),
@@ -251,23 +291,30 @@ fn main() {
             .expect("a thread pool");
         for (name, coherent, rays) in &sets {
             let mut calls = vec![
-                ("closest", "rtcIntersect1", Query::Closest, false),
-                ("any", "rtcOccluded1", Query::Any, false),
+                ("closest", "closest", "rtcIntersect1", Query::Closest, false),
+                ("any", "any_hit", "rtcOccluded1", Query::Any, false),
             ];
             if *coherent {
-                calls.push(("closest", "rtcIntersect8", Query::Closest, true));
+                calls.push(("closest", "closest_packet", "rtcIntersect16", Query::Closest, true));
+                calls.push(("any", "any_hit_packet", "rtcOccluded16", Query::Any, true));
             }
-            for (query_name, call, query, packets) in calls {
+            for (query_name, ours_call, call, query, packets) in calls {
                 let (mut ours, mut theirs) = (vec![0; rays.len()], vec![0; rays.len()]);
                 let rounds = paired(
                     &pool,
                     rays,
                     &mut ours,
                     &mut theirs,
-                    &|r, o| kernels.lumiere(query, r, o),
                     &|r, o| {
                         if packets {
-                            kernels.embree_packets(r, o)
+                            kernels.lumiere_packets(query, r, o)
+                        } else {
+                            kernels.lumiere(query, r, o)
+                        }
+                    },
+                    &|r, o| {
+                        if packets {
+                            kernels.embree_packets(query, r, o)
                         } else {
                             kernels.embree_single(query, *coherent, r, o)
                         }
@@ -278,7 +325,7 @@ fn main() {
                 let (low, high) = ratios.fold((f64::INFINITY, 0.0f64), |(l, h), x| (l.min(x), h.max(x)));
                 let rate = |t: f64| (ROUNDS * rays.len()) as f64 / t / 1e6;
                 println!(
-                    "| {name} | {query_name} | {call} | {threads} | {:.2} | {:.2} | {:.2} | {low:.2} – {high:.2} | {:.4} % |",
+                    "| {name} | {query_name} | {ours_call} | {call} | {threads} | {:.2} | {:.2} | {:.2} | {low:.2} – {high:.2} | {:.4} % |",
                     rate(a),
                     rate(b),
                     b / a,

@@ -818,3 +818,76 @@ fn auto_keeps_the_course_scenes_on_the_linear_scan() {
     }
     assert_eq!(World::new(&scene("spheres-1k.toml")).accel().name(), "bvh");
 }
+
+/// Packets of 1 to `lumiere::accel::PACKET` (16) rays from one origin, their directions
+/// spread by `spread` around the axis to an object (narrow ones share an octant and are walked
+/// together, wide ones mostly do not and fall back to single walks), with rays the `f32`
+/// test cannot carry among them: on both kernels, each ray's closest hit is the linear
+/// scan's to the bit (object, `t` and normal), below several `t_max`, and each any-hit
+/// answer too, under several filters.
+fn check_packets(objects: &[Object], seed: u64, half: f64) -> (usize, usize) {
+    let Cores { linear, kernels } = Cores::new(objects);
+    let mut s = Stream::new(seed, Purpose::Generator, 6);
+    let bits = |h: Option<(usize, lumiere::shape::SurfaceHit)>| {
+        h.map(|(j, h)| (j, h.t.to_bits(), h.normal.to_array().map(f64::to_bits)))
+    };
+    let filters: [&dyn Fn(usize) -> bool; 2] = [&|_| true, &|j| j % 3 != 1];
+    let (mut hits, mut lanes) = (0, 0);
+    for p in 0..160 {
+        let origin = point(&mut s, 1.5 * half);
+        // Aimed at an object, so that narrow packets hit it.
+        let target = objects[(p * 7) % objects.len()]
+            .shape
+            .bounds()
+            .map_or(DVec3::ZERO, |b| b.centroid());
+        let axis = (target - origin).normalize();
+        let spread = [0.002, 0.03, 1.0][p % 3];
+        let len = 1 + p % lumiere::accel::PACKET;
+        let mut rays: Vec<Ray> = (0..len)
+            .map(|_| Ray::new(origin, (axis + unit(&mut s) * spread).normalize()))
+            .collect();
+        if p % 16 == 5 {
+            // A direction component too small for the `f32` test (not zero).
+            rays[len - 1] = Ray::new(origin, DVec3::new(1e-20, axis.y, axis.z).normalize());
+        }
+        for t_max in [f64::INFINITY, 0.6 * half, 1e-9] {
+            let mut want = Vec::new();
+            for r in &rays {
+                want.push(bits(linear.closest(objects, r, 0.0, t_max)));
+            }
+            for bvh in &kernels {
+                let mut out = vec![None; len];
+                bvh.closest_packet(objects, &rays, 0.0, t_max, &mut out);
+                let got: Vec<_> = out.into_iter().map(bits).collect();
+                assert_eq!(got, want, "packet {p} below {t_max}");
+                for f in filters {
+                    let want = linear.any_hit_packet(objects, &rays, 0.0, t_max, f);
+                    assert_eq!(bvh.any_hit_packet(objects, &rays, 0.0, t_max, f), want, "packet {p}");
+                }
+            }
+            hits += want.iter().filter(|h| h.is_some()).count();
+            lanes += len;
+        }
+    }
+    (hits, lanes)
+}
+
+#[test]
+fn packets_agree_with_the_linear_scan() {
+    // Every shape kind, planes (tested before the tree) among them.
+    let half = 2.0 + 60f64.cbrt();
+    let (hits, lanes) = check_packets(&random_scene(12, 60, half), 12, half);
+    assert!(hits > lanes / 5 && hits < lanes, "{hits} hits of {lanes}");
+    // A pile of spheres large enough for the tree's sifted leaves of up to 31.
+    let mut s = Stream::new(33, Purpose::Generator, 4);
+    let pile: Vec<Object> = (0..6000)
+        .map(|_| {
+            object(Shape::Sphere(Sphere::new(
+                point(&mut s, 5.0),
+                0.05 + 0.2 * s.next_f64(),
+            )))
+        })
+        .collect();
+    let (hits, lanes) = check_packets(&pile, 34, 5.0);
+    assert!(hits > lanes / 3 && hits < lanes, "{hits} hits of {lanes}");
+}

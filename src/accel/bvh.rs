@@ -17,6 +17,14 @@
 //! box tests are conservative (see [`super::wide`]), so no object that holds the answer is
 //! ever skipped.
 //!
+//! Up to [`PACKET`] rays whose directions share an octant (neighbouring camera rays, shadow
+//! rays towards one light) can be walked together ([`Bvh::closest_packet`],
+//! [`Bvh::any_hit_packet`]): a node is loaded once and its children tested for every ray
+//! of the packet at once ([`super::packet`]); a child is pushed with the rays that enter
+//! it and taken by those whose best hit does not rule it out, and each ray tests a leaf's
+//! objects as its own walk would. Each ray's answer is its single walk's, for the same two
+//! reasons. Rays of several octants are walked one by one.
+//!
 //! A tree of more than 4096 objects with spheres among them keeps a copy of the spheres in
 //! leaf order ([`SphereLanes`]): a leaf's spheres are read from one run of memory and
 //! sifted all at once in `f32` by a test that drops only spheres the routine misses
@@ -32,9 +40,10 @@
 
 use super::build::{Built, MAX_SAH_DEPTH, PrimRef, build};
 use super::leaf::{Masks, SphereLanes};
-use super::node::stored_box;
+use super::node::{stored_box, up};
+use super::packet::{PACKET, PacketSlots, each_lane};
 use super::sift::NarrowRay;
-use super::wide::{F32_RANGE, F32Slots, F64Slots, Node4, SlotTest, WIDTH, collapse, unpack};
+use super::wide::{F32_RANGE, F32Slots, F64Slots, Node4, RayTerms, SlotTest, WIDTH, collapse, unpack};
 use crate::math::Ray;
 use crate::scene::Object;
 use crate::shape::{Shape, Sphere, SurfaceHit};
@@ -77,10 +86,8 @@ fn consider(
         Some((i, h)) if j < i => h.t.next_up(),
         Some((_, h)) => h.t,
     };
-    // A copied sphere's test is called directly; forced inline into the walk, it makes the
-    // closest-hit walk a fifth slower (BENCHMARKS.md, "Against Embree 3").
     let hit = match sphere {
-        Some(s) => s.intersect(ray, t_min, limit),
+        Some(s) => sphere_hit(s, ray, t_min, limit),
         None => object_hit(objects, ray, t_min, limit, j),
     };
     if let Some(h) = hit {
@@ -92,6 +99,14 @@ fn consider(
     } else {
         false
     }
+}
+
+/// The hit of a copied sphere in `(t_min, t_max)`. A call of its own: inlined into a walk,
+/// its square root and divisions (the normal) made the closest-hit walks a fifth to a third
+/// slower (BENCHMARKS.md, "Against Embree 3").
+#[inline(never)]
+fn sphere_hit(sphere: &Sphere, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+    sphere.intersect(ray, t_min, t_max)
 }
 
 /// Object `j`'s hit in `(t_min, t_max)`, read from `objects`. A call of its own, so that
@@ -206,8 +221,9 @@ pub struct Bvh {
     prims: Vec<u32>,
     /// The spheres in leaf order, when the scene has any.
     spheres: Option<SphereLanes>,
-    /// The instructions the walks run on.
+    /// The instructions the walks run on, and how their vector comparisons become masks.
     kernel: Kernel,
+    masks: Masks,
     /// Objects without bounds (planes), tested before the tree.
     unbounded: Vec<u32>,
     /// Depth of the deepest 4-wide node (the root at 0).
@@ -290,6 +306,7 @@ impl Bvh {
             prims,
             spheres,
             kernel,
+            masks,
             unbounded,
             fits_f32,
         }
@@ -592,6 +609,275 @@ impl Bvh {
         self.visit_hits(objects, ray, t_min, t_max, filter, Some(visit));
     }
 
+    /// The packet test for `rays` (at least 2, at most [`PACKET`]) when they and the tree fit
+    /// the `f32` test and share an octant, else `None` (they are then walked one by one).
+    #[inline(always)]
+    fn packet_slots(&self, rays: &[Ray], t_min: f64, t_max: f64) -> Option<PacketSlots> {
+        if !self.fits_f32 || !(2..=PACKET).contains(&rays.len()) {
+            return None;
+        }
+        // Rays of several octants (most incoherent packets) are told apart by their signs
+        // alone, before any term is computed.
+        let signs = |r: &Ray| r.dir.to_array().map(f64::is_sign_negative);
+        if rays.iter().any(|r| signs(r) != signs(&rays[0])) {
+            return None;
+        }
+        PacketSlots::new(rays.len(), |l| {
+            RayTerms::new(rays[l].origin.to_array(), rays[l].dir.to_array(), t_min, t_max)
+        })
+    }
+
+    /// [`Bvh::closest`] for each of `rays` (at most [`PACKET`]), into `out`: rays of one
+    /// octant are walked together, loading and testing each node once for all of them
+    /// ([`PacketSlots`]); each ray's answer is its own walk's, to the bit.
+    pub fn closest_packet(
+        &self,
+        objects: &[Object],
+        rays: &[Ray],
+        t_min: f64,
+        t_max: f64,
+        out: &mut [Option<(usize, SurfaceHit)>],
+    ) {
+        assert!(
+            rays.len() <= PACKET && out.len() == rays.len(),
+            "a packet of at most {PACKET} rays and answers"
+        );
+        match self.kernel {
+            Kernel::Widest => closest_packet_widest(self, objects, rays, t_min, t_max, out),
+            Kernel::Baseline => self.closest_packet_walk(objects, rays, t_min, t_max, out),
+        }
+    }
+
+    /// [`Bvh::closest_packet`] on the instructions of the function it is inlined into.
+    #[inline(always)]
+    fn closest_packet_walk(
+        &self,
+        objects: &[Object],
+        rays: &[Ray],
+        t_min: f64,
+        t_max: f64,
+        out: &mut [Option<(usize, SurfaceHit)>],
+    ) {
+        let Some(slots) = self.packet_slots(rays, t_min, t_max) else {
+            // One walk at a time, each through the call that picks its instructions: inlined
+            // here, the single walk ran slower.
+            for (ray, out) in rays.iter().zip(out) {
+                *out = self.closest(objects, ray, t_min, t_max);
+            }
+            return;
+        };
+        if stack_for(self.depth) <= MEDIUM {
+            self.closest_packet_with::<MEDIUM>(objects, rays, t_min, t_max, slots, out);
+        } else {
+            self.closest_packet_with::<FULL>(objects, rays, t_min, t_max, slots, out);
+        }
+    }
+
+    /// [`Bvh::closest_packet`] with the test `slots` and a stack of `S` entries: a child is
+    /// pushed with the lanes that enter it and their entries, and taken by the lanes whose
+    /// best hit so far does not rule it out.
+    #[inline(always)]
+    fn closest_packet_with<const S: usize>(
+        &self,
+        objects: &[Object],
+        rays: &[Ray],
+        t_min: f64,
+        t_max: f64,
+        mut slots: PacketSlots,
+        out: &mut [Option<(usize, SurfaceHit)>],
+    ) {
+        let mut leaves: [Closest; PACKET] = std::array::from_fn(|l| Closest {
+            objects,
+            ray: &rays[l.min(rays.len() - 1)],
+            t_min,
+            t_max,
+            best: None,
+            closer: false,
+        });
+        let all = u32::MAX >> (32 - rays.len());
+        for (l, leaf) in leaves.iter_mut().enumerate().take(rays.len()) {
+            for &j in &self.unbounded {
+                leaf.test(j as usize, None);
+            }
+            if leaf.best.is_some() {
+                slots.set_t_max(l, up(bound(&leaf.best, t_max)));
+            }
+        }
+        if !self.nodes.is_empty() {
+            let sifts: [Option<NarrowRay>; PACKET] = std::array::from_fn(|l| self.sift(&rays[l.min(rays.len() - 1)]));
+            // Left unset: a packet's entries are 40 bytes, and clearing the whole stack for
+            // each packet cost more than its walk's pushes.
+            let mut stack = [const { std::mem::MaybeUninit::<(u32, u32, [f32; PACKET])>::uninit() }; S];
+            let mut depth = 0;
+            let mut at = 0usize;
+            let mut lanes = all;
+            'walk: loop {
+                let n = &self.nodes[at];
+                let order = n.order[slots.octant()];
+                // Farthest first, so that the nearest is on top.
+                for k in (0..WIDTH).rev() {
+                    let s = (order >> (2 * k)) as usize & 3;
+                    let (entries, entered) = slots.enter(n, s, self.masks);
+                    let entered = entered & lanes;
+                    if entered != 0 {
+                        stack[depth].write((n.child[s], entered, entries));
+                        depth += 1;
+                        self.prefetch(n.child[s]);
+                    }
+                }
+                loop {
+                    if depth == 0 {
+                        break 'walk;
+                    }
+                    depth -= 1;
+                    // SAFETY: entries below `depth` were written by the pushes above.
+                    let (child, entered, entries) = unsafe { stack[depth].assume_init() };
+                    let live = entered & slots.within(&entries, self.masks);
+                    if live == 0 {
+                        continue;
+                    }
+                    let (first, count) = unpack(child);
+                    if count == 0 {
+                        at = first;
+                        lanes = live;
+                        break;
+                    }
+                    for l in each_lane(live) {
+                        let leaf = &mut leaves[l];
+                        leaf.closer = false;
+                        self.leaf_until(first, count, sifts[l].as_ref(), leaf);
+                        if leaf.closer {
+                            slots.set_t_max(l, up(bound(&leaf.best, t_max)));
+                        }
+                    }
+                }
+            }
+        }
+        for (out, leaf) in out.iter_mut().zip(leaves) {
+            *out = leaf.best;
+        }
+    }
+
+    /// [`Bvh::any_hit`] for each of `rays` (at most [`PACKET`]): bit `l` of the answer is
+    /// ray `l`'s. Rays of one octant are walked together, as in [`Bvh::closest_packet`];
+    /// a ray leaves the walk at its first hit.
+    pub fn any_hit_packet(
+        &self,
+        objects: &[Object],
+        rays: &[Ray],
+        t_min: f64,
+        t_max: f64,
+        filter: &dyn Fn(usize) -> bool,
+    ) -> u32 {
+        assert!(rays.len() <= PACKET, "a packet of at most {PACKET} rays");
+        match self.kernel {
+            Kernel::Widest => any_hit_packet_widest(self, objects, rays, t_min, t_max, filter),
+            Kernel::Baseline => self.any_hit_packet_walk(objects, rays, t_min, t_max, filter),
+        }
+    }
+
+    /// [`Bvh::any_hit_packet`] on the instructions of the function it is inlined into.
+    #[inline(always)]
+    fn any_hit_packet_walk(
+        &self,
+        objects: &[Object],
+        rays: &[Ray],
+        t_min: f64,
+        t_max: f64,
+        filter: &dyn Fn(usize) -> bool,
+    ) -> u32 {
+        let Some(slots) = self.packet_slots(rays, t_min, t_max) else {
+            // As in `closest_packet_walk`.
+            let mut hits = 0;
+            for (l, ray) in rays.iter().enumerate() {
+                hits |= u32::from(self.any_hit(objects, ray, t_min, t_max, filter)) << l;
+            }
+            return hits;
+        };
+        if stack_for(self.depth) <= MEDIUM {
+            self.any_hit_packet_with::<MEDIUM>(objects, rays, t_min, t_max, filter, slots)
+        } else {
+            self.any_hit_packet_with::<FULL>(objects, rays, t_min, t_max, filter, slots)
+        }
+    }
+
+    /// [`Bvh::any_hit_packet`] with the test `slots` and a stack of `S` entries.
+    #[inline(always)]
+    fn any_hit_packet_with<const S: usize>(
+        &self,
+        objects: &[Object],
+        rays: &[Ray],
+        t_min: f64,
+        t_max: f64,
+        filter: &dyn Fn(usize) -> bool,
+        slots: PacketSlots,
+    ) -> u32 {
+        let mut leaves: [Hits; PACKET] = std::array::from_fn(|l| Hits {
+            objects,
+            ray: &rays[l.min(rays.len() - 1)],
+            t_min,
+            t_max,
+            filter,
+            each: None,
+        });
+        let all = u32::MAX >> (32 - rays.len());
+        let mut hits = 0;
+        for (l, leaf) in leaves.iter_mut().enumerate().take(rays.len()) {
+            for &j in &self.unbounded {
+                if leaf.test(j as usize, None) {
+                    hits |= 1 << l;
+                    break;
+                }
+            }
+        }
+        if hits == all || self.nodes.is_empty() {
+            return hits;
+        }
+        let sifts: [Option<NarrowRay>; PACKET] = std::array::from_fn(|l| self.sift(&rays[l.min(rays.len() - 1)]));
+        let mut stack = [(0u32, 0u32); S];
+        let mut depth = 0;
+        let mut at = 0usize;
+        let mut lanes = all & !hits;
+        loop {
+            let n = &self.nodes[at];
+            let order = n.order[slots.octant()];
+            for k in (0..WIDTH).rev() {
+                let s = (order >> (2 * k)) as usize & 3;
+                let entered = slots.enter(n, s, self.masks).1 & lanes;
+                if entered != 0 {
+                    stack[depth] = (n.child[s], entered);
+                    depth += 1;
+                    self.prefetch(n.child[s]);
+                }
+            }
+            loop {
+                if depth == 0 {
+                    return hits;
+                }
+                depth -= 1;
+                let (child, entered) = stack[depth];
+                let live = entered & !hits;
+                if live == 0 {
+                    continue;
+                }
+                let (first, count) = unpack(child);
+                if count == 0 {
+                    at = first;
+                    lanes = live;
+                    break;
+                }
+                for l in each_lane(live) {
+                    if self.leaf_until(first, count, sifts[l].as_ref(), &mut leaves[l]) {
+                        hits |= 1 << l;
+                    }
+                }
+                if hits == all {
+                    return hits;
+                }
+            }
+        }
+    }
+
     /// Checks the structure against `objects`: every bounded object in exactly one leaf and
     /// every unbounded one in the separate list, each slot's box containing its child's
     /// slots (a leaf's, the stored boxes of its objects), the occupied slots first and each
@@ -698,4 +984,30 @@ fn any_hit_widest(
     filter: &dyn Fn(usize) -> bool,
 ) -> bool {
     bvh.any_hit_walk(objects, ray, t_min, t_max, filter)
+}
+
+/// [`Bvh::closest_packet`] on the widest vectors the processor has.
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn closest_packet_widest(
+    bvh: &Bvh,
+    objects: &[Object],
+    rays: &[Ray],
+    t_min: f64,
+    t_max: f64,
+    out: &mut [Option<(usize, SurfaceHit)>],
+) {
+    bvh.closest_packet_walk(objects, rays, t_min, t_max, out)
+}
+
+/// [`Bvh::any_hit_packet`] on the widest vectors the processor has.
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn any_hit_packet_widest(
+    bvh: &Bvh,
+    objects: &[Object],
+    rays: &[Ray],
+    t_min: f64,
+    t_max: f64,
+    filter: &dyn Fn(usize) -> bool,
+) -> u32 {
+    bvh.any_hit_packet_walk(objects, rays, t_min, t_max, filter)
 }

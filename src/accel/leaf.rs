@@ -86,7 +86,7 @@ impl Masks {
     /// The lanes of `margin` (bit `l` for lane `l`) that are not negative: a NaN (a
     /// non-sphere's lane) is kept, `-0` too.
     #[inline(always)]
-    fn not_negative<const N: usize>(self, margin: &[f32; N]) -> u32 {
+    pub fn not_negative<const N: usize>(self, margin: &[f32; N]) -> u32 {
         #[cfg(target_arch = "x86_64")]
         if self == Masks::Avx512 {
             use std::arch::x86_64::{

@@ -1,7 +1,9 @@
 //! Ray queries over a scene's objects: the closest hit (camera, reflection and refraction
 //! rays), any hit among objects a filter accepts (opaque shadow tests), and every object hit
 //! in a range (transparent shadow filtering). Two cores answer them, with the same hits to
-//! the bit: the linear scan (every object, every ray) and a BVH. The scene picks the BVH
+//! the bit: the linear scan (every object, every ray) and a BVH. The closest and any hit
+//! have packet forms too, for up to [`PACKET`] neighbouring rays at once, which the BVH
+//! walks together. The scene picks the BVH
 //! from [`CROSSOVER`] bounded objects on (measured, BENCHMARKS.md), unless told otherwise.
 
 mod build;
@@ -9,11 +11,13 @@ mod bvh;
 mod leaf;
 mod linear;
 mod node;
+mod packet;
 mod sift;
 mod wide;
 
 pub use bvh::{Bvh, Kernel};
 pub use linear::Linear;
+pub use packet::PACKET;
 
 use crate::math::Ray;
 use crate::scene::Object;
@@ -133,6 +137,45 @@ impl Accel {
         match self {
             Accel::Linear(l) => l.any_hit(objects, ray, t_min, t_max, filter),
             Accel::Bvh(b) => b.any_hit(objects, ray, t_min, t_max, filter),
+        }
+    }
+
+    /// [`Accel::closest`] for each of `rays` (at most [`PACKET`]), into `out` (as long as
+    /// `rays`): the BVH walks rays whose directions share an octant together
+    /// ([`Bvh::closest_packet`]), with each ray's answer to the bit.
+    pub fn closest_packet(
+        &self,
+        objects: &[Object],
+        rays: &[Ray],
+        t_min: f64,
+        t_max: f64,
+        out: &mut [Option<(usize, SurfaceHit)>],
+    ) {
+        match self {
+            Accel::Linear(l) => {
+                for (ray, out) in rays.iter().zip(out) {
+                    *out = l.closest(objects, ray, t_min, t_max);
+                }
+            }
+            Accel::Bvh(b) => b.closest_packet(objects, rays, t_min, t_max, out),
+        }
+    }
+
+    /// [`Accel::any_hit`] for each of `rays` (at most [`PACKET`]): bit `l` of the answer is
+    /// ray `l`'s (see [`Accel::closest_packet`]).
+    pub fn any_hit_packet(
+        &self,
+        objects: &[Object],
+        rays: &[Ray],
+        t_min: f64,
+        t_max: f64,
+        filter: &dyn Fn(usize) -> bool,
+    ) -> u32 {
+        match self {
+            Accel::Linear(l) => rays.iter().enumerate().fold(0, |hits, (k, ray)| {
+                hits | u32::from(l.any_hit(objects, ray, t_min, t_max, filter)) << k
+            }),
+            Accel::Bvh(b) => b.any_hit_packet(objects, rays, t_min, t_max, filter),
         }
     }
 

@@ -260,9 +260,26 @@ pub struct F32Slots {
     octant: usize,
 }
 
-impl F32Slots {
-    /// The test for `origin + t dir`, `t` in `[t_min, t_max]`, or `None` when `f32` cannot
-    /// carry it or `t_min` is negative (see the module doc).
+/// One ray's terms of the `f32` test, per axis in `x, y, z` order: what [`F32Slots`] splats
+/// across a node's slots and [`super::packet::PacketSlots`] lays across a packet's rays.
+#[derive(Clone, Copy, Debug)]
+pub struct RayTerms {
+    /// The origin's `f32` bound that makes the entry earlier, and the exit later.
+    pub entry_origin: [f32; 3],
+    pub exit_origin: [f32; 3],
+    /// The reciprocal direction shrunk by `WIDEN32` (for entries) and grown by it (for
+    /// exits).
+    pub entry_inv: [f32; 3],
+    pub exit_inv: [f32; 3],
+    /// `t_min` rounded down and `t_max` rounded up.
+    pub t_min: f32,
+    pub t_max: f32,
+    pub octant: usize,
+}
+
+impl RayTerms {
+    /// The terms for `origin + t dir`, `t` in `[t_min, t_max]`, or `None` when `f32` cannot
+    /// carry the test or `t_min` is negative (see the module doc).
     #[inline(always)]
     pub fn new(origin: [f64; 3], dir: [f64; 3], t_min: f64, t_max: f64) -> Option<Self> {
         // The three axes in the first three lanes (the fourth is a harmless 0 and 1).
@@ -286,28 +303,67 @@ impl F32Slots {
         let inv = d.recip();
         let (shrunk, grown) = ((inv * (1.0 - WIDEN32)).to_array(), (inv * (1.0 + WIDEN32)).to_array());
         let octant = octant_of(dir);
-        let mut t = F32Slots {
-            entry_row: [0; 3],
-            exit_row: [0; 3],
-            entry_origin: [Vec4::ZERO; 3],
-            exit_origin: [Vec4::ZERO; 3],
-            entry_inv: [Vec4::ZERO; 3],
-            exit_inv: [Vec4::ZERO; 3],
-            t_min: Vec4::splat(down(t_min)),
-            t_max: Vec4::splat(up(t_max)),
+        let mut t = RayTerms {
+            entry_origin: [0.0; 3],
+            exit_origin: [0.0; 3],
+            entry_inv: [0.0; 3],
+            exit_inv: [0.0; 3],
+            t_min: down(t_min),
+            t_max: up(t_max),
             octant,
         };
         // Plain loops: `array::map` with closures is not inlined here, and the copies of
         // its results stall the walk.
         for a in 0..3 {
             let negative = octant >> a & 1 == 1;
-            (t.entry_row[a], t.exit_row[a]) = slab_rows(a, negative);
-            t.entry_origin[a] = Vec4::splat(if negative { lo[a] } else { hi[a] });
-            t.exit_origin[a] = Vec4::splat(if negative { hi[a] } else { lo[a] });
-            t.entry_inv[a] = Vec4::splat(shrunk[a]);
-            t.exit_inv[a] = Vec4::splat(grown[a]);
+            t.entry_origin[a] = if negative { lo[a] } else { hi[a] };
+            t.exit_origin[a] = if negative { hi[a] } else { lo[a] };
+            t.entry_inv[a] = shrunk[a];
+            t.exit_inv[a] = grown[a];
         }
         Some(t)
+    }
+
+    /// The rows of [`Node4::bounds`] by which the ray enters and leaves each axis' slab.
+    #[inline(always)]
+    pub fn rows(&self) -> ([usize; 3], [usize; 3]) {
+        let mut rows = ([0; 3], [0; 3]);
+        for a in 0..3 {
+            (rows.0[a], rows.1[a]) = slab_rows(a, self.octant >> a & 1 == 1);
+        }
+        rows
+    }
+}
+
+/// The absolute `2^-126` on either side (see the module doc): the entry is early by it, the
+/// exit late, so whether a slot is entered compares `near` with `far` plus it twice.
+pub const TINY: f32 = f32::MIN_POSITIVE;
+
+impl F32Slots {
+    /// The test for `origin + t dir`, `t` in `[t_min, t_max]`, or `None` when `f32` cannot
+    /// carry it or `t_min` is negative (see the module doc).
+    #[inline(always)]
+    pub fn new(origin: [f64; 3], dir: [f64; 3], t_min: f64, t_max: f64) -> Option<Self> {
+        let t = RayTerms::new(origin, dir, t_min, t_max)?;
+        let (entry_row, exit_row) = t.rows();
+        let mut slots = F32Slots {
+            entry_row,
+            exit_row,
+            entry_origin: [Vec4::ZERO; 3],
+            exit_origin: [Vec4::ZERO; 3],
+            entry_inv: [Vec4::ZERO; 3],
+            exit_inv: [Vec4::ZERO; 3],
+            t_min: Vec4::splat(t.t_min),
+            t_max: Vec4::splat(t.t_max),
+            octant: t.octant,
+        };
+        for a in 0..3 {
+            slots.entry_origin[a] = Vec4::splat(t.entry_origin[a]);
+            slots.exit_origin[a] = Vec4::splat(t.exit_origin[a]);
+            slots.entry_inv[a] = Vec4::splat(t.entry_inv[a]);
+            slots.exit_inv[a] = Vec4::splat(t.exit_inv[a]);
+        }
+        Some(slots)
     }
 }
 
@@ -327,9 +383,7 @@ impl SlotTest for F32Slots {
             near = t0.max(near);
             far = t1.min(far);
         }
-        // The absolute `2^-126` on either side (see the module doc): the entry is early by
-        // it, the exit late, so the comparison takes it twice.
-        let tiny = Vec4::splat(f32::MIN_POSITIVE);
+        let tiny = Vec4::splat(TINY);
         let entered = near.cmple(far + 2.0 * tiny).bitmask();
         ((near - tiny).to_array(), entered)
     }
