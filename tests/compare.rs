@@ -236,6 +236,21 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
         ),
         "{err}"
     );
+    // An image of no pixels, alone or against itself, is refused by name, never a panic.
+    let empty = dir.join("empty.ppm");
+    fs::write(&empty, b"P3\n0 0\n255\n").unwrap();
+    for args in [[s(&empty), s(&empty)], [s(&a), s(&empty)]] {
+        let (code, out, err) = compare(&args);
+        assert_eq!(code, 2);
+        assert_eq!(
+            err,
+            format!(
+                "lumiere: error: {}: the PPM image is 0 x 0 pixels: it has no pixel to compare\n",
+                empty.display()
+            )
+        );
+        assert!(out.is_empty());
+    }
     let missing = dir.join("missing.png");
     let (code, _, err) = compare(&[s(&missing), s(&a)]);
     assert_eq!(code, 2);

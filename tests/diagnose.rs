@@ -287,6 +287,12 @@ fn command_line_text_json_report_and_errors() {
 
     // Bad input: exit 2, naming what is wrong.
     let missing = dir.join("missing.png");
+    let empty = dir.join("empty.ppm");
+    std::fs::write(&empty, b"P3\n0 0\n255\n").unwrap();
+    let no_pixel = format!(
+        "{}: the PPM image is 0 x 0 pixels: it has no pixel to compare",
+        empty.display()
+    );
     let deep = dir.join("missing/report");
     for (extra, message) in [
         (
@@ -306,6 +312,7 @@ fn command_line_text_json_report_and_errors() {
             "--report: is a file, not a folder",
         ),
         (vec![missing.to_str().unwrap()], "missing.png"),
+        (vec![empty.to_str().unwrap()], no_pixel.as_str()),
     ] {
         let o = lumiere(&[&args[..2], &extra[..]].concat());
         assert_eq!(o.status.code(), Some(2), "{extra:?}");

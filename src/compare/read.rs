@@ -43,8 +43,22 @@ pub fn read_image(path: &Path) -> Result<Image, String> {
     decode(&bytes, extension).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// Decodes an image from its bytes; `extension` (without the dot) names TGA files.
+/// Decodes an image from its bytes; `extension` (without the dot) names TGA files. An
+/// image without pixels (a side of 0, which PPM and BMP headers can say) is refused: there
+/// is nothing to compare.
 pub fn decode(bytes: &[u8], extension: &str) -> Result<Image, String> {
+    let image = decode_any(bytes, extension)?;
+    if image.width == 0 || image.height == 0 {
+        return Err(format!(
+            "the {} image is {} x {} pixels: it has no pixel to compare",
+            image.format, image.width, image.height
+        ));
+    }
+    Ok(image)
+}
+
+/// [`decode`], whatever the image's size.
+fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
     if looks_like_pfm(bytes) {
         let pfm = decode_pfm(bytes)?;
         let mut notes = vec![float_note("PFM")];
@@ -278,5 +292,17 @@ mod tests {
         assert!(e.starts_with("a GIF image, which compare does not read"), "{e}");
         let e = decode(b"\x89PNG\r\n\x1a\n", "png").unwrap_err();
         assert!(e.starts_with("cannot decode the PNG image: "), "{e}");
+    }
+
+    #[test]
+    fn images_without_pixels_are_refused() {
+        for (bytes, size) in [
+            (&b"P3\n0 0\n255\n"[..], "0 x 0"),
+            (b"P3\n0 2\n255\n", "0 x 2"),
+            (b"P2\n3 0\n255\n", "3 x 0"),
+        ] {
+            let e = decode(bytes, "ppm").unwrap_err();
+            assert_eq!(e, format!("the PPM image is {size} pixels: it has no pixel to compare"));
+        }
     }
 }
