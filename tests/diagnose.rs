@@ -293,6 +293,25 @@ fn command_line_text_json_report_and_errors() {
         "{}: the PPM image is 0 x 0 pixels: it has no pixel to compare",
         empty.display()
     );
+    let notes = dir.join("notes.txt");
+    std::fs::write(&notes, "not a folder").unwrap();
+    // The report never overwrites an input: the image or the scene named as the folder, or
+    // an image named as one of the report's files in the folder.
+    let png_is_report = format!(
+        "{}: --report: is the image {}, an input, not a folder for the report",
+        png.display(),
+        png.display()
+    );
+    let scene_is_report = format!("{}: --report: is the scene {}, an input", args[1], args[1]);
+    let beside = dir.join("inputs");
+    std::fs::create_dir_all(&beside).unwrap();
+    let inside = beside.join("image.png");
+    std::fs::copy(&png, &inside).unwrap();
+    let overwritten = format!(
+        "--report: {} would overwrite the image {}: write the report into another folder",
+        inside.display(),
+        inside.display()
+    );
     let deep = dir.join("missing/report");
     for (extra, message) in [
         (
@@ -308,8 +327,20 @@ fn command_line_text_json_report_and_errors() {
             "missing does not exist",
         ),
         (
+            vec![png.to_str().unwrap(), "--report", notes.to_str().unwrap()],
+            "notes.txt: --report: is a file, not a folder",
+        ),
+        (
             vec![png.to_str().unwrap(), "--report", png.to_str().unwrap()],
-            "--report: is a file, not a folder",
+            png_is_report.as_str(),
+        ),
+        (
+            vec![png.to_str().unwrap(), "--report", args[1]],
+            scene_is_report.as_str(),
+        ),
+        (
+            vec![inside.to_str().unwrap(), "--report", beside.to_str().unwrap()],
+            overwritten.as_str(),
         ),
         (vec![missing.to_str().unwrap()], "missing.png"),
         (vec![empty.to_str().unwrap()], no_pixel.as_str()),
@@ -319,6 +350,8 @@ fn command_line_text_json_report_and_errors() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains(message), "{extra:?}: {err}");
     }
+    assert_eq!(std::fs::read(&inside).unwrap(), std::fs::read(&png).unwrap());
+    assert_eq!(std::fs::read_dir(&beside).unwrap().count(), 1);
 }
 
 #[test]

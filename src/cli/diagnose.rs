@@ -85,6 +85,13 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
+        if let Some((what, input)) = inputs(scene_path, &args.images).find(|(_, input)| same_file(dir, input)) {
+            return Err(CliError::BadInput(format!(
+                "{}: --report: is the {what} {}, an input, not a folder for the report",
+                dir.display(),
+                input.display()
+            )));
+        }
         if dir.exists() && !dir.is_dir() {
             return Err(CliError::BadInput(format!(
                 "{}: --report: is a file, not a folder",
@@ -101,6 +108,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
     }
     let images = read_images(&args.images)?;
     let reports = report_folders(args.report.as_deref(), &args.images)?;
+    check_reports_spare_inputs(&reports, scene_path, &args.images, args.top)?;
     let (width, height) = (images[0].width, images[0].height);
     let mut overrides = args.overrides.clone();
     for (given, actual, flag) in [
@@ -249,6 +257,47 @@ fn report_folders(dir: Option<&Path>, images: &[PathBuf]) -> Result<Vec<PathBuf>
         folders.push(folder);
     }
     Ok(folders)
+}
+
+/// The inputs of a diagnosis, each with what it is: the scene, then the images.
+fn inputs<'a>(scene: &'a Path, images: &'a [PathBuf]) -> impl Iterator<Item = (&'static str, &'a Path)> {
+    std::iter::once(("scene", scene)).chain(images.iter().map(|i| ("image", i.as_path())))
+}
+
+/// Whether `a` and `b` name the same existing file.
+fn same_file(a: &Path, b: &Path) -> bool {
+    matches!((a.canonicalize(), b.canonicalize()), (Ok(a), Ok(b)) if a == b)
+}
+
+/// Checks, before anything is rendered, that no file a report may write (in any of the
+/// report `folders`) is the scene or one of the images: the report would overwrite its own
+/// input.
+fn check_reports_spare_inputs(
+    folders: &[PathBuf],
+    scene: &Path,
+    images: &[PathBuf],
+    top: usize,
+) -> Result<(), CliError> {
+    let names = report::file_names(top);
+    for folder in folders {
+        let Ok(at) = folder.canonicalize() else {
+            // A folder still to be made holds no input.
+            continue;
+        };
+        for (what, input) in inputs(scene, images) {
+            let Ok(input_at) = input.canonicalize() else {
+                continue;
+            };
+            if let Some(name) = names.iter().find(|n| at.join(n.as_str()) == input_at) {
+                return Err(CliError::BadInput(format!(
+                    "--report: {} would overwrite the {what} {}: write the report into another folder",
+                    folder.join(name).display(),
+                    input.display()
+                )));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// `B of J pixels beyond T levels (F %), RMS R`.

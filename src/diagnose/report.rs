@@ -16,7 +16,20 @@ fn escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
 
-/// Writes the report into `dir` (which must exist); returns the files written.
+/// The names of the files [`write`] may write into its folder with `top` mistakes shown:
+/// the fixed ones, and `mistake-N.png` and `heat-N.png` for N up to `top`.
+pub fn file_names(top: usize) -> Vec<String> {
+    let fixed = ["index.html", "image.png", "oracle.png", "heat-oracle.png", "edges.png"];
+    let mut names: Vec<String> = fixed.map(String::from).to_vec();
+    for k in 1..=top {
+        names.push(format!("mistake-{k}.png"));
+        names.push(format!("heat-{k}.png"));
+    }
+    names
+}
+
+/// Writes the report into `dir` (which must exist); returns the files written, each named
+/// in [`file_names`].
 pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) -> std::io::Result<Vec<PathBuf>> {
     let (w, h) = (d.grid.width, d.grid.height);
     let mut written = Vec::new();
