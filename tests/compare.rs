@@ -696,7 +696,14 @@ fn edges_and_flip_separate_a_sampling_difference_from_a_bug() {
     // A scene size that is not the images' is refused.
     let (code, _, err) = compare(&[s(&oracle), s(&oracle), "--scene", s(&scene), "--width", "80"]);
     assert_eq!(code, 2);
-    assert!(err.contains("--width 80: the images' width is 160"), "{err}");
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: error: --width 80: {} and {} are 160 x 120; the scene is loaded at the images' size\n",
+            oracle.display(),
+            oracle.display()
+        )
+    );
 }
 
 proptest! {

@@ -205,7 +205,9 @@ fn edges_of(args: &CompareArgs, scene: &Path, width: u32, height: u32) -> Result
             && v != side
         {
             return Err(CliError::BadInput(format!(
-                "--{name} {v}: the images' {name} is {side}; the scene is loaded at the images' size"
+                "--{name} {v}: {} and {} are {width} x {height}; the scene is loaded at the images' size",
+                args.a.display(),
+                args.b.display()
             )));
         }
     }

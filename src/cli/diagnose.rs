@@ -115,9 +115,12 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
         (overrides.width, width, "--width"),
         (overrides.height, height, "--height"),
     ] {
-        if given.is_some_and(|g| g != actual) {
+        if let Some(g) = given
+            && g != actual
+        {
             return Err(CliError::BadInput(format!(
-                "{flag}: the image is {width} x {height}; the oracle renders at the image's size"
+                "{flag} {g}: {} is {width} x {height}; the oracle renders at the image's size",
+                args.images[0].display()
             )));
         }
     }
