@@ -611,6 +611,35 @@ fn the_format_is_told_by_name_then_by_first_keyword() {
         scene::load_with(&misnamed, &forced).unwrap().scene.camera.vfov_deg,
         30.0
     );
+    // A file starting with a UTF-8 byte order mark (Windows editors write one): the mark is
+    // skipped, for telling the format and for reading; the first line's columns are those
+    // after it.
+    let bom = write("bom.txt", "\u{feff}camera\nangle 30\nend\n");
+    let loaded = load(&bom).unwrap();
+    assert_eq!(loaded.format, Format::SimRenderer);
+    assert_eq!(loaded.scene.camera.vfov_deg, 30.0);
+    let bom_typo = write("bom-typo.txt", "\u{feff}CAMERA\nangle 30\nend\nkamera\n");
+    assert!(load(&bom_typo).unwrap_err().to_string().starts_with(&format!(
+        "{}:4:1: scene.kamera: unknown keyword \"kamera\";",
+        bom_typo.display()
+    )));
+    assert_eq!(
+        error("\u{feff}kamera\n"),
+        error("kamera\n"),
+        "the mark is not part of the first keyword"
+    );
+    let out = lumiere(&[
+        "render",
+        bom.to_str().unwrap(),
+        "-o",
+        dir.join("bom.png").to_str().unwrap(),
+        "--width",
+        "8",
+        "--height",
+        "6",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(dir.join("bom.png").is_file());
 }
 
 #[test]

@@ -3,6 +3,8 @@
 //! (numbers, integers, booleans, colours, enumerations, vectors, names). Lines and columns
 //! are 1-based, columns counted in characters.
 //!
+//! - A UTF-8 byte order mark at the start of the file (which Windows editors write) is
+//!   skipped: the first line's keyword and columns are those of the text after it.
 //! - A line ends at `\n`, `\r\n` or a lone `\r` (Java's `readLine`).
 //! - The first token of a line (split on space, tab, form feed) is its keyword, compared
 //!   in lower case; the rest of the line, leading blanks removed, is its value.
@@ -75,9 +77,21 @@ pub fn is_delimiter(c: char) -> bool {
 /// The prefix of a comment note.
 const NOTE: &str = "lumiere:";
 
-/// The lines of `text`, split as Java's `readLine` splits them.
+/// The byte order mark a UTF-8 file may start with.
+const BOM: char = '\u{feff}';
+
+/// `text` without its leading byte order mark, if it has one.
+fn without_bom(text: &str) -> &str {
+    text.strip_prefix(BOM).unwrap_or(text)
+}
+
+/// The lines of `text` (a leading byte order mark skipped), split as Java's `readLine`
+/// splits them.
 pub fn split_lines(text: &str) -> Vec<&str> {
-    Lines { rest: text }.collect()
+    Lines {
+        rest: without_bom(text),
+    }
+    .collect()
 }
 
 /// The lines of a text, one at a time (see [`split_lines`]).
@@ -106,10 +120,13 @@ fn column_of(line: &str, at: usize) -> usize {
     line[..at].chars().count() + 1
 }
 
-/// The significant lines and notes of `text`, in order, comments and blank lines left out.
+/// The significant lines and notes of `text`, in order, comments and blank lines left out
+/// (and a leading byte order mark).
 pub fn items(text: &str) -> Items<'_> {
     Items {
-        lines: Lines { rest: text },
+        lines: Lines {
+            rest: without_bom(text),
+        },
         number: 0,
         in_block_comment: false,
     }
