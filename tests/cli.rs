@@ -474,6 +474,29 @@ fn completions_and_help_for_every_command() {
 }
 
 #[test]
+fn accel_help_gives_the_crossover_used() {
+    let n = lumiere::accel::CROSSOVER;
+    let o = lumiere(&["render", "--help"]);
+    assert_eq!(o.status.code(), Some(0));
+    let help = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        help.contains(&format!(
+            "- auto:   The BVH from {n} bounded objects on, else the linear scan\n"
+        )),
+        "{help}"
+    );
+    assert!(!help.contains("CROSSOVER"), "{help}");
+    // The README states the same number.
+    let readme = std::fs::read_to_string(repo("README.md")).unwrap();
+    assert!(
+        readme
+            .replace('\n', " ")
+            .contains(&format!("the BVH from {n} bounded objects on")),
+        "README.md does not give the crossover {n}"
+    );
+}
+
+#[test]
 fn verbose_notes_go_to_stderr_and_json_stats_to_stdout() {
     let dir = temp_dir("verbose");
     let out = dir.join("v.png");

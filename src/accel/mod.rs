@@ -52,12 +52,13 @@ impl AccelChoice {
         }
     }
 
-    /// What the choice does, in one line of the command line's help.
-    pub fn help(self) -> &'static str {
+    /// What the choice does, in one line of the command line's help (`auto`'s with the
+    /// number [`CROSSOVER`] holds).
+    pub fn help(self) -> String {
         match self {
-            AccelChoice::Linear => "Test every object for every ray",
-            AccelChoice::Bvh => "Bounding volume hierarchy (binned SAH, f32 boxes)",
-            AccelChoice::Auto => "The BVH from `CROSSOVER` bounded objects on, else the linear scan",
+            AccelChoice::Linear => "Test every object for every ray".into(),
+            AccelChoice::Bvh => "Bounding volume hierarchy (binned SAH, f32 boxes)".into(),
+            AccelChoice::Auto => format!("The BVH from {CROSSOVER} bounded objects on, else the linear scan"),
         }
     }
 }

@@ -19,7 +19,7 @@ mod study;
 
 pub use error::CliError;
 
-use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use clap::builder::{PossibleValue, PossibleValuesParser, StyledStr, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 use lumiere::accel::AccelChoice;
 use lumiere::conventions::Conventions;
@@ -201,9 +201,10 @@ impl Overrides {
 
 /// A clap value parser for a library choice known by name: `values` are its names with
 /// their help lines, and the chosen name is parsed back with `FromStr`.
-fn named<T>(values: impl IntoIterator<Item = (&'static str, &'static str)>) -> impl TypedValueParser<Value = T>
+fn named<T, H>(values: impl IntoIterator<Item = (&'static str, H)>) -> impl TypedValueParser<Value = T>
 where
     T: FromStr<Err = String> + Clone + Send + Sync + 'static,
+    H: Into<StyledStr>,
 {
     PossibleValuesParser::new(
         values
