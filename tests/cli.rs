@@ -169,6 +169,26 @@ fn spot_angle_outside_0_180() {
 }
 
 #[test]
+fn vfov_has_one_range_in_every_message() {
+    // 0 is refused as negative and too wide angles are, with the one range (0, 179].
+    for (vfov, got) in [("0", "0"), ("-5", "-5"), ("180", "180"), ("inf", "inf")] {
+        expect_bad(
+            &format!("vfov{got}"),
+            "look_at = [0, 1, 0]\n",
+            &format!("look_at = [0, 1, 0]\nvfov = {vfov}\n"),
+            &[&format!(
+                "scene.toml:9:8: camera.vfov: must be a finite number in (0, 179], got {got}\n"
+            )],
+        );
+    }
+    let (code, stderr, _) = run_scene(
+        "vfov179",
+        &GOOD.replacen("look_at = [0, 1, 0]\n", "look_at = [0, 1, 0]\nvfov = 179\n", 1),
+    );
+    assert_eq!(code, 0, "{stderr}");
+}
+
+#[test]
 fn refractive_index_must_be_positive() {
     expect_bad(
         "ior",

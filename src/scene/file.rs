@@ -316,6 +316,9 @@ struct FileCamera {
     vfov: f64,
 }
 
+/// Largest vertical field of view, in degrees: the camera's range is (0, MAX_VFOV].
+const MAX_VFOV: f64 = 179.0;
+
 fn z_up() -> Xyz {
     Xyz([0.0, 0.0, 1.0])
 }
@@ -1091,10 +1094,7 @@ impl FileScene {
                 "must not be parallel to the viewing direction (look_at - position)",
             );
         }
-        let vfov_deg = in_range(&path.key("vfov"), c.vfov, 0.0, 179.0)?;
-        if vfov_deg == 0.0 {
-            return fail(&path.key("vfov"), "must be in (0, 179] degrees, got 0");
-        }
+        let vfov_deg = positive(&path.key("vfov"), c.vfov, MAX_VFOV)?;
         Ok(CameraSpec {
             position,
             look_at,
