@@ -54,6 +54,14 @@ pub const DEFAULT_PHOTON_RADIUS: f64 = 0.075;
 /// Default adaptive depth control threshold, in 8-bit levels.
 pub const DEFAULT_ADAPTIVE_THRESHOLD: f64 = 0.25;
 
+/// A number as messages show a limit: the shorter of its decimal and exponent forms, the
+/// decimal one on a tie (`179`, `0.25`, `1e9`, `1e-6`, `-1e9`).
+pub fn short(x: f64) -> String {
+    let plain = x.to_string();
+    let exponent = format!("{x:e}");
+    if exponent.len() < plain.len() { exponent } else { plain }
+}
+
 pub fn check_dimension(v: u32) -> Result<(), String> {
     if v == 0 || v > MAX_DIMENSION {
         return Err(format!("must be in [1, {MAX_DIMENSION}] pixels, got {v}"));
@@ -86,4 +94,26 @@ pub fn check_depth(v: u32) -> Result<(), String> {
         return Err(format!("must be in [1, {MAX_DEPTH}] (1 = no secondary rays), got {v}"));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn limits_are_shown_short() {
+        for (x, shown) in [
+            (179.0, "179"),
+            (0.25, "0.25"),
+            (100.0, "100"),
+            (1e6, "1e6"),
+            (MAX_COORDINATE, "1e9"),
+            (-MAX_COORDINATE, "-1e9"),
+            (MIN_SCALE, "1e-6"),
+            (1e12, "1e12"),
+            (0.0, "0"),
+        ] {
+            assert_eq!(short(x), shown);
+        }
+    }
 }

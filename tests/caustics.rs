@@ -543,7 +543,7 @@ fn the_caustics_table_is_checked_with_located_errors() {
         ),
         (
             "photons = 10\nradius = -1\n",
-            "x.toml:11:10: caustics.radius: must be a finite number in (0, 1000000000], got -1",
+            "x.toml:11:10: caustics.radius: must be a finite number in (0, 1e9], got -1",
         ),
         (
             "photons = 10\nfilter = \"gauss\"\n",

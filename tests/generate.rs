@@ -100,7 +100,7 @@ fn bad_values_are_located_errors() {
         (
             "radius = [0.05, 0.1]",
             "radius = [0, 0.1]",
-            "generate[0].radius: must be a finite number in (0, 1000000000], got 0",
+            "generate[0].radius: must be a finite number in (0, 1e9], got 0",
         ),
         (
             "max = [1, 1, 1]",

@@ -186,7 +186,7 @@ fn new_fields_give_located_errors() {
         ),
         (
             "[[shapes]]\ntype = \"tube\"\nstart = [1, 2, 3]\nend = [1, 2, 4]\nradius = 0\n".to_string(),
-            "t.toml:11:10: shapes[0].radius: must be a finite number in (0, 1000000000], got 0",
+            "t.toml:11:10: shapes[0].radius: must be a finite number in (0, 1e9], got 0",
         ),
         (
             "[[shapes]]\ntype = \"mesh\"\nfile = \"no-such.obj\"\n".to_string(),

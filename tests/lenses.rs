@@ -150,7 +150,7 @@ fn bad_caps_and_lenses_give_located_errors() {
         ),
         (
             "[[shapes]]\ntype = \"lens\"\nbase = [0, 0, 0]\nthickness = -1\nradius = 1\ncurvature1 = 2\ncurvature2 = 2\n",
-            "t.toml:10:13: shapes[0].thickness: must be a finite number in [0, 1000000000], got -1",
+            "t.toml:10:13: shapes[0].thickness: must be a finite number in [0, 1e9], got -1",
         ),
     ];
     for (shapes, want) in cases {

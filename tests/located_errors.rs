@@ -222,3 +222,37 @@ fn errors_in_top_level_tables() {
         "s.toml: the file has no [image] table"
     );
 }
+
+#[test]
+fn numbers_out_of_range_are_shown_as_written_and_limits_short() {
+    // The value as the file writes it, not reformatted (1e-7 is not 0.0000001, 1e300 not
+    // 301 digits); the limits in their shorter form (1e9, not 1000000000).
+    for (to, expected) in [
+        (
+            "radius = 1e-400",
+            "s.toml:21:10: shapes[1].radius: must be a finite number in (0, 1e9], got 1e-400",
+        ),
+        (
+            "radius = 1e300",
+            "s.toml:21:10: shapes[1].radius: must be a finite number in (0, 1e9], got 1e300",
+        ),
+        (
+            "radius = -1_000.50",
+            "s.toml:21:10: shapes[1].radius: must be a finite number in (0, 1e9], got -1_000.50",
+        ),
+        (
+            "radius = -inf",
+            "s.toml:21:10: shapes[1].radius: must be a finite number in (0, 1e9], got -inf",
+        ),
+    ] {
+        assert_eq!(error_after("radius = 1\n", &format!("{to}\n")), expected);
+    }
+    assert_eq!(
+        error_after("angle = 70", "angle = 2E2"),
+        "s.toml:45:9: lights[1].angle: must be a finite number in [0, 180], got 2E2"
+    );
+    assert_eq!(
+        error_after("color = [1, 0, 0]", "color = [1, 0, 0]\nka = 1.0000001e0"),
+        "s.toml:12:6: materials.red.ka: must be a finite number in [0, 1], got 1.0000001e0"
+    );
+}

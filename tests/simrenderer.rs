@@ -281,6 +281,15 @@ fn errors_name_the_line_column_keyword_and_range() {
             "material\nka 1.5\nend",
             "lab.txt:2:4: material.ka: must be a finite number in [0, 1], got 1.5",
         ),
+        // The value as written (Java's forms too), not reformatted.
+        (
+            "camera\nangle 1e-7\nend",
+            "lab.txt:2:7: camera.angle: must be a finite number in [10, 170], got 1e-7",
+        ),
+        (
+            "material\nka 1.5f\nend",
+            "lab.txt:2:4: material.ka: must be a finite number in [0, 1], got 1.5f",
+        ),
         (
             "materiel\nbrillance 250\nfin",
             "lab.txt:2:11: materiel.brillance: must be a finite number in [0, 200], got 250",
@@ -311,11 +320,11 @@ fn errors_name_the_line_column_keyword_and_range() {
         ),
         (
             "primitive\nsphere\nray -1\nend\nend",
-            "lab.txt:3:5: sphere.ray: must be a finite number in (0, 1000000000], got -1",
+            "lab.txt:3:5: sphere.ray: must be a finite number in (0, 1e9], got -1",
         ),
         (
             "point_light\ncolor 1 -1 1\nend",
-            "lab.txt:2:7: point_light.color: each channel must be a finite number in [0, 1000000], got [1.0, -1.0, 1.0]",
+            "lab.txt:2:7: point_light.color: each channel must be a finite number in [0, 1e6], got [1.0, -1.0, 1.0]",
         ),
         (
             "material\ncolor 1.2 1 1\nend",

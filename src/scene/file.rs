@@ -8,7 +8,7 @@
 //! The format is documented in `scenes/README.md`.
 
 use super::generate::{Generate, GenerateKind};
-use super::locate::{FieldError, FieldPath, line_col, locate, path_at};
+use super::locate::{FieldError, FieldPath, line_col, locate, path_at, written};
 use super::tag;
 use super::{CameraSpec, CausticSettings, Object, ObjectNames, PhotonFilter, Scene, Settings, ShadingModel, Specular};
 use crate::area_light::{AreaLight, AreaShape, PointMode};
@@ -99,7 +99,13 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
             message,
         }
     };
-    let located = |e: FieldError| at(locate(text, &e.path), e.path.to_string(), e.message);
+    let located = |e: FieldError| {
+        let message = match e.got {
+            Some(x) => format!("{}, got {}", e.message, written(text, &e.path, x)),
+            None => e.message,
+        };
+        at(locate(text, &e.path), e.path.to_string(), message)
+    };
     let mut root = DeTable::parse(text).map_err(|e| {
         at(
             e.span().map_or(0, |s| s.start),
@@ -143,13 +149,24 @@ fn fail<T>(path: &FieldPath, message: impl Into<String>) -> Check<T> {
     Err(FieldError {
         path: path.clone(),
         message: message.into(),
+        got: None,
+    })
+}
+
+/// `message`, followed by `, got X` with X the number `x` as the file writes it.
+fn fail_got<T>(path: &FieldPath, message: String, x: f64) -> Check<T> {
+    Err(FieldError {
+        path: path.clone(),
+        message,
+        got: Some(x),
     })
 }
 
 /// A finite number within `[lo, hi]`.
 fn in_range(path: &FieldPath, x: f64, lo: f64, hi: f64) -> Check<f64> {
     if !x.is_finite() || x < lo || x > hi {
-        return fail(path, format!("must be a finite number in [{lo}, {hi}], got {x}"));
+        let (lo, hi) = (limits::short(lo), limits::short(hi));
+        return fail_got(path, format!("must be a finite number in [{lo}, {hi}]"), x);
     }
     Ok(x)
 }
@@ -210,7 +227,8 @@ impl<'de> Deserialize<'de> for Xyz {
 /// A finite number `> 0` and at most `hi`.
 fn positive(path: &FieldPath, x: f64, hi: f64) -> Check<f64> {
     if !x.is_finite() || x <= 0.0 || x > hi {
-        return fail(path, format!("must be a finite number in (0, {hi}], got {x}"));
+        let hi = limits::short(hi);
+        return fail_got(path, format!("must be a finite number in (0, {hi}]"), x);
     }
     Ok(x)
 }
@@ -242,7 +260,10 @@ fn color(path: &FieldPath, v: Xyz, hi: f64) -> Check<DVec3> {
     if v.iter().any(|c| !c.is_finite() || *c < 0.0 || *c > hi) {
         return fail(
             path,
-            format!("each channel must be a finite number in [0, {hi}], got {v:?}"),
+            format!(
+                "each channel must be a finite number in [0, {}], got {v:?}",
+                limits::short(hi)
+            ),
         );
     }
     Ok(DVec3::from(v))
@@ -1497,6 +1518,7 @@ impl FileMesh {
                     Some(line) => format!("{shown}:{line}: {}{why}", e.message),
                     None => format!("{shown}: {}{why}", e.message),
                 },
+                got: None,
             }
         })?;
         let material = resolve_material(path, self.material, material_names)?;

@@ -49,6 +49,45 @@ impl fmt::Display for FieldPath {
 pub struct FieldError {
     pub path: FieldPath,
     pub message: String,
+    /// The number the message is about, shown after it as `, got X`: X as the file writes
+    /// it at `path`, or [`crate::limits::short`] of it when the file does not (a default).
+    pub got: Option<f64>,
+}
+
+/// How a message shows the number `x` read at `path`: as written there when the text at
+/// `path` is that number (`1e-7`, `1_000`, `+5`), else the shorter of its decimal and
+/// exponent forms.
+pub fn written(text: &str, path: &FieldPath, x: f64) -> String {
+    let same = |w: &str| {
+        w.replace('_', "")
+            .parse::<f64>()
+            .is_ok_and(|v| v == x || (v.is_nan() && x.is_nan()))
+    };
+    value_text(text, path)
+        .filter(|w| same(w))
+        .map_or_else(|| crate::limits::short(x), str::to_string)
+}
+
+/// The text of the value at exactly `path`, when the file has one there.
+fn value_text<'t>(text: &'t str, path: &FieldPath) -> Option<&'t str> {
+    let root = DeTable::parse(text).ok()?;
+    let mut table: Option<&DeTable> = Some(root.get_ref());
+    let mut value: Option<&DeValue> = None;
+    let mut span = None;
+    for seg in &path.0 {
+        let next = match (seg, table, value) {
+            (Seg::Key(k), Some(t), _) => t.get(k.as_str()),
+            (Seg::Index(i), _, Some(DeValue::Array(a))) => a.get(*i),
+            _ => None,
+        }?;
+        span = Some(next.span());
+        value = Some(next.get_ref());
+        table = match next.get_ref() {
+            DeValue::Table(t) => Some(t),
+            _ => None,
+        };
+    }
+    text.get(span?)
 }
 
 /// 1-based line and column of byte offset `offset` in `text`.

@@ -31,6 +31,7 @@ pub fn lift(root: &mut DeTable<'_>, key: &str, types: &[&str]) -> Result<(), Fie
             return Err(FieldError {
                 path,
                 message: format!("must be a table ([[{key}]]), got {}", entry.get_ref().type_str()),
+                got: None,
             });
         };
         let expected = || format!("must be {}", one_of(types));
@@ -38,6 +39,7 @@ pub fn lift(root: &mut DeTable<'_>, key: &str, types: &[&str]) -> Result<(), Fie
             return Err(FieldError {
                 path: path.key("type"),
                 message: format!("missing; {}", expected()),
+                got: None,
             });
         };
         let name = match tag.get_ref() {
@@ -46,12 +48,14 @@ pub fn lift(root: &mut DeTable<'_>, key: &str, types: &[&str]) -> Result<(), Fie
                 return Err(FieldError {
                     path: path.key("type"),
                     message: format!("{}, got {:?}", expected(), s.as_ref()),
+                    got: None,
                 });
             }
             other => {
                 return Err(FieldError {
                     path: path.key("type"),
                     message: format!("{}, got {}", expected(), other.type_str()),
+                    got: None,
                 });
             }
         };

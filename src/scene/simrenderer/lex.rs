@@ -306,10 +306,15 @@ fn first<'a>(value: &'a str, column: usize, what: &str) -> Result<Token<'a>, Val
 
 /// The number that starts `value`.
 pub fn number(value: &str, column: usize) -> Result<f64, ValueError> {
+    number_as_written(value, column).map(|(x, _)| x)
+}
+
+/// The number that starts `value`, and its text as the file writes it (for messages).
+pub fn number_as_written(value: &str, column: usize) -> Result<(f64, &str), ValueError> {
     let t = first(value, column, "a number")?;
     java_double(t.text).map_or_else(
         || value_error(t.column, format!("expects a number, got {:?}", t.text)),
-        Ok,
+        |x| Ok((x, t.text)),
     )
 }
 

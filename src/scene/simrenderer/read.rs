@@ -1872,11 +1872,12 @@ fn direction(l: &Line) -> Result<DVec3, ValueError> {
 
 /// A number in `[lo, hi]`.
 fn number_in(l: &Line, lo: f64, hi: f64) -> Result<f64, ValueError> {
-    let x = lex::number(l.value, l.value_column)?;
+    let (x, written) = lex::number_as_written(l.value, l.value_column)?;
     if !x.is_finite() || x < lo || x > hi {
+        let (lo, hi) = (limits::short(lo), limits::short(hi));
         return value_error(
             l.value_column,
-            format!("must be a finite number in [{lo}, {hi}], got {x}"),
+            format!("must be a finite number in [{lo}, {hi}], got {written}"),
         );
     }
     Ok(x)
@@ -1884,20 +1885,24 @@ fn number_in(l: &Line, lo: f64, hi: f64) -> Result<f64, ValueError> {
 
 /// A number in `(0, hi]`.
 fn positive(l: &Line, hi: f64) -> Result<f64, ValueError> {
-    let x = lex::number(l.value, l.value_column)?;
+    let (x, written) = lex::number_as_written(l.value, l.value_column)?;
     if !x.is_finite() || x <= 0.0 || x > hi {
-        return value_error(l.value_column, format!("must be a finite number in (0, {hi}], got {x}"));
+        let hi = limits::short(hi);
+        return value_error(
+            l.value_column,
+            format!("must be a finite number in (0, {hi}], got {written}"),
+        );
     }
     Ok(x)
 }
 
 /// The far clipping plane: a number above 0, `Infinity` for none.
 fn far(l: &Line) -> Result<f64, ValueError> {
-    let x = lex::number(l.value, l.value_column)?;
+    let (x, written) = lex::number_as_written(l.value, l.value_column)?;
     if x.is_nan() || x <= 0.0 {
         return value_error(
             l.value_column,
-            format!("must be a number above 0 (Infinity: no limit), got {x}"),
+            format!("must be a number above 0 (Infinity: no limit), got {written}"),
         );
     }
     Ok(x)
@@ -1918,7 +1923,10 @@ fn color(l: &Line, hi: f64) -> Result<DVec3, ValueError> {
     if c.iter().any(|x| !x.is_finite() || *x < 0.0 || *x > hi) {
         return value_error(
             l.value_column,
-            format!("each channel must be a finite number in [0, {hi}], got {c:?}"),
+            format!(
+                "each channel must be a finite number in [0, {}], got {c:?}",
+                limits::short(hi)
+            ),
         );
     }
     Ok(DVec3::from(c))
