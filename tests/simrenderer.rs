@@ -437,6 +437,20 @@ fn what_lumiere_does_not_model_is_refused_by_name() {
             "raytracer\ncolor_normalization division_factor\nend",
             "lab.txt:2:21: raytracer.color_normalization: division_factor is not supported yet by lumiere, which clamps each channel (clamp_channel)",
         ),
+        // A refractive index of 0 (SIMRenderer's value for an opaque material) on a
+        // transparent material: at the index's own value, as written, whichever comes first.
+        (
+            "material\nname glass\nkt 0.5\n  n 0\nend",
+            "lab.txt:4:5: material.n: must be above 0 for a transparent material (kt > 0), got 0",
+        ),
+        (
+            "material\nname glass\nrefractive_index 0.0\nkt 0.5\nend",
+            "lab.txt:3:18: material.refractive_index: must be above 0 for a transparent material (kt > 0), got 0.0",
+        ),
+        (
+            "material\nname glass\nn 20\nend",
+            "lab.txt:3:3: material.n: must be a finite number in [0, 10], got 20",
+        ),
         (
             "raytracer\nsampling 3\nend",
             "lab.txt:2:10: raytracer.sampling: lumiere averages a perfect square of samples (1, 4, 9, ..., 1024), got 3: other counts are not supported yet",
@@ -469,6 +483,13 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
             "lab.txt:20:1: scene.primitive: no material is named \"none\" (a primitive without material_name takes the material named \"none\"); it gets SIMRenderer's grey default material (ambient 0.2, diffuse 0.6, specular 0.7)",
         ]
     );
+    // Under --lenient, a transparent material's n of 0 is 1, said at the n line.
+    let glass = lenient("material\nname glass\nn 0\nkt 0.5\nend\n");
+    assert_eq!(
+        warnings(&glass),
+        ["lab.txt:3:3: material.n: must be above 0 for a transparent material (kt > 0), got 0; n = 1 is used"]
+    );
+    assert_eq!(glass.scene.materials[1].ior, 1.0);
     let s = &p.scene;
     // The defaults kept: angle 60, ka 0.2, one sample; the camera moved.
     assert_eq!(

@@ -945,6 +945,8 @@ impl<'a> Reader<'a> {
         let mut plasticity: Option<f64> = None;
         // The line of the later of kr and kt, and which.
         let mut last_weight: Option<(&str, At)> = None;
+        // Where the refractive index read is written, and as written.
+        let mut ior_at: Option<(At, String)> = None;
         while let Some(item) = self.body() {
             let keywords = if textured { TEXTURE_MATERIAL } else { MATERIAL };
             let (k, l) = match self.entry(&block, item, keywords)? {
@@ -963,7 +965,14 @@ impl<'a> Reader<'a> {
                 }
                 "color" => self.set(&block, &l, color(&l, 1.0), &mut m.color)?,
                 "shininess" => self.set(&block, &l, number_in(&l, 0.0, 200.0), &mut m.shininess)?,
-                "refractive_index" => self.set(&block, &l, number_in(&l, 0.0, limits::MAX_IOR), &mut m.ior)?,
+                "refractive_index" => {
+                    let read = number_in(&l, 0.0, limits::MAX_IOR)
+                        .and_then(|x| lex::number_as_written(l.value, l.value_column).map(|(_, w)| (x, w)));
+                    if let Some((x, written)) = self.value(&block, &l, read)? {
+                        m.ior = x;
+                        ior_at = Some((at_value(&l, &block, l.value_column), written.to_string()));
+                    }
+                }
                 "texture_ka" | "texture_kd" | "texture_ks" => {
                     let Some(file) = self.value(&block, &l, lex::name(l.value, l.value_column))? else {
                         continue;
@@ -1023,9 +1032,10 @@ impl<'a> Reader<'a> {
             }
         }
         if m.ior == 0.0 {
-            if m.kt > 0.0 {
-                let message = "n must be above 0 for a transparent material (kt > 0)".to_string();
-                let place = at(open, "scene");
+            if m.kt > 0.0
+                && let Some((place, written)) = ior_at
+            {
+                let message = format!("must be above 0 for a transparent material (kt > 0), got {written}");
                 self.problem(&place, message, "n = 1 is used")?;
             }
             // SIMRenderer uses 1 for a material that is not transparent.
