@@ -189,12 +189,9 @@ fn output_directory_is_a_file() {
         file.to_str().unwrap(),
     ]));
     assert_eq!(code, 2);
-    assert!(
-        err.starts_with(&format!(
-            "lumiere: error: {}: cannot create the output directory: ",
-            file.display()
-        )),
-        "{err}"
+    assert_eq!(
+        err,
+        format!("lumiere: error: --out: {} is a file, not a folder\n", file.display())
     );
     assert_eq!(fs::read(&file).unwrap(), b"x");
 }

@@ -150,6 +150,19 @@ fn figures_command_rejects_bad_requests() {
         "{err}"
     );
     assert!(!Path::new("/tmp/lumiere-nothing").exists());
+    // --out naming a file, or a folder under a file: the file is named, and left as it was.
+    let dir = temp_dir("figures-out-file");
+    let file = dir.join("taken");
+    std::fs::write(&file, "a file").unwrap();
+    for out in [file.clone(), file.join("sub")] {
+        let o = lumiere(&["figures", "lighting", "--out", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{}", out.display());
+        assert_eq!(
+            String::from_utf8_lossy(&o.stderr),
+            format!("lumiere: error: --out: {} is a file, not a folder\n", file.display())
+        );
+    }
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "a file");
 }
 
 /// Runs `lumiere figures` with `args` in folder `cwd`, reading the repository's figure files,

@@ -533,5 +533,23 @@ fn study_refuses_bad_input() {
     assert_eq!(code, Some(2));
     // Nothing was written.
     assert!(!out.exists());
+    // --out naming a file: refused by name before any work, for both studies.
+    std::fs::write(&out, "a file").unwrap();
+    let expected = format!("lumiere: error: --out: {} is a file, not a folder\n", out.display());
+    let (code, err) = run("scenes/soft-shadows.toml", &[]);
+    assert_eq!((code, err), (Some(2), expected.clone()));
+    let o = lumiere(&[
+        "study",
+        "caustics",
+        "--out",
+        out.to_str().unwrap(),
+        "--width",
+        "8",
+        "--height",
+        "6",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(String::from_utf8_lossy(&o.stderr), expected);
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "a file");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -104,6 +104,7 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     if let Some(dir) = &args.export_scenes {
         return export(&chosen, dir, args.format, v);
     }
+    super::check_out_folder(&args.out, "--out")?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| WriteError::new(&args.out, "cannot create the output directory", e))?;
     // Held until the run ends, however it ends: a second run on this folder is refused.

@@ -327,6 +327,23 @@ fn check_output_path(output: &Path, input: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Checks, before any work, that the output folder `dir` (of option `option`) can be made
+/// or written into: neither it nor a folder above it is a file.
+fn check_out_folder(dir: &Path, option: &str) -> Result<(), CliError> {
+    let file = dir
+        .ancestors()
+        .filter(|a| !a.as_os_str().is_empty())
+        .find(|a| a.exists())
+        .filter(|a| !a.is_dir());
+    match file {
+        Some(file) => Err(CliError::BadInput(format!(
+            "{option}: {} is a file, not a folder",
+            file.display()
+        ))),
+        None => Ok(()),
+    }
+}
+
 /// Runs `f` on a rayon pool of `threads` workers (all cores when `None`).
 fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> Result<T, CliError> {
     let mut builder = rayon::ThreadPoolBuilder::new();

@@ -146,6 +146,7 @@ fn parse_numbers<T: std::str::FromStr + PartialOrd + Copy>(
 
 fn caustics(args: &CausticStudyArgs, v: Verbosity) -> Result<(), CliError> {
     let bad = CliError::BadInput;
+    super::check_out_folder(&args.out, "--out")?;
     let mut scene = scene::load(&args.scene).map_err(|e| bad(e.to_string()))?;
     if scene.settings.caustics.is_none() {
         return Err(bad(format!(
@@ -216,6 +217,7 @@ fn caustics(args: &CausticStudyArgs, v: Verbosity) -> Result<(), CliError> {
 
 fn soft_shadows(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {
     let bad = CliError::BadInput;
+    super::check_out_folder(&args.out, "--out")?;
     let mut scene = scene::load(&args.scene).map_err(|e| bad(e.to_string()))?;
     let light = first_area_light(&scene).ok_or_else(|| {
         bad(format!(
