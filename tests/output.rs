@@ -60,6 +60,27 @@ fn shard_output_must_end_in_shard() {
 }
 
 #[test]
+fn more_shards_than_rows_are_refused() {
+    // 48 rows (SMALL): 48 shards of a row each are fine, 49 would leave one without a row.
+    let dir = temp_dir("shardrows");
+    let out = dir.join("x.shard");
+    for spec in ["0/49", "48/49", "0/65536"] {
+        let o = render(&out, &["--shard", spec]);
+        assert_eq!(o.status.code(), Some(2), "{spec}");
+        let n = spec.split('/').nth(1).unwrap();
+        assert_eq!(
+            String::from_utf8_lossy(&o.stderr),
+            format!(
+                "lumiere: error: --shard {spec}: the image has 48 rows, fewer than its {n} shards: a shard would render \
+                 no row (use at most 48 shards)\n"
+            )
+        );
+        assert!(!out.exists());
+    }
+    assert_eq!(render(&out, &["--shard", "47/48"]).status.code(), Some(0));
+}
+
+#[test]
 fn merge_refuses_incomplete_or_mixed_shards() {
     let dir = temp_dir("badshards");
     let a = dir.join("a.shard");

@@ -43,8 +43,8 @@ pub struct RenderArgs {
     /// Print the statistics as JSON on stdout (implies --stats).
     #[arg(long)]
     pub json: bool,
-    /// Render only shard K of N (0-based rows [K H / N, (K + 1) H / N)) into a shard file
-    /// for `lumiere merge`.
+    /// Render only shard K of N (0-based rows [K H / N, (K + 1) H / N), N at most the
+    /// height H) into a shard file for `lumiere merge`.
     #[arg(long, value_name = "K/N")]
     pub shard: Option<lumiere::shard::ShardSpec>,
     /// Render with the reference tracer (src/trace/reference.rs: the chapter as code, no
@@ -78,6 +78,9 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     let cancel = signals::catch();
     let start = std::time::Instant::now();
     let scene = super::load_scene(&args.scene, &args.overrides)?;
+    if let Some(spec) = args.shard {
+        check_shard_rows(spec, scene.settings.height)?;
+    }
     let loaded = start.elapsed();
     let layers = args
         .layers
@@ -179,6 +182,18 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
             "warning: {} samples were NaN or infinite and were written as black",
             stats.counts.non_finite
         );
+    }
+    Ok(())
+}
+
+/// Checks that each of the `spec.count` shards of an image of `height` rows has a row: with
+/// more shards than rows some would render nothing.
+fn check_shard_rows(spec: lumiere::shard::ShardSpec, height: u32) -> Result<(), CliError> {
+    if spec.count > height {
+        return Err(CliError::BadInput(format!(
+            "--shard {}/{}: the image has {height} rows, fewer than its {} shards: a shard would render no row (use at most {height} shards)",
+            spec.index, spec.count, spec.count
+        )));
     }
     Ok(())
 }
