@@ -90,7 +90,7 @@ fn bad_values_are_located_errors() {
         (
             "kind = \"mixed\"",
             "kind = \"cubes\"",
-            "g.toml:18:8: generate[0].kind: must be \"spheres\" or \"mixed\", got \"cubes\"",
+            "g.toml:18:8: generate[0].kind: must be \"spheres\", \"mixed\" or \"triangles\", got \"cubes\"",
         ),
         (
             "radius = [0.05, 0.1]",

@@ -200,3 +200,62 @@ fn every_readme_command_runs() {
         std::fs::read(dir.join("whole.png")).unwrap()
     );
 }
+
+/// The names the scene reader accepts for one choice, as its error for `bad` lists them:
+/// the quoted names of `must be "a", "b" or "c", got "bad"`.
+fn accepted(scene: &str) -> Vec<String> {
+    let e = lumiere::scene::parse(scene, "s.toml").unwrap_err().to_string();
+    let (list, _) = e
+        .split_once(", got \"bad\"")
+        .unwrap_or_else(|| panic!("not a list of the accepted names: {e}"));
+    let names: Vec<String> = list.split('"').skip(1).step_by(2).map(String::from).collect();
+    assert!(names.len() >= 2, "{e}");
+    names
+}
+
+/// The text of the section of `readme` whose heading starts with `heading` (`## Shapes`),
+/// up to the next heading of its level or above.
+fn section<'t>(readme: &'t str, heading: &str) -> &'t str {
+    let start = readme
+        .find(&format!("\n{heading}"))
+        .unwrap_or_else(|| panic!("no section {heading}"));
+    let level = heading.split(' ').next().unwrap();
+    let rest = &readme[start + 1..];
+    let end = rest[1..]
+        .match_indices("\n#")
+        .map(|(i, _)| i + 1)
+        .find(|&i| {
+            // A heading, not a comment line of a code block (`# ...`).
+            let marks = rest[i + 1..].split(' ').next().unwrap_or("");
+            marks.len() >= 2 && marks.len() <= level.len() && marks.chars().all(|c| c == '#')
+        })
+        .unwrap_or(rest.len());
+    &rest[..end]
+}
+
+#[test]
+fn scenes_readme_lists_every_object_type_the_reader_accepts() {
+    let readme = std::fs::read_to_string(repo("scenes/README.md")).unwrap();
+    const HEAD: &str = "[image]\nwidth = 8\nheight = 6\n[camera]\nposition = [0, -5, 0]\nlook_at = [0, 0, 0]\n";
+    let cases = [
+        ("## Shapes", "[[shapes]]\ntype = \"bad\"\n", "| `{}` |"),
+        ("## Lights", "[[lights]]\ntype = \"bad\"\n", "`{}`"),
+        (
+            "### Area lights",
+            "[[lights]]\ntype = \"area\"\nshape = \"bad\"\npoints = 4\n",
+            "| `{}` |",
+        ),
+        (
+            "## Generated objects",
+            "[[generate]]\nkind = \"bad\"\ncount = 1\nmin = [0, 0, 0]\nmax = [1, 1, 1]\nradius = [0.1, 0.2]\n",
+            "`\"{}\"`",
+        ),
+    ];
+    for (heading, entry, written) in cases {
+        let text = section(&readme, heading);
+        for name in accepted(&format!("{HEAD}{entry}")) {
+            let shown = written.replace("{}", &name);
+            assert!(text.contains(&shown), "scenes/README.md, {heading}: no {shown}");
+        }
+    }
+}

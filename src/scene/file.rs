@@ -1711,7 +1711,7 @@ impl FileGenerate {
         let Some(kind) = GenerateKind::parse(&self.kind) else {
             return fail(
                 &path.key("kind"),
-                format!("must be \"spheres\" or \"mixed\", got {:?}", self.kind),
+                format!("must be \"spheres\", \"mixed\" or \"triangles\", got {:?}", self.kind),
             );
         };
         let max_objects = limits::MAX_OBJECTS;
