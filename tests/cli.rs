@@ -516,6 +516,48 @@ fn accel_help_gives_the_crossover_used() {
     );
 }
 
+/// The usage line(s) of a help or error text: from `Usage: ` to the first blank line.
+fn usage(text: &str) -> String {
+    let start = text.find("Usage: ").unwrap_or_else(|| panic!("no usage in {text}"));
+    text[start..].split("\n\n").next().unwrap().to_string()
+}
+
+#[test]
+fn usage_lines_say_what_is_required() {
+    // render: an image (-o), layers (--layers) or both; -o alone is not required.
+    let render_usage = "Usage: lumiere render [OPTIONS] <--output <OUTPUT>|--layers <OUT.exr|DIR/>> <SCENE>";
+    let help = lumiere(&["render", "--help"]);
+    assert_eq!(usage(&String::from_utf8_lossy(&help.stdout)), render_usage);
+    let scene = repo("scenes/reference.toml");
+    let o = lumiere(&["render", scene.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.starts_with(
+            "error: the following required arguments were not provided:\n  <--output <OUTPUT>|--layers <OUT.exr|DIR/>>\n"
+        ),
+        "{err}"
+    );
+    assert_eq!(
+        usage(&err),
+        "Usage: lumiere render <--output <OUTPUT>|--layers <OUT.exr|DIR/>> <SCENE>"
+    );
+    // diagnose: a scene and images, or --list; the same usage in the help and the errors.
+    let diagnose_usage =
+        "Usage: lumiere diagnose [OPTIONS] <SCENE> <IMAGE>...\n       lumiere diagnose --list [--json]";
+    let help = lumiere(&["diagnose", "--help"]);
+    assert_eq!(usage(&String::from_utf8_lossy(&help.stdout)), diagnose_usage);
+    for args in [
+        &["diagnose"][..],
+        &["diagnose", scene.to_str().unwrap()],
+        &["diagnose", "--list", "x"],
+    ] {
+        let o = lumiere(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert_eq!(usage(&String::from_utf8_lossy(&o.stderr)), diagnose_usage, "{args:?}");
+    }
+}
+
 #[test]
 fn verbose_notes_go_to_stderr_and_json_stats_to_stdout() {
     let dir = temp_dir("verbose");

@@ -15,13 +15,14 @@ use std::path::{Path, PathBuf};
 
 #[derive(Args, Debug)]
 pub struct DiagnoseArgs {
-    /// The scene the image renders (TOML or SIMRenderer's format); loaded at the image's size.
+    /// The scene the image renders (TOML or SIMRenderer's format); loaded at the image's
+    /// size. Required, except with --list.
     #[arg(required_unless_present = "list")]
     pub scene: Option<PathBuf>,
     /// Your image: PNG, PPM / PGM / PBM, PFM, EXR, JPEG, BMP or TGA. Several images, all of
     /// one size, are each diagnosed against the oracle rendered once: their texts follow one
     /// another, their JSON is one line each, and `--report DIR` writes one folder each, named
-    /// after the image's file name.
+    /// after the image's file name. At least one is required, except with --list.
     #[arg(required_unless_present = "list", value_name = "IMAGE")]
     pub images: Vec<PathBuf>,
     /// Print the catalogue of named mistakes instead, one a line: its name, what kind of

@@ -86,6 +86,7 @@ pub enum Command {
     /// What is most likely wrong in your image: gains per term and a catalogue of named
     /// mistakes rendered and ranked against it.
     #[command(
+        override_usage = "lumiere diagnose [OPTIONS] <SCENE> <IMAGE>...\n       lumiere diagnose --list [--json]",
         after_help = "Examples:\n  lumiere diagnose scenes/reference.toml mine.png\n  lumiere diagnose scenes/prism.toml mine.ppm --convention sample_position=center --report diagnosis --json\n\nReads PNG, PPM / PGM / PBM, PFM, EXR, JPEG, BMP and TGA; the scene is rendered at the image's size with the given settings.\nExit codes: 0 a diagnosis was made (whatever it says), 2 bad input (image, scene, options, report folder)."
     )]
     Diagnose(diagnose::DiagnoseArgs),

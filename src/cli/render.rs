@@ -2,7 +2,7 @@
 //! terminal, and ray counts, skipped work and time by phase with `--stats` / `--json`.
 
 use super::{CliError, Overrides, Verbosity, check_output, check_output_path, signals};
-use clap::Args;
+use clap::{ArgGroup, Args};
 use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::film::{WriteError, write_atomic};
 use lumiere::layers::render_layers;
@@ -12,12 +12,16 @@ use lumiere::world::World;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
+// A render writes an image (`-o`), its layers (`--layers`), or both: one of them is
+// required, as the usage line shows.
 #[derive(Args, Debug)]
+#[command(group(ArgGroup::new("written").required(true).multiple(true).args(["output", "layers"])))]
 pub struct RenderArgs {
     /// The scene file: TOML, or SIMRenderer's format (see scenes/README.md).
     pub scene: PathBuf,
     /// Output image: .png (8-bit, clamped), .pfm or .exr (32-bit float radiance, unclamped).
-    #[arg(short, long, required_unless_present = "layers")]
+    /// Required unless --layers is given.
+    #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Also (or only) write the per-term layers of each pixel (ambient, diffuse, specular, caustic,
     /// reflected, transmitted, each light's shadow filter, object, normal, depth): a
