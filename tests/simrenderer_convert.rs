@@ -387,12 +387,34 @@ fn lumiere_convert_writes_what_reads_back_or_nothing() {
         (Some(0), String::new())
     );
     assert_eq!(scene::load(&dir.join("r.toml")).unwrap(), scene("reference.toml"));
-    // --to overrides the name; same-format conversion is allowed.
+    // --to overrides the name; same-format conversion is allowed. A name that would have the
+    // file read in the other format (or not at all) is warned about.
     assert_eq!(
         run(&["convert", &reference, "-o", &path("r.sim"), "--to", "toml"]),
-        (Some(0), String::new())
+        (
+            Some(0),
+            format!(
+                "lumiere: warning: {}: its name does not say the toml format (TOML files end in .toml): read it with --format toml\n",
+                path("r.sim")
+            )
+        )
     );
     assert!(std::fs::read_to_string(dir.join("r.sim")).unwrap().contains("[image]"));
+    assert_eq!(
+        run(&["convert", &reference, "-o", &path("s.toml"), "--to", "simrenderer"]),
+        (
+            Some(0),
+            format!(
+                "lumiere: warning: {}: its name does not say the simrenderer format (TOML files end in .toml): read it with --format simrenderer\n",
+                path("s.toml")
+            )
+        )
+    );
+    let sim = std::fs::read_to_string(dir.join("s.toml")).unwrap();
+    assert!(matches!(
+        scene::detect(std::path::Path::new("s.txt"), &sim),
+        Ok(scene::Format::SimRenderer)
+    ));
     // A refusal: exit 2, nothing written.
     let spot = repo("scenes/figures/spotlight/01-theta-70.toml").display().to_string();
     let (code, err) = run(&["convert", &spot, "-o", &path("spot.txt")]);

@@ -15,7 +15,8 @@ pub struct ConvertArgs {
     /// The file to write.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// The output's format (default: TOML when its name ends in .toml, else SIMRenderer).
+    /// The output's format (default: TOML when its name ends in .toml, else SIMRenderer); a
+    /// name that would have the file read in the other format is warned about.
     #[arg(long, value_parser = super::format_values())]
     pub to: Option<Format>,
     #[command(flatten)]
@@ -74,6 +75,14 @@ pub fn run(args: &ConvertArgs, v: Verbosity) -> Result<(), CliError> {
         .map_err(|e| CliError::from(WriteError::new(&args.output, "cannot write", e)))?;
     for note in &written.notes {
         eprintln!("lumiere: warning: {out}: {note}");
+    }
+    // The name and the text decide the format when the file is read without --format.
+    if !matches!(scene::detect(&args.output, &written.text), Ok(read) if read == to) {
+        eprintln!(
+            "lumiere: warning: {out}: its name does not say the {} format (TOML files end in .toml): read it with --format {}",
+            to.name(),
+            to.name()
+        );
     }
     let differences = simrenderer::differences(scene, &back, 10);
     if !differences.is_empty() {
