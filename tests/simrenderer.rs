@@ -777,3 +777,40 @@ fn the_grey_default_material_gives_simrenderers_greys() {
         assert_eq!(tint * m.ks, DVec3::splat(0.7));
     }
 }
+
+#[test]
+fn a_decimal_comma_is_named_where_it_splits_a_number() {
+    let text = std::fs::read_to_string(fixture("reference.txt")).unwrap();
+    // `kd 0,8` reads kd 0 (the comma separates numbers, as in SIMRenderer): a warning at the
+    // word, the scene otherwise the reference's.
+    let kd = text.replacen("kd 0.8", "kd  0,8", 1);
+    let parsed = parse(&kd).unwrap();
+    assert_eq!(
+        warnings(&parsed),
+        [
+            "lab.txt:47:5: material.kd: \"0,8\" reads as two numbers, 0 and 8: a comma separates numbers (as in SIMRenderer); a decimal takes a point, 0.8"
+        ]
+    );
+    let reference = read("reference.txt").scene;
+    let changed: Vec<(f64, f64)> = reference
+        .materials
+        .iter()
+        .zip(&parsed.scene.materials)
+        .filter(|(r, p)| r != p)
+        .map(|(r, p)| (r.kd, p.kd))
+        .collect();
+    assert_eq!(changed, [(0.8, 0.0)]);
+    // Where the split makes the value wrong, the error gives the same hint.
+    let color = text.replacen("color     0.85 0.85 0.85", "color     0,85 0,85 0,85", 1);
+    let e = error(&color);
+    assert!(
+        e.starts_with("lab.txt:45:")
+            && e.ends_with("; \"0,85\" reads as two numbers, 0 and 85: a comma separates numbers (as in SIMRenderer); a decimal takes a point, 0.85"),
+        "{e}"
+    );
+    // A vector written with commas is no decimal.
+    let listed = text.replacen("position            0.0 -8.0 5.0", "position <0,-8,5>", 1);
+    let parsed = parse(&listed).unwrap();
+    assert_eq!(parsed.warnings, []);
+    assert_eq!(parsed.scene.camera.position, DVec3::new(0.0, -8.0, 5.0));
+}

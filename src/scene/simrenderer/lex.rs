@@ -304,6 +304,26 @@ fn first<'a>(value: &'a str, column: usize, what: &str) -> Result<Token<'a>, Val
     }
 }
 
+/// The first word of `value` that reads as a decimal written with a comma (`0,5`, `-1,25`):
+/// the comma splits it into two numbers, as in SIMRenderer, where a French-speaking author
+/// likely meant one (the course's language writes `0,5`). Its column and the hint to give;
+/// a list written with commas (`1,2,3`) is not such a word.
+pub fn decimal_comma(value: &str, column: usize) -> Option<(usize, String)> {
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    value.split(|c| is_delimiter(c) && c != ',').find_map(|word| {
+        let (whole, fraction) = word.split_once(',')?;
+        let unsigned = whole.strip_prefix(['+', '-']).unwrap_or(whole);
+        if !(digits(unsigned) && digits(fraction)) {
+            return None;
+        }
+        let offset = word.as_ptr() as usize - value.as_ptr() as usize;
+        let hint = format!(
+            "{word:?} reads as two numbers, {whole} and {fraction}: a comma separates numbers (as in SIMRenderer); a decimal takes a point, {whole}.{fraction}"
+        );
+        Some((column + value[..offset].chars().count(), hint))
+    })
+}
+
 /// The number that starts `value`.
 pub fn number(value: &str, column: usize) -> Result<f64, ValueError> {
     number_as_written(value, column).map(|(x, _)| x)
@@ -494,6 +514,22 @@ mod tests {
                 message: "expects a number, got \"two\"".into()
             })
         );
+    }
+
+    #[test]
+    fn decimal_commas_are_told_from_lists() {
+        assert_eq!(
+            decimal_comma("0,5", 4),
+            Some((
+                4,
+                "\"0,5\" reads as two numbers, 0 and 5: a comma separates numbers (as in SIMRenderer); a decimal takes a point, 0.5".into()
+            ))
+        );
+        assert_eq!(decimal_comma("1 -2,25 3", 10).map(|(c, _)| c), Some(12));
+        assert_eq!(decimal_comma("<1,2,3>", 1), None);
+        assert_eq!(decimal_comma("1, 2, 3", 1), None);
+        assert_eq!(decimal_comma("0.5 1e3", 1), None);
+        assert_eq!(decimal_comma("file_0,5.png", 1), None);
     }
 
     #[test]

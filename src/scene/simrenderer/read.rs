@@ -628,13 +628,24 @@ impl<'a> Reader<'a> {
     }
 
     /// The value read from `line`, or `None` after a problem (under `lenient`, the value
-    /// before it stays).
+    /// before it stays). A number that looks written with a decimal comma
+    /// ([`lex::decimal_comma`]) is warned about, or named in the problem.
     fn value<T>(&mut self, block: &str, line: &Line, read: Result<T, ValueError>) -> Result<Option<T>, SceneError> {
+        let comma = lex::decimal_comma(line.value, line.value_column);
         match read {
-            Ok(v) => Ok(Some(v)),
+            Ok(v) => {
+                if let Some((column, hint)) = comma {
+                    self.warn(&at_value(line, block, column), hint);
+                }
+                Ok(Some(v))
+            }
             Err(e) => {
                 let place = at_value(line, block, e.column);
-                self.problem(&place, e.message, "the value before it is kept")?;
+                let message = match comma {
+                    Some((_, hint)) => format!("{}; {hint}", e.message),
+                    None => e.message,
+                };
+                self.problem(&place, message, "the value before it is kept")?;
                 Ok(None)
             }
         }
