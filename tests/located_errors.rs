@@ -256,3 +256,16 @@ fn numbers_out_of_range_are_shown_as_written_and_limits_short() {
         "s.toml:12:6: materials.red.ka: must be a finite number in [0, 1], got 1.0000001e0"
     );
 }
+
+#[test]
+fn a_decimal_comma_is_named() {
+    // TOML refuses `0,25`; the message says what was likely meant. A list is left alone.
+    assert_eq!(
+        error_after("minor_radius = 0.25", "minor_radius = 0,25"),
+        "s.toml:28:17: TOML: unexpected key or value, expected newline, `#`; \"0,25\": a decimal takes a point, 0.25"
+    );
+    assert!(
+        !error_after("center = [0, 0, 1]", "center = [0,0,1,]]").contains("decimal"),
+        "a list is not a decimal"
+    );
+}

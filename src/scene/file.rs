@@ -7,6 +7,7 @@
 //! and its line.
 //! The format is documented in `scenes/README.md`.
 
+use super::decimal_comma;
 use super::generate::{Generate, GenerateKind};
 use super::locate::{FieldError, FieldPath, line_col, locate, path_at, written};
 use super::tag;
@@ -107,11 +108,13 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
         at(locate(text, &e.path), e.path.to_string(), message)
     };
     let mut root = DeTable::parse(text).map_err(|e| {
-        at(
-            e.span().map_or(0, |s| s.start),
-            "TOML".to_string(),
-            e.message().trim().to_string(),
-        )
+        let offset = e.span().map_or(0, |s| s.start);
+        let message = e.message().trim();
+        let message = match decimal_comma::toml_hint(text, offset) {
+            Some(hint) => format!("{message}; {hint}"),
+            None => message.to_string(),
+        };
+        at(offset, "TOML".to_string(), message)
     })?;
     // A missing required table has no place in the file to point at: it is named instead. A
     // file with an unknown top-level key (`[kamera]`) gets the located unknown-field error

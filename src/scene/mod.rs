@@ -2,6 +2,7 @@
 //! builds what rendering needs from it. Scene files are lumiere's TOML format ([`parse`])
 //! or SIMRenderer's keyword blocks ([`simrenderer`]); [`load`] tells them apart.
 
+mod decimal_comma;
 mod file;
 pub mod generate;
 mod locate;

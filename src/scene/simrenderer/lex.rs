@@ -22,6 +22,8 @@
 //! is a [`Note`], which lumiere reads and SIMRenderer ignores (an object's name, the seed;
 //! see docs/simrenderer.md).
 
+use crate::scene::decimal_comma;
+
 /// One significant line: its keyword and its value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Line<'a> {
@@ -304,21 +306,16 @@ fn first<'a>(value: &'a str, column: usize, what: &str) -> Result<Token<'a>, Val
     }
 }
 
-/// The first word of `value` that reads as a decimal written with a comma (`0,5`, `-1,25`):
-/// the comma splits it into two numbers, as in SIMRenderer, where a French-speaking author
-/// likely meant one (the course's language writes `0,5`). Its column and the hint to give;
-/// a list written with commas (`1,2,3`) is not such a word.
+/// The first word of `value` that reads as a decimal written with a comma
+/// ([`decimal_comma::split`]): the comma splits it into two numbers, as in SIMRenderer.
+/// Its column and the hint to give.
 pub fn decimal_comma(value: &str, column: usize) -> Option<(usize, String)> {
-    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
     value.split(|c| is_delimiter(c) && c != ',').find_map(|word| {
-        let (whole, fraction) = word.split_once(',')?;
-        let unsigned = whole.strip_prefix(['+', '-']).unwrap_or(whole);
-        if !(digits(unsigned) && digits(fraction)) {
-            return None;
-        }
+        let (whole, fraction) = decimal_comma::split(word)?;
         let offset = word.as_ptr() as usize - value.as_ptr() as usize;
         let hint = format!(
-            "{word:?} reads as two numbers, {whole} and {fraction}: a comma separates numbers (as in SIMRenderer); a decimal takes a point, {whole}.{fraction}"
+            "{word:?} reads as two numbers, {whole} and {fraction}: a comma separates numbers (as in SIMRenderer); {}",
+            decimal_comma::with_point(whole, fraction)
         );
         Some((column + value[..offset].chars().count(), hint))
     })
