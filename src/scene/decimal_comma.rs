@@ -20,10 +20,11 @@ pub fn with_point(whole: &str, fraction: &str) -> String {
 /// decimal written with a comma.
 pub fn toml_hint(text: &str, offset: usize) -> Option<String> {
     let part = |c: char| c.is_ascii_digit() || matches!(c, ',' | '+' | '-');
-    let start = text.get(..offset)?.rfind(|c| !part(c)).map_or(0, |i| i + 1);
-    let end = text[offset..].find(|c| !part(c)).map_or(text.len(), |i| offset + i);
-    let word = &text[start..end];
-    let (whole, fraction) = split(word)?;
+    let (before, after) = (text.get(..offset)?, text.get(offset..)?);
+    let word_before = &before[before.trim_end_matches(part).len()..];
+    let word_after = &after[..after.len() - after.trim_start_matches(part).len()];
+    let word = format!("{word_before}{word_after}");
+    let (whole, fraction) = split(&word)?;
     Some(format!("{word:?}: {}", with_point(whole, fraction)))
 }
 
@@ -44,5 +45,12 @@ mod tests {
         assert_eq!(toml_hint(text, 6), Some("\"0,7\": a decimal takes a point, 0.7".into()));
         assert_eq!(toml_hint("v = [1,2,3]\n", 6), None);
         assert_eq!(toml_hint("k = 1 2\n", 6), None);
+        // Words next to characters of several bytes, and offsets inside one, are no decimal.
+        assert_eq!(toml_hint("\u{fffc}{", 3), None);
+        assert_eq!(toml_hint("\u{fffc}{", 1), None);
+        assert_eq!(
+            toml_hint("é0,5é", 3),
+            Some("\"0,5\": a decimal takes a point, 0.5".into())
+        );
     }
 }
