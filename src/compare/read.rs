@@ -49,12 +49,30 @@ pub fn read_image(path: &Path) -> Result<Image, String> {
 pub fn decode(bytes: &[u8], extension: &str) -> Result<Image, String> {
     let image = decode_any(bytes, extension)?;
     if image.width == 0 || image.height == 0 {
-        return Err(format!(
-            "the {} image is {} x {} pixels: it has no pixel to compare",
-            image.format, image.width, image.height
-        ));
+        return Err(no_pixels(image.format, image.width, image.height));
     }
     Ok(image)
+}
+
+fn no_pixels(format: &str, width: u32, height: u32) -> String {
+    format!("the {format} image is {width} x {height} pixels: it has no pixel to compare")
+}
+
+/// The size a PNG, BMP or TGA header declares, read where each format keeps it (PNG's
+/// IHDR, big-endian; BMP's info header, whose height is negative for rows stored top down;
+/// TGA's image specification), for the images their decoders refuse before saying why.
+fn declared_size(bytes: &[u8], format: ImageFormat) -> Option<(u32, u32)> {
+    let u16_le = |at: usize| Some(u16::from_le_bytes(bytes.get(at..at + 2)?.try_into().ok()?) as u32);
+    let i32_le = |at: usize| Some(i32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?).unsigned_abs());
+    let u32_be = |at: usize| Some(u32::from_be_bytes(bytes.get(at..at + 4)?.try_into().ok()?));
+    match format {
+        ImageFormat::Png => Some((u32_be(16)?, u32_be(20)?)),
+        // A 12-byte core header keeps 16-bit sides; the later headers 32-bit ones.
+        ImageFormat::Bmp if u16_le(14)? == 12 => Some((u16_le(18)?, u16_le(20)?)),
+        ImageFormat::Bmp => Some((i32_le(18)?, i32_le(22)?)),
+        ImageFormat::Tga => Some((u16_le(12)?, u16_le(14)?)),
+        _ => None,
+    }
 }
 
 /// [`decode`], whatever the image's size.
@@ -117,8 +135,10 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
             ));
         }
     };
-    let img = image::load_from_memory_with_format(bytes, format)
-        .map_err(|e| format!("cannot decode the {name} image: {e}"))?;
+    let img = image::load_from_memory_with_format(bytes, format).map_err(|e| match declared_size(bytes, format) {
+        Some((w, h)) if w == 0 || h == 0 => no_pixels(name, w, h),
+        _ => format!("cannot decode the {name} image: {e}"),
+    })?;
     let mut notes = Vec::new();
     if format == ImageFormat::Jpeg {
         notes.push("JPEG is lossy: its compression alone changes pixels by a few levels".into());
@@ -303,6 +323,30 @@ mod tests {
         ] {
             let e = decode(bytes, "ppm").unwrap_err();
             assert_eq!(e, format!("the PPM image is {size} pixels: it has no pixel to compare"));
+        }
+        // Headers whose decoders refuse a 0 side in their own words (BMP's says "too large").
+        let png = [
+            &b"\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR"[..],
+            &[0, 0, 0, 0, 0, 0, 0, 4, 8, 2, 0, 0, 0],
+        ]
+        .concat();
+        let mut bmp = b"BM".to_vec();
+        bmp.extend([54u32, 0, 54].iter().flat_map(|v| v.to_le_bytes()));
+        bmp.extend(40u32.to_le_bytes());
+        bmp.extend(5i32.to_le_bytes());
+        bmp.extend(0i32.to_le_bytes());
+        bmp.extend([1u8, 0, 24, 0]);
+        bmp.extend([0u8; 24]);
+        let tga = [0u8, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 24, 0];
+        for (bytes, extension, message) in [
+            (&png[..], "png", "the PNG image is 0 x 4 pixels"),
+            (&bmp, "bmp", "the BMP image is 5 x 0 pixels"),
+            (&tga, "tga", "the TGA image is 0 x 4 pixels"),
+        ] {
+            assert_eq!(
+                decode(bytes, extension).unwrap_err(),
+                format!("{message}: it has no pixel to compare")
+            );
         }
     }
 }
