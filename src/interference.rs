@@ -94,18 +94,12 @@ impl Mask {
     /// Reads a mask image (any format the image crate reads here: PNG, JPEG, BMP, TGA,
     /// PNM, EXR), converted to 8-bit RGB as SIMRenderer's Java image reader does.
     pub fn read(path: &std::path::Path, file: &str) -> Result<Mask, String> {
-        let img = image::ImageReader::open(path)
-            .map_err(|e| format!("cannot open the mask image {}: {e}", path.display()))?
-            .with_guessed_format()
-            .map_err(|e| format!("cannot read the mask image {}: {e}", path.display()))?
-            .decode()
-            .map_err(|e| format!("cannot decode the mask image {}: {e}", path.display()))?
-            .to_rgb8();
+        let (width, height, rgb) = crate::texture::read_rgb8(path, "mask image")?;
         Ok(Mask {
             file: file.to_string(),
-            width: img.width(),
-            height: img.height(),
-            open: img.pixels().map(|p| p.0 == [255, 255, 255]).collect(),
+            width,
+            height,
+            open: rgb.chunks_exact(3).map(|p| p == [255, 255, 255]).collect(),
         })
     }
 

@@ -11,7 +11,7 @@
 //! - the texel is column `floor(u (width - 1))`, row `floor(v (height - 1))` (no
 //!   filtering), its 8-bit channels divided by 255 with no gamma.
 //!
-//! Images are read through the `image` crate (PNG, JPEG, BMP, TGA, PNM); every error names
+//! Images are read through the `image` crate (PNG, JPEG, BMP, TGA, PNM, EXR); every error names
 //! the file.
 
 use glam::DVec3;
@@ -59,38 +59,44 @@ pub struct Texture {
     texels: Vec<DVec3>,
 }
 
+/// The 8-bit RGB texels of the image at `path`, row-major from the top row, with its width
+/// and height; `what` (a texture, a mask image) names it in errors, which name the file and
+/// say what is wrong: missing, unreadable, not an image, or of a size [`Texture::check_size`]
+/// refuses (checked on the header, before any texel is decoded).
+pub fn read_rgb8(path: &Path, what: &str) -> Result<(u32, u32, Vec<u8>), String> {
+    let shown = path.display();
+    let meta = std::fs::metadata(path).map_err(|e| format!("{shown}: cannot read the {what}: {e}"))?;
+    if !meta.is_file() {
+        return Err(format!("{shown}: cannot read the {what}: not a regular file"));
+    }
+    let open = || {
+        image::ImageReader::open(path)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(|e| format!("{shown}: cannot read the {what}: {e}"))
+    };
+    let not_an_image =
+        |e: image::ImageError| format!("{shown}: not an image lumiere reads (PNG, JPEG, BMP, TGA, PNM, EXR): {e}");
+    let (width, height) = open()?.into_dimensions().map_err(not_an_image)?;
+    Texture::check_size(width, height, what).map_err(|m| format!("{shown}: {m}"))?;
+    let image = open()?.decode().map_err(not_an_image)?.to_rgb8();
+    Ok((image.width(), image.height(), image.into_raw()))
+}
+
 impl Texture {
     /// Reads the image at `path`; `file` is its name as the scene wrote it. The error names
     /// the file and says what is wrong: missing, unreadable, or of a bad size.
     pub fn load(path: &Path, file: &str) -> Result<Texture, String> {
-        let shown = path.display();
-        let meta = std::fs::metadata(path).map_err(|e| format!("{shown}: cannot read the texture: {e}"))?;
-        if !meta.is_file() {
-            return Err(format!("{shown}: cannot read the texture: not a regular file"));
-        }
-        let reader = image::ImageReader::open(path)
-            .and_then(|r| r.with_guessed_format())
-            .map_err(|e| format!("{shown}: cannot read the texture: {e}"))?;
-        let (width, height) = reader
-            .into_dimensions()
-            .map_err(|e| format!("{shown}: not an image lumiere reads (PNG, JPEG, BMP, TGA, PNM): {e}"))?;
-        Self::check_size(width, height).map_err(|m| format!("{shown}: {m}"))?;
-        let image = image::ImageReader::open(path)
-            .and_then(|r| r.with_guessed_format())
-            .map_err(|e| format!("{shown}: cannot read the texture: {e}"))?
-            .decode()
-            .map_err(|e| format!("{shown}: not an image lumiere reads (PNG, JPEG, BMP, TGA, PNM): {e}"))?
-            .to_rgb8();
-        Ok(Texture::from_rgb8(file, image.width(), image.height(), image.as_raw()))
+        let (width, height, rgb) = read_rgb8(path, "texture")?;
+        Ok(Texture::from_rgb8(file, width, height, &rgb))
     }
 
-    /// Why an image of this size is refused, if it is: no texel, or more than
-    /// [`MAX_TEXELS`].
-    pub fn check_size(width: u32, height: u32) -> Result<(), String> {
+    /// Why an image of this size is refused as `what` (a texture, a mask image), if it is:
+    /// no texel, or more than [`MAX_TEXELS`].
+    pub fn check_size(width: u32, height: u32, what: &str) -> Result<(), String> {
         let texels = width as u64 * height as u64;
         if texels == 0 || texels > MAX_TEXELS {
             return Err(format!(
-                "the texture is {width} x {height}: it must hold between 1 and {MAX_TEXELS} texels"
+                "the {what} is {width} x {height}: it must hold between 1 and {MAX_TEXELS} texels"
             ));
         }
         Ok(())
@@ -232,11 +238,11 @@ mod tests {
 
     #[test]
     fn sizes_refused_by_name() {
-        assert!(Texture::check_size(1, 1).is_ok());
+        assert!(Texture::check_size(1, 1, "texture").is_ok());
         assert_eq!(
-            Texture::check_size(0, 5).unwrap_err(),
+            Texture::check_size(0, 5, "texture").unwrap_err(),
             "the texture is 0 x 5: it must hold between 1 and 67108864 texels"
         );
-        assert!(Texture::check_size(8193, 8192).is_err());
+        assert!(Texture::check_size(8193, 8192, "mask image").is_err());
     }
 }

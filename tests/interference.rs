@@ -404,8 +404,24 @@ fn the_toml_format_reads_every_key_and_refuses_bad_values_in_place() {
     .unwrap_err();
     let m = e.to_string();
     assert!(
-        m.starts_with("t.toml:10:8: lights[0].mask: cannot open the mask image absent.png: "),
+        m.starts_with("t.toml:10:8: lights[0].mask: absent.png: cannot read the mask image: "),
         "{m}"
+    );
+    // A PNM header may say 0 x 0, which the image crate decodes to no pixel at all: refused
+    // by its size, as a texture is, before the grid looks up a texel.
+    let dir = temp_dir("empty-mask");
+    std::fs::write(dir.join("empty.ppm"), "P3\n0 0\n255\n").unwrap();
+    let file = dir.join("t.toml");
+    std::fs::write(&file, format!("{base}type = \"aperture_mask\"\nmask = \"empty.ppm\"\n")).unwrap();
+    let e = scene::load(&file).unwrap_err().to_string();
+    let empty = dir.join("empty.ppm");
+    assert_eq!(
+        e,
+        format!(
+            "{}:10:8: lights[0].mask: {}: the mask image is 0 x 0: it must hold between 1 and 67108864 texels",
+            file.display(),
+            empty.display()
+        )
     );
 }
 
@@ -430,7 +446,7 @@ fn simrenderer_values_out_of_range_are_placed_on_their_line() {
         ),
         (
             "aperture_mask_light\nmask absent.png\nend\n",
-            "lab.txt:2:6: aperture_mask_light.mask: cannot open the mask image absent.png: ",
+            "lab.txt:2:6: aperture_mask_light.mask: absent.png: cannot read the mask image: ",
         ),
     ];
     for (text, expected) in cases {

@@ -77,7 +77,7 @@ fn texture_errors_name_the_file() {
     let junk = error("texture_ka = \"junk.png\"");
     assert!(
         junk.starts_with(&format!(
-            "{t}:8:14: materials.m.texture_ka: {}: not an image lumiere reads (PNG, JPEG, BMP, TGA, PNM): ",
+            "{t}:8:14: materials.m.texture_ka: {}: not an image lumiere reads (PNG, JPEG, BMP, TGA, PNM, EXR): ",
             shown("junk.png")
         )),
         "{junk}"
