@@ -16,7 +16,7 @@ use crate::interference::{Aperture, ApertureLight, Invalid, Mask, Planar, VISIBL
 use crate::light::{Attenuation, Light, PointLight};
 use crate::limits;
 use crate::material::Material;
-use crate::scene::{CameraSpec, Object, ObjectNames, Scene, SceneError, Settings, ShadingModel};
+use crate::scene::{Object, ObjectNames, Scene, SceneError, Settings};
 use crate::shape::mesh::Mesh;
 use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Lens, Plane, Shape, Sphere, SphericalCap, Torus, Transform, Triangle,
@@ -25,17 +25,19 @@ use glam::DVec3;
 use std::collections::BTreeMap;
 use std::path::Path;
 
+mod camera;
 mod keywords;
 mod values;
 
+use camera::{CameraBlock, RaytracerBlock, ViewportBlock};
 use keywords::{
-    AMBIENT, APERTURE_MASK, CAMERA, COLOR_NORMALIZATIONS, DIRECTIONAL, GEOMETRIES, LINEAR_APERTURE, MATERIAL, MODEL,
-    PLANAR_APERTURE, POINT, RAYTRACER, SPACES, TEXTURE_MATERIAL, VIEWPORT, WRAPPER, listed,
+    AMBIENT, APERTURE_MASK, DIRECTIONAL, GEOMETRIES, LINEAR_APERTURE, MATERIAL, MODEL, PLANAR_APERTURE, POINT,
+    TEXTURE_MATERIAL, WRAPPER, listed,
 };
 pub use keywords::{
     DEFAULT_SEED, PIXEL_COORDINATES, REFLEXION_ALGORITHMS, TOP_BLOCKS, canonical, grey_default, shading_of,
 };
-use values::{angles, color, direction, far, int_in, number_in, point, positive, scale_factors, unit};
+use values::{angles, color, direction, int_in, number_in, point, positive, scale_factors, unit};
 
 /// How to read a SIMRenderer file.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -106,41 +108,6 @@ struct Raw {
     materials: Vec<MaterialEntry>,
     shapes: Vec<ShapeEntry>,
     lights: Vec<(At, Light)>,
-}
-
-struct CameraBlock {
-    spec: CameraSpec,
-    near: Option<f64>,
-    far: Option<f64>,
-}
-
-impl Default for CameraBlock {
-    fn default() -> Self {
-        CameraBlock {
-            spec: CameraSpec {
-                position: DVec3::ZERO,
-                look_at: DVec3::Z,
-                up: DVec3::Y,
-                vfov_deg: 60.0,
-            },
-            near: None,
-            far: None,
-        }
-    }
-}
-
-struct ViewportBlock {
-    width: u32,
-    height: u32,
-    at: At,
-}
-
-#[derive(Default)]
-struct RaytracerBlock {
-    sampling: Option<(u32, At)>,
-    depth: Option<u32>,
-    shading: Option<ShadingModel>,
-    pixel_coordinate: Option<SamplePosition>,
 }
 
 struct MaterialEntry {
@@ -435,195 +402,6 @@ impl<'a> Reader<'a> {
             }
         }
         Ok(raw)
-    }
-
-    fn camera(&mut self, open: &Line<'a>) -> Result<Option<CameraBlock>, SceneError> {
-        let block = open.keyword.clone();
-        let mut c = CameraBlock::default();
-        let mut lines: BTreeMap<&str, At> = BTreeMap::new();
-        while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, CAMERA)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    self.note(&n, &block, false)?;
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
-            let read = match k {
-                "position" | "look_at" => self.value(&block, &l, point(&l))?.map(|p| {
-                    if k == "position" {
-                        c.spec.position = p;
-                    } else {
-                        c.spec.look_at = p;
-                    }
-                }),
-                "up" => self.value(&block, &l, direction(&l))?.map(|d| c.spec.up = unit(d)),
-                "angle" => self
-                    .value(&block, &l, number_in(&l, 10.0, 170.0))?
-                    .map(|a| c.spec.vfov_deg = a),
-                "near_clipping_plane" => self
-                    .value(&block, &l, positive(&l, limits::MAX_COORDINATE))?
-                    .map(|x| c.near = Some(x)),
-                _ => self.value(&block, &l, far(&l))?.map(|x| c.far = Some(x)),
-            };
-            if read.is_some() {
-                lines.insert(k, at(&l, &block));
-            }
-        }
-        let place = |k: &str| lines.get(k).cloned().unwrap_or_else(|| at(open, "scene"));
-        let s = &c.spec;
-        let forward = s.look_at - s.position;
-        let problem = if forward.length() <= 1e-12 {
-            Some(("look_at", "must differ from the camera position".to_string()))
-        } else if forward.normalize().cross(s.up).length() < 1e-9 {
-            Some((
-                "up",
-                "must not be parallel to the viewing direction (look_at - position)".to_string(),
-            ))
-        } else {
-            let (near, far) = (c.near.unwrap_or(1.0), c.far.unwrap_or(100.0));
-            (far < near).then(|| {
-                (
-                    if c.far.is_some() {
-                        "far_clipping_plane"
-                    } else {
-                        "near_clipping_plane"
-                    },
-                    format!("far_clipping_plane ({far}) must be at least near_clipping_plane ({near})"),
-                )
-            })
-        };
-        if let Some((k, message)) = problem {
-            self.problem(&place(k), message, "the camera is dropped")?;
-            return Ok(None);
-        }
-        Ok(Some(c))
-    }
-
-    fn viewport(&mut self, open: &Line<'a>) -> Result<Option<ViewportBlock>, SceneError> {
-        let block = open.keyword.clone();
-        let mut v = ViewportBlock {
-            width: 500,
-            height: 500,
-            at: at(open, "scene"),
-        };
-        while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, VIEWPORT)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    self.note(&n, &block, false)?;
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
-            match k {
-                "width" | "height" => {
-                    let read = int_in(&l, 1, limits::MAX_DIMENSION as i32);
-                    if let Some(n) = self.value(&block, &l, read)? {
-                        if k == "width" {
-                            v.width = n as u32;
-                        } else {
-                            v.height = n as u32;
-                        }
-                        v.at = at(&l, &block);
-                    }
-                }
-                // The image is written where the command line says.
-                _ => {
-                    self.value(&block, &l, lex::name(l.value, l.value_column))?;
-                }
-            }
-        }
-        if let Err(m) = limits::check_pixel_count(v.width, v.height) {
-            self.problem(&v.at.clone(), m, "the viewport is dropped")?;
-            return Ok(None);
-        }
-        Ok(Some(v))
-    }
-
-    fn raytracer(&mut self, open: &Line<'a>) -> Result<RaytracerBlock, SceneError> {
-        let block = open.keyword.clone();
-        let mut r = RaytracerBlock::default();
-        while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, RAYTRACER)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    self.note(&n, &block, false)?;
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
-            let place = at_value(&l, &block, l.value_column);
-            let then = "the value before it is kept";
-            match k {
-                // lumiere picks its own threads and intersection structure.
-                "task" => {
-                    self.value(&block, &l, int_in(&l, 1, i32::MAX))?;
-                }
-                "space" => {
-                    self.value(&block, &l, lex::enumeration(l.value, l.value_column, &SPACES))?;
-                }
-                "sampling" => {
-                    if let Some(n) = self.value(&block, &l, int_in(&l, 1, i32::MAX))? {
-                        let n = n as u32;
-                        if limits::check_samples(n).is_ok() {
-                            r.sampling = Some((n, at(&l, &block)));
-                        } else {
-                            let m = format!(
-                                "lumiere averages a perfect square of samples (1, 4, 9, ..., {}), got {n}: other counts are not supported yet",
-                                limits::MAX_SAMPLES
-                            );
-                            self.problem(&place, m, then)?;
-                        }
-                    }
-                }
-                "recursive_level" => {
-                    if let Some(n) = self.value(&block, &l, int_in(&l, 1, limits::MAX_DEPTH as i32))? {
-                        r.depth = Some(n as u32);
-                    }
-                }
-                "reflexion_algorithm" => {
-                    let read = lex::enumeration(l.value, l.value_column, &REFLEXION_ALGORITHMS);
-                    if let Some(i) = self.value(&block, &l, read)? {
-                        match shading_of(i) {
-                            Some(s) => r.shading = Some(s),
-                            None => {
-                                let m =
-                                    "no_light (the diffuse colour, unlit) is not supported yet by lumiere".to_string();
-                                self.problem(&place, m, then)?;
-                            }
-                        }
-                    }
-                }
-                "pixel_coordinate" => {
-                    let read = lex::enumeration(l.value, l.value_column, &PIXEL_COORDINATES);
-                    if let Some(i) = self.value(&block, &l, read)? {
-                        match i {
-                            0 => r.pixel_coordinate = Some(SamplePosition::Corner),
-                            4 => r.pixel_coordinate = Some(SamplePosition::Center),
-                            5 => r.pixel_coordinate = Some(SamplePosition::Jittered),
-                            _ => {
-                                let m = format!(
-                                    "{} is not supported yet by lumiere (its samples are at the pixel's top_left corner, its center, or random)",
-                                    PIXEL_COORDINATES[i]
-                                );
-                                self.problem(&place, m, then)?;
-                            }
-                        }
-                    }
-                }
-                _ => {
-                    let read = lex::enumeration(l.value, l.value_column, &COLOR_NORMALIZATIONS);
-                    if let Some(1) = self.value(&block, &l, read)? {
-                        let m = "division_factor is not supported yet by lumiere, which clamps each channel (clamp_channel)"
-                            .to_string();
-                        self.problem(&place, m, then)?;
-                    }
-                }
-            }
-        }
-        Ok(r)
     }
 
     /// A `material` block, or with `textured` a `texture_material` block (a material and
