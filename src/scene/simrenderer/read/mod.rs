@@ -27,16 +27,17 @@ use std::path::Path;
 
 mod camera;
 mod keywords;
+mod materials;
 mod values;
 
 use camera::{CameraBlock, RaytracerBlock, ViewportBlock};
 use keywords::{
-    AMBIENT, APERTURE_MASK, DIRECTIONAL, GEOMETRIES, LINEAR_APERTURE, MATERIAL, MODEL, PLANAR_APERTURE, POINT,
-    TEXTURE_MATERIAL, WRAPPER, listed,
+    AMBIENT, APERTURE_MASK, DIRECTIONAL, GEOMETRIES, LINEAR_APERTURE, MODEL, PLANAR_APERTURE, POINT, WRAPPER, listed,
 };
 pub use keywords::{
     DEFAULT_SEED, PIXEL_COORDINATES, REFLEXION_ALGORITHMS, TOP_BLOCKS, canonical, grey_default, shading_of,
 };
+use materials::MaterialEntry;
 use values::{angles, color, direction, int_in, number_in, point, positive, scale_factors, unit};
 
 /// How to read a SIMRenderer file.
@@ -108,13 +109,6 @@ struct Raw {
     materials: Vec<MaterialEntry>,
     shapes: Vec<ShapeEntry>,
     lights: Vec<(At, Light)>,
-}
-
-struct MaterialEntry {
-    name: String,
-    at: At,
-    material: Material,
-    metal_given: bool,
 }
 
 /// A primitive (one shape) or a model (its triangles), with the material name it binds.
@@ -402,132 +396,6 @@ impl<'a> Reader<'a> {
             }
         }
         Ok(raw)
-    }
-
-    /// A `material` block, or with `textured` a `texture_material` block (a material and
-    /// its images, SIMRenderer's `SBlinnTextureMaterial`).
-    fn material(&mut self, open: &Line<'a>, textured: bool) -> Result<Option<MaterialEntry>, SceneError> {
-        let block = open.keyword.clone();
-        let mut m = Material::default();
-        let mut maps = crate::texture::TextureMaps {
-            ambient: None,
-            diffuse: None,
-            specular: None,
-            uv_format: crate::texture::UvFormat::default(),
-        };
-        let mut name: Option<(String, At)> = None;
-        let mut plasticity: Option<f64> = None;
-        // The line of the later of kr and kt, and which.
-        let mut last_weight: Option<(&str, At)> = None;
-        // Where the refractive index read is written, and as written.
-        let mut ior_at: Option<(At, String)> = None;
-        while let Some(item) = self.body() {
-            let keywords = if textured { TEXTURE_MATERIAL } else { MATERIAL };
-            let (k, l) = match self.entry(&block, item, keywords)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    self.note(&n, &block, false)?;
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
-            match k {
-                "name" => {
-                    if let Some(n) = self.value(&block, &l, lex::name(l.value, l.value_column))? {
-                        name = Some((n, at(&l, &block)));
-                    }
-                }
-                "color" => self.set(&block, &l, color(&l, 1.0), &mut m.color)?,
-                "shininess" => self.set(&block, &l, number_in(&l, 0.0, 200.0), &mut m.shininess)?,
-                "refractive_index" => {
-                    let read = number_in(&l, 0.0, limits::MAX_IOR)
-                        .and_then(|x| lex::number_as_written(l.value, l.value_column).map(|(_, w)| (x, w)));
-                    if let Some((x, written)) = self.value(&block, &l, read)? {
-                        m.ior = x;
-                        ior_at = Some((at_value(&l, &block, l.value_column), written.to_string()));
-                    }
-                }
-                "texture_ka" | "texture_kd" | "texture_ks" => {
-                    let Some(file) = self.value(&block, &l, lex::name(l.value, l.value_column))? else {
-                        continue;
-                    };
-                    // SIMRenderer's name for no image.
-                    let texture = if file == "none" {
-                        None
-                    } else {
-                        match crate::texture::Texture::load(&self.dir.join(&file), &file) {
-                            Ok(t) => Some(t),
-                            Err(message) => {
-                                let here = at_value(&l, &block, l.value_column);
-                                self.problem(&here, message, "the material keeps its own colour for this term")?;
-                                continue;
-                            }
-                        }
-                    };
-                    match k {
-                        "texture_ka" => maps.ambient = texture,
-                        "texture_kd" => maps.diffuse = texture,
-                        _ => maps.specular = texture,
-                    }
-                }
-                _ => {
-                    let Some(x) = self.value(&block, &l, number_in(&l, 0.0, 1.0))? else {
-                        continue;
-                    };
-                    match k {
-                        "ka" => m.ka = x,
-                        "kd" => m.kd = x,
-                        "ks" => m.ks = x,
-                        "kr" | "kt" => {
-                            if k == "kr" {
-                                m.kr = x;
-                            } else {
-                                m.kt = x;
-                            }
-                            last_weight = Some((k, at(&l, &block)));
-                        }
-                        _ => plasticity = Some(x),
-                    }
-                }
-            }
-        }
-        if m.kr + m.kt > 1.0
-            && let Some((k, place)) = last_weight
-        {
-            let message = format!(
-                "kr + kt must be at most 1 in lumiere (no ray may carry more than its parent), got {} + {}",
-                m.kr, m.kt
-            );
-            self.problem(&place, message, &format!("{k} is set to 0"))?;
-            if k == "kr" {
-                m.kr = 0.0;
-            } else {
-                m.kt = 0.0;
-            }
-        }
-        if m.ior == 0.0 {
-            if m.kt > 0.0
-                && let Some((place, written)) = ior_at
-            {
-                let message = format!("must be above 0 for a transparent material (kt > 0), got {written}");
-                self.problem(&place, message, "n = 1 is used")?;
-            }
-            // SIMRenderer uses 1 for a material that is not transparent.
-            m.ior = 1.0;
-        }
-        if let Some(p) = plasticity {
-            m.metal = 1.0 - p;
-        }
-        if maps.ambient.is_some() || maps.diffuse.is_some() || maps.specular.is_some() {
-            m.texture = Some(std::sync::Arc::new(maps));
-        }
-        let (name, at) = name.unwrap_or_else(|| ("none".to_string(), at(open, "scene")));
-        Ok(Some(MaterialEntry {
-            name,
-            at,
-            material: m,
-            metal_given: plasticity.is_some(),
-        }))
     }
 
     fn primitive(&mut self, open: &Line<'a>) -> Result<Option<ShapeEntry>, SceneError> {
