@@ -1,0 +1,430 @@
+//! The `primitive` and `model` blocks and the geometry blocks a primitive holds (each shape's
+//! defaults, a `geometry` wrapper's transform): an object's shapes, refused with the reason
+//! when degenerate, beyond the coordinates' range or not supported.
+
+use super::keywords::{GEOMETRIES, MODEL, WRAPPER, canonical};
+use super::values::{angles, direction, number_in, point, positive, scale_factors, unit};
+use super::{At, Entry, Reader, at, at_value};
+use crate::limits;
+use crate::scene::SceneError;
+use crate::scene::simrenderer::lex::{self, Item, Line};
+use crate::shape::mesh::Mesh;
+use crate::shape::{
+    Cone, Cuboid, Cylinder, Disk, Lens, Plane, Shape, Sphere, SphericalCap, Torus, Transform, Triangle,
+};
+use glam::DVec3;
+use std::collections::BTreeMap;
+
+/// A primitive (one shape) or a model (its triangles), with the material name it binds.
+pub(super) struct ShapeEntry {
+    pub(super) at: At,
+    /// The name of a `# lumiere: name` note.
+    pub(super) name: Option<String>,
+    pub(super) material: String,
+    pub(super) material_at: At,
+    pub(super) shapes: Vec<Shape>,
+    pub(super) model: bool,
+}
+
+impl<'a> Reader<'a> {
+    pub(super) fn primitive(&mut self, open: &Line<'a>) -> Result<Option<ShapeEntry>, SceneError> {
+        let block = open.keyword.clone();
+        let mut material = ("none".to_string(), at(open, "scene"));
+        let mut name = None;
+        let mut shape: Option<(Shape, At)> = None;
+        // The first geometry's keyword, as written.
+        let mut geometry_seen: Option<String> = None;
+        let mut keywords = vec!["material_name"];
+        keywords.extend_from_slice(GEOMETRIES);
+        while let Some(item) = self.body() {
+            let (k, l) = match self.entry(&block, item, &keywords)? {
+                Entry::Key(k, l) => (k, l),
+                Entry::Note(n) => {
+                    if let Some(n) = self.note(&n, &block, true)? {
+                        name = Some(n);
+                    }
+                    continue;
+                }
+                Entry::Skip => continue,
+            };
+            if k == "material_name" {
+                if let Some(n) = self.value(&block, &l, lex::name(l.value, l.value_column))? {
+                    material = (n, at(&l, &block));
+                }
+                continue;
+            }
+            let place = at(&l, &block);
+            if let Some(first) = &geometry_seen {
+                let m = format!("a primitive has one geometry; this is a second one (after a {first})");
+                self.problem(&place, m, "this geometry is skipped")?;
+                self.skip_geometry(k);
+                continue;
+            }
+            geometry_seen = Some(l.keyword.clone());
+            if let Some(s) = self.geometry(&block, &l, k)? {
+                shape = Some((s, place));
+            }
+        }
+        let place = at(open, "scene");
+        let Some((shape, _)) = shape else {
+            if geometry_seen.is_none() {
+                self.warn(&place, "a primitive without geometry draws nothing".to_string());
+            }
+            return Ok(None);
+        };
+        self.objects += 1;
+        Ok(Some(ShapeEntry {
+            at: place,
+            name,
+            material: material.0,
+            material_at: material.1,
+            shapes: vec![shape],
+            model: false,
+        }))
+    }
+
+    /// Skips a geometry block (with the blocks a `geometry` wrapper holds).
+    fn skip_geometry(&mut self, kind: &str) {
+        while let Some(item) = self.body() {
+            if kind == "geometry"
+                && let Item::Line(l) = item
+                && canonical(&l.keyword).is_some_and(|k| GEOMETRIES.contains(&k))
+            {
+                self.skip_geometry(canonical(&l.keyword).unwrap_or_default());
+            }
+        }
+    }
+
+    /// A geometry block opened by `open`, of canonical kind `kind`; `None` when it is
+    /// dropped.
+    fn geometry(&mut self, parent: &str, open: &Line<'a>, kind: &'static str) -> Result<Option<Shape>, SceneError> {
+        let block = open.keyword.clone();
+        let place = at(open, parent);
+        let what = match kind {
+            "btriangle" => Some("barycentric triangles (btriangle) are"),
+            _ => None,
+        };
+        if let Some(what) = what {
+            let m = format!("{what} not supported yet by lumiere");
+            self.problem(&place, m, "the geometry is skipped")?;
+            self.skip_geometry(kind);
+            return Ok(None);
+        }
+        let keywords: &[&'static str] = match kind {
+            "sphere" => &["position", "ray"],
+            "plane" => &["position", "normal"],
+            "disk" => &["position", "normal", "ray"],
+            "triangle" => &["point"],
+            "tube" | "cylinder" | "cone" => &["point", "position", "ray"],
+            "cube" => &["position", "size"],
+            "torus" => &["position", "normal", "major_radius", "minor_radius"],
+            "spherical_cap" => &["position", "normal", "ray", "curvature"],
+            "lens" => &["point", "position", "ray", "curvature"],
+            _ => WRAPPER,
+        };
+        let mut position = DVec3::ZERO;
+        let mut normal = DVec3::Z;
+        let mut ray = 1.0;
+        let mut size = 1.0;
+        let (mut major, mut minor) = (1.0, 0.2);
+        // A cap's curvature, or a lens's two (cap 1's then cap 2's); SIMRenderer's default
+        // is the default radius, 1.
+        let mut curvatures: Vec<(f64, At)> = Vec::new();
+        let mut points: Vec<(DVec3, At)> = Vec::new();
+        let (mut scale, mut rotation, mut translation) = (DVec3::ONE, DVec3::ZERO, DVec3::ZERO);
+        let mut inner: Option<Shape> = None;
+        let mut inner_seen = false;
+        let mut lines: BTreeMap<&str, At> = BTreeMap::new();
+        while let Some(item) = self.body() {
+            let (k, l) = match self.entry(&block, item, keywords)? {
+                Entry::Key(k, l) => (k, l),
+                Entry::Note(n) => {
+                    self.note(&n, &block, false)?;
+                    continue;
+                }
+                Entry::Skip => continue,
+            };
+            let here = at(&l, &block);
+            match k {
+                "point" | "position" if kind == "triangle" || points_kind(kind) => {
+                    let most = if kind == "triangle" { 3 } else { 2 };
+                    if points.len() == most {
+                        let m = format!("a {kind} takes {most} points; this is one more");
+                        self.problem(&here, m, "the line is skipped")?;
+                    } else if let Some(p) = self.value(&block, &l, point(&l))? {
+                        points.push((p, here.clone()));
+                    }
+                }
+                "position" => self.set(&block, &l, point(&l), &mut position)?,
+                "normal" => self.set(&block, &l, direction(&l), &mut normal)?,
+                "ray" => self.set(&block, &l, positive(&l, limits::MAX_COORDINATE), &mut ray)?,
+                "size" => self.set(&block, &l, positive(&l, limits::MAX_COORDINATE), &mut size)?,
+                "major_radius" => self.set(&block, &l, positive(&l, limits::MAX_COORDINATE), &mut major)?,
+                "minor_radius" => self.set(&block, &l, positive(&l, limits::MAX_COORDINATE), &mut minor)?,
+                "curvature" => {
+                    let most = if kind == "lens" { 2 } else { 1 };
+                    let c = self.value(
+                        &block,
+                        &l,
+                        number_in(&l, -limits::MAX_COORDINATE, limits::MAX_COORDINATE),
+                    )?;
+                    if let Some(c) = c {
+                        if kind == "lens" && curvatures.len() == most {
+                            let m = "a lens takes 2 curvatures (cap 1's, then cap 2's); this is one more".to_string();
+                            self.problem(&here, m, "the line is skipped")?;
+                        } else {
+                            // A cap's second curvature replaces the first, as any value does.
+                            curvatures.truncate(most - 1);
+                            curvatures.push((c, here.clone()));
+                        }
+                    }
+                }
+                "scale" => self.set(&block, &l, scale_factors(&l), &mut scale)?,
+                "rotation" => self.set(&block, &l, angles(&l), &mut rotation)?,
+                "translation" => self.set(&block, &l, point(&l), &mut translation)?,
+                geometry => {
+                    if inner_seen {
+                        let m = "a geometry block holds one geometry; this is a second one".to_string();
+                        self.problem(&here, m, "this geometry is skipped")?;
+                        self.skip_geometry(geometry);
+                        continue;
+                    }
+                    inner_seen = true;
+                    inner = self.geometry(&block, &l, geometry)?;
+                }
+            }
+            lines.insert(k, here);
+        }
+        let line = |k: &str| lines.get(k).cloned().unwrap_or_else(|| place.clone());
+        let dropped = "the geometry is dropped";
+        let shape = match kind {
+            "sphere" => Shape::Sphere(Sphere::new(position, ray)),
+            "plane" => Shape::Plane(Box::new(Plane::new(position, unit(normal)))),
+            "disk" => Shape::Disk(Box::new(Disk::new(position, unit(normal), ray))),
+            "cube" => Shape::Cuboid(Box::new(Cuboid::new(position, DVec3::splat(size), DVec3::ZERO))),
+            "torus" => {
+                if minor > major {
+                    let m = format!(
+                        "must be at most major_radius ({major}) (a self-intersecting spindle torus is not supported), got {minor}"
+                    );
+                    self.problem(&line("minor_radius"), m, dropped)?;
+                    return Ok(None);
+                }
+                Shape::Torus(Box::new(Torus::new(position, unit(normal), major, minor)))
+            }
+            "triangle" => {
+                let defaults = [DVec3::ZERO, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)];
+                let p: Vec<DVec3> = (0..3).map(|i| points.get(i).map_or(defaults[i], |(p, _)| *p)).collect();
+                if let Some(why) = Triangle::degenerate(p[0], p[1], p[2]) {
+                    let m = format!(
+                        "the points {:?}, {:?} and {:?} make no triangle: {why}",
+                        p[0].to_array(),
+                        p[1].to_array(),
+                        p[2].to_array()
+                    );
+                    let here = points.last().map_or(place.clone(), |(_, a)| a.clone());
+                    self.problem(&here, m, dropped)?;
+                    return Ok(None);
+                }
+                Shape::Triangle(Triangle::new(p[0], p[1], p[2]))
+            }
+            "spherical_cap" => {
+                let (curvature, curvature_at) = curvatures.pop().unwrap_or((1.0, place.clone()));
+                if let Some(why) = SphericalCap::check(ray, curvature) {
+                    self.problem(&curvature_at, why, dropped)?;
+                    return Ok(None);
+                }
+                Shape::SphericalCap(Box::new(SphericalCap::new(position, unit(normal), ray, curvature)))
+            }
+            "tube" | "cylinder" | "cone" | "lens" => {
+                let from = points.first().map_or(DVec3::ZERO, |(p, _)| *p);
+                let to = points.get(1).map_or(DVec3::Z, |(p, _)| *p);
+                let height = (to - from).length();
+                let axis = (to - from) / height;
+                // Two different finite points differ by a vector of non-zero length unless
+                // it underflows.
+                if !axis.is_finite() {
+                    let m = format!(
+                        "the two points {:?} and {:?} must differ (a {kind} needs a length)",
+                        from.to_array(),
+                        to.to_array()
+                    );
+                    let here = points.last().map_or(place.clone(), |(_, a)| a.clone());
+                    self.problem(&here, m, dropped)?;
+                    return Ok(None);
+                }
+                if kind == "lens" {
+                    let curvature = |i: usize| curvatures.get(i).map_or((1.0, place.clone()), |(c, a)| (*c, a.clone()));
+                    let (c1, c2) = (curvature(0), curvature(1));
+                    if let Some((i, why)) = Lens::check(height, ray, c1.0, c2.0) {
+                        self.problem(&[c1.1, c2.1][i], why, dropped)?;
+                        return Ok(None);
+                    }
+                    return Ok(Some(Shape::Lens(Box::new(Lens::new(
+                        from, axis, height, ray, c1.0, c2.0,
+                    )))));
+                }
+                match kind {
+                    "tube" => Shape::Cylinder(Box::new(Cylinder::tube(from, axis, height, ray))),
+                    "cylinder" => Shape::Cylinder(Box::new(Cylinder::new(from, axis, height, ray))),
+                    _ => Shape::Cone(Box::new(Cone::new(from, axis, height, ray))),
+                }
+            }
+            _ => {
+                let Some(inner) = inner else {
+                    if !inner_seen {
+                        let m = "a geometry block needs one geometry inside it (sphere, plane, ...)".to_string();
+                        self.problem(&place, m, dropped)?;
+                    }
+                    return Ok(None);
+                };
+                let t = Transform::from_parts(scale, rotation, translation);
+                if t.is_identity() {
+                    inner
+                } else {
+                    match moved(&t, inner) {
+                        Ok(s) => s,
+                        Err(m) => {
+                            self.problem(&place, m, dropped)?;
+                            return Ok(None);
+                        }
+                    }
+                }
+            }
+        };
+        Ok(Some(shape))
+    }
+
+    pub(super) fn model(&mut self, open: &Line<'a>) -> Result<Option<ShapeEntry>, SceneError> {
+        let block = open.keyword.clone();
+        let place = at(open, "scene");
+        let mut file: Option<(String, At)> = None;
+        let mut name = None;
+        let (mut scale, mut rotation, mut translation) = (DVec3::ONE, DVec3::ZERO, DVec3::ZERO);
+        while let Some(item) = self.body() {
+            let (k, l) = match self.entry(&block, item, MODEL)? {
+                Entry::Key(k, l) => (k, l),
+                Entry::Note(n) => {
+                    if let Some(n) = self.note(&n, &block, true)? {
+                        name = Some(n);
+                    }
+                    continue;
+                }
+                Entry::Skip => continue,
+            };
+            match k {
+                "file" => {
+                    if let Some(f) = self.value(&block, &l, lex::name(l.value, l.value_column))? {
+                        file = Some((f, at_value(&l, &block, l.value_column)));
+                    }
+                }
+                "scale" => self.set(&block, &l, scale_factors(&l), &mut scale)?,
+                "rotation" => self.set(&block, &l, angles(&l), &mut rotation)?,
+                "translation" => self.set(&block, &l, point(&l), &mut translation)?,
+                // Texture coordinates: lumiere draws no texture.
+                _ => {}
+            }
+        }
+        let dropped = "the model is dropped";
+        let Some((file, file_at)) = file else {
+            self.problem(&place, "a model needs a file (fichier)".to_string(), dropped)?;
+            return Ok(None);
+        };
+        let path = self.dir.join(&file);
+        let shown = path.display().to_string();
+        let room = limits::MAX_OBJECTS.saturating_sub(self.objects);
+        let mut mesh = match Mesh::read(&path, limits::MAX_MESH_TRIANGLES.min(room)) {
+            Ok(mesh) => mesh,
+            Err(e) => {
+                let m = match e.line {
+                    Some(line) => format!("{shown}:{line}: {}", e.message),
+                    None => format!("{shown}: {}", e.message),
+                };
+                self.problem(&file_at, m, dropped)?;
+                return Ok(None);
+            }
+        };
+        let t = Transform::from_parts(scale, rotation, translation);
+        if !t.is_identity() {
+            for v in &mut mesh.vertices {
+                *v = t.point(*v);
+            }
+            if mesh.vertices.iter().any(|v| !within_limits(*v)) {
+                let m = format!(
+                    "the transform moves a vertex of {shown} beyond the coordinates' range [-{c:e}, {c:e}]",
+                    c = limits::MAX_COORDINATE
+                );
+                self.problem(&place, m, dropped)?;
+                return Ok(None);
+            }
+            // A mirror turns the winding: swapped back, the normals stay outward.
+            if t.mirrors() {
+                for f in &mut mesh.faces {
+                    f.swap(1, 2);
+                }
+            }
+        }
+        for (k, f) in mesh.faces.iter().enumerate() {
+            let [a, b, c] = f.map(|i| mesh.vertices[i as usize]);
+            if let Some(why) = Triangle::degenerate(a, b, c) {
+                let m = format!("{shown}:{}: the face makes no triangle: {why}", mesh.lines[k]);
+                self.problem(&file_at, m, dropped)?;
+                return Ok(None);
+            }
+        }
+        self.warn(
+            &place,
+            "the model's triangles take the material of a primitive without material_name (\"none\"): lumiere does not read .mtl materials yet".to_string(),
+        );
+        let shapes: Vec<Shape> = mesh.triangles().into_iter().map(Shape::Triangle).collect();
+        self.objects += shapes.len();
+        Ok(Some(ShapeEntry {
+            at: place.clone(),
+            name,
+            material: "none".to_string(),
+            material_at: place,
+            shapes,
+            model: true,
+        }))
+    }
+}
+
+/// Whether a geometry of this kind takes its two points from `point` or `position` lines.
+fn points_kind(kind: &str) -> bool {
+    matches!(kind, "tube" | "cylinder" | "cone" | "lens")
+}
+
+/// Whether every coordinate is within [`limits::MAX_COORDINATE`].
+fn within_limits(p: DVec3) -> bool {
+    p.is_finite() && p.abs().max_element() <= limits::MAX_COORDINATE
+}
+
+/// `shape` through `t`, refused when it leaves the coordinates' range or, for a triangle,
+/// when rounding made it degenerate.
+fn moved(t: &Transform, shape: Shape) -> Result<Shape, String> {
+    let out = t.apply(shape);
+    let reach = match &out {
+        Shape::Transformed(s) => match s.bounds() {
+            Some(b) => within_limits(b.min) && within_limits(b.max),
+            None => within_limits(t.point(match &s.shape {
+                Shape::Plane(p) => p.point,
+                _ => DVec3::ZERO,
+            })),
+        },
+        Shape::Triangle(tri) => tri.points().iter().all(|p| within_limits(*p)),
+        _ => true,
+    };
+    if !reach {
+        return Err(format!(
+            "the transform moves the shape beyond the coordinates' range [-{m:e}, {m:e}]",
+            m = limits::MAX_COORDINATE
+        ));
+    }
+    if let Shape::Triangle(tri) = &out
+        && let [a, b, c] = tri.points()
+        && let Some(why) = Triangle::degenerate(a, b, c)
+    {
+        return Err(format!("the transform makes the triangle degenerate: {why}"));
+    }
+    Ok(out)
+}
