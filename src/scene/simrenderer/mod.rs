@@ -1,6 +1,6 @@
 //! SIMRenderer's scene format (the keyword-block files of the course's Java ray tracer that
 //! students complete, as its public lab sources read them): its lexical rules ([`lex`]),
-//! reading a file into a [`crate::scene::Scene`] ([`parse`], `read.rs`), and writing a
+//! reading a file into a [`crate::scene::Scene`] ([`parse`], `read/`), and writing a
 //! scene in that format or in lumiere's TOML one ([`to_simrenderer`], [`to_toml`]),
 //! losslessly where the format can say the thing and refusing, by name, what it cannot
 //! (`exact.rs` finds what to write so that values read back to the bit). The format, its
