@@ -5,7 +5,7 @@ use super::keywords::{
     CAMERA, COLOR_NORMALIZATIONS, PIXEL_COORDINATES, RAYTRACER, REFLEXION_ALGORITHMS, SPACES, VIEWPORT, shading_of,
 };
 use super::values::{direction, far, int_in, number_in, point, positive, unit};
-use super::{At, Entry, Reader, at, at_value};
+use super::{At, Reader, at, at_value};
 use crate::conventions::SamplePosition;
 use crate::limits;
 use crate::scene::simrenderer::lex::{self, Line};
@@ -53,15 +53,7 @@ impl<'a> Reader<'a> {
         let block = open.keyword.clone();
         let mut c = CameraBlock::default();
         let mut lines: BTreeMap<&str, At> = BTreeMap::new();
-        while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, CAMERA)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    self.note(&n, &block, false)?;
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
+        while let Some((k, l)) = self.next_key(&block, CAMERA, None)? {
             let read = match k {
                 "position" | "look_at" => self.value(&block, &l, point(&l))?.map(|p| {
                     if k == "position" {
@@ -120,15 +112,7 @@ impl<'a> Reader<'a> {
             height: 500,
             at: at(open, "scene"),
         };
-        while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, VIEWPORT)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    self.note(&n, &block, false)?;
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
+        while let Some((k, l)) = self.next_key(&block, VIEWPORT, None)? {
             match k {
                 "width" | "height" => {
                     let read = int_in(&l, 1, limits::MAX_DIMENSION as i32);
@@ -157,15 +141,7 @@ impl<'a> Reader<'a> {
     pub(super) fn raytracer(&mut self, open: &Line<'a>) -> Result<RaytracerBlock, SceneError> {
         let block = open.keyword.clone();
         let mut r = RaytracerBlock::default();
-        while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, RAYTRACER)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    self.note(&n, &block, false)?;
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
+        while let Some((k, l)) = self.next_key(&block, RAYTRACER, None)? {
             let place = at_value(&l, &block, l.value_column);
             let then = "the value before it is kept";
             match k {

@@ -3,7 +3,7 @@
 
 use super::keywords::{AMBIENT, APERTURE_MASK, DIRECTIONAL, LINEAR_APERTURE, PLANAR_APERTURE, POINT};
 use super::values::{color, direction, int_in, number_in, point, positive, unit};
-use super::{At, Entry, Reader, at, at_value};
+use super::{At, Reader, at, at_value};
 use crate::interference::{Aperture, ApertureLight, Invalid, Mask, Planar, VISIBLE_NM};
 use crate::light::{Attenuation, Light, PointLight};
 use crate::limits;
@@ -26,15 +26,7 @@ impl<'a> Reader<'a> {
         let mut amplification = 1.0;
         let mut attenuation = Attenuation::NONE;
         let mut lines: BTreeMap<&str, At> = BTreeMap::new();
-        while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, keywords)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    self.note(&n, &block, false)?;
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
+        while let Some((k, l)) = self.next_key(&block, keywords, None)? {
             let read = match k {
                 "color" => self
                     .value(&block, &l, self::color(&l, limits::MAX_LIGHT))?
@@ -115,15 +107,7 @@ impl<'a> Reader<'a> {
         let mut amplification = 1.0;
         let mut attenuation = Attenuation::NONE;
         let mut lines: BTreeMap<&str, At> = BTreeMap::new();
-        while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, keywords)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    self.note(&n, &block, false)?;
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
+        while let Some((k, l)) = self.next_key(&block, keywords, None)? {
             let here = at(&l, &block);
             let read = match k {
                 "color" => {

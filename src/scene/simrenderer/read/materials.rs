@@ -4,7 +4,7 @@
 
 use super::keywords::{MATERIAL, TEXTURE_MATERIAL};
 use super::values::{color, number_in};
-use super::{At, Entry, Reader, at, at_value};
+use super::{At, Reader, at, at_value};
 use crate::limits;
 use crate::material::Material;
 use crate::scene::SceneError;
@@ -35,16 +35,8 @@ impl<'a> Reader<'a> {
         let mut last_weight: Option<(&str, At)> = None;
         // Where the refractive index read is written, and as written.
         let mut ior_at: Option<(At, String)> = None;
-        while let Some(item) = self.body() {
-            let keywords = if textured { TEXTURE_MATERIAL } else { MATERIAL };
-            let (k, l) = match self.entry(&block, item, keywords)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    self.note(&n, &block, false)?;
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
+        let keywords = if textured { TEXTURE_MATERIAL } else { MATERIAL };
+        while let Some((k, l)) = self.next_key(&block, keywords, None)? {
             match k {
                 "name" => {
                     if let Some(n) = self.value(&block, &l, lex::name(l.value, l.value_column))? {

@@ -179,6 +179,31 @@ impl<'a> Reader<'a> {
         }
     }
 
+    /// The next line of block `block` (its keyword as written) with a keyword of `keywords`,
+    /// the notes and refused lines before it dealt with; `None` at the block's `end`. With
+    /// `name`, a `lumiere:name` note sets it (primitives and models are named so).
+    fn next_key(
+        &mut self,
+        block: &str,
+        keywords: &[&'static str],
+        mut name: Option<&mut Option<String>>,
+    ) -> Result<Option<(&'static str, Line<'a>)>, SceneError> {
+        while let Some(item) = self.body() {
+            match self.entry(block, item, keywords)? {
+                Entry::Key(k, l) => return Ok(Some((k, l))),
+                Entry::Note(n) => {
+                    if let Some(read) = self.note(&n, block, name.is_some())?
+                        && let Some(slot) = name.as_deref_mut()
+                    {
+                        *slot = Some(read);
+                    }
+                }
+                Entry::Skip => {}
+            }
+        }
+        Ok(None)
+    }
+
     /// Sorts an item of block `block` (its keyword as written): a keyword of `keywords`, a
     /// note, or a problem.
     fn entry(&mut self, block: &str, item: Item<'a>, keywords: &[&'static str]) -> Result<Entry<'a>, SceneError> {

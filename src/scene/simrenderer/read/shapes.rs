@@ -4,7 +4,7 @@
 
 use super::keywords::{GEOMETRIES, MODEL, WRAPPER, canonical};
 use super::values::{angles, direction, number_in, point, positive, scale_factors, unit};
-use super::{At, Entry, Reader, at, at_value};
+use super::{At, Reader, at, at_value};
 use crate::limits;
 use crate::scene::SceneError;
 use crate::scene::simrenderer::lex::{self, Item, Line};
@@ -36,17 +36,7 @@ impl<'a> Reader<'a> {
         let mut geometry_seen: Option<String> = None;
         let mut keywords = vec!["material_name"];
         keywords.extend_from_slice(GEOMETRIES);
-        while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, &keywords)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    if let Some(n) = self.note(&n, &block, true)? {
-                        name = Some(n);
-                    }
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
+        while let Some((k, l)) = self.next_key(&block, &keywords, Some(&mut name))? {
             if k == "material_name" {
                 if let Some(n) = self.value(&block, &l, lex::name(l.value, l.value_column))? {
                     material = (n, at(&l, &block));
@@ -135,15 +125,7 @@ impl<'a> Reader<'a> {
         let mut inner: Option<Shape> = None;
         let mut inner_seen = false;
         let mut lines: BTreeMap<&str, At> = BTreeMap::new();
-        while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, keywords)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    self.note(&n, &block, false)?;
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
+        while let Some((k, l)) = self.next_key(&block, keywords, None)? {
             let here = at(&l, &block);
             match k {
                 "point" | "position" if kind == "triangle" || points_kind(kind) => {
@@ -301,17 +283,7 @@ impl<'a> Reader<'a> {
         let mut file: Option<(String, At)> = None;
         let mut name = None;
         let (mut scale, mut rotation, mut translation) = (DVec3::ONE, DVec3::ZERO, DVec3::ZERO);
-        while let Some(item) = self.body() {
-            let (k, l) = match self.entry(&block, item, MODEL)? {
-                Entry::Key(k, l) => (k, l),
-                Entry::Note(n) => {
-                    if let Some(n) = self.note(&n, &block, true)? {
-                        name = Some(n);
-                    }
-                    continue;
-                }
-                Entry::Skip => continue,
-            };
+        while let Some((k, l)) = self.next_key(&block, MODEL, Some(&mut name))? {
             match k {
                 "file" => {
                     if let Some(f) = self.value(&block, &l, lex::name(l.value, l.value_column))? {
