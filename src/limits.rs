@@ -54,6 +54,11 @@ pub const DEFAULT_PHOTON_RADIUS: f64 = 0.075;
 /// Default adaptive depth control threshold, in 8-bit levels.
 pub const DEFAULT_ADAPTIVE_THRESHOLD: f64 = 0.25;
 
+/// Whether every coordinate of `p` is finite and within [`MAX_COORDINATE`].
+pub fn within_coordinates(p: glam::DVec3) -> bool {
+    p.is_finite() && p.abs().max_element() <= MAX_COORDINATE
+}
+
 /// A number as messages show a limit: the shorter of its decimal and exponent forms, the
 /// decimal one on a tie (`179`, `0.25`, `1e9`, `1e-6`, `-1e9`).
 pub fn short(x: f64) -> String {

@@ -380,6 +380,11 @@ fn errors_name_the_line_column_keyword_and_range() {
             "lab.txt:3:7: geometry.scale: each factor must be finite, of magnitude in [1e-6, 1e6] (negative mirrors), got [0.0, 1.0, 1.0]",
         ),
         (
+            // The centre at z = 9.99e8 is inside, the sphere's top at 1.001e9 is not.
+            "primitive\ngeometry\ntranslation 0 0 999000000\nsphere\nray 2000000\nend\nend\nend",
+            "lab.txt:2:1: primitive.geometry: the transform moves the shape beyond the coordinates' range [-1e9, 1e9]",
+        ),
+        (
             "point_light\nconstant_attenuator 0\nend",
             "lab.txt:2:1: point_light.constant_attenuator: the constant, linear and quadratic attenuators cannot all be 0",
         ),

@@ -12,6 +12,7 @@
 //! stretched by at most the largest stretch of `A`.
 
 use super::{Aabb, Shape, SurfaceHit, gamma, l1};
+use crate::limits;
 use crate::math::Ray;
 use glam::{DAffine3, DMat3, DVec3};
 
@@ -124,6 +125,36 @@ impl Transform {
             }
             other => Shape::Transformed(Box::new(Transformed::new(other, *self))),
         }
+    }
+
+    /// [`Transform::apply`], refused (in words that follow "the transform") when the moved
+    /// shape leaves the coordinates' range ([`limits::within_coordinates`]: its bounds, an
+    /// unbounded plane's point, a triangle's vertices) or, for a triangle, when rounding
+    /// made it degenerate.
+    pub fn apply_within_limits(&self, shape: Shape) -> Result<Shape, String> {
+        let moved = self.apply(shape);
+        let inside = match &moved {
+            Shape::Transformed(s) => match s.bounds() {
+                Some(b) => limits::within_coordinates(b.min) && limits::within_coordinates(b.max),
+                None => limits::within_coordinates(self.point(match &s.shape {
+                    Shape::Plane(p) => p.point,
+                    _ => DVec3::ZERO,
+                })),
+            },
+            Shape::Triangle(t) => t.points().iter().all(|p| limits::within_coordinates(*p)),
+            _ => true,
+        };
+        if !inside {
+            let m = limits::MAX_COORDINATE;
+            return Err(format!("moves the shape beyond the coordinates' range [-{m:e}, {m:e}]"));
+        }
+        if let Shape::Triangle(t) = &moved
+            && let [a, b, c] = t.points()
+            && let Some(why) = super::Triangle::degenerate(a, b, c)
+        {
+            return Err(format!("makes the triangle degenerate: {why}"));
+        }
+        Ok(moved)
     }
 }
 
@@ -262,6 +293,31 @@ mod tests {
         // The unit sphere scaled by (2, 1, 0.5), then moved to (1, 2, 3).
         Transform::from_parts(DVec3::new(2., 1., 0.5), DVec3::ZERO, DVec3::new(1., 2., 3.))
             .apply(Shape::Sphere(Sphere::new(DVec3::ZERO, 1.0)))
+    }
+
+    #[test]
+    fn a_move_beyond_the_coordinates_range_is_refused() {
+        let out = "moves the shape beyond the coordinates' range [-1e9, 1e9]";
+        let far = Transform::from_parts(DVec3::ONE, DVec3::ZERO, DVec3::new(0.0, 0.0, 9.99e8));
+        // A unit sphere whose centre moves to z = 9.99e8 reaches z = 9.99e8 + 1: inside.
+        let inside = far.apply_within_limits(Shape::Sphere(Sphere::new(DVec3::ZERO, 1.0)));
+        assert!(matches!(inside, Ok(Shape::Transformed(_))));
+        // Of radius 2e6 it reaches 1.001e9: outside.
+        let beyond = far.apply_within_limits(Shape::Sphere(Sphere::new(DVec3::ZERO, 2e6)));
+        assert_eq!(beyond.unwrap_err(), out);
+        // An unbounded plane by its point: z = 9.99e8 + 2e6 is outside.
+        let plane = Shape::Plane(Box::new(super::super::Plane::new(DVec3::new(0.0, 0.0, 2e6), DVec3::Z)));
+        assert_eq!(far.apply_within_limits(plane).unwrap_err(), out);
+        // A triangle by its vertices, moved rather than wrapped.
+        let tri = |z| {
+            Shape::Triangle(super::super::Triangle::new(
+                DVec3::ZERO,
+                DVec3::X,
+                DVec3::new(0.0, 1.0, z),
+            ))
+        };
+        assert!(matches!(far.apply_within_limits(tri(0.0)), Ok(Shape::Triangle(_))));
+        assert_eq!(far.apply_within_limits(tri(2e6)).unwrap_err(), out);
     }
 
     #[test]

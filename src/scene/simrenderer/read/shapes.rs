@@ -264,10 +264,10 @@ impl<'a> Reader<'a> {
                 if t.is_identity() {
                     inner
                 } else {
-                    match moved(&t, inner) {
+                    match t.apply_within_limits(inner) {
                         Ok(s) => s,
                         Err(m) => {
-                            self.problem(&place, m, dropped)?;
+                            self.problem(&place, format!("the transform {m}"), dropped)?;
                             return Ok(None);
                         }
                     }
@@ -321,7 +321,7 @@ impl<'a> Reader<'a> {
             for v in &mut mesh.vertices {
                 *v = t.point(*v);
             }
-            if mesh.vertices.iter().any(|v| !within_limits(*v)) {
+            if mesh.vertices.iter().any(|v| !limits::within_coordinates(*v)) {
                 let m = format!(
                     "the transform moves a vertex of {shown} beyond the coordinates' range [-{c:e}, {c:e}]",
                     c = limits::MAX_COORDINATE
@@ -364,39 +364,4 @@ impl<'a> Reader<'a> {
 /// Whether a geometry of this kind takes its two points from `point` or `position` lines.
 fn points_kind(kind: &str) -> bool {
     matches!(kind, "tube" | "cylinder" | "cone" | "lens")
-}
-
-/// Whether every coordinate is within [`limits::MAX_COORDINATE`].
-fn within_limits(p: DVec3) -> bool {
-    p.is_finite() && p.abs().max_element() <= limits::MAX_COORDINATE
-}
-
-/// `shape` through `t`, refused when it leaves the coordinates' range or, for a triangle,
-/// when rounding made it degenerate.
-fn moved(t: &Transform, shape: Shape) -> Result<Shape, String> {
-    let out = t.apply(shape);
-    let reach = match &out {
-        Shape::Transformed(s) => match s.bounds() {
-            Some(b) => within_limits(b.min) && within_limits(b.max),
-            None => within_limits(t.point(match &s.shape {
-                Shape::Plane(p) => p.point,
-                _ => DVec3::ZERO,
-            })),
-        },
-        Shape::Triangle(tri) => tri.points().iter().all(|p| within_limits(*p)),
-        _ => true,
-    };
-    if !reach {
-        return Err(format!(
-            "the transform moves the shape beyond the coordinates' range [-{m:e}, {m:e}]",
-            m = limits::MAX_COORDINATE
-        ));
-    }
-    if let Shape::Triangle(tri) = &out
-        && let [a, b, c] = tri.points()
-        && let Some(why) = Triangle::degenerate(a, b, c)
-    {
-        return Err(format!("the transform makes the triangle degenerate: {why}"));
-    }
-    Ok(out)
 }
