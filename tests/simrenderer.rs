@@ -777,6 +777,9 @@ fn the_grey_default_material_gives_simrenderers_greys() {
     // S_a = k_a S, S_d = k_d S, S_s = k_s [m S + (1 - m)] with S white, for any m.
     assert_eq!(m.color * m.ka, DVec3::splat(0.2));
     assert_eq!(m.color * m.kd, DVec3::splat(0.6));
+    // Shininess 20, opaque and matte, with no texture.
+    assert_eq!((m.shininess, m.kr, m.kt, m.metal), (20.0, 0.0, 0.0, 0.0));
+    assert!(m.texture.is_none());
     for metal in [0.0, 0.5, 1.0] {
         let tint = lumiere::shading::specular_tint(metal, m.color);
         assert_eq!(tint * m.ks, DVec3::splat(0.7));

@@ -4,7 +4,6 @@
 
 use crate::material::Material;
 use crate::scene::{ShadingModel, Specular};
-use glam::DVec3;
 use std::collections::HashMap;
 use std::sync::LazyLock;
 
@@ -318,16 +317,9 @@ pub fn shading_of(algorithm: usize) -> Option<ShadingModel> {
 /// convention changes it either.
 pub fn grey_default() -> Material {
     Material {
-        color: DVec3::ONE,
-        ka: 0.2,
         kd: 0.6,
         ks: 0.7,
-        shininess: 20.0,
-        metal: 0.0,
-        kr: 0.0,
-        kt: 0.0,
-        ior: 1.0,
-        texture: None,
+        ..Material::default()
     }
 }
 
