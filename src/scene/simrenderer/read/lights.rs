@@ -12,7 +12,63 @@ use crate::scene::simrenderer::lex::{self, Line};
 use glam::DVec3;
 use std::collections::BTreeMap;
 
+/// What every point and interference light reads alike: its amplification and its three
+/// attenuators, SIMRenderer's defaults 1 and none.
+struct Emission {
+    amplification: f64,
+    attenuation: Attenuation,
+}
+
+impl Emission {
+    const DEFAULT: Emission = Emission {
+        amplification: 1.0,
+        attenuation: Attenuation::NONE,
+    };
+}
+
 impl<'a> Reader<'a> {
+    /// Reads `amplification` or one of the attenuators (`k`, a keyword of the light's list)
+    /// into `emission`; `None` after a problem, the value before it kept.
+    fn emission_value(
+        &mut self,
+        block: &str,
+        l: &Line<'a>,
+        k: &str,
+        emission: &mut Emission,
+    ) -> Result<Option<()>, SceneError> {
+        if k == "amplification" {
+            let read = self.value(block, l, number_in(l, 0.0, limits::MAX_LIGHT))?;
+            return Ok(read.map(|a| emission.amplification = a));
+        }
+        let read = self.value(block, l, number_in(l, 0.0, 1e12))?;
+        Ok(read.map(|x| match k {
+            "constant_attenuator" => emission.attenuation.constant = x,
+            "linear_attenuator" => emission.attenuation.linear = x,
+            _ => emission.attenuation.quadratic = x,
+        }))
+    }
+
+    /// Whether the attenuators leave the light finite: all three at 0 is a problem, at the
+    /// constant attenuator's line or else at `place`, and the light is dropped.
+    fn attenuation_allowed(
+        &mut self,
+        emission: &Emission,
+        lines: &BTreeMap<&str, At>,
+        place: &At,
+    ) -> Result<bool, SceneError> {
+        let a = emission.attenuation;
+        if a.constant + a.linear + a.quadratic != 0.0 {
+            return Ok(true);
+        }
+        let here = lines
+            .get("constant_attenuator")
+            .cloned()
+            .unwrap_or_else(|| place.clone());
+        let m = "the constant, linear and quadratic attenuators cannot all be 0".to_string();
+        self.problem(&here, m, "the light is dropped")?;
+        Ok(false)
+    }
+
     pub(super) fn light(&mut self, open: &Line<'a>, kind: &str) -> Result<Option<Light>, SceneError> {
         let block = open.keyword.clone();
         let keywords = match kind {
@@ -23,8 +79,7 @@ impl<'a> Reader<'a> {
         let mut color = DVec3::ONE;
         let mut orientation = DVec3::NEG_Z;
         let mut position = DVec3::ZERO;
-        let mut amplification = 1.0;
-        let mut attenuation = Attenuation::NONE;
+        let mut emission = Emission::DEFAULT;
         let mut lines: BTreeMap<&str, At> = BTreeMap::new();
         while let Some((k, l)) = self.next_key(&block, keywords, None)? {
             let read = match k {
@@ -33,14 +88,7 @@ impl<'a> Reader<'a> {
                     .map(|c| color = c),
                 "orientation" => self.value(&block, &l, direction(&l))?.map(|d| orientation = d),
                 "position" => self.value(&block, &l, point(&l))?.map(|p| position = p),
-                "amplification" => self
-                    .value(&block, &l, number_in(&l, 0.0, limits::MAX_LIGHT))?
-                    .map(|a| amplification = a),
-                _ => self.value(&block, &l, number_in(&l, 0.0, 1e12))?.map(|x| match k {
-                    "constant_attenuator" => attenuation.constant = x,
-                    "linear_attenuator" => attenuation.linear = x,
-                    _ => attenuation.quadratic = x,
-                }),
+                _ => self.emission_value(&block, &l, k, &mut emission)?,
             };
             if read.is_some() {
                 lines.insert(k, at(&l, &block));
@@ -55,14 +103,11 @@ impl<'a> Reader<'a> {
                 color,
             },
             _ => {
-                if attenuation.constant + attenuation.linear + attenuation.quadratic == 0.0 {
-                    let here = lines.get("constant_attenuator").cloned().unwrap_or(place);
-                    let m = "the constant, linear and quadratic attenuators cannot all be 0".to_string();
-                    self.problem(&here, m, dropped)?;
+                if !self.attenuation_allowed(&emission, &lines, &place)? {
                     return Ok(None);
                 }
                 // The amplification is folded into the colour.
-                let amplified = color * amplification;
+                let amplified = color * emission.amplification;
                 if amplified.max_element() > limits::MAX_LIGHT {
                     let here = lines.get("amplification").cloned().unwrap_or(place);
                     let m = format!(
@@ -76,7 +121,7 @@ impl<'a> Reader<'a> {
                 Light::Point(PointLight {
                     position,
                     color: amplified,
-                    attenuation,
+                    attenuation: emission.attenuation,
                 })
             }
         }))
@@ -104,8 +149,7 @@ impl<'a> Reader<'a> {
         };
         let mut mask: Option<Mask> = None;
         let (mut wavelength, mut count, mut steps) = (550.0, 2, 10);
-        let mut amplification = 1.0;
-        let mut attenuation = Attenuation::NONE;
+        let mut emission = Emission::DEFAULT;
         let mut lines: BTreeMap<&str, At> = BTreeMap::new();
         while let Some((k, l)) = self.next_key(&block, keywords, None)? {
             let here = at(&l, &block);
@@ -176,14 +220,7 @@ impl<'a> Reader<'a> {
                 "nb_oscillator" => self
                     .value(&block, &l, int_in(&l, 1, limits::MAX_OSCILLATORS as i32))?
                     .map(|n| count = n as u32),
-                "amplification" => self
-                    .value(&block, &l, number_in(&l, 0.0, limits::MAX_LIGHT))?
-                    .map(|a| amplification = a),
-                _ => self.value(&block, &l, number_in(&l, 0.0, 1e12))?.map(|x| match k {
-                    "constant_attenuator" => attenuation.constant = x,
-                    "linear_attenuator" => attenuation.linear = x,
-                    _ => attenuation.quadratic = x,
-                }),
+                _ => self.emission_value(&block, &l, k, &mut emission)?,
             };
             if read.is_some() {
                 lines.insert(k, here);
@@ -191,10 +228,7 @@ impl<'a> Reader<'a> {
         }
         let place = at(open, "scene");
         let dropped = "the light is dropped";
-        if attenuation.constant + attenuation.linear + attenuation.quadratic == 0.0 {
-            let here = lines.get("constant_attenuator").cloned().unwrap_or(place);
-            let m = "the constant, linear and quadratic attenuators cannot all be 0".to_string();
-            self.problem(&here, m, dropped)?;
+        if !self.attenuation_allowed(&emission, &lines, &place)? {
             return Ok(None);
         }
         let aperture = match kind {
@@ -217,7 +251,14 @@ impl<'a> Reader<'a> {
             "elliptical_aperture_light" => Aperture::Elliptical(planar),
             _ => Aperture::Mask { planar, mask },
         };
-        match ApertureLight::new(aperture, wavelength, count, steps, amplification, attenuation) {
+        match ApertureLight::new(
+            aperture,
+            wavelength,
+            count,
+            steps,
+            emission.amplification,
+            emission.attenuation,
+        ) {
             Ok(light) => Ok(Some(Light::Aperture(light))),
             Err(invalid) => {
                 let (key, m) = match invalid {
