@@ -92,7 +92,7 @@ fn unknown_field_in_the_third_shape() {
 fn wrong_type_in_a_light() {
     assert_eq!(
         error_after("angle = 70", "angle = \"0.5\""),
-        "s.toml:45:9: lights[1].angle: invalid type: string \"0.5\", expected f64"
+        "s.toml:45:9: lights[1].angle: invalid type: string \"0.5\", expected a number"
     );
 }
 
@@ -120,7 +120,7 @@ fn too_long_an_array_is_refused_too() {
 fn wrong_type_inside_an_array_names_the_element() {
     assert_eq!(
         error_after("color = [1, 0, 0]", "color = [1, \"0\", 0]"),
-        "s.toml:11:13: materials.red.color[1]: invalid type: string \"0\", expected f64"
+        "s.toml:11:13: materials.red.color[1]: invalid type: string \"0\", expected a number"
     );
 }
 
@@ -181,7 +181,7 @@ fn errors_in_generate_tables() {
     );
     assert_eq!(
         error_after("count = 10", "count = \"10\""),
-        "s.toml:32:9: generate[0].count: invalid type: string \"10\", expected u64"
+        "s.toml:32:9: generate[0].count: invalid type: string \"10\", expected a whole number in [0, 18446744073709551615]"
     );
 }
 
@@ -194,7 +194,7 @@ fn errors_in_inline_tables_and_area_lights() {
     );
     assert_eq!(
         error_after("points = 4", "points = -4"),
-        "s.toml:54:10: lights[2].points: invalid value: integer `-4`, expected u32"
+        "s.toml:54:10: lights[2].points: invalid value: integer `-4`, expected a whole number in [0, 4294967295]"
     );
     assert_eq!(
         error_after("points = 4", "points = 4\nradius = 1\nsize = 2"),
@@ -213,7 +213,25 @@ fn errors_in_top_level_tables() {
     );
     assert_eq!(
         error_after("height = 12", "height = 12.5"),
-        "s.toml:3:10: image.height: invalid type: floating point `12.5`, expected u32"
+        "s.toml:3:10: image.height: invalid type: floating point `12.5`, expected a whole number in [0, 4294967295]"
+    );
+    // serde's Rust types are said in the file's words: a table, a whole number and its range.
+    assert_eq!(
+        error_after(
+            "[image]\nwidth = 16\nheight = 12\nsamples_per_pixel = 1\n",
+            "image = 5\n"
+        ),
+        "s.toml:1:9: image: invalid type: integer `5`, expected a table"
+    );
+    assert_eq!(
+        error_after("height = 12", "height = 99999999999999999999"),
+        "s.toml:3:10: image.height: invalid type: integer `99999999999999999999`, expected a whole \
+         number in [0, 4294967295]"
+    );
+    // A key given twice is named where it is given again.
+    assert_eq!(
+        error_after("height = 12", "height = 12\nheight = 13"),
+        "s.toml:4:1: TOML: duplicate key `height`: a key is given once in its table"
     );
     // A missing top-level table has no place in the file: the file and the table are named
     // (more cases in scene_tables.rs).

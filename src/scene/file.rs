@@ -7,11 +7,11 @@
 //! and its line.
 //! The format is documented in `scenes/README.md`.
 
-use super::decimal_comma;
 use super::generate::{Generate, GenerateKind};
 use super::locate::{FieldError, FieldPath, line_col, locate, path_at, written};
 use super::tag;
 use super::{CameraSpec, CausticSettings, Object, ObjectNames, PhotonFilter, Scene, Settings, ShadingModel, Specular};
+use super::{decimal_comma, serde_words};
 use crate::area_light::{AreaLight, AreaShape, PointMode};
 use crate::conventions::{Conventions, Highlight};
 use crate::interference::{Aperture, ApertureLight, Invalid, Mask, Planar};
@@ -109,10 +109,17 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
     };
     let mut root = DeTable::parse(text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
-        let message = e.message().trim();
+        let message = match (e.message().trim(), e.span()) {
+            // The span is the second key: name it as written.
+            ("duplicate key", Some(span)) => format!(
+                "duplicate key `{}`: a key is given once in its table",
+                text.get(span).unwrap_or_default()
+            ),
+            (message, _) => message.to_string(),
+        };
         let message = match decimal_comma::toml_hint(text, offset) {
             Some(hint) => format!("{message}; {hint}"),
-            None => message.to_string(),
+            None => message,
         };
         at(offset, "TOML".to_string(), message)
     })?;
@@ -139,7 +146,7 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
         } else {
             path.to_string()
         };
-        at(offset, field, e.message().trim().to_string())
+        at(offset, field, serde_words::plain(e.message().trim()))
     })?;
     // Mesh files are read relative to the scene file.
     let dir = Path::new(file).parent().unwrap_or(Path::new(""));
