@@ -10,7 +10,7 @@
 //! (`mtllib`) are not read: the scene file gives the material. Normals and texture
 //! coordinates are checked but not used (the renderer shades with the face normal).
 
-use super::Triangle;
+use super::{Transform, Triangle};
 use crate::limits;
 use glam::DVec3;
 use std::io::{BufRead, Read};
@@ -128,6 +128,33 @@ impl Mesh {
             vertices,
             faces: triangles,
             lines,
+        })
+    }
+
+    /// Moves every vertex by `t`; where `t` mirrors, swaps each face's winding back so the
+    /// normals stay outward. `Err` names the first vertex it moves beyond the coordinates'
+    /// range (the mesh is then only partly moved, and not to be used).
+    pub fn transform(&mut self, t: &Transform) -> Result<(), DVec3> {
+        for v in &mut self.vertices {
+            *v = t.point(*v);
+        }
+        if let Some(v) = self.vertices.iter().find(|v| !limits::within_coordinates(**v)) {
+            return Err(*v);
+        }
+        if t.mirrors() {
+            for f in &mut self.faces {
+                f.swap(1, 2);
+            }
+        }
+        Ok(())
+    }
+
+    /// The first face that makes no triangle: its line in the file and why
+    /// ([`Triangle::degenerate`]).
+    pub fn degenerate_face(&self) -> Option<(usize, &'static str)> {
+        self.faces.iter().zip(&self.lines).find_map(|(f, &line)| {
+            let [a, b, c] = f.map(|i| self.vertices[i as usize]);
+            Triangle::degenerate(a, b, c).map(|why| (line, why))
         })
     }
 
@@ -314,6 +341,40 @@ mod tests {
         assert_eq!(m.lines, vec![7, 7, 9, 10]);
         // Every triangle's normal is +z (counter-clockwise from above).
         assert!(m.triangles().iter().all(|t| t.normal() == DVec3::Z));
+    }
+
+    #[test]
+    fn a_mirroring_transform_keeps_the_normals_outward() {
+        let mut m = Mesh::parse(SQUARE, 100).unwrap();
+        // x -> -x, then up by 2: the square lands on [-1, 0] x [0, 1] at z = 2.
+        let t = Transform::from_parts(DVec3::new(-1.0, 1.0, 1.0), DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0));
+        assert_eq!(m.transform(&t), Ok(()));
+        assert_eq!(m.faces[0], [0, 2, 1]);
+        let t0 = m.triangles()[0].points();
+        assert_eq!(
+            t0,
+            [
+                DVec3::new(0.0, 0.0, 2.0),
+                DVec3::new(-1.0, 1.0, 2.0),
+                DVec3::new(-1.0, 0.0, 2.0)
+            ]
+        );
+        assert!(m.triangles().iter().all(|t| t.normal() == DVec3::Z));
+        // A move beyond the coordinates' range names the first vertex it takes there.
+        let far = Transform::from_parts(DVec3::ONE, DVec3::ZERO, DVec3::new(limits::MAX_COORDINATE, 0.0, 0.0));
+        let mut m = Mesh::parse(SQUARE, 100).unwrap();
+        assert_eq!(
+            m.transform(&far),
+            Err(DVec3::new(limits::MAX_COORDINATE + 1.0, 0.0, 0.0))
+        );
+    }
+
+    #[test]
+    fn the_first_flat_face_is_named_with_its_line() {
+        let m = Mesh::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 1 1 3\n", 100).unwrap();
+        assert_eq!(m.degenerate_face(), Some((6, "its points are on one line")));
+        let m = Mesh::parse(SQUARE, 100).unwrap();
+        assert_eq!(m.degenerate_face(), None);
     }
 
     #[test]

@@ -317,32 +317,18 @@ impl<'a> Reader<'a> {
             }
         };
         let t = Transform::from_parts(scale, rotation, translation);
-        if !t.is_identity() {
-            for v in &mut mesh.vertices {
-                *v = t.point(*v);
-            }
-            if mesh.vertices.iter().any(|v| !limits::within_coordinates(*v)) {
-                let m = format!(
-                    "the transform moves a vertex of {shown} beyond the coordinates' range [-{c:e}, {c:e}]",
-                    c = limits::MAX_COORDINATE
-                );
-                self.problem(&place, m, dropped)?;
-                return Ok(None);
-            }
-            // A mirror turns the winding: swapped back, the normals stay outward.
-            if t.mirrors() {
-                for f in &mut mesh.faces {
-                    f.swap(1, 2);
-                }
-            }
+        if !t.is_identity() && mesh.transform(&t).is_err() {
+            let m = format!(
+                "the transform moves a vertex of {shown} beyond the coordinates' range [-{c:e}, {c:e}]",
+                c = limits::MAX_COORDINATE
+            );
+            self.problem(&place, m, dropped)?;
+            return Ok(None);
         }
-        for (k, f) in mesh.faces.iter().enumerate() {
-            let [a, b, c] = f.map(|i| mesh.vertices[i as usize]);
-            if let Some(why) = Triangle::degenerate(a, b, c) {
-                let m = format!("{shown}:{}: the face makes no triangle: {why}", mesh.lines[k]);
-                self.problem(&file_at, m, dropped)?;
-                return Ok(None);
-            }
+        if let Some((line, why)) = mesh.degenerate_face() {
+            let m = format!("{shown}:{line}: the face makes no triangle: {why}");
+            self.problem(&file_at, m, dropped)?;
+            return Ok(None);
         }
         self.warn(
             &place,
