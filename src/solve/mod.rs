@@ -255,6 +255,22 @@ fn refine<F: Fn(f64) -> f64 + ?Sized>(f: &F, deriv: &[f64], mut a: f64, mut b: f
     if f(a).abs() <= f(b).abs() { a } else { b }
 }
 
+/// The coefficients, lowest degree first, of the monic polynomial with `roots`: the product
+/// of the `(t - r)`.
+#[cfg(test)]
+pub(crate) fn from_roots(roots: &[f64]) -> Vec<f64> {
+    let mut c = vec![1.0];
+    for r in roots {
+        let mut next = vec![0.0; c.len() + 1];
+        for (i, &ci) in c.iter().enumerate() {
+            next[i] -= r * ci;
+            next[i + 1] += ci;
+        }
+        c = next;
+    }
+    c
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -317,16 +333,7 @@ mod tests {
     fn quartic_with_clustered_roots() {
         // (t - 1)(t - 1.000001)(t - 5)(t - 7): two roots 1e-6 apart are still separated.
         let roots = [1.0, 1.000_001, 5.0, 7.0];
-        let mut c = vec![1.0];
-        for r in roots {
-            // multiply by (t - r)
-            let mut next = vec![0.0; c.len() + 1];
-            for (i, &ci) in c.iter().enumerate() {
-                next[i] -= r * ci;
-                next[i + 1] += ci;
-            }
-            c = next;
-        }
+        let c = from_roots(&roots);
         let mut r = Vec::new();
         poly_roots_in(&c, 0.0, 10.0, &mut r);
         assert_eq!(r.len(), 4, "{r:?}");
@@ -432,8 +439,9 @@ mod tests {
         let mut roots_seen = 0;
         for case in 0..20_000 {
             let degree = 1 + case % 4;
-            let mut c = vec![1.0 + 9.0 * uniform()];
+            let lead = 1.0 + 9.0 * uniform();
             let mut previous: f64 = -2.0 + 14.0 * uniform();
+            let mut roots = Vec::new();
             for _ in 0..degree {
                 let r = match case % 3 {
                     0 => previous,
@@ -441,13 +449,9 @@ mod tests {
                     _ => -2.0 + 14.0 * uniform(),
                 };
                 previous = r;
-                let mut next = vec![0.0; c.len() + 1];
-                for (i, &ci) in c.iter().enumerate() {
-                    next[i] -= r * ci;
-                    next[i + 1] += ci;
-                }
-                c = next;
+                roots.push(r);
             }
+            let c: Vec<f64> = from_roots(&roots).iter().map(|x| lead * x).collect();
             let (lo, hi) = if case % 2 == 0 {
                 (0.0, 10.0)
             } else {

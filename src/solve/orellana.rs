@@ -167,15 +167,7 @@ mod tests {
     fn widely_spread_roots() {
         // (t - 1e-6)(t - 1)(t - 1e3)(t - 1e6): coefficients span 24 orders of magnitude.
         let roots = [1e-6, 1.0, 1e3, 1e6];
-        let mut c = vec![1.0];
-        for r in roots {
-            let mut next = vec![0.0; c.len() + 1];
-            for (i, &ci) in c.iter().enumerate() {
-                next[i] -= r * ci;
-                next[i + 1] += ci;
-            }
-            c = next;
-        }
+        let c = crate::solve::from_roots(&roots);
         let mut r = Vec::new();
         quartic_roots(&[c[0], c[1], c[2], c[3], c[4]], &mut r);
         r.sort_by(f64::total_cmp);
