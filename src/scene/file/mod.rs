@@ -341,7 +341,7 @@ fn default_seed() -> u64 {
 struct FileCamera {
     position: Xyz,
     look_at: Xyz,
-    #[serde(default = "z_up")]
+    #[serde(default = "plus_z")]
     up: Xyz,
     #[serde(default = "default_fov")]
     vfov: f64,
@@ -350,9 +350,6 @@ struct FileCamera {
 /// Largest vertical field of view, in degrees: the camera's range is (0, MAX_VFOV].
 const MAX_VFOV: f64 = 179.0;
 
-fn z_up() -> Xyz {
-    Xyz([0.0, 0.0, 1.0])
-}
 fn default_fov() -> f64 {
     60.0
 }
@@ -659,7 +656,7 @@ struct FileBox {
 #[serde(deny_unknown_fields)]
 struct FileCapped {
     base: Xyz,
-    #[serde(default = "z_up")]
+    #[serde(default = "plus_z")]
     axis: Xyz,
     height: f64,
     radius: f64,
@@ -687,7 +684,7 @@ struct FileMirrorPair {
 #[serde(deny_unknown_fields)]
 struct FileTorus {
     center: Xyz,
-    #[serde(default = "z_up")]
+    #[serde(default = "plus_z")]
     axis: Xyz,
     major_radius: f64,
     minor_radius: f64,
@@ -714,7 +711,7 @@ struct FileTriangle {
 #[serde(deny_unknown_fields)]
 struct FileSphericalCap {
     center: Xyz,
-    #[serde(default = "z_up")]
+    #[serde(default = "plus_z")]
     normal: Xyz,
     radius: f64,
     curvature: f64,
@@ -730,7 +727,7 @@ struct FileSphericalCap {
 #[serde(deny_unknown_fields)]
 struct FileLens {
     base: Xyz,
-    #[serde(default = "z_up")]
+    #[serde(default = "plus_z")]
     axis: Xyz,
     thickness: f64,
     radius: f64,
