@@ -1535,7 +1535,7 @@ impl FileMesh {
             for v in &mut mesh.vertices {
                 *v = t.point(*v);
             }
-            if let Some(v) = mesh.vertices.iter().find(|v| !within_limits(**v)) {
+            if let Some(v) = mesh.vertices.iter().find(|v| !limits::within_coordinates(**v)) {
                 return fail(
                     &path.key("transform"),
                     format!(
@@ -1588,11 +1588,6 @@ fn angles(path: &FieldPath, v: Xyz) -> Check<DVec3> {
         return fail(path, format!("angles must be in [-360, 360] degrees, got {v:?}"));
     }
     Ok(a)
-}
-
-/// Whether every coordinate is within [`limits::MAX_COORDINATE`].
-fn within_limits(p: DVec3) -> bool {
-    p.is_finite() && p.abs().max_element() <= limits::MAX_COORDINATE
 }
 
 /// The checked transform of a shape's `transform` table at `path`, `None` when absent or
@@ -1668,36 +1663,10 @@ fn transform_of(path: &FieldPath, t: Option<FileTransform>) -> Check<Option<Tran
     Ok((!transform.is_identity()).then_some(transform))
 }
 
-/// `shape` through `t`, refused (at `path`, the `transform` field) when it leaves the
-/// coordinates' range or, for a triangle, when rounding made it degenerate.
+/// `shape` through `t`, refused at `path` (the `transform` field) in the words of
+/// [`Transform::apply_within_limits`].
 fn moved(path: &FieldPath, t: &Transform, shape: Shape) -> Check<Shape> {
-    let out = t.apply(shape);
-    let m = limits::MAX_COORDINATE;
-    let reach = match &out {
-        Shape::Transformed(s) => match s.bounds() {
-            Some(b) => within_limits(b.min) && within_limits(b.max),
-            // An unbounded shape (a plane): its point.
-            None => within_limits(t.point(match &s.shape {
-                Shape::Plane(p) => p.point,
-                _ => DVec3::ZERO,
-            })),
-        },
-        Shape::Triangle(tri) => tri.points().iter().all(|p| within_limits(*p)),
-        _ => true,
-    };
-    if !reach {
-        return fail(
-            path,
-            format!("moves the shape beyond the coordinates' range [-{m:e}, {m:e}]"),
-        );
-    }
-    if let Shape::Triangle(tri) = &out
-        && let [a, b, c] = tri.points()
-        && let Some(why) = Triangle::degenerate(a, b, c)
-    {
-        return fail(path, format!("makes the triangle degenerate: {why}"));
-    }
-    Ok(out)
+    t.apply_within_limits(shape).or_else(|m| fail(path, m))
 }
 
 impl FileCapped {
