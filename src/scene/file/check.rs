@@ -1,0 +1,200 @@
+//! The checks of a file's values, each error placed on its field: numbers in a range,
+//! points, directions, colours, angles, the edges of a rectangle and counts summed over an
+//! array; [`Xyz`], the three numbers the file writes for a point, a direction, a colour or
+//! angles; and the serde defaults that several tables share.
+
+use crate::limits;
+use crate::scene::locate::{FieldError, FieldPath};
+use glam::DVec3;
+use serde::Deserialize;
+
+/// A value that passed its checks, or the error placed on its field.
+pub(super) type Check<T> = Result<T, FieldError>;
+
+/// An error at `path`.
+pub(super) fn fail<T>(path: &FieldPath, message: impl Into<String>) -> Check<T> {
+    Err(FieldError {
+        path: path.clone(),
+        message: message.into(),
+        got: None,
+    })
+}
+
+/// `message`, followed by `, got X` with X the number `x` as the file writes it.
+fn fail_got<T>(path: &FieldPath, message: String, x: f64) -> Check<T> {
+    Err(FieldError {
+        path: path.clone(),
+        message,
+        got: Some(x),
+    })
+}
+
+/// A finite number within `[lo, hi]`.
+pub(super) fn in_range(path: &FieldPath, x: f64, lo: f64, hi: f64) -> Check<f64> {
+    if !x.is_finite() || x < lo || x > hi {
+        let (lo, hi) = (limits::short(lo), limits::short(hi));
+        return fail_got(path, format!("must be a finite number in [{lo}, {hi}]"), x);
+    }
+    Ok(x)
+}
+
+/// Three numbers, no more and no fewer: a point, a direction, a colour or angles as the file
+/// writes them (`[x, y, z]`). A longer or shorter array is an error on its value.
+#[derive(Clone, Copy, Default, PartialEq)]
+pub(super) struct Xyz(pub(super) [f64; 3]);
+
+impl std::fmt::Debug for Xyz {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl std::ops::Deref for Xyz {
+    type Target = [f64; 3];
+    fn deref(&self) -> &[f64; 3] {
+        &self.0
+    }
+}
+
+impl From<Xyz> for DVec3 {
+    fn from(v: Xyz) -> DVec3 {
+        DVec3::from(v.0)
+    }
+}
+
+impl<'de> Deserialize<'de> for Xyz {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Three;
+        impl<'de> serde::de::Visitor<'de> for Three {
+            type Value = Xyz;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("an array of length 3")
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Xyz, A::Error> {
+                let mut v = [0.0; 3];
+                for (i, c) in v.iter_mut().enumerate() {
+                    *c = seq
+                        .next_element()?
+                        .ok_or_else(|| serde::de::Error::invalid_length(i, &self))?;
+                }
+                let mut extra = 0;
+                while seq.next_element::<serde::de::IgnoredAny>()?.is_some() {
+                    extra += 1;
+                }
+                if extra > 0 {
+                    return Err(serde::de::Error::invalid_length(3 + extra, &self));
+                }
+                Ok(Xyz(v))
+            }
+        }
+        deserializer.deserialize_seq(Three)
+    }
+}
+
+/// A finite number `> 0` and at most `hi`.
+pub(super) fn positive(path: &FieldPath, x: f64, hi: f64) -> Check<f64> {
+    if !x.is_finite() || x <= 0.0 || x > hi {
+        let hi = limits::short(hi);
+        return fail_got(path, format!("must be a finite number in (0, {hi}]"), x);
+    }
+    Ok(x)
+}
+
+/// A point or vector with finite components of magnitude at most `limits::MAX_COORDINATE`.
+pub(super) fn vec3(path: &FieldPath, v: Xyz) -> Check<DVec3> {
+    let m = limits::MAX_COORDINATE;
+    if v.iter().any(|c| !c.is_finite() || c.abs() > m) {
+        return fail(
+            path,
+            format!("components must be finite numbers in [-{m:e}, {m:e}], got {v:?}"),
+        );
+    }
+    Ok(DVec3::from(v))
+}
+
+/// A direction: finite and of non-zero length; returned normalised.
+pub(super) fn direction(path: &FieldPath, v: Xyz) -> Check<DVec3> {
+    let d = vec3(path, v)?;
+    let len = d.length();
+    if len <= 1e-12 {
+        return fail(path, format!("must be a direction of non-zero length, got {v:?}"));
+    }
+    Ok(d / len)
+}
+
+/// A colour: each channel finite in `[0, hi]`.
+pub(super) fn color(path: &FieldPath, v: Xyz, hi: f64) -> Check<DVec3> {
+    if v.iter().any(|c| !c.is_finite() || *c < 0.0 || *c > hi) {
+        return fail(
+            path,
+            format!(
+                "each channel must be a finite number in [0, {}], got {v:?}",
+                limits::short(hi)
+            ),
+        );
+    }
+    Ok(DVec3::from(v))
+}
+
+/// Angles in degrees, each in [-360, 360].
+pub(super) fn angles(path: &FieldPath, v: Xyz) -> Check<DVec3> {
+    let a = vec3(path, v)?;
+    if a.abs().max_element() > 360.0 {
+        return fail(path, format!("angles must be in [-360, 360] degrees, got {v:?}"));
+    }
+    Ok(a)
+}
+
+/// The two edges of a rectangle or window (`edge1`, `edge2` of the entry at `path`): each of
+/// non-zero length and not parallel, else the surface is a segment or a point.
+pub(super) fn spanning_edges(path: &FieldPath, edge1: Xyz, edge2: Xyz) -> Check<(DVec3, DVec3)> {
+    let e1 = vec3(&path.key("edge1"), edge1)?;
+    let e2 = vec3(&path.key("edge2"), edge2)?;
+    for (key, e, raw) in [("edge1", e1, edge1), ("edge2", e2, edge2)] {
+        // The length, not the components: a length that underflows to 0 cannot be normalised.
+        if e.length() == 0.0 {
+            return fail(&path.key(key), format!("must have a non-zero length, got {raw:?}"));
+        }
+    }
+    if e1.normalize().cross(e2.normalize()).length() <= 1e-12 {
+        return fail(
+            &path.key("edge2"),
+            format!("must not be parallel to edge1 {edge1:?}, got {edge2:?}"),
+        );
+    }
+    Ok((e1, e2))
+}
+
+/// `start` plus the running sum of `counts` (one per entry of the array at `path`) must stay
+/// at most `max`; else an error at field `key` of the entry that passes it, saying the scene
+/// would hold that many `what`.
+pub(super) fn running_total(
+    path: &FieldPath,
+    key: &str,
+    start: u64,
+    counts: impl IntoIterator<Item = u64>,
+    max: u64,
+    what: &str,
+) -> Check<()> {
+    let mut total = start;
+    for (i, n) in counts.into_iter().enumerate() {
+        total += n;
+        if total > max {
+            return fail(
+                &path.index(i).key(key),
+                format!("the scene would hold {total} {what}, at most {max} are allowed"),
+            );
+        }
+    }
+    Ok(())
+}
+
+/// `[1, 1, 1]`: white.
+pub(super) fn one() -> Xyz {
+    Xyz([1.0; 3])
+}
+
+/// `[0, 0, 1]`: the camera's up, a shape's axis or normal, an aperture's front.
+pub(super) fn plus_z() -> Xyz {
+    Xyz([0.0, 0.0, 1.0])
+}
