@@ -8,6 +8,7 @@
 //! The format is documented in `scenes/README.md`.
 
 mod check;
+mod material;
 mod transform;
 
 use super::generate::{Generate, GenerateKind};
@@ -31,6 +32,7 @@ use check::{
 };
 use compact_str::CompactString;
 use glam::DVec3;
+use material::{FileMaterial, material_index, resolve_material};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -371,67 +373,6 @@ impl FileConventions {
             }
         }
         Ok(c)
-    }
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FileMaterial {
-    #[serde(default = "one")]
-    color: Xyz,
-    ka: Option<f64>,
-    kd: Option<f64>,
-    ks: Option<f64>,
-    shininess: Option<f64>,
-    m: Option<f64>,
-    kr: Option<f64>,
-    kt: Option<f64>,
-    n: Option<f64>,
-    /// SIMRenderer's texture material: image files (relative to the scene file) for the
-    /// ambient, diffuse and specular colours, and where their coordinates' origin is.
-    texture_ka: Option<String>,
-    texture_kd: Option<String>,
-    texture_ks: Option<String>,
-    uv_format: Option<String>,
-}
-
-impl FileMaterial {
-    /// The texture maps of a texture material, `None` when it names no image (a
-    /// `uv_format` alone is refused: it would say nothing).
-    fn textures(&self, path: &FieldPath, dir: &Path) -> Check<Option<crate::texture::SharedMaps>> {
-        use crate::texture::{Texture, TextureMaps, UvFormat};
-        let load = |key: &str, file: &Option<String>| -> Check<Option<Texture>> {
-            file.as_ref()
-                .map(|f| Texture::load(&dir.join(f), f).or_else(|m| fail(&path.key(key), m)))
-                .transpose()
-        };
-        let maps = TextureMaps {
-            ambient: load("texture_ka", &self.texture_ka)?,
-            diffuse: load("texture_kd", &self.texture_kd)?,
-            specular: load("texture_ks", &self.texture_ks)?,
-            uv_format: match &self.uv_format {
-                None => UvFormat::default(),
-                Some(name) => UvFormat::parse(name).map_or_else(
-                    || {
-                        fail(
-                            &path.key("uv_format"),
-                            format!("must be \"origin_uv_top_left\" or \"origin_uv_bottom_left\", got {name:?}"),
-                        )
-                    },
-                    Ok,
-                )?,
-            },
-        };
-        if maps.ambient.is_none() && maps.diffuse.is_none() && maps.specular.is_none() {
-            if self.uv_format.is_some() {
-                return fail(
-                    &path.key("uv_format"),
-                    "applies to a material's textures: give texture_ka, texture_kd or texture_ks",
-                );
-            }
-            return Ok(None);
-        }
-        Ok(Some(std::sync::Arc::new(maps)))
     }
 }
 
@@ -1511,22 +1452,6 @@ impl FileGenerate {
             radius: (lo, hi),
             materials,
         })
-    }
-}
-
-/// Index of the named material (`None`: the default material, index 0).
-fn resolve_material(path: &FieldPath, material: Option<String>, names: &[String]) -> Check<usize> {
-    match material {
-        None => Ok(0),
-        Some(m) => material_index(&path.key("material"), &m, names),
-    }
-}
-
-/// Index of material `m`; an unknown name is an error at `field`.
-fn material_index(field: &FieldPath, m: &str, names: &[String]) -> Check<usize> {
-    match names.iter().position(|n| n == m) {
-        Some(i) => Ok(i),
-        None => fail(field, format!("unknown material {m:?}; defined: {}", names.join(", "))),
     }
 }
 
