@@ -9,15 +9,16 @@
 
 mod check;
 mod material;
+mod tables;
 mod transform;
 
 use super::generate::{Generate, GenerateKind};
 use super::locate::{FieldError, FieldPath, line_col, locate, path_at, written};
 use super::tag;
-use super::{CameraSpec, CausticSettings, Object, ObjectNames, PhotonFilter, Scene, Settings, ShadingModel, Specular};
+use super::{CameraSpec, Object, ObjectNames, Scene, Settings, ShadingModel, Specular};
 use super::{decimal_comma, serde_words};
 use crate::area_light::{AreaLight, AreaShape, PointMode};
-use crate::conventions::{Conventions, Highlight};
+use crate::conventions::Highlight;
 use crate::interference::{Aperture, ApertureLight, Invalid, Mask, Planar};
 use crate::light::{Attenuation, Light, PointLight, SpotLight};
 use crate::limits;
@@ -36,6 +37,7 @@ use material::{FileMaterial, material_index, resolve_material};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use tables::{FileCamera, FileCaustics, FileConventions, FileImage, FileRender, MAX_VFOV};
 use toml::de::DeTable;
 use transform::{FileTransform, moved, transform_of};
 
@@ -195,185 +197,6 @@ struct FileGenerate {
     radius: [f64; 2],
     #[serde(default)]
     materials: Vec<String>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FileImage {
-    width: u32,
-    height: u32,
-    #[serde(default = "default_spp")]
-    samples_per_pixel: u32,
-    #[serde(default = "default_seed")]
-    seed: u64,
-}
-
-fn default_spp() -> u32 {
-    4
-}
-fn default_seed() -> u64 {
-    42
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FileCamera {
-    position: Xyz,
-    look_at: Xyz,
-    #[serde(default = "plus_z")]
-    up: Xyz,
-    #[serde(default = "default_fov")]
-    vfov: f64,
-}
-
-/// Largest vertical field of view, in degrees: the camera's range is (0, MAX_VFOV].
-const MAX_VFOV: f64 = 179.0;
-
-fn default_fov() -> f64 {
-    60.0
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields, default)]
-struct FileRender {
-    depth: u32,
-    ambient: bool,
-    diffuse: bool,
-    /// "blinn", "phong" or "none".
-    specular: String,
-    shadows: bool,
-    background: Xyz,
-    adaptive_threshold: f64,
-}
-
-impl Default for FileRender {
-    fn default() -> Self {
-        FileRender {
-            depth: 1,
-            ambient: true,
-            diffuse: true,
-            specular: "blinn".to_string(),
-            shadows: true,
-            background: Xyz([0.0; 3]),
-            adaptive_threshold: limits::DEFAULT_ADAPTIVE_THRESHOLD,
-        }
-    }
-}
-
-/// The `[caustics]` table (scenes/README.md): `photons` is required, the estimate's
-/// parameters have defaults.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FileCaustics {
-    photons: u64,
-    #[serde(default = "default_photon_radius")]
-    radius: f64,
-    #[serde(default = "default_photon_filter")]
-    filter: String,
-    #[serde(default = "default_photon_bounces")]
-    bounces: u32,
-    seed: Option<u64>,
-}
-
-fn default_photon_radius() -> f64 {
-    limits::DEFAULT_PHOTON_RADIUS
-}
-fn default_photon_filter() -> String {
-    "cone".to_string()
-}
-fn default_photon_bounces() -> u32 {
-    limits::DEFAULT_PHOTON_BOUNCES
-}
-
-impl FileCaustics {
-    fn validate(&self, path: &FieldPath) -> Check<CausticSettings> {
-        let max = limits::MAX_PHOTONS;
-        if self.photons == 0 || self.photons > max {
-            return fail(
-                &path.key("photons"),
-                format!("must be a whole number in [1, {max}], got {}", self.photons),
-            );
-        }
-        let filter = match self.filter.as_str() {
-            "flat" => PhotonFilter::Flat,
-            "cone" => PhotonFilter::Cone,
-            "epanechnikov" => PhotonFilter::Epanechnikov,
-            other => {
-                return fail(
-                    &path.key("filter"),
-                    format!("must be one of {:?}, got {other:?}", PhotonFilter::NAMES),
-                );
-            }
-        };
-        let most = limits::MAX_PHOTON_BOUNCES;
-        if self.bounces == 0 || self.bounces > most {
-            return fail(
-                &path.key("bounces"),
-                format!("must be a whole number in [1, {most}], got {}", self.bounces),
-            );
-        }
-        Ok(CausticSettings {
-            photons: self.photons,
-            radius: positive(&path.key("radius"), self.radius, limits::MAX_COORDINATE)?,
-            filter,
-            bounces: self.bounces,
-            seed: self.seed,
-        })
-    }
-}
-
-/// The `[conventions]` table: a preset, then any switch set on its own (see
-/// [`Conventions::set`]).
-#[derive(Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-struct FileConventions {
-    preset: Option<String>,
-    sample_position: Option<String>,
-    ray_origin: Option<String>,
-    near: Option<f64>,
-    far: Option<f64>,
-    shadow_filter: Option<String>,
-    transmission: Option<String>,
-    refracting: Option<String>,
-    total_internal_reflection: Option<String>,
-    local_weight: Option<String>,
-    default_highlight: Option<String>,
-}
-
-impl FileConventions {
-    fn validate(&self, path: &FieldPath) -> Check<Conventions> {
-        let mut c = match &self.preset {
-            Some(name) => Conventions::preset(name).or_else(|m| fail(&path.key("preset"), m))?,
-            None => Conventions::CHAPTER,
-        };
-        let number = |x: &Option<f64>| {
-            x.map(|x| {
-                if x.is_infinite() && x > 0.0 {
-                    "inf".to_string()
-                } else {
-                    x.to_string()
-                }
-            })
-        };
-        let switches = [
-            ("sample_position", self.sample_position.clone()),
-            ("ray_origin", self.ray_origin.clone()),
-            ("near", number(&self.near)),
-            ("far", number(&self.far)),
-            ("shadow_filter", self.shadow_filter.clone()),
-            ("transmission", self.transmission.clone()),
-            ("refracting", self.refracting.clone()),
-            ("total_internal_reflection", self.total_internal_reflection.clone()),
-            ("local_weight", self.local_weight.clone()),
-            ("default_highlight", self.default_highlight.clone()),
-        ];
-        for (key, value) in switches {
-            if let Some(value) = value {
-                c.set(key, &value).or_else(|m| fail(&path.key(key), m))?;
-            }
-        }
-        Ok(c)
-    }
 }
 
 /// The values of `type` in `[[shapes]]`, in the order of [`FileShape`]'s variants.
