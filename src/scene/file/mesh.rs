@@ -1,0 +1,142 @@
+//! A `mesh` entry of `[[shapes]]`: [`FileMesh`], the triangles of a `.obj` file read
+//! relative to the scene file, moved by the entry's transform, one object each.
+
+use super::Listed;
+use super::check::{Check, fail};
+use super::material::resolve_material;
+use super::transform::{FileTransform, transform_of};
+use crate::limits;
+use crate::scene::locate::{FieldError, FieldPath};
+use crate::shape::mesh::Mesh;
+use crate::shape::{Shape, Triangle};
+use serde::Deserialize;
+use std::path::Path;
+
+/// The triangles of a `.obj` file (path relative to the scene file).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct FileMesh {
+    file: String,
+    material: Option<String>,
+    name: Option<String>,
+    transform: Option<FileTransform>,
+}
+
+impl FileMesh {
+    /// The mesh's triangles, one object each, named `NAME/K` (`NAME` is `name`, default
+    /// `mesh#I`; `K` the triangle's place in the file, from 0).
+    pub(super) fn validate(
+        self,
+        path: &FieldPath,
+        index: usize,
+        material_names: &[String],
+        dir: &Path,
+        room: usize,
+    ) -> Check<Vec<Listed>> {
+        let field = path.key("file");
+        let file = dir.join(&self.file);
+        let shown = file.display();
+        let most = limits::MAX_MESH_TRIANGLES.min(room);
+        let mesh = Mesh::read(&file, most).map_err(|e| {
+            // Say so when the scene's other objects, not the mesh limit, leave too little.
+            let why = if e.over_limit && most < limits::MAX_MESH_TRIANGLES {
+                format!(
+                    " (the scene's other objects leave room for {most} of the {} objects it may hold)",
+                    limits::MAX_OBJECTS
+                )
+            } else {
+                String::new()
+            };
+            FieldError {
+                path: field.clone(),
+                message: match e.line {
+                    Some(line) => format!("{shown}:{line}: {}{why}", e.message),
+                    None => format!("{shown}: {}{why}", e.message),
+                },
+                got: None,
+            }
+        })?;
+        let material = resolve_material(path, self.material, material_names)?;
+        let transform = transform_of(&path.key("transform"), self.transform)?;
+        let mut mesh = mesh;
+        if let Some(t) = &transform {
+            for v in &mut mesh.vertices {
+                *v = t.point(*v);
+            }
+            if let Some(v) = mesh.vertices.iter().find(|v| !limits::within_coordinates(**v)) {
+                return fail(
+                    &path.key("transform"),
+                    format!(
+                        "moves a vertex of {shown} to {:?}, beyond the coordinates' range [-{m:e}, {m:e}]",
+                        v.to_array(),
+                        m = limits::MAX_COORDINATE
+                    ),
+                );
+            }
+            // A mirror turns the winding: swapped back, the normals stay outward.
+            if t.mirrors() {
+                for f in &mut mesh.faces {
+                    f.swap(1, 2);
+                }
+            }
+        }
+        for (k, f) in mesh.faces.iter().enumerate() {
+            let [a, b, c] = f.map(|i| mesh.vertices[i as usize]);
+            if let Some(why) = Triangle::degenerate(a, b, c) {
+                let line = mesh.lines[k];
+                let after = if transform.is_some() {
+                    " after the transform"
+                } else {
+                    ""
+                };
+                return fail(
+                    &field,
+                    format!("{shown}:{line}: the face makes no triangle{after}: {why}"),
+                );
+            }
+        }
+        let base = self.name.unwrap_or_else(|| format!("mesh#{index}"));
+        Ok(mesh
+            .triangles()
+            .into_iter()
+            .enumerate()
+            .map(|(k, t)| Listed {
+                name: compact_str::format_compact!("{base}/{k}"),
+                shape: Shape::Triangle(t),
+                material,
+            })
+            .collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A mesh that does not fit in what the scene's other objects leave is refused on the
+    /// face that passes the room, saying so.
+    #[test]
+    fn a_mesh_gets_the_room_the_scene_leaves() {
+        let mesh = || FileMesh {
+            file: "scenes/icosahedron.obj".to_string(),
+            material: None,
+            name: None,
+            transform: None,
+        };
+        let path = FieldPath::default().key("shapes").index(2);
+        let names = ["default".to_string()];
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+        assert_eq!(mesh().validate(&path, 2, &names, dir, 20).unwrap().len(), 20);
+        let e = mesh().validate(&path, 2, &names, dir, 19).unwrap_err();
+        assert_eq!(e.path.to_string(), "shapes[2].file");
+        let obj = dir.join("scenes/icosahedron.obj");
+        assert_eq!(
+            e.message,
+            format!(
+                "{}:34: the mesh would hold 20 triangles, at most 19 are allowed (the scene's other objects leave \
+                 room for 19 of the 4000000 objects it may hold)",
+                obj.display()
+            )
+        );
+    }
+}
