@@ -8,13 +8,13 @@
 //! The format is documented in `scenes/README.md`.
 
 mod check;
+mod generate;
 mod lights;
 mod material;
 mod mesh;
 mod tables;
 mod transform;
 
-use super::generate::{Generate, GenerateKind};
 use super::locate::{FieldError, FieldPath, line_col, locate, path_at, written};
 use super::tag;
 use super::{CameraSpec, Object, ObjectNames, Scene, Settings, ShadingModel, Specular};
@@ -30,9 +30,10 @@ use check::{
     Check, Xyz, angles, color, direction, fail, in_range, plus_z, positive, running_total, spanning_edges, vec3,
 };
 use compact_str::CompactString;
+use generate::FileGenerate;
 use glam::DVec3;
 use lights::{FileLight, LIGHT_TYPES};
-use material::{FileMaterial, material_index, resolve_material};
+use material::{FileMaterial, resolve_material};
 use mesh::FileMesh;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -182,21 +183,6 @@ struct FileScene {
     lights: Vec<FileLight>,
     #[serde(default)]
     generate: Vec<FileGenerate>,
-}
-
-/// A `[[generate]]` table: `count` random objects in a box (see `generate.rs`).
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FileGenerate {
-    kind: String,
-    count: u64,
-    #[serde(default)]
-    seed: u64,
-    min: Xyz,
-    max: Xyz,
-    radius: [f64; 2],
-    #[serde(default)]
-    materials: Vec<String>,
 }
 
 /// The values of `type` in `[[shapes]]`, in the order of [`FileShape`]'s variants.
@@ -934,64 +920,6 @@ impl FileCapped {
             size("height", self.height)?,
             size("radius", self.radius)?,
         ))
-    }
-}
-
-impl FileGenerate {
-    fn validate(&self, path: &FieldPath, material_names: &[String]) -> Check<Generate> {
-        let Some(kind) = GenerateKind::parse(&self.kind) else {
-            return fail(
-                &path.key("kind"),
-                format!("must be \"spheres\", \"mixed\" or \"triangles\", got {:?}", self.kind),
-            );
-        };
-        let max_objects = limits::MAX_OBJECTS;
-        if self.count == 0 || self.count > max_objects as u64 {
-            return fail(
-                &path.key("count"),
-                format!("must be in [1, {max_objects}], got {}", self.count),
-            );
-        }
-        let min = vec3(&path.key("min"), self.min)?;
-        let max = vec3(&path.key("max"), self.max)?;
-        if !min.cmplt(max).all() {
-            return fail(
-                &path.key("max"),
-                format!(
-                    "must exceed min in every component, got min {:?}, max {:?}",
-                    self.min, self.max
-                ),
-            );
-        }
-        let r = path.key("radius");
-        let lo = positive(&r, self.radius[0], limits::MAX_COORDINATE)?;
-        let hi = positive(&r, self.radius[1], limits::MAX_COORDINATE)?;
-        if lo > hi {
-            return fail(
-                &r,
-                format!(
-                    "must be [smallest, largest] with smallest <= largest, got {:?}",
-                    self.radius
-                ),
-            );
-        }
-        let materials = if self.materials.is_empty() {
-            vec![0]
-        } else {
-            self.materials
-                .iter()
-                .map(|m| material_index(&path.key("materials"), m, material_names))
-                .collect::<Check<Vec<_>>>()?
-        };
-        Ok(Generate {
-            kind,
-            count: self.count as usize,
-            seed: self.seed,
-            min,
-            max,
-            radius: (lo, hi),
-            materials,
-        })
     }
 }
 
