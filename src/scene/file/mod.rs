@@ -6,6 +6,10 @@
 //! directory, and its errors are placed on the entry's `file` field, naming the `.obj` file
 //! and its line.
 //! The format is documented in `scenes/README.md`.
+//!
+//! This module owns [`load`], [`parse`] and their errors ([`SceneError`]), the whole file
+//! ([`FileScene`]) and the scene made of it; each table's own fields and checks are in the
+//! modules below.
 
 mod check;
 mod generate;
@@ -160,6 +164,7 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
     raw.validate(dir).map_err(located)
 }
 
+/// A whole scene file as serde reads it: one field per top-level key ([`TOP_LEVEL`]).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileScene {
