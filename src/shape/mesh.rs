@@ -36,6 +36,17 @@ pub struct ObjError {
     pub over_limit: bool,
 }
 
+impl ObjError {
+    /// The message placed in `file` (as a scene reader names it): `FILE:LINE: MESSAGE`, or
+    /// `FILE: MESSAGE` for an error of the whole file.
+    pub fn in_file(&self, file: &impl std::fmt::Display) -> String {
+        match self.line {
+            Some(line) => format!("{file}:{line}: {}", self.message),
+            None => format!("{file}: {}", self.message),
+        }
+    }
+}
+
 impl std::fmt::Display for ObjError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self.line {
@@ -84,6 +95,22 @@ impl Mesh {
             .and_then(|f| f.take(limits::MAX_MESH_FILE_BYTES + 1).read_to_end(&mut bytes))
             .map_err(cannot)?;
         Mesh::parse(&String::from_utf8_lossy(&bytes), max_triangles)
+    }
+
+    /// Reads the mesh of a scene that has room for `room` more objects: at most
+    /// [`limits::MAX_MESH_TRIANGLES`] triangles, fewer when the room is smaller, and then an
+    /// error for too many triangles says that the scene's other objects leave too little.
+    pub fn read_into_scene(path: &Path, room: usize) -> Result<Mesh, ObjError> {
+        let most = limits::MAX_MESH_TRIANGLES.min(room);
+        Mesh::read(path, most).map_err(|mut e| {
+            if e.over_limit && most < limits::MAX_MESH_TRIANGLES {
+                e.message += &format!(
+                    " (the scene's other objects leave room for {most} of the {} objects it may hold)",
+                    limits::MAX_OBJECTS
+                );
+            }
+            e
+        })
     }
 
     /// Checks and parses `.obj` text.

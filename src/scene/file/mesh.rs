@@ -7,8 +7,8 @@ use super::material::resolve_material;
 use super::transform::{FileTransform, transform_of};
 use crate::limits;
 use crate::scene::locate::{FieldError, FieldPath};
+use crate::shape::Shape;
 use crate::shape::mesh::Mesh;
-use crate::shape::{Shape, Triangle};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -36,64 +36,35 @@ impl FileMesh {
         let field = path.key("file");
         let file = dir.join(&self.file);
         let shown = file.display();
-        let most = limits::MAX_MESH_TRIANGLES.min(room);
-        let mesh = Mesh::read(&file, most).map_err(|e| {
-            // Say so when the scene's other objects, not the mesh limit, leave too little.
-            let why = if e.over_limit && most < limits::MAX_MESH_TRIANGLES {
-                format!(
-                    " (the scene's other objects leave room for {most} of the {} objects it may hold)",
-                    limits::MAX_OBJECTS
-                )
-            } else {
-                String::new()
-            };
-            FieldError {
-                path: field.clone(),
-                message: match e.line {
-                    Some(line) => format!("{shown}:{line}: {}{why}", e.message),
-                    None => format!("{shown}: {}{why}", e.message),
-                },
-                got: None,
-            }
+        let mut mesh = Mesh::read_into_scene(&file, room).map_err(|e| FieldError {
+            path: field.clone(),
+            message: e.in_file(&shown),
+            got: None,
         })?;
         let material = resolve_material(path, self.material, material_names)?;
         let transform = transform_of(&path.key("transform"), self.transform)?;
-        let mut mesh = mesh;
-        if let Some(t) = &transform {
-            for v in &mut mesh.vertices {
-                *v = t.point(*v);
-            }
-            if let Some(v) = mesh.vertices.iter().find(|v| !limits::within_coordinates(**v)) {
-                return fail(
-                    &path.key("transform"),
-                    format!(
-                        "moves a vertex of {shown} to {:?}, beyond the coordinates' range [-{m:e}, {m:e}]",
-                        v.to_array(),
-                        m = limits::MAX_COORDINATE
-                    ),
-                );
-            }
-            // A mirror turns the winding: swapped back, the normals stay outward.
-            if t.mirrors() {
-                for f in &mut mesh.faces {
-                    f.swap(1, 2);
-                }
-            }
+        if let Some(t) = &transform
+            && let Err(v) = mesh.transform(t)
+        {
+            return fail(
+                &path.key("transform"),
+                format!(
+                    "moves a vertex of {shown} to {:?}, beyond the coordinates' range [-{m:e}, {m:e}]",
+                    v.to_array(),
+                    m = limits::MAX_COORDINATE
+                ),
+            );
         }
-        for (k, f) in mesh.faces.iter().enumerate() {
-            let [a, b, c] = f.map(|i| mesh.vertices[i as usize]);
-            if let Some(why) = Triangle::degenerate(a, b, c) {
-                let line = mesh.lines[k];
-                let after = if transform.is_some() {
-                    " after the transform"
-                } else {
-                    ""
-                };
-                return fail(
-                    &field,
-                    format!("{shown}:{line}: the face makes no triangle{after}: {why}"),
-                );
-            }
+        if let Some((line, why)) = mesh.degenerate_face() {
+            let after = if transform.is_some() {
+                " after the transform"
+            } else {
+                ""
+            };
+            return fail(
+                &field,
+                format!("{shown}:{line}: the face makes no triangle{after}: {why}"),
+            );
         }
         let base = self.name.unwrap_or_else(|| format!("mesh#{index}"));
         Ok(mesh

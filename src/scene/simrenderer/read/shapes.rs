@@ -305,28 +305,27 @@ impl<'a> Reader<'a> {
         let path = self.dir.join(&file);
         let shown = path.display().to_string();
         let room = limits::MAX_OBJECTS.saturating_sub(self.objects);
-        let mut mesh = match Mesh::read(&path, limits::MAX_MESH_TRIANGLES.min(room)) {
+        let mut mesh = match Mesh::read_into_scene(&path, room) {
             Ok(mesh) => mesh,
             Err(e) => {
-                let m = match e.line {
-                    Some(line) => format!("{shown}:{line}: {}", e.message),
-                    None => format!("{shown}: {}", e.message),
-                };
-                self.problem(&file_at, m, dropped)?;
+                self.problem(&file_at, e.in_file(&shown), dropped)?;
                 return Ok(None);
             }
         };
         let t = Transform::from_parts(scale, rotation, translation);
-        if !t.is_identity() && mesh.transform(&t).is_err() {
+        let moved = !t.is_identity();
+        if moved && let Err(v) = mesh.transform(&t) {
             let m = format!(
-                "the transform moves a vertex of {shown} beyond the coordinates' range [-{c:e}, {c:e}]",
+                "the transform moves a vertex of {shown} to {:?}, beyond the coordinates' range [-{c:e}, {c:e}]",
+                v.to_array(),
                 c = limits::MAX_COORDINATE
             );
             self.problem(&place, m, dropped)?;
             return Ok(None);
         }
         if let Some((line, why)) = mesh.degenerate_face() {
-            let m = format!("{shown}:{line}: the face makes no triangle: {why}");
+            let after = if moved { " after the transform" } else { "" };
+            let m = format!("{shown}:{line}: the face makes no triangle{after}: {why}");
             self.problem(&file_at, m, dropped)?;
             return Ok(None);
         }
