@@ -285,8 +285,8 @@ impl ApertureLight {
     pub fn new(
         aperture: Aperture,
         wavelength_nm: f64,
-        oscillator_count: u32,
-        period_iteration: u32,
+        oscillator_count: impl Into<i128>,
+        period_iteration: impl Into<i128>,
         amplification: f64,
         attenuation: Attenuation,
     ) -> Result<Self, Invalid> {
@@ -297,23 +297,15 @@ impl ApertureLight {
             ))
         })?;
         let most = limits::MAX_OSCILLATORS;
-        if oscillator_count == 0 || u64::from(oscillator_count) > most {
-            return Err(Invalid::Oscillators(format!(
-                "must be in [1, {most}], got {oscillator_count}"
-            )));
-        }
+        let oscillator_count: u32 = limits::check_count(oscillator_count, most as u32).map_err(Invalid::Oscillators)?;
         let grid = aperture.grid_size(oscillator_count);
         if grid > most {
             return Err(Invalid::Oscillators(format!(
                 "{oscillator_count} along the shorter side make a grid of {grid} oscillators over this aperture, at most {most} are allowed"
             )));
         }
-        let steps = limits::MAX_PERIOD_ITERATION;
-        if period_iteration == 0 || period_iteration > steps {
-            return Err(Invalid::PeriodIteration(format!(
-                "must be in [1, {steps}], got {period_iteration}"
-            )));
-        }
+        let period_iteration =
+            limits::check_count(period_iteration, limits::MAX_PERIOD_ITERATION).map_err(Invalid::PeriodIteration)?;
         let oscillators = aperture
             .oscillators(oscillator_count)
             .ok_or_else(|| Invalid::Up("must not be parallel to front".to_string()))?;

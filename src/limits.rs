@@ -67,11 +67,14 @@ pub fn short(x: f64) -> String {
     if exponent.len() < plain.len() { exponent } else { plain }
 }
 
-pub fn check_dimension(v: u32) -> Result<(), String> {
-    if v == 0 || v > MAX_DIMENSION {
-        return Err(format!("must be in [1, {MAX_DIMENSION}] pixels, got {v}"));
+/// An image side of `v` pixels, any whole number as a reader has it (TOML's reach beyond
+/// 64 bits): in [1, MAX_DIMENSION], or the message saying so.
+pub fn check_dimension(v: impl Into<i128>) -> Result<u32, String> {
+    let v = v.into();
+    match u32::try_from(v) {
+        Ok(n) if (1..=MAX_DIMENSION).contains(&n) => Ok(n),
+        _ => Err(format!("must be in [1, {MAX_DIMENSION}] pixels, got {v}")),
     }
-    Ok(())
 }
 
 pub fn check_pixel_count(w: u32, h: u32) -> Result<(), String> {
@@ -84,26 +87,79 @@ pub fn check_pixel_count(w: u32, h: u32) -> Result<(), String> {
     Ok(())
 }
 
-pub fn check_samples(v: u32) -> Result<(), String> {
-    let n = (v as f64).sqrt().round() as u32;
-    if v == 0 || v > MAX_SAMPLES || n * n != v {
-        return Err(format!(
+/// Samples per pixel: a perfect square in [1, MAX_SAMPLES] (the stratified grid's side squared).
+pub fn check_samples(v: impl Into<i128>) -> Result<u32, String> {
+    let v = v.into();
+    match u32::try_from(v) {
+        Ok(n) if (1..=MAX_SAMPLES).contains(&n) && n.isqrt().pow(2) == n => Ok(n),
+        _ => Err(format!(
             "must be a perfect square (1, 4, 9, 16, ...) in [1, {MAX_SAMPLES}], got {v}"
-        ));
+        )),
     }
-    Ok(())
 }
 
-pub fn check_depth(v: u32) -> Result<(), String> {
-    if v == 0 || v > MAX_DEPTH {
-        return Err(format!("must be in [1, {MAX_DEPTH}] (1 = no secondary rays), got {v}"));
+/// The recursion depth: in [1, MAX_DEPTH], 1 for no secondary rays.
+pub fn check_depth(v: impl Into<i128>) -> Result<u32, String> {
+    let v = v.into();
+    match u32::try_from(v) {
+        Ok(n) if (1..=MAX_DEPTH).contains(&n) => Ok(n),
+        _ => Err(format!("must be in [1, {MAX_DEPTH}] (1 = no secondary rays), got {v}")),
     }
-    Ok(())
+}
+
+/// A count in [1, `most`], any whole number as a reader has it, narrowed to `most`'s type.
+pub fn check_count<T>(v: impl Into<i128>, most: T) -> Result<T, String>
+where
+    T: TryFrom<i128> + PartialOrd + From<u8> + std::fmt::Display,
+{
+    let v = v.into();
+    match T::try_from(v) {
+        Ok(n) if n >= T::from(1) && n <= most => Ok(n),
+        _ => Err(format!("must be in [1, {most}], got {v}")),
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn whole_numbers_are_checked_as_written_and_narrowed() {
+        assert_eq!(check_dimension(16_384), Ok(16_384));
+        assert_eq!(
+            check_dimension(-4),
+            Err("must be in [1, 16384] pixels, got -4".to_string())
+        );
+        let huge: i128 = 99_999_999_999_999_999_999;
+        assert_eq!(
+            check_dimension(huge),
+            Err("must be in [1, 16384] pixels, got 99999999999999999999".to_string())
+        );
+        assert_eq!(check_samples(1024), Ok(1024));
+        for bad in [0, 3, 1025, 1089, -1] {
+            assert_eq!(
+                check_samples(bad),
+                Err(format!(
+                    "must be a perfect square (1, 4, 9, 16, ...) in [1, 1024], got {bad}"
+                ))
+            );
+        }
+        assert_eq!(check_depth(64), Ok(64));
+        assert_eq!(
+            check_depth(65),
+            Err("must be in [1, 64] (1 = no secondary rays), got 65".to_string())
+        );
+        assert_eq!(check_count(4_000_000, MAX_OBJECTS), Ok(4_000_000usize));
+        assert_eq!(
+            check_count(0, MAX_OBJECTS),
+            Err("must be in [1, 4000000], got 0".to_string())
+        );
+        assert_eq!(check_count(-1, 64u32), Err("must be in [1, 64], got -1".to_string()));
+        assert_eq!(
+            check_count(u64::MAX, 64u32),
+            Err(format!("must be in [1, 64], got {}", u64::MAX))
+        );
+    }
 
     #[test]
     fn limits_are_shown_short() {

@@ -85,7 +85,7 @@ fn bad_values_are_located_errors() {
         (
             "count = 50",
             "count = -3",
-            "g.toml:19:9: generate[0].count: invalid value: integer `-3`, expected a whole number in [0, 18446744073709551615]",
+            "g.toml:19:9: generate[0].count: must be in [1, 4000000], got -3",
         ),
         (
             "kind = \"mixed\"",

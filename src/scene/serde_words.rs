@@ -21,6 +21,8 @@ pub fn plain(message: &str) -> String {
         "u32" => whole(u32::MAX.into()),
         "u64" => whole(u64::MAX.into()),
         "usize" => whole(usize::MAX as u128),
+        // A field whose own range is checked after: that range is what its error names.
+        "i64" | "i128" => "a whole number".to_string(),
         "f64" | "f32" => "a number".to_string(),
         "a sequence" => "an array".to_string(),
         e if e.starts_with("struct ") => "a table".to_string(),
@@ -42,6 +44,10 @@ mod tests {
         assert_eq!(
             plain("invalid type: integer `99999999999999999999` as i128, expected u64"),
             "invalid type: integer `99999999999999999999`, expected a whole number in [0, 18446744073709551615]"
+        );
+        assert_eq!(
+            plain("invalid type: floating point `12.5`, expected i128"),
+            "invalid type: floating point `12.5`, expected a whole number"
         );
         assert_eq!(
             plain("invalid type: string \"0.5\", expected f64"),

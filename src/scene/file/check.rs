@@ -1,6 +1,6 @@
 //! The checks of a file's values, each error placed on its field: numbers in a range,
 //! points, directions, colours, angles, the edges of a rectangle and counts summed over an
-//! array; [`Xyz`], the three numbers the file writes for a point, a direction, a colour or
+//! array; [`Whole`], a whole number before its range is checked; [`Xyz`], the three numbers the file writes for a point, a direction, a colour or
 //! angles; and the serde defaults that several tables share.
 
 use crate::limits;
@@ -27,6 +27,15 @@ fn fail_got<T>(path: &FieldPath, message: String, x: f64) -> Check<T> {
         message,
         got: Some(x),
     })
+}
+
+/// A whole-number field as the file writes it: any integer TOML gives (beyond 64 bits
+/// too), so that the field's own range, not its storage type's, is what an error names.
+pub(super) type Whole = i128;
+
+/// A whole number narrowed by one of [`limits`]' checks, or its message at `path`.
+pub(super) fn whole<T>(path: &FieldPath, checked: Result<T, String>) -> Check<T> {
+    checked.or_else(|m| fail(path, m))
 }
 
 /// A finite number within `[lo, hi]`.

@@ -1,7 +1,7 @@
 //! A `[[generate]]` table: [`FileGenerate`], checked into the [`Generate`] that places its
 //! random objects.
 
-use super::check::{Check, Xyz, fail, positive, vec3};
+use super::check::{Check, Whole, Xyz, fail, positive, vec3, whole};
 use super::material::material_index;
 use crate::limits;
 use crate::scene::generate::{Generate, GenerateKind};
@@ -13,7 +13,7 @@ use serde::Deserialize;
 #[serde(deny_unknown_fields)]
 pub(super) struct FileGenerate {
     kind: String,
-    count: u64,
+    count: Whole,
     #[serde(default)]
     seed: u64,
     min: Xyz,
@@ -31,13 +31,7 @@ impl FileGenerate {
                 format!("must be \"spheres\", \"mixed\" or \"triangles\", got {:?}", self.kind),
             );
         };
-        let max_objects = limits::MAX_OBJECTS;
-        if self.count == 0 || self.count > max_objects as u64 {
-            return fail(
-                &path.key("count"),
-                format!("must be in [1, {max_objects}], got {}", self.count),
-            );
-        }
+        let count = whole(&path.key("count"), limits::check_count(self.count, limits::MAX_OBJECTS))?;
         let min = vec3(&path.key("min"), self.min)?;
         let max = vec3(&path.key("max"), self.max)?;
         if !min.cmplt(max).all() {
@@ -71,7 +65,7 @@ impl FileGenerate {
         };
         Ok(Generate {
             kind,
-            count: self.count as usize,
+            count,
             seed: self.seed,
             min,
             max,

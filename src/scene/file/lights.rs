@@ -2,7 +2,9 @@
 //! (SIMRenderer's for the aperture lights), attenuation, and the checks that make a
 //! [`Light`].
 
-use super::check::{Check, Xyz, color, direction, fail, in_range, one, plus_z, positive, spanning_edges, vec3};
+use super::check::{
+    Check, Whole, Xyz, color, direction, fail, in_range, one, plus_z, positive, spanning_edges, vec3, whole,
+};
 use crate::area_light::{AreaLight, AreaShape, PointMode};
 use crate::interference::{Aperture, ApertureLight, Invalid, Mask, Planar};
 use crate::light::{Attenuation, Light, PointLight, SpotLight};
@@ -94,7 +96,7 @@ pub(super) struct FileAreaLight {
     end: Option<Xyz>,
     edge1: Option<Xyz>,
     edge2: Option<Xyz>,
-    points: u32,
+    points: Whole,
     #[serde(default = "chapter")]
     placement: String,
     #[serde(default = "fixed")]
@@ -117,9 +119,9 @@ pub(super) struct FileLinearAperture {
     #[serde(default = "green_nm")]
     wavelength: f64,
     #[serde(default = "two")]
-    oscillators: u32,
+    oscillators: Whole,
     #[serde(default = "ten")]
-    period_iteration: u32,
+    period_iteration: Whole,
     #[serde(default = "one_f")]
     amplification: f64,
     #[serde(default)]
@@ -145,9 +147,9 @@ pub(super) struct FilePlanarAperture {
     #[serde(default = "green_nm")]
     wavelength: f64,
     #[serde(default = "two")]
-    oscillators: u32,
+    oscillators: Whole,
     #[serde(default = "ten")]
-    period_iteration: u32,
+    period_iteration: Whole,
     #[serde(default = "one_f")]
     amplification: f64,
     #[serde(default)]
@@ -172,11 +174,11 @@ fn green_nm() -> f64 {
     550.0
 }
 
-fn two() -> u32 {
+fn two() -> Whole {
     2
 }
 
-fn ten() -> u32 {
+fn ten() -> Whole {
     10
 }
 
@@ -334,12 +336,10 @@ impl FileLight {
                         }
                     }
                 };
-                if points == 0 || points > limits::MAX_LIGHT_POINTS {
-                    return fail(
-                        &path.key("points"),
-                        format!("must be in [1, {}], got {points}", limits::MAX_LIGHT_POINTS),
-                    );
-                }
+                let points = whole(
+                    &path.key("points"),
+                    limits::check_count(points, limits::MAX_LIGHT_POINTS),
+                )?;
                 let Some(placement) = Placement::parse(&placement) else {
                     return fail(
                         &path.key("placement"),
@@ -392,8 +392,8 @@ impl FileLight {
 /// The wave of an aperture light, as its table gives it.
 struct Wave {
     wavelength: f64,
-    oscillators: u32,
-    period_iteration: u32,
+    oscillators: Whole,
+    period_iteration: Whole,
     amplification: f64,
     attenuation: FileAttenuation,
 }

@@ -29,7 +29,7 @@ use crate::light::Light;
 use crate::limits;
 use crate::material::Material;
 use crate::shape::Shape;
-use check::{Check, color, direction, fail, in_range, positive, running_total, vec3};
+use check::{Check, color, direction, fail, in_range, positive, running_total, vec3, whole};
 use compact_str::CompactString;
 use generate::FileGenerate;
 use lights::{FileLight, LIGHT_TYPES};
@@ -281,18 +281,14 @@ impl FileScene {
     fn settings(&self, root: &FieldPath) -> Check<Settings> {
         let img = root.key("image");
         let r = root.key("render");
-        let check = |path: FieldPath, res: Result<(), String>| res.or_else(|m| fail(&path, m));
-        check(img.key("width"), limits::check_dimension(self.image.width))?;
-        check(img.key("height"), limits::check_dimension(self.image.height))?;
-        check(
-            img.key("width"),
-            limits::check_pixel_count(self.image.width, self.image.height),
-        )?;
-        check(
-            img.key("samples_per_pixel"),
+        let width = whole(&img.key("width"), limits::check_dimension(self.image.width))?;
+        let height = whole(&img.key("height"), limits::check_dimension(self.image.height))?;
+        whole(&img.key("width"), limits::check_pixel_count(width, height))?;
+        let samples_per_pixel = whole(
+            &img.key("samples_per_pixel"),
             limits::check_samples(self.image.samples_per_pixel),
         )?;
-        check(r.key("depth"), limits::check_depth(self.render.depth))?;
+        let depth = whole(&r.key("depth"), limits::check_depth(self.render.depth))?;
         let specular = match self.render.specular.as_str() {
             "blinn" => Specular::Blinn,
             "phong" => Specular::Phong,
@@ -305,11 +301,11 @@ impl FileScene {
             }
         };
         Ok(Settings {
-            width: self.image.width,
-            height: self.image.height,
-            samples_per_pixel: self.image.samples_per_pixel,
+            width,
+            height,
+            samples_per_pixel,
             seed: self.image.seed,
-            depth: self.render.depth,
+            depth,
             shading: ShadingModel {
                 ambient: self.render.ambient,
                 diffuse: self.render.diffuse,

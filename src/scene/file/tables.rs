@@ -1,7 +1,7 @@
 //! The scene's single tables: `[image]`, `[camera]`, `[render]`, `[caustics]` and
 //! `[conventions]`, with their defaults; the caustics and conventions tables checked here.
 
-use super::check::{Check, Xyz, fail, plus_z, positive};
+use super::check::{Check, Whole, Xyz, fail, plus_z, positive, whole};
 use crate::conventions::Conventions;
 use crate::limits;
 use crate::scene::locate::FieldPath;
@@ -12,15 +12,15 @@ use serde::Deserialize;
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct FileImage {
-    pub(super) width: u32,
-    pub(super) height: u32,
+    pub(super) width: Whole,
+    pub(super) height: Whole,
     #[serde(default = "default_spp")]
-    pub(super) samples_per_pixel: u32,
+    pub(super) samples_per_pixel: Whole,
     #[serde(default = "default_seed")]
     pub(super) seed: u64,
 }
 
-fn default_spp() -> u32 {
+fn default_spp() -> Whole {
     4
 }
 
@@ -52,7 +52,7 @@ fn default_fov() -> f64 {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub(super) struct FileRender {
-    pub(super) depth: u32,
+    pub(super) depth: Whole,
     pub(super) ambient: bool,
     pub(super) diffuse: bool,
     /// "blinn", "phong" or "none".
@@ -81,13 +81,13 @@ impl Default for FileRender {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct FileCaustics {
-    photons: u64,
+    photons: Whole,
     #[serde(default = "default_photon_radius")]
     radius: f64,
     #[serde(default = "default_photon_filter")]
     filter: String,
     #[serde(default = "default_photon_bounces")]
-    bounces: u32,
+    bounces: Whole,
     seed: Option<u64>,
 }
 
@@ -99,19 +99,16 @@ fn default_photon_filter() -> String {
     "cone".to_string()
 }
 
-fn default_photon_bounces() -> u32 {
-    limits::DEFAULT_PHOTON_BOUNCES
+fn default_photon_bounces() -> Whole {
+    limits::DEFAULT_PHOTON_BOUNCES.into()
 }
 
 impl FileCaustics {
     pub(super) fn validate(&self, path: &FieldPath) -> Check<CausticSettings> {
-        let max = limits::MAX_PHOTONS;
-        if self.photons == 0 || self.photons > max {
-            return fail(
-                &path.key("photons"),
-                format!("must be a whole number in [1, {max}], got {}", self.photons),
-            );
-        }
+        let photons = whole(
+            &path.key("photons"),
+            limits::check_count(self.photons, limits::MAX_PHOTONS),
+        )?;
         let filter = match self.filter.as_str() {
             "flat" => PhotonFilter::Flat,
             "cone" => PhotonFilter::Cone,
@@ -123,18 +120,15 @@ impl FileCaustics {
                 );
             }
         };
-        let most = limits::MAX_PHOTON_BOUNCES;
-        if self.bounces == 0 || self.bounces > most {
-            return fail(
-                &path.key("bounces"),
-                format!("must be a whole number in [1, {most}], got {}", self.bounces),
-            );
-        }
+        let bounces = whole(
+            &path.key("bounces"),
+            limits::check_count(self.bounces, limits::MAX_PHOTON_BOUNCES),
+        )?;
         Ok(CausticSettings {
-            photons: self.photons,
+            photons,
             radius: positive(&path.key("radius"), self.radius, limits::MAX_COORDINATE)?,
             filter,
-            bounces: self.bounces,
+            bounces,
             seed: self.seed,
         })
     }
