@@ -311,6 +311,11 @@ fn errors_name_the_line_column_keyword_and_range() {
             "lab.txt:2:7: viewport.width: expects an integer, got \"800.0\"",
         ),
         (
+            // An integer beyond Java's int is told the keyword's range, not refused as a word.
+            "viewport\nwidth 99999999999999999999\nend",
+            "lab.txt:2:7: viewport.width: must be an integer in [1, 16384], got 99999999999999999999",
+        ),
+        (
             "viewport\nwidth 0\nend",
             "lab.txt:2:7: viewport.width: must be an integer in [1, 16384], got 0",
         ),

@@ -335,10 +335,17 @@ pub fn number_as_written(value: &str, column: usize) -> Result<(f64, &str), Valu
     )
 }
 
-/// The integer that starts `value`.
-pub fn integer(value: &str, column: usize) -> Result<i32, ValueError> {
+/// The integer that starts `value`, of any size up to 38 digits: Java's `int` range is
+/// the caller's to check, so that an integer too large for it is told the range it must
+/// be in.
+pub fn integer(value: &str, column: usize) -> Result<i128, ValueError> {
     let t = first(value, column, "an integer")?;
-    java_int(t.text).map_or_else(
+    let digits = t.text.strip_prefix(['+', '-']).unwrap_or(t.text);
+    let parsed = match digits.bytes().all(|b| b.is_ascii_digit()) {
+        true => t.text.strip_prefix('+').unwrap_or(t.text).parse().ok(),
+        false => None,
+    };
+    parsed.map_or_else(
         || value_error(t.column, format!("expects an integer, got {:?}", t.text)),
         Ok,
     )

@@ -81,10 +81,10 @@ pub(super) fn far(l: &Line) -> Result<f64, ValueError> {
 /// An integer in `[lo, hi]`.
 pub(super) fn int_in(l: &Line, lo: i32, hi: i32) -> Result<i32, ValueError> {
     let n = lex::integer(l.value, l.value_column)?;
-    if n < lo || n > hi {
-        return value_error(l.value_column, format!("must be an integer in [{lo}, {hi}], got {n}"));
+    match i32::try_from(n) {
+        Ok(n) if (lo..=hi).contains(&n) => Ok(n),
+        _ => value_error(l.value_column, format!("must be an integer in [{lo}, {hi}], got {n}")),
     }
-    Ok(n)
 }
 
 /// A colour with each channel in `[0, hi]`.
