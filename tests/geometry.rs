@@ -132,7 +132,7 @@ fn new_fields_give_located_errors() {
         ),
         (
             format!("{sphere}[shapes.transform]\nrotation = [0, 400, 0]\n"),
-            "t.toml:12:12: shapes[0].transform.rotation: angles must be in [-360, 360] degrees, got [0.0, 400.0, 0.0]",
+            "t.toml:12:12: shapes[0].transform.rotation: angles must be finite numbers in [-360, 360] degrees, got [0.0, 400.0, 0.0]",
         ),
         (
             format!("{sphere}transform = {{ translation = [0, 0, 2e9] }}\n"),

@@ -8,6 +8,7 @@ pub mod generate;
 mod locate;
 mod names;
 mod overrides;
+mod rules;
 mod serde_words;
 pub mod simrenderer;
 mod tag;

@@ -3,8 +3,8 @@
 //! array; [`Whole`], a whole number before its range is checked; [`Xyz`], the three numbers the file writes for a point, a direction, a colour or
 //! angles; and the serde defaults that several tables share.
 
-use crate::limits;
 use crate::scene::locate::{FieldError, FieldPath};
+use crate::scene::rules;
 use glam::DVec3;
 use serde::Deserialize;
 
@@ -33,18 +33,15 @@ fn fail_got<T>(path: &FieldPath, message: String, x: f64) -> Check<T> {
 /// too), so that the field's own range, not its storage type's, is what an error names.
 pub(super) type Whole = i128;
 
-/// A whole number narrowed by one of [`limits`]' checks, or its message at `path`.
-pub(super) fn whole<T>(path: &FieldPath, checked: Result<T, String>) -> Check<T> {
+/// The value a rule passed (one of [`rules`], or of [`crate::limits`] for a whole number),
+/// or the rule's message at `path`.
+pub(super) fn placed<T>(path: &FieldPath, checked: Result<T, String>) -> Check<T> {
     checked.or_else(|m| fail(path, m))
 }
 
 /// A finite number within `[lo, hi]`.
 pub(super) fn in_range(path: &FieldPath, x: f64, lo: f64, hi: f64) -> Check<f64> {
-    if !x.is_finite() || x < lo || x > hi {
-        let (lo, hi) = (limits::short(lo), limits::short(hi));
-        return fail_got(path, format!("must be a finite number in [{lo}, {hi}]"), x);
-    }
-    Ok(x)
+    rules::number_in(x, lo, hi).or_else(|m| fail_got(path, m, x))
 }
 
 /// Three numbers, no more and no fewer: a point, a direction, a colour or angles as the file
@@ -102,56 +99,28 @@ impl<'de> Deserialize<'de> for Xyz {
 
 /// A finite number `> 0` and at most `hi`.
 pub(super) fn positive(path: &FieldPath, x: f64, hi: f64) -> Check<f64> {
-    if !x.is_finite() || x <= 0.0 || x > hi {
-        let hi = limits::short(hi);
-        return fail_got(path, format!("must be a finite number in (0, {hi}]"), x);
-    }
-    Ok(x)
+    rules::positive(x, hi).or_else(|m| fail_got(path, m, x))
 }
 
 /// A point or vector with finite components of magnitude at most `limits::MAX_COORDINATE`.
 pub(super) fn vec3(path: &FieldPath, v: Xyz) -> Check<DVec3> {
-    let m = limits::MAX_COORDINATE;
-    if v.iter().any(|c| !c.is_finite() || c.abs() > m) {
-        return fail(
-            path,
-            format!("components must be finite numbers in [-{m:e}, {m:e}], got {v:?}"),
-        );
-    }
-    Ok(DVec3::from(v))
+    placed(path, rules::point(v.0))
 }
 
 /// A direction: finite and of non-zero length; returned normalised.
 pub(super) fn direction(path: &FieldPath, v: Xyz) -> Check<DVec3> {
-    let d = vec3(path, v)?;
-    let len = d.length();
-    if len <= 1e-12 {
-        return fail(path, format!("must be a direction of non-zero length, got {v:?}"));
-    }
-    Ok(d / len)
+    let d = placed(path, rules::direction(v.0))?;
+    Ok(d / d.length())
 }
 
 /// A colour: each channel finite in `[0, hi]`.
 pub(super) fn color(path: &FieldPath, v: Xyz, hi: f64) -> Check<DVec3> {
-    if v.iter().any(|c| !c.is_finite() || *c < 0.0 || *c > hi) {
-        return fail(
-            path,
-            format!(
-                "each channel must be a finite number in [0, {}], got {v:?}",
-                limits::short(hi)
-            ),
-        );
-    }
-    Ok(DVec3::from(v))
+    placed(path, rules::color(v.0, hi))
 }
 
-/// Angles in degrees, each in [-360, 360].
+/// Angles in degrees, each finite in [-360, 360].
 pub(super) fn angles(path: &FieldPath, v: Xyz) -> Check<DVec3> {
-    let a = vec3(path, v)?;
-    if a.abs().max_element() > 360.0 {
-        return fail(path, format!("angles must be in [-360, 360] degrees, got {v:?}"));
-    }
-    Ok(a)
+    placed(path, rules::angles(v.0))
 }
 
 /// The two edges of a rectangle or window (`edge1`, `edge2` of the entry at `path`): each of

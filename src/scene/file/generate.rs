@@ -1,7 +1,7 @@
 //! A `[[generate]]` table: [`FileGenerate`], checked into the [`Generate`] that places its
 //! random objects.
 
-use super::check::{Check, Whole, Xyz, fail, positive, vec3, whole};
+use super::check::{Check, Whole, Xyz, fail, placed, positive, vec3};
 use super::material::material_index;
 use crate::limits;
 use crate::scene::generate::{Generate, GenerateKind};
@@ -31,7 +31,7 @@ impl FileGenerate {
                 format!("must be \"spheres\", \"mixed\" or \"triangles\", got {:?}", self.kind),
             );
         };
-        let count = whole(&path.key("count"), limits::check_count(self.count, limits::MAX_OBJECTS))?;
+        let count = placed(&path.key("count"), limits::check_count(self.count, limits::MAX_OBJECTS))?;
         let min = vec3(&path.key("min"), self.min)?;
         let max = vec3(&path.key("max"), self.max)?;
         if !min.cmplt(max).all() {

@@ -3,7 +3,7 @@
 //! [`Light`].
 
 use super::check::{
-    Check, Whole, Xyz, color, direction, fail, in_range, one, plus_z, positive, spanning_edges, vec3, whole,
+    Check, Whole, Xyz, color, direction, fail, in_range, one, placed, plus_z, positive, spanning_edges, vec3,
 };
 use crate::area_light::{AreaLight, AreaShape, PointMode};
 use crate::interference::{Aperture, ApertureLight, Invalid, Mask, Planar};
@@ -336,7 +336,7 @@ impl FileLight {
                         }
                     }
                 };
-                let points = whole(
+                let points = placed(
                     &path.key("points"),
                     limits::check_count(points, limits::MAX_LIGHT_POINTS),
                 )?;

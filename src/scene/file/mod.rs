@@ -29,7 +29,7 @@ use crate::light::Light;
 use crate::limits;
 use crate::material::Material;
 use crate::shape::Shape;
-use check::{Check, color, direction, fail, in_range, positive, running_total, vec3, whole};
+use check::{Check, color, direction, fail, in_range, placed, positive, running_total, vec3};
 use compact_str::CompactString;
 use generate::FileGenerate;
 use lights::{FileLight, LIGHT_TYPES};
@@ -281,14 +281,14 @@ impl FileScene {
     fn settings(&self, root: &FieldPath) -> Check<Settings> {
         let img = root.key("image");
         let r = root.key("render");
-        let width = whole(&img.key("width"), limits::check_dimension(self.image.width))?;
-        let height = whole(&img.key("height"), limits::check_dimension(self.image.height))?;
-        whole(&img.key("width"), limits::check_pixel_count(width, height))?;
-        let samples_per_pixel = whole(
+        let width = placed(&img.key("width"), limits::check_dimension(self.image.width))?;
+        let height = placed(&img.key("height"), limits::check_dimension(self.image.height))?;
+        placed(&img.key("width"), limits::check_pixel_count(width, height))?;
+        let samples_per_pixel = placed(
             &img.key("samples_per_pixel"),
             limits::check_samples(self.image.samples_per_pixel),
         )?;
-        let depth = whole(&r.key("depth"), limits::check_depth(self.render.depth))?;
+        let depth = placed(&r.key("depth"), limits::check_depth(self.render.depth))?;
         let specular = match self.render.specular.as_str() {
             "blinn" => Specular::Blinn,
             "phong" => Specular::Phong,

@@ -1,7 +1,7 @@
 //! The scene's single tables: `[image]`, `[camera]`, `[render]`, `[caustics]` and
 //! `[conventions]`, with their defaults; the caustics and conventions tables checked here.
 
-use super::check::{Check, Whole, Xyz, fail, plus_z, positive, whole};
+use super::check::{Check, Whole, Xyz, fail, placed, plus_z, positive};
 use crate::conventions::Conventions;
 use crate::limits;
 use crate::scene::locate::FieldPath;
@@ -105,7 +105,7 @@ fn default_photon_bounces() -> Whole {
 
 impl FileCaustics {
     pub(super) fn validate(&self, path: &FieldPath) -> Check<CausticSettings> {
-        let photons = whole(
+        let photons = placed(
             &path.key("photons"),
             limits::check_count(self.photons, limits::MAX_PHOTONS),
         )?;
@@ -120,7 +120,7 @@ impl FileCaustics {
                 );
             }
         };
-        let bounces = whole(
+        let bounces = placed(
             &path.key("bounces"),
             limits::check_count(self.bounces, limits::MAX_PHOTON_BOUNCES),
         )?;

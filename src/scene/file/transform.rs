@@ -1,11 +1,11 @@
 //! A shape's `transform` table: [`FileTransform`], its checks ([`transform_of`]) and the
 //! shape it moves ([`moved`]).
 
-use super::check::{Check, Xyz, angles, fail, vec3};
+use super::check::{Check, Xyz, angles, fail, placed, vec3};
 use crate::limits;
 use crate::scene::locate::FieldPath;
+use crate::scene::rules;
 use crate::shape::{Shape, Transform};
-use glam::DVec3;
 use serde::Deserialize;
 
 /// `world = T Rz Ry Rx S local`, or `world = [A | b] local`.
@@ -76,18 +76,13 @@ pub(super) fn transform_of(path: &FieldPath, t: Option<FileTransform>) -> Check<
             }
         }
     } else {
-        let scale = t.scale.unwrap_or(Xyz([1.0; 3]));
-        if scale.iter().any(|s| !s.is_finite() || s.abs() < lo || s.abs() > hi) {
-            return fail(
-                &path.key("scale"),
-                format!(
-                    "each factor must be finite, of magnitude in [{lo:e}, {hi:e}] (negative mirrors), got {scale:?}"
-                ),
-            );
-        }
+        let scale = placed(
+            &path.key("scale"),
+            rules::scale_factors(t.scale.map_or([1.0; 3], |s| s.0)),
+        )?;
         let rotation = angles(&path.key("rotation"), t.rotation.unwrap_or_default())?;
         let translation = vec3(&path.key("translation"), t.translation.unwrap_or_default())?;
-        Transform::from_parts(DVec3::from(scale), rotation, translation)
+        Transform::from_parts(scale, rotation, translation)
     };
     Ok((!transform.is_identity()).then_some(transform))
 }

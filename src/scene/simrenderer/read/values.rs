@@ -2,7 +2,7 @@
 //! a colour, scale factors, angles), each refusing a value out of its range at the value's
 //! column; and `unit`, which makes a direction unit.
 
-use crate::limits;
+use crate::scene::rules;
 use crate::scene::simrenderer::lex::{self, Line, ValueError};
 use glam::DVec3;
 
@@ -15,55 +15,31 @@ fn value_error<T>(column: usize, message: String) -> Result<T, ValueError> {
     Err(ValueError { column, message })
 }
 
-/// A point: finite coordinates of magnitude at most [`limits::MAX_COORDINATE`].
+/// The value a rule ([`rules`]) passed, or its message at the line's value.
+fn placed<T>(l: &Line, checked: Result<T, String>) -> Result<T, ValueError> {
+    checked.or_else(|m| value_error(l.value_column, m))
+}
+
+/// A point: finite coordinates of magnitude at most [`crate::limits::MAX_COORDINATE`].
 pub(super) fn point(l: &Line) -> Result<DVec3, ValueError> {
-    let v = lex::vector(l.value, l.value_column)?;
-    let m = limits::MAX_COORDINATE;
-    if v.iter().any(|c| !c.is_finite() || c.abs() > m) {
-        return value_error(
-            l.value_column,
-            format!("components must be finite numbers in [-{m:e}, {m:e}], got {v:?}"),
-        );
-    }
-    Ok(DVec3::from(v))
+    placed(l, rules::point(lex::vector(l.value, l.value_column)?))
 }
 
 /// A direction: a point of non-zero length (not yet made unit).
 pub(super) fn direction(l: &Line) -> Result<DVec3, ValueError> {
-    let d = point(l)?;
-    if d.length() <= 1e-12 {
-        return value_error(
-            l.value_column,
-            format!("must be a direction of non-zero length, got {:?}", d.to_array()),
-        );
-    }
-    Ok(d)
+    placed(l, rules::direction(lex::vector(l.value, l.value_column)?))
 }
 
 /// A number in `[lo, hi]`.
 pub(super) fn number_in(l: &Line, lo: f64, hi: f64) -> Result<f64, ValueError> {
     let (x, written) = lex::number_as_written(l.value, l.value_column)?;
-    if !x.is_finite() || x < lo || x > hi {
-        let (lo, hi) = (limits::short(lo), limits::short(hi));
-        return value_error(
-            l.value_column,
-            format!("must be a finite number in [{lo}, {hi}], got {written}"),
-        );
-    }
-    Ok(x)
+    rules::number_in(x, lo, hi).or_else(|m| value_error(l.value_column, format!("{m}, got {written}")))
 }
 
 /// A number in `(0, hi]`.
 pub(super) fn positive(l: &Line, hi: f64) -> Result<f64, ValueError> {
     let (x, written) = lex::number_as_written(l.value, l.value_column)?;
-    if !x.is_finite() || x <= 0.0 || x > hi {
-        let hi = limits::short(hi);
-        return value_error(
-            l.value_column,
-            format!("must be a finite number in (0, {hi}], got {written}"),
-        );
-    }
-    Ok(x)
+    rules::positive(x, hi).or_else(|m| value_error(l.value_column, format!("{m}, got {written}")))
 }
 
 /// The far clipping plane: a number above 0, `Infinity` for none.
@@ -89,41 +65,16 @@ pub(super) fn int_in(l: &Line, lo: i32, hi: i32) -> Result<i32, ValueError> {
 
 /// A colour with each channel in `[0, hi]`.
 pub(super) fn color(l: &Line, hi: f64) -> Result<DVec3, ValueError> {
-    let c = lex::color(l.value, l.value_column)?;
-    if c.iter().any(|x| !x.is_finite() || *x < 0.0 || *x > hi) {
-        return value_error(
-            l.value_column,
-            format!(
-                "each channel must be a finite number in [0, {}], got {c:?}",
-                limits::short(hi)
-            ),
-        );
-    }
-    Ok(DVec3::from(c))
+    placed(l, rules::color(lex::color(l.value, l.value_column)?, hi))
 }
 
-/// Scale factors of magnitude in [`limits::MIN_SCALE`, `limits::MAX_SCALE`] (negative ones
-/// mirror).
+/// Scale factors of magnitude in [`crate::limits::MIN_SCALE`, `crate::limits::MAX_SCALE`]
+/// (negative ones mirror).
 pub(super) fn scale_factors(l: &Line) -> Result<DVec3, ValueError> {
-    let s = lex::vector(l.value, l.value_column)?;
-    let (lo, hi) = (limits::MIN_SCALE, limits::MAX_SCALE);
-    if s.iter().any(|x| !x.is_finite() || x.abs() < lo || x.abs() > hi) {
-        return value_error(
-            l.value_column,
-            format!("each factor must be finite, of magnitude in [{lo:e}, {hi:e}] (negative mirrors), got {s:?}"),
-        );
-    }
-    Ok(DVec3::from(s))
+    placed(l, rules::scale_factors(lex::vector(l.value, l.value_column)?))
 }
 
 /// Angles in degrees, each in [-360, 360].
 pub(super) fn angles(l: &Line) -> Result<DVec3, ValueError> {
-    let a = lex::vector(l.value, l.value_column)?;
-    if a.iter().any(|x| !x.is_finite() || x.abs() > 360.0) {
-        return value_error(
-            l.value_column,
-            format!("angles must be finite numbers in [-360, 360] degrees, got {a:?}"),
-        );
-    }
-    Ok(DVec3::from(a))
+    placed(l, rules::angles(lex::vector(l.value, l.value_column)?))
 }

@@ -1,0 +1,122 @@
+//! The rules a scene value must meet, written once for both readers (the TOML format's
+//! `file::check` and SIMRenderer's `read::values`): each returns the value, or what it must
+//! be. The reader places the message on its field or column; for a single number it adds the
+//! value as the file writes it (`, got 1e-7`), which only the reader has.
+
+use crate::limits;
+use glam::DVec3;
+
+/// A finite number in `[lo, hi]`.
+pub fn number_in(x: f64, lo: f64, hi: f64) -> Result<f64, String> {
+    if !x.is_finite() || x < lo || x > hi {
+        let (lo, hi) = (limits::short(lo), limits::short(hi));
+        return Err(format!("must be a finite number in [{lo}, {hi}]"));
+    }
+    Ok(x)
+}
+
+/// A finite number in `(0, hi]`.
+pub fn positive(x: f64, hi: f64) -> Result<f64, String> {
+    if !x.is_finite() || x <= 0.0 || x > hi {
+        let hi = limits::short(hi);
+        return Err(format!("must be a finite number in (0, {hi}]"));
+    }
+    Ok(x)
+}
+
+/// A point or vector: finite components of magnitude at most [`limits::MAX_COORDINATE`].
+pub fn point(v: [f64; 3]) -> Result<DVec3, String> {
+    let m = limits::MAX_COORDINATE;
+    if v.iter().any(|c| !c.is_finite() || c.abs() > m) {
+        return Err(format!(
+            "components must be finite numbers in [-{m:e}, {m:e}], got {v:?}"
+        ));
+    }
+    Ok(DVec3::from(v))
+}
+
+/// A direction: a point of non-zero length (as given, not made unit).
+pub fn direction(v: [f64; 3]) -> Result<DVec3, String> {
+    let d = point(v)?;
+    if d.length() <= 1e-12 {
+        return Err(format!("must be a direction of non-zero length, got {v:?}"));
+    }
+    Ok(d)
+}
+
+/// A colour: each channel finite in `[0, hi]`.
+pub fn color(v: [f64; 3], hi: f64) -> Result<DVec3, String> {
+    if v.iter().any(|c| !c.is_finite() || *c < 0.0 || *c > hi) {
+        let hi = limits::short(hi);
+        return Err(format!("each channel must be a finite number in [0, {hi}], got {v:?}"));
+    }
+    Ok(DVec3::from(v))
+}
+
+/// Angles in degrees, each finite in [-360, 360].
+pub fn angles(v: [f64; 3]) -> Result<DVec3, String> {
+    if v.iter().any(|a| !a.is_finite() || a.abs() > 360.0) {
+        return Err(format!(
+            "angles must be finite numbers in [-360, 360] degrees, got {v:?}"
+        ));
+    }
+    Ok(DVec3::from(v))
+}
+
+/// Scale factors of magnitude in [[`limits::MIN_SCALE`], [`limits::MAX_SCALE`]] (a negative
+/// one mirrors).
+pub fn scale_factors(v: [f64; 3]) -> Result<DVec3, String> {
+    let (lo, hi) = (limits::MIN_SCALE, limits::MAX_SCALE);
+    if v.iter().any(|s| !s.is_finite() || s.abs() < lo || s.abs() > hi) {
+        return Err(format!(
+            "each factor must be finite, of magnitude in [{lo:e}, {hi:e}] (negative mirrors), got {v:?}"
+        ));
+    }
+    Ok(DVec3::from(v))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_rule_says_its_range() {
+        assert_eq!(number_in(0.5, 0.0, 1.0), Ok(0.5));
+        assert_eq!(
+            number_in(f64::NAN, 0.0, 1.0),
+            Err("must be a finite number in [0, 1]".to_string())
+        );
+        assert_eq!(positive(1e9, 1e9), Ok(1e9));
+        assert_eq!(
+            positive(0.0, 1e9),
+            Err("must be a finite number in (0, 1e9]".to_string())
+        );
+        assert_eq!(point([1e9, -1e9, 0.0]), Ok(DVec3::new(1e9, -1e9, 0.0)));
+        assert_eq!(
+            point([2e9, 0.0, 0.0]),
+            Err("components must be finite numbers in [-1e9, 1e9], got [2000000000.0, 0.0, 0.0]".to_string())
+        );
+        assert_eq!(direction([0.0, 0.0, 2.0]), Ok(DVec3::new(0.0, 0.0, 2.0)));
+        assert_eq!(
+            direction([1e-13, 0.0, 0.0]),
+            Err("must be a direction of non-zero length, got [1e-13, 0.0, 0.0]".to_string())
+        );
+        assert_eq!(
+            color([1.0, -1.0, 1.0], 1e6),
+            Err("each channel must be a finite number in [0, 1e6], got [1.0, -1.0, 1.0]".to_string())
+        );
+        assert_eq!(angles([-360.0, 0.0, 360.0]), Ok(DVec3::new(-360.0, 0.0, 360.0)));
+        assert_eq!(
+            angles([0.0, f64::INFINITY, 0.0]),
+            Err("angles must be finite numbers in [-360, 360] degrees, got [0.0, inf, 0.0]".to_string())
+        );
+        assert_eq!(scale_factors([-1.0, 1e-6, 1e6]), Ok(DVec3::new(-1.0, 1e-6, 1e6)));
+        assert_eq!(
+            scale_factors([0.0, 1.0, 1.0]),
+            Err(
+                "each factor must be finite, of magnitude in [1e-6, 1e6] (negative mirrors), got [0.0, 1.0, 1.0]"
+                    .to_string()
+            )
+        );
+    }
+}
