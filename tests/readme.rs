@@ -259,3 +259,35 @@ fn scenes_readme_lists_every_object_type_the_reader_accepts() {
         }
     }
 }
+
+#[test]
+fn scenes_readme_error_examples_are_what_the_reader_prints() {
+    let readme = std::fs::read_to_string(repo("scenes/README.md")).unwrap();
+    let examples = section(&readme, "## Errors");
+    const HEAD: &str = "[image]\nwidth = 8\nheight = 6\n[camera]\nposition = [0, -5, 0]\nlook_at = [0, 0, 0]\n";
+    let sphere = |fields: &str| format!("{HEAD}[[shapes]]\ntype = \"sphere\"\n{fields}\n");
+    for scene in [
+        sphere("center = [0, 0, 0]\nradius = -1"),
+        sphere("center = [0, 0]\nradius = 1"),
+        format!("{HEAD}[[shapes]]\ntype = \"sphear\"\n"),
+        HEAD.replace("width = 8", "width = -4"),
+        HEAD.replace("look_at", "vfov = 60\nvfov = 70\nlook_at"),
+    ] {
+        let e = lumiere::scene::parse(&scene, "s.toml").unwrap_err().to_string();
+        // `s.toml:LINE:COLUMN: FIELD: MESSAGE`: the example's place and entry index differ.
+        let message = e.splitn(3, ": ").nth(2).unwrap();
+        assert!(
+            examples.contains(message),
+            "scenes/README.md, ## Errors: no {message:?}"
+        );
+    }
+    // README's one example, with its field.
+    let e = lumiere::scene::parse(&sphere("center = [0, 0, 0]\nradius = -1"), "s.toml").unwrap_err();
+    let shown = e.to_string();
+    let (_, field_and_message) = shown.split_once(": ").unwrap();
+    let readme = std::fs::read_to_string(repo("README.md")).unwrap();
+    assert!(
+        readme.contains(field_and_message),
+        "README.md: no {field_and_message:?}"
+    );
+}
