@@ -271,7 +271,10 @@ fn scenes_readme_error_examples_are_what_the_reader_prints() {
         sphere("center = [0, 0]\nradius = 1"),
         format!("{HEAD}[[shapes]]\ntype = \"sphear\"\n"),
         HEAD.replace("width = 8", "width = -4"),
-        HEAD.replace("look_at", "vfov = 60\nvfov = 70\nlook_at"),
+        // The reference scene's vfov (line 15) given again on line 16.
+        std::fs::read_to_string(repo("scenes/reference.toml"))
+            .unwrap()
+            .replace("vfov = 60", "vfov = 60\nvfov = 70"),
     ] {
         let e = lumiere::scene::parse(&scene, "s.toml").unwrap_err().to_string();
         // `s.toml:LINE:COLUMN: FIELD: MESSAGE`: the example's place and entry index differ.

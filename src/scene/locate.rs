@@ -98,6 +98,29 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// The line where the key at `span` (a key TOML refused as given twice) was given first: the
+/// same table header earlier in the file for a header, else the same key earlier in the same
+/// table (back to the table's header). `None` when the text does not show it so simply (a
+/// dotted key, a key inside an inline table).
+pub fn first_given(text: &str, span: Range<usize>) -> Option<usize> {
+    let line_start = text.get(..span.start)?.rfind('\n').map_or(0, |i| i + 1);
+    let this = text[line_start..].lines().next()?.trim();
+    let key = text.get(span)?;
+    let before: Vec<&str> = text[..line_start].lines().collect();
+    let header = |l: &str| l.starts_with('[');
+    let found = if header(this) {
+        before.iter().rposition(|l| l.trim() == this)
+    } else {
+        before
+            .iter()
+            .rev()
+            .take_while(|l| !header(l.trim()))
+            .position(|l| l.split_once('=').is_some_and(|(k, _)| k.trim() == key))
+            .map(|back| before.len() - 1 - back)
+    };
+    found.map(|index| index + 1)
+}
+
 /// Byte offset of the value at `path`, or of the nearest enclosing value that exists
 /// (a defaulted field points at its table).
 pub fn locate(text: &str, path: &FieldPath) -> usize {
@@ -169,6 +192,22 @@ fn within_value(value: &DeValue, span: &Range<usize>, path: &mut FieldPath) -> b
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn a_key_given_twice_is_found_where_it_was_first_given() {
+        let text = "[camera]\nvfov = 60\nup = [0, 0, 1]\nvfov = 70\n";
+        let span = |t: &str, at: usize, key: &str| t[at..].find(key).map(|i| at + i..at + i + key.len()).unwrap();
+        assert_eq!(first_given(text, span(text, 30, "vfov")), Some(2));
+        // The same key in another table is not the first of this one.
+        let text = "[image]\nseed = 1\n[camera]\nseed = 2\nseed = 3\n";
+        assert_eq!(first_given(text, span(text, 34, "seed")), Some(4));
+        // A table given twice: its first header.
+        let text = "[camera]\nvfov = 60\n\n[camera]\n";
+        assert_eq!(first_given(text, span(text, 10, "camera")), Some(1));
+        // A dotted key is not followed (TOML's span is one part of it: `c` of `b.c`).
+        let text = "[a]\nb.c = 1\nb.c = 2\n";
+        assert_eq!(first_given(text, span(text, 12, "c")), None);
+    }
+
     use super::*;
 
     #[test]

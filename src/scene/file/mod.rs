@@ -20,7 +20,7 @@ mod shapes;
 mod tables;
 mod transform;
 
-use super::locate::{FieldError, FieldPath, line_col, locate, path_at, written};
+use super::locate::{FieldError, FieldPath, first_given, line_col, locate, path_at, written};
 use super::tag;
 use super::{CameraSpec, Object, ObjectNames, Scene, Settings, ShadingModel, Specular};
 use super::{decimal_comma, serde_words};
@@ -122,10 +122,15 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
         let offset = e.span().map_or(0, |s| s.start);
         let message = match (e.message().trim(), e.span()) {
             // The span is the second key: name it as written.
-            ("duplicate key", Some(span)) => format!(
-                "duplicate key `{}`: a key is given once in its table",
-                text.get(span).unwrap_or_default()
-            ),
+            ("duplicate key", Some(span)) => {
+                let key = text.get(span.clone()).unwrap_or_default();
+                match first_given(text, span) {
+                    Some(line) => {
+                        format!("duplicate key `{key}`: given first at line {line}; a key is given once in its table")
+                    }
+                    None => format!("duplicate key `{key}`: a key is given once in its table"),
+                }
+            }
             (message, _) => message.to_string(),
         };
         let message = match decimal_comma::toml_hint(text, offset) {
