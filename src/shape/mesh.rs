@@ -185,6 +185,14 @@ impl Mesh {
         })
     }
 
+    /// [`Mesh::degenerate_face`] said as both scene readers say it, naming `file` (and that
+    /// the face was flattened by the transform, when `moved`).
+    pub fn flat_face_message(&self, file: &impl std::fmt::Display, moved: bool) -> Option<String> {
+        let after = if moved { " after the transform" } else { "" };
+        self.degenerate_face()
+            .map(|(line, why)| format!("{file}:{line}: the face makes no triangle{after}: {why}"))
+    }
+
     /// The triangles over one shared copy of `vertices`.
     pub fn triangles(&self) -> Vec<Triangle> {
         let shared: Arc<[DVec3]> = Arc::from(self.vertices.as_slice());

@@ -55,16 +55,8 @@ impl FileMesh {
                 ),
             );
         }
-        if let Some((line, why)) = mesh.degenerate_face() {
-            let after = if transform.is_some() {
-                " after the transform"
-            } else {
-                ""
-            };
-            return fail(
-                &field,
-                format!("{shown}:{line}: the face makes no triangle{after}: {why}"),
-            );
+        if let Some(m) = mesh.flat_face_message(&shown, transform.is_some()) {
+            return fail(&field, m);
         }
         let base = self.name.unwrap_or_else(|| format!("mesh#{index}"));
         Ok(mesh

@@ -281,6 +281,12 @@ pub fn java_double(s: &str) -> Option<f64> {
 
 /// An integer as Java's `Integer.valueOf` reads it, or `None`.
 pub fn java_int(s: &str) -> Option<i32> {
+    whole(s).and_then(|n| i32::try_from(n).ok())
+}
+
+/// An integer written as Java writes one (an optional sign, then digits) of up to 38 digits,
+/// whatever Java's range, or `None`.
+fn whole(s: &str) -> Option<i128> {
     let digits = s.strip_prefix(['+', '-']).unwrap_or(s);
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
         return None;
@@ -340,12 +346,7 @@ pub fn number_as_written(value: &str, column: usize) -> Result<(f64, &str), Valu
 /// be in.
 pub fn integer(value: &str, column: usize) -> Result<i128, ValueError> {
     let t = first(value, column, "an integer")?;
-    let digits = t.text.strip_prefix(['+', '-']).unwrap_or(t.text);
-    let parsed = match digits.bytes().all(|b| b.is_ascii_digit()) {
-        true => t.text.strip_prefix('+').unwrap_or(t.text).parse().ok(),
-        false => None,
-    };
-    parsed.map_or_else(
+    whole(t.text).map_or_else(
         || value_error(t.column, format!("expects an integer, got {:?}", t.text)),
         Ok,
     )

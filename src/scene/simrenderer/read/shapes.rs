@@ -323,9 +323,7 @@ impl<'a> Reader<'a> {
             self.problem(&place, m, dropped)?;
             return Ok(None);
         }
-        if let Some((line, why)) = mesh.degenerate_face() {
-            let after = if moved { " after the transform" } else { "" };
-            let m = format!("{shown}:{line}: the face makes no triangle{after}: {why}");
+        if let Some(m) = mesh.flat_face_message(&shown, moved) {
             self.problem(&file_at, m, dropped)?;
             return Ok(None);
         }
