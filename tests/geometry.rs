@@ -292,6 +292,19 @@ fn mesh_errors_name_the_obj_file_and_its_line() {
             "{scene}:10:8: shapes[0].file: {obj}:4: the face makes no triangle after the transform: its points are on one line"
         )
     );
+    // A transform that moves a vertex beyond the coordinates' range names that vertex, on
+    // the transform's field: (1, 0, 0) scaled by 1e6 then moved by 1e9 along x.
+    let path = mesh_scene(
+        &dir,
+        SQUARE,
+        "transform = { scale = [1e6, 1, 1], translation = [1e9, 0, 0] }\n",
+    );
+    assert_eq!(
+        scene::load(&path).unwrap_err().to_string(),
+        format!(
+            "{scene}:11:13: shapes[0].transform: moves a vertex of {obj} to [1001000000.0, 0.0, 0.0], beyond the coordinates' range [-1e9, 1e9]"
+        )
+    );
 }
 
 #[test]

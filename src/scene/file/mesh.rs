@@ -5,7 +5,6 @@ use super::Listed;
 use super::check::{Check, fail};
 use super::material::resolve_material;
 use super::transform::{FileTransform, transform_of};
-use crate::limits;
 use crate::scene::locate::{FieldError, FieldPath};
 use crate::shape::Shape;
 use crate::shape::mesh::Mesh;
@@ -44,16 +43,9 @@ impl FileMesh {
         let material = resolve_material(path, self.material, material_names)?;
         let transform = transform_of(&path.key("transform"), self.transform)?;
         if let Some(t) = &transform
-            && let Err(v) = mesh.transform(t)
+            && let Err(m) = mesh.transform(t, &shown)
         {
-            return fail(
-                &path.key("transform"),
-                format!(
-                    "moves a vertex of {shown} to {:?}, beyond the coordinates' range [-{m:e}, {m:e}]",
-                    v.to_array(),
-                    m = limits::MAX_COORDINATE
-                ),
-            );
+            return fail(&path.key("transform"), m);
         }
         if let Some(m) = mesh.flat_face_message(&shown, transform.is_some()) {
             return fail(&field, m);

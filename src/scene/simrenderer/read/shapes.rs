@@ -314,13 +314,8 @@ impl<'a> Reader<'a> {
         };
         let t = Transform::from_parts(scale, rotation, translation);
         let moved = !t.is_identity();
-        if moved && let Err(v) = mesh.transform(&t) {
-            let m = format!(
-                "the transform moves a vertex of {shown} to {:?}, beyond the coordinates' range [-{c:e}, {c:e}]",
-                v.to_array(),
-                c = limits::MAX_COORDINATE
-            );
-            self.problem(&place, m, dropped)?;
+        if moved && let Err(m) = mesh.transform(&t, &shown) {
+            self.problem(&place, format!("the transform {m}"), dropped)?;
             return Ok(None);
         }
         if let Some(m) = mesh.flat_face_message(&shown, moved) {
