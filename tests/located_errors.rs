@@ -239,6 +239,11 @@ fn errors_in_top_level_tables() {
         error_after("height = 12", "height = 12\nheight = 13"),
         "s.toml:4:1: TOML: duplicate key `height`: given first at line 3; a key is given once in its table"
     );
+    // Quoted as TOML reads it: `"height"` is `height`.
+    assert_eq!(
+        error_after("height = 12", "height = 12\n\"height\" = 13"),
+        "s.toml:4:1: TOML: duplicate key `\"height\"`: given first at line 3; a key is given once in its table"
+    );
     // A missing top-level table has no place in the file: the file and the table are named
     // (more cases in scene_tables.rs).
     assert_eq!(

@@ -98,27 +98,66 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
-/// The line where the key at `span` (a key TOML refused as given twice) was given first: the
-/// same table header earlier in the file for a header, else the same key earlier in the same
-/// table (back to the table's header). `None` when the text does not show it so simply (a
-/// dotted key, a key inside an inline table).
+/// The line where the key at `span` (a key TOML refused as given twice) was given first: for
+/// a table header given twice, its first header; for a key, the same key (dotted or quoted as
+/// written, TOML's own reading) earlier in the same table. The text before the key's line is
+/// parsed for the first key's position. `None` when that text does not parse, or the key is
+/// inside an inline table.
 pub fn first_given(text: &str, span: Range<usize>) -> Option<usize> {
     let line_start = text.get(..span.start)?.rfind('\n').map_or(0, |i| i + 1);
     let this = text[line_start..].lines().next()?.trim();
-    let key = text.get(span)?;
-    let before: Vec<&str> = text[..line_start].lines().collect();
-    let header = |l: &str| l.starts_with('[');
-    let found = if header(this) {
-        before.iter().rposition(|l| l.trim() == this)
+    let before = &text[..line_start];
+    let root = DeTable::parse(before).ok()?;
+    let is_header = |l: &str| l.starts_with('[');
+    let (table, key) = if is_header(this) {
+        (Vec::new(), header_path(this)?)
     } else {
-        before
-            .iter()
-            .rev()
-            .take_while(|l| !header(l.trim()))
-            .position(|l| l.split_once('=').is_some_and(|(k, _)| k.trim() == key))
-            .map(|back| before.len() - 1 - back)
+        let table = match before.lines().rev().map(str::trim).find(|l| is_header(l)) {
+            Some(header) => header_path(header)?,
+            None => Vec::new(),
+        };
+        // The key as written, up to the end of its part TOML refused, given a value.
+        let written = format!("{} = 0", text.get(line_start..span.end)?);
+        (table, dotted_path(DeTable::parse(&written).ok()?.get_ref(), false))
     };
-    found.map(|index| index + 1)
+    let (last, parents) = key.split_last()?;
+    let mut at = root.get_ref();
+    // Into a table, or the last entry of an array of tables.
+    for k in table.iter().chain(parents) {
+        at = match at.get(k.as_str())?.get_ref() {
+            DeValue::Table(t) => t,
+            DeValue::Array(a) => match a.last()?.get_ref() {
+                DeValue::Table(t) => t,
+                _ => return None,
+            },
+            _ => return None,
+        };
+    }
+    let (first, _) = at.get_key_value(last.as_str())?;
+    Some(line_col(text, first.span().start).0)
+}
+
+/// The keys of a table header line (`[a."b"]` or `[[a]]`), as TOML reads them.
+fn header_path(line: &str) -> Option<Vec<String>> {
+    Some(dotted_path(DeTable::parse(line).ok()?.get_ref(), true))
+}
+
+/// The keys a one-entry document nests: a dotted key's parts, down to a value that is not a
+/// table (`tables_end`: down to an empty table, or into an array of tables' one entry).
+fn dotted_path(mut table: &DeTable, tables_end: bool) -> Vec<String> {
+    let mut path = Vec::new();
+    while let Some((k, v)) = table.iter().next() {
+        path.push(k.get_ref().to_string());
+        table = match v.get_ref() {
+            DeValue::Table(t) if tables_end || !t.is_empty() => t,
+            DeValue::Array(a) if tables_end => match a.first().map(|e| e.get_ref()) {
+                Some(DeValue::Table(t)) => t,
+                _ => break,
+            },
+            _ => break,
+        };
+    }
+    path
 }
 
 /// Byte offset of the value at `path`, or of the nearest enclosing value that exists
@@ -203,9 +242,19 @@ mod tests {
         // A table given twice: its first header.
         let text = "[camera]\nvfov = 60\n\n[camera]\n";
         assert_eq!(first_given(text, span(text, 10, "camera")), Some(1));
-        // A dotted key is not followed (TOML's span is one part of it: `c` of `b.c`).
-        let text = "[a]\nb.c = 1\nb.c = 2\n";
-        assert_eq!(first_given(text, span(text, 12, "c")), None);
+        // A dotted key (TOML's span is its last part, `c` of `b.c`) and a quoted one are
+        // read as TOML reads them.
+        let text = "[a]\nb.c = 1\nx = 0\nb . \"c\" = 2\n";
+        assert_eq!(first_given(text, span(text, 18, "\"c\"")), Some(2));
+        let text = "[camera]\nvfov = 60\n\"vfov\" = 70\n";
+        assert_eq!(first_given(text, span(text, 19, "\"vfov\"")), Some(2));
+        // A header given twice in an array of tables' entry, and a table's key given again
+        // in the next entry is not a duplicate of the first entry's.
+        let text = "[[shapes]]\n[shapes.m]\nk = 1\n[shapes.m]\n";
+        assert_eq!(first_given(text, span(text, 29, "m")), Some(2));
+        // A key inside an inline table is not followed.
+        let text = "[a]\nx = { y = 1, y = 2 }\n";
+        assert_eq!(first_given(text, span(text, 17, "y")), None);
     }
 
     use super::*;
