@@ -313,20 +313,40 @@ impl Conventions {
         Conventions::KEYS.into_iter().zip(values).collect()
     }
 
-    /// One line: the preset's name, or the switches that differ from the chapter's.
+    /// The nearer preset (the one fewer switches differ from; SIMRenderer's on a tie) and
+    /// the switches that differ from it, as [`Conventions::describe`] lists them.
+    pub fn nearer_preset(&self) -> (&'static str, Vec<(&'static str, String)>) {
+        let mine = self.describe();
+        [
+            ("simrenderer", Conventions::SIMRENDERER),
+            ("chapter", Conventions::CHAPTER),
+        ]
+        .into_iter()
+        .map(|(name, preset)| {
+            let differing = mine
+                .iter()
+                .zip(preset.describe())
+                .filter(|((_, a), (_, b))| a != b)
+                .map(|((k, a), _)| (*k, a.clone()))
+                .collect::<Vec<_>>();
+            (name, differing)
+        })
+        .min_by_key(|(_, differing)| differing.len())
+        .unwrap_or(("chapter", Vec::new()))
+    }
+
+    /// One line: the preset's name, or the nearer preset's with the switches that differ
+    /// from it.
     pub fn summary(&self) -> String {
-        if let Some(name) = self.preset_name() {
-            return name.to_string();
+        let (preset, differing) = self.nearer_preset();
+        if differing.is_empty() {
+            return preset.to_string();
         }
-        let chapter = Conventions::CHAPTER.describe();
-        let differing: Vec<String> = self
-            .describe()
-            .into_iter()
-            .zip(chapter)
-            .filter(|(mine, theirs)| mine.1 != theirs.1)
-            .map(|((key, value), _)| format!("{key} = {value}"))
+        let differing: Vec<String> = differing
+            .iter()
+            .map(|(key, value)| format!("{key} = {value}"))
             .collect();
-        format!("chapter with {}", differing.join(", "))
+        format!("{preset} with {}", differing.join(", "))
     }
 }
 
@@ -385,6 +405,18 @@ mod tests {
         c.set("far", "100").unwrap();
         assert_eq!(c.preset_name(), None);
         assert_eq!(c.summary(), "chapter with far = 100, shadow_filter = kt_color");
+        // SIMRenderer's with two switches of the chapter's is named after SIMRenderer's.
+        let mut s = Conventions::SIMRENDERER;
+        s.set("sample_position", "center").unwrap();
+        s.set("far", "1000").unwrap();
+        assert_eq!(s.summary(), "simrenderer with sample_position = center, far = 1000");
+        assert_eq!(
+            s.nearer_preset(),
+            (
+                "simrenderer",
+                vec![("sample_position", "center".to_string()), ("far", "1000".to_string())]
+            )
+        );
     }
 
     #[test]

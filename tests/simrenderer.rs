@@ -762,19 +762,29 @@ fn the_command_line_reads_simrenderer_files() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    // SIMRenderer's conventions with the file's pixel_coordinate and far plane, named after
+    // SIMRenderer's preset.
+    let probe = |extra: &[&str]| {
+        let mut a = vec![
+            "probe",
+            reference.to_str().unwrap(),
+            "--pixel",
+            "10,10",
+            "--width",
+            "20",
+            "--height",
+            "15",
+        ];
+        a.extend_from_slice(extra);
+        lumiere(&a)
+    };
+    let text = String::from_utf8_lossy(&probe(&[]).stdout).into_owned();
+    assert!(
+        text.contains("\nconventions simrenderer with sample_position = center, far = 1000\n"),
+        "{text}"
+    );
     // --conventions chapter: the file's pixel_coordinate and far plane over the chapter's.
-    let out = lumiere(&[
-        "probe",
-        reference.to_str().unwrap(),
-        "--pixel",
-        "10,10",
-        "--width",
-        "20",
-        "--height",
-        "15",
-        "--conventions",
-        "chapter",
-    ]);
+    let out = probe(&["--conventions", "chapter"]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
         text.contains("conventions chapter with sample_position = center, far = 1000\n"),

@@ -9,7 +9,6 @@ use super::exact::{self, number, unit_once, unit_twice};
 use super::writer::{Format, Writer};
 use super::{Refused, Written, object_label};
 use crate::area_light::AreaShape;
-use crate::conventions::Conventions;
 use crate::interference::Aperture;
 use crate::light::{Attenuation, Light};
 use crate::material::Material;
@@ -121,22 +120,7 @@ impl Writer<Toml> {
         self.line(format!("adaptive_threshold = {}", num(s.adaptive_threshold)));
         self.line("");
         // The nearer preset, then the switches that differ from it.
-        let mine = s.conventions.describe();
-        let differing = |preset: &Conventions| -> Vec<(&'static str, String)> {
-            mine.iter()
-                .zip(preset.describe())
-                .filter(|((_, a), (_, b))| a != b)
-                .map(|((k, a), _)| (*k, a.clone()))
-                .collect()
-        };
-        let (preset, switches) = [
-            ("simrenderer", Conventions::SIMRENDERER),
-            ("chapter", Conventions::CHAPTER),
-        ]
-        .into_iter()
-        .map(|(name, c)| (name, differing(&c)))
-        .min_by_key(|(_, d)| d.len())
-        .unwrap_or(("chapter", Vec::new()));
+        let (preset, switches) = s.conventions.nearer_preset();
         self.line("[conventions]");
         self.line(format!("preset = \"{preset}\""));
         for (k, v) in switches {
