@@ -430,7 +430,31 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     .unwrap();
     let (code, _, err) = compare(&[s(&clear), s(&b)]);
     assert_eq!(code, 2);
-    assert!(err.contains("every pixel is fully transparent"), "{err}");
+    assert_eq!(
+        err.trim(),
+        format!(
+            "lumiere: error: {}: every pixel is fully transparent (alpha 0): nothing was drawn to compare",
+            clear.display()
+        )
+    );
+    // Each image drawn only where the other is not: both named.
+    let flipped: Vec<u8> = yours.chunks(4).flat_map(|p| [p[0], p[1], p[2], 255 - p[3]]).collect();
+    let other = dir.join("other-half.png");
+    fs::write(
+        &other,
+        encode_with(image::ImageFormat::Png, w, h, &flipped, image::ExtendedColorType::Rgba8),
+    )
+    .unwrap();
+    let (code, _, err) = compare(&[s(&a), s(&other)]);
+    assert_eq!(code, 2);
+    assert_eq!(
+        err.trim(),
+        format!(
+            "lumiere: error: every pixel is fully transparent (alpha 0) in {} or in {}: no pixel drawn in both to compare",
+            a.display(),
+            other.display()
+        )
+    );
 }
 
 #[test]

@@ -117,6 +117,24 @@ fn undrawn_pixels(a: &Image, b: &Image) -> Vec<bool> {
     }
 }
 
+/// Why no pixel is left to compare when each is fully transparent in one image or the
+/// other: the image with no pixel drawn, or both images when each leaves out what the other
+/// drew.
+fn nothing_drawn(args: &CompareArgs, a: &Image, b: &Image) -> String {
+    let clear = |img: &Image| !img.transparent.is_empty() && img.transparent.iter().all(|&t| t);
+    let (pa, pb) = (args.a.display(), args.b.display());
+    match (clear(a), clear(b)) {
+        (true, true) => {
+            format!("{pa} and {pb}: every pixel is fully transparent (alpha 0): nothing was drawn to compare")
+        }
+        (true, false) => format!("{pa}: every pixel is fully transparent (alpha 0): nothing was drawn to compare"),
+        (false, true) => format!("{pb}: every pixel is fully transparent (alpha 0): nothing was drawn to compare"),
+        (false, false) => {
+            format!("every pixel is fully transparent (alpha 0) in {pa} or in {pb}: no pixel drawn in both to compare")
+        }
+    }
+}
+
 /// Checks a heat-map's path: a PNG that overwrites neither input.
 fn check_png(path: &Path, inputs: [&Path; 2], option: &str) -> Result<(), CliError> {
     let png = path
@@ -258,11 +276,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     };
     let undrawn = undrawn_pixels(&a, &b);
     if !undrawn.is_empty() && undrawn.iter().all(|&u| u) {
-        return Err(CliError::BadInput(format!(
-            "every pixel is fully transparent in {} or {}: nothing was drawn to compare",
-            args.a.display(),
-            args.b.display()
-        )));
+        return Err(CliError::BadInput(nothing_drawn(args, &a, &b)));
     }
     let masks = Masks {
         edges: edges.as_deref(),
