@@ -641,3 +641,27 @@ fn the_library_holds_no_command_line() {
             .contains("\nmod cli;\n")
     );
 }
+
+#[test]
+fn a_byte_not_utf8_is_located_in_either_format() {
+    let dir = temp_dir("cli-latin1");
+    let out = dir.join("out.png");
+    // "matériau" saved as Latin-1 in a comment, on line 2 of each.
+    for (name, bytes) in [
+        ("scene.toml", &b"[image]\n# mat\xe9riau\nwidth = 4\n"[..]),
+        ("lab.txt", &b"camera\n# mat\xe9riau\nend\n"[..]),
+    ] {
+        let path = dir.join(name);
+        fs::write(&path, bytes).unwrap();
+        let o = lumiere(&["render", path.to_str().unwrap(), "-o", out.to_str().unwrap(), "-q"]);
+        assert_eq!(o.status.code(), Some(2));
+        assert_eq!(
+            String::from_utf8_lossy(&o.stderr).trim(),
+            format!(
+                "lumiere: error: {}:2:6: encoding: byte 0xE9 is not UTF-8 (an accent saved as Latin-1 or Windows-1252 reads so); save the file as UTF-8",
+                path.display()
+            )
+        );
+        assert!(!out.exists());
+    }
+}

@@ -8,6 +8,7 @@ pub mod generate;
 mod locate;
 mod names;
 mod overrides;
+mod read_text;
 mod rules;
 mod serde_words;
 pub mod simrenderer;
@@ -17,6 +18,7 @@ pub mod transform;
 pub use file::{SceneError, load as load_toml, parse};
 pub use names::{NameKey, ObjectNames};
 pub use overrides::Overrides;
+use read_text::read_text;
 
 use crate::conventions::Conventions;
 use crate::light::Light;
@@ -87,10 +89,7 @@ pub fn load(path: &std::path::Path) -> Result<Scene, SceneError> {
 
 /// Reads and validates a scene file as `options` say.
 pub fn load_with(path: &std::path::Path, options: &LoadOptions) -> Result<Loaded, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = read_text(path)?;
     let file = path.display().to_string();
     let format = match options.format {
         Some(f) => f,

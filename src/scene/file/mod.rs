@@ -92,10 +92,7 @@ fn absent(tables: &[&str]) -> String {
 
 /// Reads and validates a scene file.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::scene::read_text::read_text(path)?;
     parse(&text, &path.display().to_string())
 }
 

@@ -60,10 +60,7 @@ pub struct Parsed {
 
 /// Reads a SIMRenderer scene file (a model's mesh file is found relative to it).
 pub fn load(path: &Path, options: &Options) -> Result<Parsed, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::scene::read_text::read_text(path)?;
     parse(&text, &path.display().to_string(), options)
 }
 
