@@ -226,6 +226,29 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
             text.display()
         )
     );
+    // An empty file (a ray tracer that stopped before writing), and text named .png.
+    let blank = dir.join("blank.png");
+    fs::write(&blank, b"").unwrap();
+    let (code, _, err) = compare(&[s(&blank), s(&a)]);
+    assert_eq!(code, 2);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: error: {}: the file is empty (0 bytes): no image was written to it\n",
+            blank.display()
+        )
+    );
+    let named = dir.join("notes.png");
+    fs::write(&named, "not an image").unwrap();
+    let (code, _, err) = compare(&[s(&a), s(&named)]);
+    assert_eq!(code, 2);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: error: {}: its extension .png names PNG, but its first bytes are not a PNG file's: not an image, or one cut short or written as something else; compare reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA\n",
+            named.display()
+        )
+    );
     let pfm = dir.join("cut.pfm");
     fs::write(&pfm, b"PF\n2 1\n-1.0\n\0\0\0\0").unwrap();
     let (code, _, err) = compare(&[s(&pfm), s(&a)]);

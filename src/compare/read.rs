@@ -47,6 +47,9 @@ pub fn read_image(path: &Path) -> Result<Image, String> {
 /// image without pixels (a side of 0, which PPM and BMP headers can say) is refused: there
 /// is nothing to compare.
 pub fn decode(bytes: &[u8], extension: &str) -> Result<Image, String> {
+    if bytes.is_empty() {
+        return Err("the file is empty (0 bytes): no image was written to it".into());
+    }
     let image = decode_any(bytes, extension)?;
     if image.width == 0 || image.height == 0 {
         return Err(no_pixels(image.format, image.width, image.height));
@@ -72,6 +75,38 @@ fn declared_size(bytes: &[u8], format: ImageFormat) -> Option<(u32, u32)> {
         ImageFormat::Bmp => Some((i32_le(18)?, i32_le(22)?)),
         ImageFormat::Tga => Some((u16_le(12)?, u16_le(14)?)),
         _ => None,
+    }
+}
+
+/// Why a file that no format's signature starts is not read: its extension names a
+/// format compare reads and its bytes are not that format's, or neither names one.
+fn unrecognised(extension: &str) -> String {
+    let named = if extension.eq_ignore_ascii_case("pfm") {
+        Some("PFM")
+    } else {
+        ImageFormat::from_extension(extension).and_then(|f| match f {
+            ImageFormat::Png => Some("PNG"),
+            ImageFormat::Pnm => Some("PPM / PGM / PBM"),
+            ImageFormat::OpenExr => Some("EXR"),
+            ImageFormat::Jpeg => Some("JPEG"),
+            ImageFormat::Bmp => Some("BMP"),
+            _ => None,
+        })
+    };
+    match named {
+        Some(format) => format!(
+            "its extension .{extension} names {format}, but its first bytes are not a {format} file's: not an image, or one cut short or written as something else; compare reads {ALLOWED}"
+        ),
+        None => {
+            let ext = if extension.is_empty() {
+                "no extension".to_string()
+            } else {
+                format!("extension .{extension}")
+            };
+            format!(
+                "not an image compare reads (neither its first bytes nor its {ext} name a known format); it reads {ALLOWED}"
+            )
+        }
     }
 }
 
@@ -107,16 +142,7 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
     let format = match image::guess_format(bytes) {
         Ok(f) => f,
         Err(_) if extension.eq_ignore_ascii_case("tga") => ImageFormat::Tga,
-        Err(_) => {
-            let ext = if extension.is_empty() {
-                "no extension".to_string()
-            } else {
-                format!("extension .{extension}")
-            };
-            return Err(format!(
-                "not an image compare reads (neither its first bytes nor its {ext} name a known format); it reads {ALLOWED}"
-            ));
-        }
+        Err(_) => return Err(unrecognised(extension)),
     };
     let name = match format {
         ImageFormat::Png => "PNG",
@@ -307,6 +333,21 @@ mod tests {
         assert_eq!(
             e,
             "not an image compare reads (neither its first bytes nor its extension .txt name a known format); it reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA"
+        );
+        for ext in ["png", "tga", ""] {
+            assert_eq!(
+                decode(b"", ext).unwrap_err(),
+                "the file is empty (0 bytes): no image was written to it"
+            );
+        }
+        assert_eq!(
+            decode(b"hello, world", "png").unwrap_err(),
+            "its extension .png names PNG, but its first bytes are not a PNG file's: not an image, or one cut short or written as something else; compare reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA"
+        );
+        let e = decode(b"hello, world", "PFM").unwrap_err();
+        assert!(
+            e.starts_with("its extension .PFM names PFM, but its first bytes are not a PFM file's"),
+            "{e}"
         );
         let e = decode(b"GIF89a\x01\x00\x01\x00", "gif").unwrap_err();
         assert!(e.starts_with("a GIF image, which compare does not read"), "{e}");
