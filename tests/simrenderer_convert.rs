@@ -457,6 +457,23 @@ fn lumiere_convert_writes_what_reads_back_or_nothing() {
         path("lab.txt")
     )));
     assert!(dir.join("lab.toml").exists());
+    // An image's name is refused before anything is read: exit 2, nothing written.
+    for name in ["lab.png", "lab.exr", "lab.jpg"] {
+        let (code, err) = run(&["convert", &path("lab.txt"), "-o", &path(name)]);
+        let ext = name.rsplit('.').next().unwrap();
+        assert_eq!(
+            (code, err.trim()),
+            (
+                Some(2),
+                format!(
+                    "lumiere: error: {}: .{ext} names an image, and convert writes a scene file: name it .txt (SIMRenderer) or .toml (lumiere); `lumiere render` writes the image",
+                    path(name)
+                )
+                .as_str()
+            )
+        );
+        assert!(!dir.join(name).exists());
+    }
     // The input is never the output.
     let (code, err) = run(&["convert", &path("lab.txt"), "-o", &path("lab.txt")]);
     assert_eq!(

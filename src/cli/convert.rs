@@ -27,6 +27,22 @@ pub struct ConvertArgs {
     pub conventions: Option<String>,
 }
 
+/// Refuses an output named as an image (`.png`, `.exr`, `.jpg`, ...): convert writes a scene
+/// file, and such a name is most often meant for `lumiere render`.
+fn check_not_an_image(output: &Path) -> Result<(), CliError> {
+    let image = lumiere::output::Format::of(output).is_ok() || image::ImageFormat::from_path(output).is_ok();
+    if !image {
+        return Ok(());
+    }
+    let ext = output
+        .extension()
+        .map_or(String::new(), |e| e.to_string_lossy().into_owned());
+    Err(CliError::BadInput(format!(
+        "{}: .{ext} names an image, and convert writes a scene file: name it .txt (SIMRenderer) or .toml (lumiere); `lumiere render` writes the image",
+        output.display()
+    )))
+}
+
 /// The output's format: `to`, else by its name.
 fn output_format(output: &Path, to: Option<Format>) -> Format {
     to.unwrap_or_else(|| {
@@ -39,6 +55,7 @@ fn output_format(output: &Path, to: Option<Format>) -> Format {
 
 pub fn run(args: &ConvertArgs, v: Verbosity) -> Result<(), CliError> {
     check_output_path(&args.output, &args.input)?;
+    check_not_an_image(&args.output)?;
     let loaded = read_scene(&args.input, &args.reading, preset(args.conventions.as_deref())?)?;
     let scene = &loaded.scene;
     let to = output_format(&args.output, args.to);
