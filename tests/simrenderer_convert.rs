@@ -524,12 +524,29 @@ fn figures_export_scenes_in_either_format() {
     ));
     assert_eq!(
         lines[14],
-        format!(
-            "mirrors        0 scenes written, 13 skipped  {}",
-            out.join("mirrors").display()
-        )
+        "mirrors        0 scenes written, 13 skipped  (no folder made)"
     );
     assert!(!out.join("mirrors").exists());
+    // A file where the folder should be: refused by its option before anything is written.
+    let file = dir.join("file.txt");
+    std::fs::write(&file, "").unwrap();
+    let o = lumiere(&[
+        "figures",
+        "lighting",
+        "--scenes",
+        scenes.to_str().unwrap(),
+        "--export-scenes",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr).trim(),
+        format!(
+            "lumiere: error: --export-scenes: {} is a file, not a folder",
+            file.display()
+        )
+    );
+    assert!(o.stdout.is_empty());
     // Each scene written reads back as its figure's, over the figure's conventions.
     let sets = files::load(&scenes).unwrap();
     for f in &sets.iter().find(|s| s.name == "lighting").unwrap().figures {

@@ -102,6 +102,7 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
         return check(&all, &chosen, args, v);
     }
     if let Some(dir) = &args.export_scenes {
+        super::check_out_folder(dir, "--export-scenes")?;
         return export(&chosen, dir, args.format, v);
     }
     super::check_out_folder(&args.out, "--out")?;
@@ -206,10 +207,15 @@ fn export(sets: &[&FigureSet], dir: &Path, format: Format, v: Verbosity) -> Resu
             written += 1;
         }
         if v != Verbosity::Quiet {
+            // A set of which no scene is written gets no folder.
+            let place = if written > 0 {
+                folder.display().to_string()
+            } else {
+                "(no folder made)".to_string()
+            };
             println!(
-                "{:<12} {written:>3} scenes written, {skipped} skipped  {}",
-                set.name,
-                folder.display()
+                "{:<12} {written:>3} scenes written, {skipped} skipped  {place}",
+                set.name
             );
         }
     }
