@@ -141,10 +141,34 @@ pub struct Candidate {
 pub enum Verdict {
     /// The image matches the oracle within the rule.
     NoMistakeFound,
-    /// Some mistake of the catalogue explains more pixels than the oracle.
+    /// The best mistake of the catalogue brings the image closer than the oracle and explains
+    /// at least half of the pixels beyond the tolerance.
     MistakeFound,
+    /// Mistakes of the catalogue bring the image closer, but the best explains less than
+    /// half of the pixels beyond: the image holds something the catalogue does not name
+    /// (grey output, a wrong exponent, several mistakes at once).
+    PartlyExplained,
     /// The image differs and no mistake of the catalogue brings it closer.
     Unexplained,
+}
+
+impl Verdict {
+    /// The verdict in words, as the text and the report print it.
+    pub fn words(self) -> &'static str {
+        match self {
+            Verdict::NoMistakeFound => "no mistake found",
+            Verdict::MistakeFound => "mistake found",
+            Verdict::PartlyExplained => {
+                "the image differs; the closest mistakes of the catalogue explain less than half of it"
+            }
+            Verdict::Unexplained => "the image differs; no mistake of the catalogue explains it",
+        }
+    }
+
+    /// Whether the diagnosis names mistakes (the closest ones) for the image.
+    pub fn names_mistakes(self) -> bool {
+        matches!(self, Verdict::MistakeFound | Verdict::PartlyExplained)
+    }
 }
 
 /// A diagnosis.
@@ -572,8 +596,13 @@ impl Oracle {
         };
         diagnosis.verdict = if diagnosis.beyond_sampling as f64 / judged_count <= options.max_fraction {
             Verdict::NoMistakeFound
-        } else if diagnosis.top(1).next().is_some() {
-            Verdict::MistakeFound
+        } else if let Some(best) = diagnosis.top(1).next() {
+            let explained = best.fixes.as_ref().map_or(0, |r| r.pixels);
+            if 2 * explained >= diagnosis.oracle.beyond {
+                Verdict::MistakeFound
+            } else {
+                Verdict::PartlyExplained
+            }
         } else {
             Verdict::Unexplained
         };

@@ -8,7 +8,7 @@ use super::{CliError, Overrides, load_scene};
 use clap::Args;
 use lumiere::compare::read::{Image, read_image};
 use lumiere::diagnose::mistakes::{Change, catalogue};
-use lumiere::diagnose::{Diagnosis, Options, Oracle, Score, Verdict, report};
+use lumiere::diagnose::{Diagnosis, Options, Oracle, Score, report};
 use lumiere::film::WriteError;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -349,13 +349,8 @@ fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
     for f in &d.findings {
         let _ = writeln!(out, "finding            {f}");
     }
-    let verdict = match d.verdict {
-        Verdict::NoMistakeFound => "no mistake found",
-        Verdict::MistakeFound => "mistake found",
-        Verdict::Unexplained => "the image differs; no mistake of the catalogue explains it",
-    };
-    let _ = writeln!(out, "verdict            {verdict}");
-    if d.verdict == Verdict::MistakeFound {
+    let _ = writeln!(out, "verdict            {}", d.verdict.words());
+    if d.verdict.names_mistakes() {
         for (k, c) in d.top(top).enumerate() {
             let _ = writeln!(out, "{}. {}: {}", k + 1, c.name, c.description);
             let _ = writeln!(out, "     after         {}", score_line(&c.score, d.tolerance));

@@ -5,7 +5,7 @@
 //! image's difference from it (`heat-N.png`). Heat-maps are black where equal, white at
 //! 16 levels or more ([`crate::compare::heat_map`]).
 
-use super::{Diagnosis, Verdict};
+use super::Diagnosis;
 use crate::compare::heat_map;
 use crate::film::{encode_png, write_atomic};
 use std::fmt::Write as _;
@@ -52,11 +52,7 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
     }
 
     let mut html = String::new();
-    let verdict = match d.verdict {
-        Verdict::NoMistakeFound => "no mistake found",
-        Verdict::MistakeFound => "mistake found",
-        Verdict::Unexplained => "the image differs, and no mistake of the catalogue explains it",
-    };
+    let verdict = d.verdict.words();
     let _ = write!(
         html,
         "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>lumiere diagnose</title>\n\
