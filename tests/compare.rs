@@ -361,6 +361,19 @@ fn metrics_rule_and_json_by_hand() {
         "lumiere probe SCENE.toml --pixel 0,1 --width 2 --height 2"
     );
     assert_eq!((&w[1]["x"], &w[1]["y"]), (&1.into(), &0.into()));
+    // An oracle that is a course figure's PNG names its scene, from its provenance.
+    let figure = dir.join("figure.png");
+    let tagged = lumiere::figures::provenance::with_text(
+        &fs::read(&b).unwrap(),
+        &[("Scene", "scenes/figures/lighting/03-ambient-directional.toml")],
+    )
+    .unwrap();
+    fs::write(&figure, tagged).unwrap();
+    let (_, j) = compare_json(&[&a, s(&figure), "--tolerance", "1", "--worst", "1"]);
+    assert_eq!(
+        j["worst"][0]["probe"],
+        "lumiere probe scenes/figures/lighting/03-ambient-directional.toml --pixel 0,1 --width 2 --height 2"
+    );
     // The fraction rule: half the pixels beyond 1 level pass at 0.5, fail just below.
     assert_eq!(compare(&[&a, &b, "--tolerance", "1", "--max-fraction", "0.5"]).0, 0);
     assert_eq!(compare(&[&a, &b, "--tolerance", "1", "--max-fraction", "0.49"]).0, 1);

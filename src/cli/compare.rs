@@ -9,6 +9,7 @@ use lumiere::compare::flip::flip_heat_map;
 use lumiere::compare::read::{Image, read_image};
 use lumiere::compare::{Judged, Masks, Report, Rule, Stats, compare, heat_map, undrawn_from_oracle};
 use lumiere::edges::edge_mask;
+use lumiere::figures::provenance::text_chunks;
 use lumiere::film::{WriteError, encode_png, write_atomic};
 use lumiere::world::World;
 use serde::Serialize;
@@ -188,13 +189,21 @@ fn check_args(args: &CompareArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The `lumiere probe` command line of pixel `(x, y)`: the scene with its settings, or a
-/// placeholder for it.
-fn probe_line(args: &CompareArgs, width: u32, height: u32, x: u32, y: u32) -> String {
-    let scene = args
-        .scene
-        .as_ref()
-        .map_or("SCENE.toml".to_string(), |s| s.display().to_string());
+/// The scene the worst pixels' probe lines name: `--scene`, else the `Scene` a course
+/// figure's PNG carries as the oracle (its provenance, docs/figures.md), else a placeholder.
+fn probe_scene(args: &CompareArgs) -> String {
+    if let Some(scene) = &args.scene {
+        return scene.display().to_string();
+    }
+    std::fs::read(&args.b)
+        .ok()
+        .and_then(|bytes| text_chunks(&bytes).ok())
+        .and_then(|chunks| chunks.into_iter().find(|(key, _)| key == "Scene"))
+        .map_or("SCENE.toml".to_string(), |(_, scene)| scene)
+}
+
+/// The `lumiere probe` command line of pixel `(x, y)` of `scene` with the settings given.
+fn probe_line(args: &CompareArgs, scene: &str, width: u32, height: u32, x: u32, y: u32) -> String {
     let mut line = format!("lumiere probe {scene} --pixel {x},{y} --width {width} --height {height}");
     let o = &args.overrides;
     let mut add = |name: &str, value: Option<String>| {
@@ -307,9 +316,9 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     }
 
     if args.json {
-        print_json(args, &report, &notes)?;
+        print_json(args, &probe_scene(args), &report, &notes)?;
     } else {
-        print_text(args, &a, &b, &report, &notes);
+        print_text(args, &probe_scene(args), &a, &b, &report, &notes);
     }
     if !report.pass {
         return Err(CliError::Failed(report.failures.join("; ")));
@@ -317,7 +326,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn print_json(args: &CompareArgs, r: &Report, notes: &[String]) -> Result<(), CliError> {
+fn print_json(args: &CompareArgs, scene: &str, r: &Report, notes: &[String]) -> Result<(), CliError> {
     let json = Json {
         a: args.a.display().to_string(),
         b: args.b.display().to_string(),
@@ -345,7 +354,7 @@ fn print_json(args: &CompareArgs, r: &Report, notes: &[String]) -> Result<(), Cl
             .iter()
             .map(|p| JsonWorst {
                 pixel: p,
-                probe: probe_line(args, r.width, r.height, p.x, p.y),
+                probe: probe_line(args, scene, r.width, r.height, p.x, p.y),
             })
             .collect(),
         notes,
@@ -374,7 +383,7 @@ fn summary(s: &Stats) -> String {
     )
 }
 
-fn print_text(args: &CompareArgs, a: &Image, b: &Image, r: &Report, notes: &[String]) {
+fn print_text(args: &CompareArgs, scene: &str, a: &Image, b: &Image, r: &Report, notes: &[String]) {
     let m = &r.metrics;
     println!("yours              {} ({})", args.a.display(), a.format);
     println!("oracle             {} ({})", args.b.display(), b.format);
@@ -453,7 +462,7 @@ fn print_text(args: &CompareArgs, a: &Image, b: &Image, r: &Report, notes: &[Str
                 p.b[2],
                 p.difference,
                 p.flip,
-                probe_line(args, r.width, r.height, p.x, p.y)
+                probe_line(args, scene, r.width, r.height, p.x, p.y)
             );
         }
     }
