@@ -578,6 +578,26 @@ fn what_simrenderer_accepts_is_read_as_it_reads_it() {
     // Lone carriage returns end lines, as Java reads them.
     let s = parse("camera\rangle 30\r\nend").unwrap().scene;
     assert_eq!(s.camera.vfov_deg, 30.0);
+    // A block comment that is never closed makes the rest of the file a comment: warned at
+    // its opening, the */ written on that line named.
+    let p = parse("/* my scene */\ncamera\nangle 30\n\nend\n").unwrap();
+    assert_eq!(p.scene.camera.vfov_deg, 60.0);
+    assert_eq!(
+        warnings(&p),
+        [
+            "lab.txt:1:1: scene./*: this block comment is never closed, so lines 2 to 5 are read as a comment, as SIMRenderer reads them: only a line whose first word is */ closes it, not the */ later on this line"
+        ]
+    );
+    let p = parse("camera\nend\n  /*\nprimitive\n").unwrap();
+    assert_eq!(
+        warnings(&p),
+        [
+            "lab.txt:3:3: scene./*: this block comment is never closed, so line 4 is read as a comment, as SIMRenderer reads them: only a line whose first word is */ closes it"
+        ]
+    );
+    // Closed, or open with nothing written after it: no warning.
+    assert_eq!(parse("/* a\n*/\ncamera\nend\n").unwrap().warnings, []);
+    assert_eq!(parse("camera\nend\n/*\n\n").unwrap().warnings, []);
 }
 
 #[test]

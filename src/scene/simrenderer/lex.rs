@@ -131,7 +131,21 @@ pub fn items(text: &str) -> Items<'_> {
         },
         number: 0,
         in_block_comment: false,
+        open_comment: None,
     }
+}
+
+/// A block comment the file leaves open at its end, which makes the rest of the file a
+/// comment (SIMRenderer reads it so): where it opens and the lines it holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OpenComment {
+    pub line: usize,
+    pub column: usize,
+    /// Whether its opening line also writes `*/` (`/* a title */`), which closes nothing:
+    /// only a line whose first token is `*/` does.
+    pub closed_on_its_line: bool,
+    /// The first and last lines inside it with something written on them, if any.
+    pub held: Option<(usize, usize)>,
 }
 
 /// The iterator of [`items`]: one line read at a time, so a file of millions of lines is
@@ -140,6 +154,15 @@ pub struct Items<'a> {
     lines: Lines<'a>,
     number: usize,
     in_block_comment: bool,
+    open_comment: Option<OpenComment>,
+}
+
+impl Items<'_> {
+    /// The block comment open where the lines read so far end (at the file's end, one the
+    /// file never closes).
+    pub fn open_comment(&self) -> Option<OpenComment> {
+        self.open_comment.filter(|_| self.in_block_comment)
+    }
 }
 
 impl<'a> Iterator for Items<'a> {
@@ -156,10 +179,19 @@ impl<'a> Iterator for Items<'a> {
             let first = &line[start..end];
             if self.in_block_comment {
                 self.in_block_comment = first != "*/";
+                if let Some(open) = &mut self.open_comment {
+                    open.held = Some((open.held.map_or(number, |h| h.0), number));
+                }
                 continue;
             }
             if first == "/*" {
                 self.in_block_comment = true;
+                self.open_comment = Some(OpenComment {
+                    line: number,
+                    column: column_of(line, start),
+                    closed_on_its_line: line[end..].contains("*/"),
+                    held: None,
+                });
                 continue;
             }
             if first.starts_with(['#', '/', '*', '-', '!', '@']) {

@@ -339,7 +339,7 @@ impl<'a> Reader<'a> {
                     );
                     self.warn(&place, m);
                 }
-                break;
+                return Ok(raw);
             }
             let block = l.keyword.clone();
             match keyword {
@@ -398,6 +398,37 @@ impl<'a> Reader<'a> {
                 }
             }
         }
+        self.warn_open_comment();
         Ok(raw)
+    }
+
+    /// A warning at a block comment the file never closes, when lines are written inside it:
+    /// SIMRenderer, and lumiere as it, reads them as a comment.
+    fn warn_open_comment(&mut self) {
+        let Some(open) = self.items.open_comment() else {
+            return;
+        };
+        let Some((first, last)) = open.held else {
+            return;
+        };
+        let lines = if first == last {
+            format!("line {first} is")
+        } else {
+            format!("lines {first} to {last} are")
+        };
+        let not_this = if open.closed_on_its_line {
+            ", not the */ later on this line"
+        } else {
+            ""
+        };
+        let m = format!(
+            "this block comment is never closed, so {lines} read as a comment, as SIMRenderer reads them: only a line whose first word is */ closes it{not_this}"
+        );
+        let place = At {
+            line: open.line,
+            column: open.column,
+            field: "scene./*".to_string(),
+        };
+        self.warn(&place, m);
     }
 }
