@@ -374,6 +374,19 @@ fn metrics_rule_and_json_by_hand() {
         j["worst"][0]["probe"],
         "lumiere probe scenes/figures/lighting/03-ambient-directional.toml --pixel 0,1 --width 2 --height 2"
     );
+    // The figure given first, where yours goes: a warning, the comparison as given.
+    let (code, _, err) = compare(&[s(&figure), &a, "--tolerance", "1"]);
+    assert_eq!(code, 1);
+    assert!(
+        err.starts_with(&format!(
+            "lumiere: warning: {} is a course figure (of scenes/figures/lighting/03-ambient-directional.toml) and {a} is not: the oracle's image goes second, `lumiere compare YOURS ORACLE`; below, yours is {} and the oracle {a}\n",
+            s(&figure),
+            s(&figure)
+        )),
+        "{err}"
+    );
+    let (_, _, err) = compare(&[&a, s(&figure), "--tolerance", "1"]);
+    assert!(!err.contains("warning"), "{err}");
     // The fraction rule: half the pixels beyond 1 level pass at 0.5, fail just below.
     assert_eq!(compare(&[&a, &b, "--tolerance", "1", "--max-fraction", "0.5"]).0, 0);
     assert_eq!(compare(&[&a, &b, "--tolerance", "1", "--max-fraction", "0.49"]).0, 1);

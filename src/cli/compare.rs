@@ -189,17 +189,38 @@ fn check_args(args: &CompareArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The scene the worst pixels' probe lines name: `--scene`, else the `Scene` a course
-/// figure's PNG carries as the oracle (its provenance, docs/figures.md), else a placeholder.
+/// The scene file a course figure's PNG names in its provenance (docs/figures.md), if
+/// `path` is one.
+fn figure_scene(path: &Path) -> Option<String> {
+    let bytes = std::fs::read(path).ok()?;
+    let chunks = text_chunks(&bytes).ok()?;
+    chunks
+        .into_iter()
+        .find(|(key, _)| key == "Scene")
+        .map(|(_, scene)| scene)
+}
+
+/// The scene the worst pixels' probe lines name: `--scene`, else the one the oracle names
+/// when it is a course figure, else a placeholder.
 fn probe_scene(args: &CompareArgs) -> String {
-    if let Some(scene) = &args.scene {
-        return scene.display().to_string();
+    match &args.scene {
+        Some(scene) => scene.display().to_string(),
+        None => figure_scene(&args.b).unwrap_or_else(|| "SCENE.toml".to_string()),
     }
-    std::fs::read(&args.b)
-        .ok()
-        .and_then(|bytes| text_chunks(&bytes).ok())
-        .and_then(|chunks| chunks.into_iter().find(|(key, _)| key == "Scene"))
-        .map_or("SCENE.toml".to_string(), |(_, scene)| scene)
+}
+
+/// A warning when the first image is a course figure and the second is not: the oracle's
+/// image goes second, and the text's `yours` and `oracle` would be the wrong way round.
+fn warn_if_swapped(args: &CompareArgs) {
+    if let (Some(scene), None) = (figure_scene(&args.a), figure_scene(&args.b)) {
+        eprintln!(
+            "lumiere: warning: {} is a course figure (of {scene}) and {} is not: the oracle's image goes second, `lumiere compare YOURS ORACLE`; below, yours is {} and the oracle {}",
+            args.a.display(),
+            args.b.display(),
+            args.a.display(),
+            args.b.display()
+        );
+    }
 }
 
 /// The `lumiere probe` command line of pixel `(x, y)` of `scene` with the settings given.
@@ -262,6 +283,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     }
     let a = read(&args.a)?;
     let b = read(&args.b)?;
+    warn_if_swapped(args);
     if (a.width, a.height) != (b.width, b.height) {
         return Err(CliError::BadInput(format!(
             "the images differ in size: {} is {} x {}, {} is {} x {}",
