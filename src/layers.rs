@@ -315,6 +315,18 @@ pub struct Plane {
     pub values: Vec<f64>,
 }
 
+impl Plane {
+    /// The files of this plane in the folder form ([`Layers::write_folder`]):
+    /// `<layer>.png`, and `<layer>.pfm` for a colour layer.
+    pub fn file_names(&self) -> Vec<String> {
+        let mut names = vec![format!("{}.png", self.name)];
+        if self.channels == ["R", "G", "B"] {
+            names.push(format!("{}.pfm", self.name));
+        }
+        names
+    }
+}
+
 impl Layers {
     /// Every layer as a plane: the colour layers, then `shadow_filter_light<i>` for each
     /// non-ambient light `i`, `object`, `normal` and `depth`.
@@ -359,6 +371,16 @@ impl Layers {
             values: self.pixels.iter().map(|p| p.depth).collect(),
         });
         planes
+    }
+
+    /// The names of the files [`Layers::write_folder`] writes for a scene of these lights.
+    pub fn folder_files(lights: &[Light]) -> Vec<String> {
+        let none = Layers {
+            width: 0,
+            height: 0,
+            pixels: Vec::new(),
+        };
+        none.planes(lights).iter().flat_map(Plane::file_names).collect()
     }
 
     /// A multi-channel OpenEXR file (32-bit float) of every plane: channel
@@ -428,16 +450,17 @@ impl Layers {
                 _ => plane.values.iter().map(|&c| quantize(c)).collect(),
             };
             let png = crate::film::encode_png(self.width, self.height, &rgb).map_err(std::io::Error::other)?;
-            let path = dir.join(format!("{}.png", plane.name));
+            let names = plane.file_names();
+            let path = dir.join(&names[0]);
             write_atomic(&path, &png)?;
             written.push(path);
-            if plane.channels == ["R", "G", "B"] {
+            if let Some(pfm) = names.get(1) {
                 let film = Film {
                     width: self.width,
                     height: self.height,
                     pixels: plane.values.chunks(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect(),
                 };
-                let path = dir.join(format!("{}.pfm", plane.name));
+                let path = dir.join(pfm);
                 write_atomic(&path, &crate::output::encode_pfm(&film))?;
                 written.push(path);
             }

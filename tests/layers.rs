@@ -332,3 +332,42 @@ fn bad_layer_paths_are_refused() {
     // Nothing was written.
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
 }
+
+/// An image `-o` that the layers would write over (their EXR file, or a layer's file in
+/// their folder) is refused before rendering, and nothing is written.
+#[test]
+fn an_image_the_layers_would_replace_is_refused() {
+    let dir = temp_dir("layers-clash");
+    let scene = repo("scenes/reference.toml");
+    let d = dir.display();
+    let cases = [
+        (
+            format!("{d}/both.exr"),
+            format!("{d}/both.exr"),
+            format!("{d}/both.exr"),
+        ),
+        (
+            format!("{d}/./both.exr"),
+            format!("{d}/both.exr"),
+            format!("{d}/both.exr"),
+        ),
+        (format!("{d}/radiance.png"), format!("{d}/"), d.to_string()),
+        (format!("{d}/diffuse.pfm"), d.to_string(), d.to_string()),
+        (format!("{d}/shadow_filter_light1.png"), format!("{d}/"), d.to_string()),
+    ];
+    for (image, layers, shown) in cases {
+        let o = lumiere(&["render", scene.to_str().unwrap(), "-o", &image, "--layers", &layers]);
+        assert_eq!(o.status.code(), Some(2), "{image}");
+        assert_eq!(
+            String::from_utf8_lossy(&o.stderr),
+            format!(
+                "lumiere: error: {image}: -o names a file --layers {shown} writes: the layers would replace the image; give the image another name\n"
+            )
+        );
+    }
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+    // An image beside the layers' files, of a name they do not use, is written with them.
+    let image = format!("{d}/image.png");
+    render_small_cli("reference.toml", (8, 6), &["-o", &image, "--layers", &format!("{d}/")]);
+    assert!(dir.join("image.png").is_file() && dir.join("radiance.png").is_file());
+}

@@ -106,6 +106,9 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
             None
         }
     };
+    if let Some(layers) = &layers {
+        layers.check_apart(output, &scene.lights)?;
+    }
     let mut world = World::with_accel(&scene, args.overrides.accel);
     world.skips = args.no_skip.iter().fold(world.skips, |s, &k| s.without(k));
     let built = start.elapsed();
@@ -282,6 +285,48 @@ impl LayersTarget {
         check_output_path(path, scene)?;
         Ok(LayersTarget::Exr(path.to_path_buf()))
     }
+
+    /// Checks that the image `-o output` is none of the files the layers write (which
+    /// would replace it): not the layers' EXR file, nor in the layers' folder under the
+    /// name of a layer's file.
+    fn check_apart(&self, output: &Path, lights: &[lumiere::light::Light]) -> Result<(), CliError> {
+        let Some(image) = resolved(output) else {
+            return Ok(());
+        };
+        let clash = match self {
+            LayersTarget::Exr(path) => resolved(path).is_some_and(|p| p == image),
+            LayersTarget::Folder(dir) => {
+                let name = image.file_name().and_then(|n| n.to_str()).unwrap_or("");
+                image.parent().map(Path::to_path_buf) == resolved(dir)
+                    && lumiere::layers::Layers::folder_files(lights).iter().any(|f| f == name)
+            }
+        };
+        if clash {
+            let layers = match self {
+                LayersTarget::Exr(path) => path,
+                LayersTarget::Folder(dir) => dir,
+            };
+            return Err(CliError::BadInput(format!(
+                "{}: -o names a file --layers {} writes: the layers would replace the image; give the image another name",
+                output.display(),
+                layers.display()
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// `path` made absolute, its links followed, whether or not it exists (its folder must):
+/// two paths of one file resolve alike.
+fn resolved(path: &Path) -> Option<PathBuf> {
+    if let Ok(p) = path.canonicalize() {
+        return Some(p);
+    }
+    let parent = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    Some(parent.canonicalize().ok()?.join(path.file_name()?))
 }
 
 /// Renders the layers of `scene` and writes them to `target`.
