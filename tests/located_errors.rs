@@ -298,3 +298,35 @@ fn a_decimal_comma_is_named() {
         "a list is not a decimal"
     );
 }
+
+#[test]
+fn bytes_that_are_not_utf8_are_placed_on_their_line_and_column() {
+    let dir = crate::common::temp_dir("located-utf8");
+    // A Latin-1 `è` in a TOML comment, and `é` in a SIMRenderer one; a UTF-8 `è` is read.
+    let toml = GOOD.replacen("radius = 1\n", "radius = 1 # lumi\u{e8}re\n", 1);
+    let latin1: Vec<u8> = toml.chars().map(|c| c as u32 as u8).collect();
+    let simrenderer = b"camera\n  position 0 0 0 # cam\xe9ra\nend\n";
+    for (name, bytes, place, byte) in [
+        ("s.toml", &latin1[..], "21:18", "E8"),
+        ("s.txt", &simrenderer[..], "2:23", "E9"),
+    ] {
+        let path = dir.join(name);
+        std::fs::write(&path, bytes).unwrap();
+        let o = crate::common::lumiere(&[
+            "render",
+            path.to_str().unwrap(),
+            "-o",
+            dir.join("out.png").to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(2));
+        assert_eq!(
+            String::from_utf8_lossy(&o.stderr),
+            format!(
+                "lumiere: error: {}:{place}: encoding: byte 0x{byte} is not UTF-8 (an accent saved as Latin-1 or Windows-1252 reads so); save the file as UTF-8\n",
+                path.display()
+            )
+        );
+    }
+    assert!(!dir.join("out.png").exists());
+    assert!(parse(&toml, "s.toml").is_ok());
+}

@@ -284,6 +284,14 @@ fn scenes_readme_error_examples_are_what_the_reader_prints() {
             "scenes/README.md, ## Errors: no {message:?}"
         );
     }
+    // A Latin-1 byte, placed as the reader of either format places it.
+    let e = lumiere::scene::text_of(b"[image]\n# lumi\xe8re\n".to_vec(), "s.toml").unwrap_err();
+    let shown = e.to_string();
+    let message = shown.splitn(3, ": ").nth(2).unwrap();
+    assert!(
+        examples.contains(message),
+        "scenes/README.md, ## Errors: no {message:?}"
+    );
     // README's one example, with its field.
     let e = lumiere::scene::parse(&sphere("center = [0, 0, 0]\nradius = -1"), "s.toml").unwrap_err();
     let shown = e.to_string();

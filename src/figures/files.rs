@@ -169,11 +169,12 @@ fn load_set(dir: &Path, folder: &Path) -> Result<FigureSet, RegistryError> {
     }
     let set_path = folder.join(SET_FILE);
     let definition = joined(&folder_text, SET_FILE);
-    let text = std::fs::read_to_string(&set_path).map_err(|source| RegistryError::Io {
+    let bytes = std::fs::read(&set_path).map_err(|source| RegistryError::Io {
         path: set_path.clone(),
         action: "cannot read the set's description",
         source,
     })?;
+    let text = scene::text_of(bytes, &definition)?;
     let doc = SetDoc::parse(&definition, &text)?;
     // The scene files of the folder: every `.toml` but set.toml.
     let mut scene_files: Vec<String> = Vec::new();
@@ -218,10 +219,7 @@ fn load_set(dir: &Path, folder: &Path) -> Result<FigureSet, RegistryError> {
             action: "cannot read the scene file",
             source,
         })?;
-        let scene_text = String::from_utf8(bytes).map_err(|e| RegistryError::Layout {
-            path: file.clone(),
-            message: format!("not UTF-8 text: {e}"),
-        })?;
+        let scene_text = scene::text_of(bytes, &file)?;
         let scene = scene::parse(&scene_text, &file)?;
         let table: toml::Table = scene_text.parse().map_err(|e: toml::de::Error| RegistryError::Layout {
             path: file.clone(),

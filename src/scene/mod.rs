@@ -18,7 +18,7 @@ pub mod transform;
 pub use file::{SceneError, load as load_toml, parse};
 pub use names::{NameKey, ObjectNames};
 pub use overrides::Overrides;
-use read_text::read_text;
+pub use read_text::{read_text, text_of};
 
 use crate::conventions::Conventions;
 use crate::light::Light;

@@ -3,23 +3,29 @@
 //! and column, as any other error in the file.
 
 use super::SceneError;
+use super::locate::line_col;
 use std::path::Path;
 
-/// The text of the scene file at `path`.
+/// The text of the scene file at `path` ([`text_of`] its bytes).
 pub fn read_text(path: &Path) -> Result<String, SceneError> {
     let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
         path: path.to_path_buf(),
         source,
     })?;
+    text_of(bytes, &path.display().to_string())
+}
+
+/// Scene text from the bytes of `file`: UTF-8, or an error at the line and column of the
+/// first byte that is not.
+pub fn text_of(bytes: Vec<u8>, file: &str) -> Result<String, SceneError> {
     String::from_utf8(bytes).map_err(|e| {
         let bytes = e.as_bytes();
         let at = e.utf8_error().valid_up_to();
         // The text before the byte is valid UTF-8.
         let before = std::str::from_utf8(&bytes[..at]).unwrap_or_default();
-        let line = before.matches('\n').count() + 1;
-        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        let (line, column) = line_col(before, at);
         SceneError::Invalid {
-            file: path.display().to_string(),
+            file: file.to_string(),
             line,
             column,
             field: "encoding".to_string(),

@@ -92,7 +92,7 @@ fn absent(tables: &[&str]) -> String {
 
 /// Reads and validates a scene file.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = crate::scene::read_text::read_text(path)?;
+    let text = crate::scene::read_text(path)?;
     parse(&text, &path.display().to_string())
 }
 

@@ -60,7 +60,7 @@ pub struct Parsed {
 
 /// Reads a SIMRenderer scene file (a model's mesh file is found relative to it).
 pub fn load(path: &Path, options: &Options) -> Result<Parsed, SceneError> {
-    let text = crate::scene::read_text::read_text(path)?;
+    let text = crate::scene::read_text(path)?;
     parse(&text, &path.display().to_string(), options)
 }
 
