@@ -274,6 +274,24 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
         );
         assert!(out.is_empty());
     }
+    // A header claiming more pixels than lumiere renders is refused before any is decoded
+    // (the IHDR of a 1 x 1 PNG set to 100000 x 100000, its checksum redone).
+    let mut huge = encode_png(1, 1, &[0; 3]).unwrap();
+    huge[16..24].copy_from_slice(&[100_000u32.to_be_bytes(), 100_000u32.to_be_bytes()].concat());
+    let crc = crc32fast::hash(&huge[12..29]);
+    huge[29..33].copy_from_slice(&crc.to_be_bytes());
+    let bomb = dir.join("bomb.png");
+    fs::write(&bomb, &huge).unwrap();
+    let (code, out, err) = compare(&[s(&a), s(&bomb)]);
+    assert_eq!(code, 2);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: error: {}: the PNG image is 100000 x 100000 = 10000000000 pixels: compare reads at most 33554432 (as many as lumiere renders)\n",
+            bomb.display()
+        )
+    );
+    assert!(out.is_empty());
     let missing = dir.join("missing.png");
     let (code, _, err) = compare(&[s(&missing), s(&a)]);
     assert_eq!(code, 2);

@@ -14,6 +14,7 @@
 
 use super::pfm::{decode_pfm, looks_like_pfm};
 use crate::film::quantize;
+use crate::limits;
 use image::{DynamicImage, ImageFormat};
 use std::path::Path;
 
@@ -161,6 +162,17 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
             ));
         }
     };
+    // The size from the header, before any pixel is decoded: a header may claim more than
+    // memory holds.
+    if let Ok((w, h)) = image::ImageReader::with_format(std::io::Cursor::new(bytes), format).into_dimensions()
+        && w as u64 * h as u64 > limits::MAX_PIXELS
+    {
+        return Err(format!(
+            "the {name} image is {w} x {h} = {} pixels: compare reads at most {} (as many as lumiere renders)",
+            w as u64 * h as u64,
+            limits::MAX_PIXELS
+        ));
+    }
     let img = image::load_from_memory_with_format(bytes, format).map_err(|e| match declared_size(bytes, format) {
         Some((w, h)) if w == 0 || h == 0 => no_pixels(name, w, h),
         _ => format!("cannot decode the {name} image: {e}"),
