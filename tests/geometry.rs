@@ -257,7 +257,16 @@ fn mesh_errors_name_the_obj_file_and_its_line() {
             "4",
             "the face makes no triangle: its points are on one line",
         ),
-        ("v 0 0 0\nv 1 0 0\nv 0 one 0\nf 1 2 3\n", "3", "position parse error"),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 one 0\nf 1 2 3\n",
+            "3",
+            "vertex 3: `one` is not a number (written x y z, x y z w or x y z r g b)",
+        ),
+        (
+            "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf\t1\t2\t99999999999999999999\r\n",
+            "4",
+            "`99999999999999999999` is no index: a face's vertex is v, v/vt, v//vn or v/vt/vn, each a whole number",
+        ),
         (
             "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
             "4",

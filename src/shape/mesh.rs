@@ -3,10 +3,13 @@
 //! as `tobj` triangulates) over one vertex array shared by the whole mesh.
 //!
 //! Before `tobj` parses the text, one pass over its lines checks what `tobj` would accept
-//! without a word or report without a line: vertex coordinates that are not finite or
-//! beyond [`crate::limits::MAX_COORDINATE`], faces of fewer than 3 vertices, line elements
-//! (`l`), vertex indices out of range, and more triangles than allowed. `tobj`'s own errors
-//! (a number it cannot parse, say) are placed on the line it stopped at. Material libraries
+//! without a word or report without a line or the word at fault: vertex coordinates that
+//! are not finite or beyond [`crate::limits::MAX_COORDINATE`], a `v`, `vt` or `vn` line
+//! short of numbers or with a word that is none, a colour on some vertices only (`tobj`
+//! finds vertex `k`'s at place `k`), faces of fewer than 3 vertices, a face's
+//! vertex that is not `v`, `v/vt`, `v//vn` or `v/vt/vn` in whole numbers, line elements
+//! (`l`), indices out of range, and more triangles than allowed. `tobj`'s own errors are
+//! placed on the line it stopped at. Material libraries
 //! (`mtllib`) are not read: the scene file gives the material. Normals and texture
 //! coordinates are checked but not used (the renderer shades with the face normal).
 
@@ -222,6 +225,7 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<(usize, usize)>, ObjErr
         }
     }
     let (mut v, mut vt, mut vn) = (0, 0, 0);
+    let mut first_coloured = None;
     let mut faces = Vec::new();
     let mut triangles = 0usize;
     for (i, line) in text.lines().enumerate() {
@@ -232,9 +236,33 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<(usize, usize)>, ObjErr
                 v += 1;
                 let values: Vec<&str> = words.collect();
                 check_vertex(&values, v).map_err(|m| at(number, m))?;
+                // tobj finds vertex k's colour at place k among the colours given.
+                let coloured = values.len() == 6;
+                if *first_coloured.get_or_insert(coloured) != coloured {
+                    let has = if coloured { "a" } else { "no" };
+                    return Err(at(
+                        number,
+                        format!(
+                            "vertex {v}: {has} colour (r g b), unlike vertex 1: give every vertex a colour or none"
+                        ),
+                    ));
+                }
             }
-            Some("vt") => vt += 1,
-            Some("vn") => vn += 1,
+            Some("vt") => {
+                vt += 1;
+                numbers(
+                    &words.collect::<Vec<_>>(),
+                    2,
+                    &format!("texture coordinates {vt}"),
+                    "written u v",
+                )
+                .map_err(|m| at(number, m))?;
+            }
+            Some("vn") => {
+                vn += 1;
+                numbers(&words.collect::<Vec<_>>(), 3, &format!("normal {vn}"), "written x y z")
+                    .map_err(|m| at(number, m))?;
+            }
             Some("l") => {
                 return Err(at(
                     number,
@@ -250,16 +278,27 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<(usize, usize)>, ObjErr
                     ));
                 }
                 for corner in &corners {
-                    // `v`, `v/vt`, `v//vn` or `v/vt/vn`; what does not parse is left to tobj.
-                    for (k, part) in corner.split('/').enumerate().take(3) {
+                    let parts: Vec<&str> = corner.split('/').collect();
+                    let form = "a face's vertex is v, v/vt, v//vn or v/vt/vn, each a whole number";
+                    if parts.len() > 3 || parts[0].is_empty() {
+                        return Err(at(number, format!("`{corner}`: {form}")));
+                    }
+                    let whole = parts.len() == 1;
+                    for (k, part) in parts.into_iter().enumerate() {
                         let (what, before, total) = [
                             ("vertex", v, v_total),
                             ("texture", vt, vt_total),
                             ("normal", vn, vn_total),
                         ][k];
-                        if let Ok(index) = part.parse::<i64>() {
-                            check_index(what, index, before, total).map_err(|m| at(number, m))?;
+                        if part.is_empty() {
+                            continue;
                         }
+                        // As tobj reads an index (a pointer-sized whole number).
+                        let index = part.parse::<isize>().map_err(|_| {
+                            let word = if whole { String::new() } else { format!("`{corner}`: ") };
+                            at(number, format!("{word}`{part}` is no index: {form}"))
+                        })?;
+                        check_index(what, index as i64, before, total).map_err(|m| at(number, m))?;
                     }
                 }
                 triangles += corners.len() - 2;
@@ -283,19 +322,37 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<(usize, usize)>, ObjErr
     Ok(faces)
 }
 
-/// The coordinates of vertex number `n` (`x y z`, `x y z w` or `x y z r g b`; `w` divides,
-/// as `tobj` applies it) must be finite and at most `MAX_COORDINATE` in magnitude.
-fn check_vertex(values: &[&str], n: usize) -> Result<(), String> {
-    let parsed: Vec<f64> = values.iter().take(4).map_while(|s| s.parse().ok()).collect();
-    if parsed.len() < 3 {
-        // Not three numbers: tobj's error, on this line.
-        return Ok(());
+/// The first `n` of `words` as numbers (as tobj reads them), or why not: `what` (`vertex 3`)
+/// names the element and `form` (`written x y z`) says how it is written.
+fn numbers(words: &[&str], n: usize, what: &str, form: &str) -> Result<Vec<f64>, String> {
+    let mut values = Vec::with_capacity(n);
+    for word in words.iter().take(n) {
+        let value = word
+            .parse()
+            .map_err(|_| format!("{what}: `{word}` is not a number ({form})"))?;
+        values.push(value);
     }
-    let w = if values.len() == 4 && parsed.len() == 4 && parsed[3] != 0.0 {
-        parsed[3]
-    } else {
-        1.0
-    };
+    if values.len() < n {
+        let s = if values.len() == 1 { "" } else { "s" };
+        return Err(format!("{what}: {} number{s}, {form}", values.len()));
+    }
+    Ok(values)
+}
+
+/// Vertex number `n` is `x y z`, `x y z w` or `x y z r g b`, every word a number; its
+/// coordinates (divided by `w`, as `tobj` applies it, so not 0) must be finite and at most
+/// `MAX_COORDINATE` in magnitude.
+fn check_vertex(values: &[&str], n: usize) -> Result<(), String> {
+    let what = format!("vertex {n}");
+    let form = "written x y z, x y z w or x y z r g b";
+    if values.len() == 5 || values.len() > 6 {
+        return Err(format!("{what}: {} numbers, {form}", values.len()));
+    }
+    let parsed = numbers(values, values.len().max(3), &what, form)?;
+    let w = if values.len() == 4 { parsed[3] } else { 1.0 };
+    if w == 0.0 {
+        return Err(format!("{what}: w is 0, and x y z are divided by it"));
+    }
     let xyz = [parsed[0] / w, parsed[1] / w, parsed[2] / w];
     let m = limits::MAX_COORDINATE;
     if xyz.iter().any(|c| !c.is_finite() || c.abs() > m) {
@@ -467,10 +524,57 @@ mod tests {
             "line 4: a line element (l) is no surface; only faces (f) are read"
         );
         assert_eq!(err("v 0 0 0\n"), "the file has no faces (f)");
-        // tobj's own error, on the line where it stopped.
+        // Words that are not numbers or indices, named.
+        let square = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+        for (text, message) in [
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 x\nf 1 2 3\n",
+                "line 3: vertex 3: `x` is not a number (written x y z, x y z w or x y z r g b)",
+            ),
+            (
+                "v 0 0 0\nv 1 0\n",
+                "line 2: vertex 2: 2 numbers, written x y z, x y z w or x y z r g b",
+            ),
+            (
+                "v 0 0 0 1 1\n",
+                "line 1: vertex 1: 5 numbers, written x y z, x y z w or x y z r g b",
+            ),
+            ("v 0 0 0 0\n", "line 1: vertex 1: w is 0, and x y z are divided by it"),
+            ("vt 0.5\n", "line 1: texture coordinates 1: 1 number, written u v"),
+            ("vn 0 0 z\n", "line 1: normal 1: `z` is not a number (written x y z)"),
+        ] {
+            assert_eq!(err(text), message, "{text:?}");
+        }
+        let form = "a face's vertex is v, v/vt, v//vn or v/vt/vn, each a whole number";
+        for (face, message) in [
+            (
+                "f 1 2 99999999999999999999",
+                format!("`99999999999999999999` is no index: {form}"),
+            ),
+            ("f 1 2 3/x", format!("`3/x`: `x` is no index: {form}")),
+            ("f 1 2 1.5", format!("`1.5` is no index: {form}")),
+            ("f 1 2 3/1/1/1", format!("`3/1/1/1`: {form}")),
+            ("f 1 2 /1", format!("`/1`: {form}")),
+        ] {
+            assert_eq!(
+                err(&format!("{square}{face}\n")),
+                format!("line 4: {message}"),
+                "{face}"
+            );
+        }
+        // Accepted as tobj reads them: empty texture or normal indices, a sign.
+        for face in ["f 1 2 3/", "f 1 2 3//", "f +1 2 3", "f 1// 2 3"] {
+            assert!(Mesh::parse(&format!("{square}{face}\n"), 100).is_ok(), "{face}");
+        }
+        assert!(Mesh::parse("v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n", 100).is_ok());
+        // A colour (unused) on every vertex or none, each a number.
         assert_eq!(
-            err("v 0 0 0\nv 1 0 0\nv 0 1 x\nf 1 2 3\n"),
-            "line 3: position parse error"
+            err("v 0 0 0 1 0 0\nv 1 0 0\n"),
+            "line 2: vertex 2: no colour (r g b), unlike vertex 1: give every vertex a colour or none"
+        );
+        assert_eq!(
+            err("v 0 0 0 1 0 0\nv 1 0 0 1 red 0\n"),
+            "line 2: vertex 2: `red` is not a number (written x y z, x y z w or x y z r g b)"
         );
         let limited = Mesh::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 1 2 3 4 2 3\n", 4);
         assert_eq!(
