@@ -29,8 +29,11 @@ pub const MAX_COORDINATE: f64 = 1e9;
 /// Most triangles in one mesh file (each is an object, so [`MAX_OBJECTS`] bounds the
 /// scene's total too).
 pub const MAX_MESH_TRIANGLES: usize = MAX_OBJECTS;
-/// Largest mesh file read (a mesh of 4 000 000 triangles is about 250 MB of `.obj`).
-pub const MAX_MESH_FILE_BYTES: u64 = 1 << 30;
+/// Most bytes read from one input file: a scene, a mesh, an image, a shard. More than the
+/// other limits let any of them need (a mesh of 4 000 000 triangles is about 250 MB of
+/// `.obj`, a shard of [`MAX_PIXELS`] pixels 768 MiB), and a bound on what a device that
+/// never ends (`/dev/zero`) can make lumiere hold.
+pub const MAX_FILE_BYTES: u64 = 1 << 30;
 /// Smallest magnitude of a transform's scale factor (and of the singular values of its
 /// matrix): below it a shape's local error bounds and sizes are stretched out of scale.
 pub const MIN_SCALE: f64 = 1e-6;
@@ -53,6 +56,30 @@ pub const DEFAULT_PHOTON_BOUNCES: u32 = 8;
 pub const DEFAULT_PHOTON_RADIUS: f64 = 0.075;
 /// Default adaptive depth control threshold, in 8-bit levels.
 pub const DEFAULT_ADAPTIVE_THRESHOLD: f64 = 0.25;
+
+/// The bytes of the input file at `path`, at most [`MAX_FILE_BYTES`] of them: a longer file
+/// (told by its size, before reading) or a device or pipe that gives more is an error that
+/// says so, after which nothing more is read.
+pub fn read_file(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let too_long = |what: String| {
+        std::io::Error::new(
+            std::io::ErrorKind::FileTooLarge,
+            format!("{what} more than the {MAX_FILE_BYTES} bytes read from one file"),
+        )
+    };
+    let file = std::fs::File::open(path)?;
+    let meta = file.metadata()?;
+    if meta.is_file() && meta.len() > MAX_FILE_BYTES {
+        return Err(too_long(format!("the file has {} bytes,", meta.len())));
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(too_long("it gives".to_string()));
+    }
+    Ok(bytes)
+}
 
 /// Whether every coordinate of `p` is finite and within [`MAX_COORDINATE`].
 pub fn within_coordinates(p: glam::DVec3) -> bool {

@@ -333,6 +333,36 @@ fn output_folder_locked_by_another_run() {
 }
 
 #[test]
+fn input_file_too_long() {
+    let dir = temp_dir("exit-too-long");
+    // Sparse files one byte over the limit: refused from their size, before any is read.
+    let long = |name: &str| {
+        let path = dir.join(name);
+        fs::File::create(&path).unwrap().set_len((1 << 30) + 1).unwrap();
+        path.display().to_string()
+    };
+    let said = |file: &str, action: &str| {
+        format!(
+            "lumiere: error: {file}: {action}: the file has 1073741825 bytes, more than the 1073741824 bytes read from one file\n"
+        )
+    };
+    let out = dir.join("out.png").display().to_string();
+    let (scene, image, shard) = (long("s.toml"), long("i.png"), long("p.shard"));
+    for (args, message) in [
+        (
+            vec!["render", &scene, "-o", &out],
+            said(&scene, "cannot read the scene file"),
+        ),
+        (vec!["compare", &image, &image], said(&image, "cannot read the file")),
+        (vec!["merge", &shard, "-o", &out], said(&shard, "cannot read")),
+    ] {
+        let (code, stdout, err) = result(lumiere(&args));
+        assert_eq!((code, stdout.as_str(), err), (2, "", message), "{args:?}");
+    }
+    assert!(!dir.join("out.png").exists());
+}
+
+#[test]
 fn the_readme_table_names_these_tests() {
     let readme = fs::read_to_string(repo("README.md")).unwrap();
     let this = fs::read_to_string(repo("tests/exit_codes.rs")).unwrap();
@@ -342,7 +372,7 @@ fn the_readme_table_names_these_tests() {
         .skip(2)
         .take_while(|l| l.starts_with('|'))
         .collect();
-    assert_eq!(rows.len(), 13, "{rows:?}");
+    assert_eq!(rows.len(), 14, "{rows:?}");
     let mut named = 0;
     for row in rows {
         let test = row.trim_end_matches('|').rsplit('|').next().unwrap();
@@ -354,5 +384,5 @@ fn the_readme_table_names_these_tests() {
             }
         }
     }
-    assert_eq!(named, 11);
+    assert_eq!(named, 12);
 }

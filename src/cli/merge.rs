@@ -25,7 +25,8 @@ pub fn run(args: &MergeArgs, v: Verbosity) -> Result<(), CliError> {
     let mut shards = Vec::new();
     for path in &args.shards {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| CliError::BadInput(format!("{name}: cannot read: {e}")))?;
+        let bytes =
+            lumiere::limits::read_file(path).map_err(|e| CliError::BadInput(format!("{name}: cannot read: {e}")))?;
         let (header, pixels) = lumiere::shard::decode(&bytes, &name).map_err(CliError::BadInput)?;
         shards.push((name, header, pixels));
     }

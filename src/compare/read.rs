@@ -39,7 +39,7 @@ pub struct Image {
 
 /// Reads an image file; errors name the file, what is wrong and what is read.
 pub fn read_image(path: &Path) -> Result<Image, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: cannot read the file: {e}", path.display()))?;
+    let bytes = limits::read_file(path).map_err(|e| format!("{}: cannot read the file: {e}", path.display()))?;
     let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     decode(&bytes, extension).map_err(|e| format!("{}: {e}", path.display()))
 }

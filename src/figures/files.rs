@@ -169,7 +169,7 @@ fn load_set(dir: &Path, folder: &Path) -> Result<FigureSet, RegistryError> {
     }
     let set_path = folder.join(SET_FILE);
     let definition = joined(&folder_text, SET_FILE);
-    let bytes = std::fs::read(&set_path).map_err(|source| RegistryError::Io {
+    let bytes = crate::limits::read_file(&set_path).map_err(|source| RegistryError::Io {
         path: set_path.clone(),
         action: "cannot read the set's description",
         source,
@@ -214,7 +214,7 @@ fn load_set(dir: &Path, folder: &Path) -> Result<FigureSet, RegistryError> {
         }
         let file = joined(&folder_text, &format!("{}.toml", entry.stem));
         let path = folder.join(format!("{}.toml", entry.stem));
-        let bytes = std::fs::read(&path).map_err(|source| RegistryError::Io {
+        let bytes = crate::limits::read_file(&path).map_err(|source| RegistryError::Io {
             path: path.clone(),
             action: "cannot read the scene file",
             source,

@@ -4,11 +4,12 @@
 
 use super::SceneError;
 use super::locate::line_col;
+use crate::limits;
 use std::path::Path;
 
 /// The text of the scene file at `path` ([`text_of`] its bytes).
 pub fn read_text(path: &Path) -> Result<String, SceneError> {
-    let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
+    let bytes = limits::read_file(path).map_err(|source| SceneError::Io {
         path: path.to_path_buf(),
         source,
     })?;

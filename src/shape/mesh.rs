@@ -78,7 +78,7 @@ fn whole(message: String) -> ObjError {
 
 impl Mesh {
     /// Reads and checks the file (see the module doc), refusing files larger than
-    /// [`limits::MAX_MESH_FILE_BYTES`] and meshes of more than `max_triangles`.
+    /// [`limits::MAX_FILE_BYTES`] and meshes of more than `max_triangles`.
     pub fn read(path: &Path, max_triangles: usize) -> Result<Mesh, ObjError> {
         let cannot = |e: std::io::Error| whole(format!("cannot read the mesh file: {e}"));
         let meta = std::fs::metadata(path).map_err(cannot)?;
@@ -86,17 +86,7 @@ impl Mesh {
         if !meta.is_file() {
             return Err(whole("not a regular file".to_string()));
         }
-        let size = meta.len();
-        if size > limits::MAX_MESH_FILE_BYTES {
-            return Err(whole(format!(
-                "the file has {size} bytes, at most {} are read",
-                limits::MAX_MESH_FILE_BYTES
-            )));
-        }
-        let mut bytes = Vec::new();
-        std::fs::File::open(path)
-            .and_then(|f| f.take(limits::MAX_MESH_FILE_BYTES + 1).read_to_end(&mut bytes))
-            .map_err(cannot)?;
+        let bytes = limits::read_file(path).map_err(cannot)?;
         Mesh::parse(&String::from_utf8_lossy(&bytes), max_triangles)
     }
 
