@@ -34,7 +34,8 @@ fn main() -> ExitCode {
     match cli::run(args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("lumiere: error: {e}");
+            // One line: a decoder's message may end in a line break of its own (JPEG's does).
+            eprintln!("lumiere: error: {}", e.to_string().trim_end());
             let mut source = std::error::Error::source(&e);
             while let Some(cause) = source {
                 eprintln!("  caused by: {cause}");

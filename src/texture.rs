@@ -74,8 +74,17 @@ pub fn read_rgb8(path: &Path, what: &str) -> Result<(u32, u32, Vec<u8>), String>
             .and_then(|r| r.with_guessed_format())
             .map_err(|e| format!("{shown}: cannot read the {what}: {e}"))
     };
-    let not_an_image =
-        |e: image::ImageError| format!("{shown}: not an image lumiere reads (PNG, JPEG, BMP, TGA, PNM, EXR): {e}");
+    // A file of a format read, told by its first bytes (not its name), that does not decode
+    // is said to be damaged, not to be of another format.
+    let signature = std::fs::File::open(path)
+        .map(std::io::BufReader::new)
+        .and_then(|r| image::ImageReader::new(r).with_guessed_format())
+        .map_err(|e| format!("{shown}: cannot read the {what}: {e}"))?;
+    let known = signature.format().and_then(crate::compare::read::format_name);
+    let not_an_image = |e: image::ImageError| match known {
+        Some(format) => format!("{shown}: cannot decode the {format} {what}: {e}"),
+        None => format!("{shown}: not an image lumiere reads (PNG, JPEG, BMP, TGA, PNM, EXR): {e}"),
+    };
     let (width, height) = open()?.into_dimensions().map_err(not_an_image)?;
     Texture::check_size(width, height, what).map_err(|m| format!("{shown}: {m}"))?;
     let image = open()?.decode().map_err(not_an_image)?.to_rgb8();

@@ -292,6 +292,18 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
         )
     );
     assert!(out.is_empty());
+    // A decoder's message that ends in a line break is still one line.
+    let cut = dir.join("cut.jpg");
+    fs::write(&cut, b"\xff\xd8\xff\xe0\x00\x10JFIF\x00").unwrap();
+    let (code, _, err) = compare(&[s(&a), s(&cut)]);
+    assert_eq!(code, 2);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: error: {}: cannot decode the JPEG image: Format error decoding Jpeg: I/O errors Not enough bytes, expected 1 but found 0\n",
+            cut.display()
+        )
+    );
     let missing = dir.join("missing.png");
     let (code, _, err) = compare(&[s(&missing), s(&a)]);
     assert_eq!(code, 2);

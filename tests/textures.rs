@@ -82,6 +82,17 @@ fn texture_errors_name_the_file() {
         )),
         "{junk}"
     );
+    // A PNG cut short is a damaged PNG, not a file of another format.
+    let mut cut = lumiere::film::encode_png(2, 2, &[7; 12]).unwrap();
+    cut.truncate(cut.len() - 20);
+    std::fs::write(dir.join("cut.png"), cut).unwrap();
+    assert_eq!(
+        error("texture_kd = \"cut.png\""),
+        format!(
+            "{t}:8:14: materials.m.texture_kd: {}: cannot decode the PNG texture: unexpected end of file",
+            shown("cut.png")
+        )
+    );
     assert_eq!(
         error("texture_ks = \"huge.ppm\""),
         format!(

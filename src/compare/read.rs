@@ -79,20 +79,27 @@ fn declared_size(bytes: &[u8], format: ImageFormat) -> Option<(u32, u32)> {
     }
 }
 
+/// The name messages give a format lumiere reads through the `image` crate (`PPM` for the
+/// whole PNM family); `None` for the others.
+pub fn format_name(format: ImageFormat) -> Option<&'static str> {
+    match format {
+        ImageFormat::Png => Some("PNG"),
+        ImageFormat::Pnm => Some("PPM"),
+        ImageFormat::OpenExr => Some("EXR"),
+        ImageFormat::Jpeg => Some("JPEG"),
+        ImageFormat::Bmp => Some("BMP"),
+        ImageFormat::Tga => Some("TGA"),
+        _ => None,
+    }
+}
+
 /// Why a file that no format's signature starts is not read: its extension names a
 /// format compare reads and its bytes are not that format's, or neither names one.
 fn unrecognised(extension: &str) -> String {
     let named = if extension.eq_ignore_ascii_case("pfm") {
         Some("PFM")
     } else {
-        ImageFormat::from_extension(extension).and_then(|f| match f {
-            ImageFormat::Png => Some("PNG"),
-            ImageFormat::Pnm => Some("PPM / PGM / PBM"),
-            ImageFormat::OpenExr => Some("EXR"),
-            ImageFormat::Jpeg => Some("JPEG"),
-            ImageFormat::Bmp => Some("BMP"),
-            _ => None,
-        })
+        ImageFormat::from_extension(extension).and_then(format_name)
     };
     match named {
         Some(format) => format!(
@@ -145,22 +152,14 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
         Err(_) if extension.eq_ignore_ascii_case("tga") => ImageFormat::Tga,
         Err(_) => return Err(unrecognised(extension)),
     };
-    let name = match format {
-        ImageFormat::Png => "PNG",
-        ImageFormat::Pnm => "PPM",
-        ImageFormat::OpenExr => "EXR",
-        ImageFormat::Jpeg => "JPEG",
-        ImageFormat::Bmp => "BMP",
-        ImageFormat::Tga => "TGA",
-        other => {
-            return Err(format!(
-                "a {} image, which compare does not read; it reads {ALLOWED}",
-                other
-                    .extensions_str()
-                    .first()
-                    .map_or("other".into(), |e| e.to_ascii_uppercase())
-            ));
-        }
+    let Some(name) = format_name(format) else {
+        return Err(format!(
+            "a {} image, which compare does not read; it reads {ALLOWED}",
+            format
+                .extensions_str()
+                .first()
+                .map_or("other".into(), |e| e.to_ascii_uppercase())
+        ));
     };
     // The size from the header, before any pixel is decoded: a header may claim more than
     // memory holds.
