@@ -304,6 +304,18 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
             cut.display()
         )
     );
+    // Two maps into one file: refused before either is written.
+    let map = dir.join("map.png");
+    let again = format!("{}/./map.png", dir.display());
+    let (code, out, err) = compare(&[s(&a), s(&a), "--heatmap", s(&map), "--flip-heatmap", &again]);
+    assert_eq!((code, out.as_str()), (2, ""));
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: error: {again}: --heatmap and --flip-heatmap name the same file: one map would replace the other\n"
+        )
+    );
+    assert!(!map.exists());
     let missing = dir.join("missing.png");
     let (code, _, err) = compare(&[s(&missing), s(&a)]);
     assert_eq!(code, 2);

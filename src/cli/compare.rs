@@ -3,7 +3,7 @@
 //! worst pixels as `lumiere probe` command lines, and with `--scene` the pixels on object
 //! edges reported apart. Exit 0 pass, 1 the images differ beyond the rule, 2 bad input.
 
-use super::{CliError, Overrides, check_output_path, load_scene};
+use super::{CliError, Overrides, check_output_path, load_scene, resolved};
 use clap::Args;
 use lumiere::compare::flip::flip_heat_map;
 use lumiere::compare::read::{Image, read_image};
@@ -272,6 +272,7 @@ fn edges_of(args: &CompareArgs, scene: &Path, width: u32, height: u32) -> Result
 pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     check_args(args)?;
     let inputs = [args.a.as_path(), args.b.as_path()];
+    let mut written: Vec<(&Path, &str)> = Vec::new();
     for (path, option) in [
         (&args.heatmap, "--heatmap"),
         (&args.flip_heatmap, "--flip-heatmap"),
@@ -279,6 +280,16 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     ] {
         if let Some(path) = path {
             check_png(path, inputs, option)?;
+            if let Some((_, before)) = written
+                .iter()
+                .find(|(p, _)| resolved(p).is_some_and(|p| Some(p) == resolved(path)))
+            {
+                return Err(CliError::BadInput(format!(
+                    "{}: {before} and {option} name the same file: one map would replace the other",
+                    path.display()
+                )));
+            }
+            written.push((path, option));
         }
     }
     let a = read(&args.a)?;

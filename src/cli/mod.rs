@@ -25,7 +25,7 @@ use lumiere::accel::AccelChoice;
 use lumiere::conventions::Conventions;
 use lumiere::scene::{self, Format, LoadOptions, Loaded, Scene};
 use lumiere::skips::Skip;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 #[derive(Parser, Debug)]
@@ -326,6 +326,19 @@ fn check_output_path(output: &Path, input: &Path) -> Result<(), CliError> {
         return bad(format!("the output directory {} does not exist", parent.display()));
     }
     Ok(())
+}
+
+/// `path` made absolute, its links followed, whether or not it exists (its folder must):
+/// two paths of one file resolve alike.
+pub(super) fn resolved(path: &Path) -> Option<PathBuf> {
+    if let Ok(p) = path.canonicalize() {
+        return Some(p);
+    }
+    let parent = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    Some(parent.canonicalize().ok()?.join(path.file_name()?))
 }
 
 /// Checks, before any work, that the output folder `dir` (of option `option`) can be made

@@ -1,7 +1,7 @@
 //! `lumiere render`: a scene file to an image or a shard file, with a progress bar on a
 //! terminal, and ray counts, skipped work and time by phase with `--stats` / `--json`.
 
-use super::{CliError, Overrides, Verbosity, check_output, check_output_path, signals};
+use super::{CliError, Overrides, Verbosity, check_output, check_output_path, resolved, signals};
 use clap::{ArgGroup, Args};
 use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::film::{WriteError, write_atomic};
@@ -314,19 +314,6 @@ impl LayersTarget {
         }
         Ok(())
     }
-}
-
-/// `path` made absolute, its links followed, whether or not it exists (its folder must):
-/// two paths of one file resolve alike.
-fn resolved(path: &Path) -> Option<PathBuf> {
-    if let Ok(p) = path.canonicalize() {
-        return Some(p);
-    }
-    let parent = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    Some(parent.canonicalize().ok()?.join(path.file_name()?))
 }
 
 /// Renders the layers of `scene` and writes them to `target`.
