@@ -3,7 +3,8 @@
 //! - [`gains`]: the gain of each term of the oracle's layers ([`crate::layers`]) that fits
 //!   the image best by least squares ("specular x2.00", "ambient x0").
 //! - [`mistakes`]: a catalogue of named mistakes, each rendered by the reference tracer
-//!   with a wrong formula table, a convention switched, or a post-process.
+//!   with a wrong formula table, a convention switched, or a post-process of the oracle's
+//!   image (gamma, a flip, red and blue exchanged).
 //! - [`report`]: the HTML report with the images, heat-maps and ranking.
 //! - Here: [`diagnose`], which renders the oracle and every mistake on the same pixels,
 //!   counts in each the pixels off edges ([`crate::edges`]) that differ from the image by
@@ -341,11 +342,12 @@ fn render_change(
         Change::Formulas(f) => Some((render_pixels_with(world, f, pixels), output)),
         // An image the oracle writes sRGB-encoded already has its gamma.
         Change::Gamma => (!srgb).then(|| (oracle.to_vec(), srgb_encode as fn(f64) -> f64)),
-        Change::FlipVertical => {
-            let h = scene.settings.height;
-            let flipped: Vec<(u32, u32)> = pixels.iter().map(|&(x, y)| (x, h - 1 - y)).collect();
+        Change::FlipVertical | Change::FlipHorizontal => {
+            let (w, h) = (scene.settings.width, scene.settings.height);
+            let flipped: Vec<(u32, u32)> = pixels.iter().map(|&p| change.source_pixel(p, w, h)).collect();
             Some((render_pixels_with(world, Formulas::CHAPTER, &flipped), output))
         }
+        Change::SwapRedBlue => Some((oracle.iter().map(|&c| change.written_colour(c)).collect(), output)),
         Change::Depth(step) => {
             let depth = scene
                 .settings
@@ -381,7 +383,7 @@ pub fn render_mistake(scene: &Scene, mistake: &Mistake) -> Option<Vec<u8>> {
     let pixels = Grid::new(s.width, s.height, usize::MAX).pixels();
     let world = World::new(scene);
     let oracle = match mistake.change {
-        Change::Gamma => render_pixels_with(&world, Formulas::CHAPTER, &pixels),
+        Change::Gamma | Change::SwapRedBlue => render_pixels_with(&world, Formulas::CHAPTER, &pixels),
         _ => Vec::new(),
     };
     render_change(scene, &world, &pixels, &oracle, mistake.change, false).map(|(r, encode)| to_rgb8(&r, encode))

@@ -8,7 +8,8 @@
 //! mistake must show on some scene. A correct image at each sampling convention and with
 //! another seed is diagnosed "no mistake found" (a corner-sampled one naming SIMRenderer's
 //! sample position within sampling). The mistakes again in images sampled on a jittered
-//! grid (not equal to any render). The gains of a
+//! grid (not equal to any render). The oracle's image mirrored, upside down and with red
+//! and blue exchanged, each named by its post-process. The gains of a
 //! doubled specular term and of opaque filters; an sRGB oracle; the README's fixture; the
 //! same diagnosis for any thread count and from one oracle for many images; the command
 //! line's text, JSON and report, for one image and for several, its bad input, and the
@@ -561,6 +562,73 @@ fn srgb_images_against_an_srgb_oracle() {
 }
 
 #[test]
+fn flipped_and_channel_swapped_images_are_named() {
+    // The oracle's own image of the reference scene, and it mirrored left-right, with red
+    // and blue exchanged and upside down, each made here pixel by pixel: the correct image
+    // matches, each post-processed one names its post-process first and explains every
+    // pixel beyond.
+    let scene = centred("scenes/reference.toml");
+    let oracle = Oracle::new(&scene, &Options::default());
+    let image = rendered(&scene);
+    let (w, h) = (W as usize, H as usize);
+    let moved = |from: &dyn Fn(usize, usize) -> (usize, usize)| -> Vec<u8> {
+        (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .flat_map(|(x, y)| {
+                let (sx, sy) = from(x, y);
+                let i = 3 * (sy * w + sx);
+                [image[i], image[i + 1], image[i + 2]]
+            })
+            .collect()
+    };
+    let mirrored = moved(&|x, y| (w - 1 - x, y));
+    let upside_down = moved(&|x, y| (x, h - 1 - y));
+    let bgr: Vec<u8> = image.chunks(3).flat_map(|p| [p[2], p[1], p[0]]).collect();
+    // Red and blue differ visibly in the reference scene: the swap is no identity.
+    assert!(pixels_beyond(&image, &bgr, 8) > 1000);
+    assert!(pixels_beyond(&image, &mirrored, 8) > 1000);
+
+    assert_eq!(oracle.diagnose(&image).verdict, Verdict::NoMistakeFound);
+    for (name, student) in [
+        ("image-flipped-horizontally", &mirrored),
+        ("red-blue-swapped", &bgr),
+        ("image-flipped-vertically", &upside_down),
+    ] {
+        let d = oracle.diagnose(student);
+        assert_eq!(d.verdict, Verdict::MistakeFound, "{name}");
+        let best = d.top(1).next().unwrap();
+        assert_eq!(best.name, name);
+        assert_eq!(best.score.beyond, 0, "{name}");
+        assert_eq!(best.fixes.as_ref().unwrap().pixels, d.oracle.beyond, "{name}");
+        // The post-process's render is the image itself on every pixel.
+        assert_eq!(&best.rgb, student, "{name}");
+    }
+
+    // The command line says it so of a mirrored PNG.
+    let dir = temp_dir("diagnose-mirrored");
+    let png = dir.join("mirrored.png");
+    std::fs::write(&png, lumiere::film::encode_png(W, H, &mirrored).unwrap()).unwrap();
+    let args = diagnose_reference_centred(&png);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = lumiere(&args);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(text.contains("verdict            mistake found\n"), "{text}");
+    assert!(
+        text.contains("\n1. image-flipped-horizontally: the image mirrored left-right (column 0 at the right)"),
+        "{text}"
+    );
+}
+
+/// Pixels of two 8-bit RGB images some channel of which differs by more than `tolerance`.
+fn pixels_beyond(a: &[u8], b: &[u8], tolerance: u8) -> usize {
+    a.chunks(3)
+        .zip(b.chunks(3))
+        .filter(|(p, q)| p.iter().zip(*q).any(|(x, y)| x.abs_diff(*y) > tolerance))
+        .count()
+}
+
+#[test]
 fn mistakes_found_in_images_sampled_otherwise() {
     // The student's image with the mistake, sampled as the scene says (a 2 x 2 jittered
     // grid), diagnosed against the oracle at the pixels' centres: the mistake's render is
@@ -653,19 +721,19 @@ fn command_line_lists_the_catalogue() {
     let names: Vec<&str> = entries.iter().map(|e| e["name"].as_str().unwrap()).collect();
     assert_eq!(names, list.iter().map(|m| m.name).collect::<Vec<_>>());
     let kinds = |kind: &str| entries.iter().filter(|e| e["kind"] == kind).count();
-    // Two post-processes (gamma, the flip), two recursion depths (one level short, one
-    // over), one mistake per convention where SIMRenderer's preset differs from the
-    // chapter's, the rest formulas.
+    // Four post-processes (gamma, the two flips, red and blue exchanged), two recursion
+    // depths (one level short, one over), one mistake per convention where SIMRenderer's
+    // preset differs from the chapter's, the rest formulas.
     let conventions = lumiere::conventions::Conventions::CHAPTER
         .describe()
         .into_iter()
         .zip(lumiere::conventions::Conventions::SIMRENDERER.describe())
         .filter(|(a, b)| a != b)
         .count();
-    assert_eq!(kinds("post-process"), 2);
+    assert_eq!(kinds("post-process"), 4);
     assert_eq!(kinds("recursion"), 2);
     assert_eq!(kinds("convention"), conventions);
-    assert_eq!(kinds("formula"), list.len() - 4 - conventions);
+    assert_eq!(kinds("formula"), list.len() - 6 - conventions);
     // With a scene it is refused: --list renders nothing.
     let o = lumiere(&["diagnose", "--list", "scenes/reference.toml"]);
     assert_eq!(o.status.code(), Some(2));

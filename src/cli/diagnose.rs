@@ -174,7 +174,7 @@ fn change_kind(change: &Change) -> &'static str {
         Change::Formulas(_) => "formula",
         Change::Convention(_) => "convention",
         Change::Depth(_) => "recursion",
-        Change::Gamma | Change::FlipVertical => "post-process",
+        Change::Gamma | Change::FlipVertical | Change::FlipHorizontal | Change::SwapRedBlue => "post-process",
     }
 }
 

@@ -4,7 +4,8 @@
 //! - a convention switch ([`crate::conventions`]) set to SIMRenderer's value where the
 //!   oracle follows the chapter's (and to the chapter's where it follows SIMRenderer's);
 //! - the recursion depth one level short or over;
-//! - a post-process of the oracle's image (the sRGB transfer, a vertical flip).
+//! - a post-process of the oracle's image (the sRGB transfer, a vertical or horizontal
+//!   flip, red and blue exchanged).
 //!
 //! Nothing outside this module and its parent knows about mistakes.
 
@@ -34,6 +35,31 @@ pub enum Change {
     Gamma,
     /// The image upside down.
     FlipVertical,
+    /// The image mirrored left-right.
+    FlipHorizontal,
+    /// The red and blue channels exchanged.
+    SwapRedBlue,
+}
+
+impl Change {
+    /// The pixel of the oracle's `width x height` image that an image with this change
+    /// shows at `(x, y)`: mirrored by a flip, the same pixel otherwise.
+    pub fn source_pixel(self, (x, y): (u32, u32), width: u32, height: u32) -> (u32, u32) {
+        match self {
+            Change::FlipVertical => (x, height - 1 - y),
+            Change::FlipHorizontal => (width - 1 - x, y),
+            _ => (x, y),
+        }
+    }
+
+    /// The colour an image with this change writes for the oracle's `colour`: red and blue
+    /// exchanged by [`Change::SwapRedBlue`], as it is otherwise.
+    pub fn written_colour(self, colour: DVec3) -> DVec3 {
+        match self {
+            Change::SwapRedBlue => DVec3::new(colour.z, colour.y, colour.x),
+            _ => colour,
+        }
+    }
 }
 
 /// A named mistake.
@@ -467,6 +493,16 @@ pub fn catalogue() -> Vec<Mistake> {
             Change::FlipVertical,
         ),
         m(
+            "image-flipped-horizontally",
+            "the image mirrored left-right (column 0 at the right): the camera's horizontal axis reversed, up x forward for forward x up",
+            Change::FlipHorizontal,
+        ),
+        m(
+            "red-blue-swapped",
+            "red and blue exchanged: colours written in BGR order (a Java int packed as 0xBBGGRR, or bytes written B, G, R)",
+            Change::SwapRedBlue,
+        ),
+        m(
             "sample-position",
             "camera rays through the pixel's top-left corner (SIMRenderer's sample_position)",
             Change::Convention("sample_position"),
@@ -514,6 +550,42 @@ mod tests {
     use super::*;
     use crate::diagnose::render_mistake;
     use crate::math::reflect;
+
+    /// The `width x height` image (row-major) a post-process makes of `image`.
+    fn post_processed(change: Change, image: &[DVec3], width: u32, height: u32) -> Vec<DVec3> {
+        (0..height)
+            .flat_map(|y| (0..width).map(move |x| (x, y)))
+            .map(|p| {
+                let (x, y) = change.source_pixel(p, width, height);
+                change.written_colour(image[(y * width + x) as usize])
+            })
+            .collect()
+    }
+
+    #[test]
+    fn post_processes_by_hand() {
+        // A 3 x 2 image, each pixel's colour its own: (1, 2, 3) at the top left, (4, 5, 6)
+        // beside it, ..., (16, 17, 18) at the bottom right.
+        let px = |k: u32| DVec3::new((3 * k + 1) as f64, (3 * k + 2) as f64, (3 * k + 3) as f64);
+        let image: Vec<DVec3> = (0..6).map(px).collect();
+        // Upside down: the bottom row (pixels 3, 4, 5) on top.
+        assert_eq!(
+            post_processed(Change::FlipVertical, &image, 3, 2),
+            [3, 4, 5, 0, 1, 2].map(px)
+        );
+        // Mirrored: each row read from the right.
+        assert_eq!(
+            post_processed(Change::FlipHorizontal, &image, 3, 2),
+            [2, 1, 0, 5, 4, 3].map(px)
+        );
+        // Red and blue exchanged in place, green kept.
+        let swapped = post_processed(Change::SwapRedBlue, &image, 3, 2);
+        assert_eq!(swapped[0], DVec3::new(3.0, 2.0, 1.0));
+        assert_eq!(swapped[5], DVec3::new(18.0, 17.0, 16.0));
+        assert_eq!(post_processed(Change::SwapRedBlue, &swapped, 3, 2), image);
+        // The other changes move and recolour nothing.
+        assert_eq!(post_processed(Change::Gamma, &image, 3, 2), image);
+    }
 
     #[test]
     fn wrong_formulas_by_hand() {
