@@ -528,6 +528,42 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
             clear.display()
         )
     );
+    // Nothing drawn but colours written (alpha 0 everywhere, the colours kept): still
+    // refused, exit 2, with the hint of an ARGB image whose alpha was never set; against
+    // another such image, the one hint after both names.
+    let argb = dir.join("argb.png");
+    let coloured: Vec<u8> = (0..w * h).flat_map(|i| [200, (3 * i) as u8, 10, 0]).collect();
+    fs::write(
+        &argb,
+        encode_with(
+            image::ImageFormat::Png,
+            w,
+            h,
+            &coloured,
+            image::ExtendedColorType::Rgba8,
+        ),
+    )
+    .unwrap();
+    let hint = "; the colours are there but alpha is 0 everywhere, as in an image written as ARGB with alpha never set (Java's BufferedImage.TYPE_INT_ARGB filled by setRGB(x, y, rgb) without 0xFF000000): write TYPE_INT_RGB, or set alpha to 255";
+    let (code, _, err) = compare(&[s(&argb), s(&b)]);
+    assert_eq!(code, 2);
+    assert_eq!(
+        err.trim(),
+        format!(
+            "lumiere: error: {}: every pixel is fully transparent (alpha 0): nothing was drawn to compare{hint}",
+            argb.display()
+        )
+    );
+    let (code, _, err) = compare(&[s(&clear), s(&argb)]);
+    assert_eq!(code, 2);
+    assert_eq!(
+        err.trim(),
+        format!(
+            "lumiere: error: {} and {}: every pixel is fully transparent (alpha 0): nothing was drawn to compare{hint}",
+            clear.display(),
+            argb.display()
+        )
+    );
     // Each image drawn only where the other is not: both named.
     let flipped: Vec<u8> = yours.chunks(4).flat_map(|p| [p[0], p[1], p[2], 255 - p[3]]).collect();
     let other = dir.join("other-half.png");

@@ -119,17 +119,23 @@ fn undrawn_pixels(a: &Image, b: &Image) -> Vec<bool> {
 }
 
 /// Why no pixel is left to compare when each is fully transparent in one image or the
-/// other: the image with no pixel drawn, or both images when each leaves out what the other
-/// drew.
+/// other: the image with no pixel drawn (with the hint of [`Image::alpha_hint`] when its
+/// colours are drawn), or both images when each leaves out what the other drew.
 fn nothing_drawn(args: &CompareArgs, a: &Image, b: &Image) -> String {
-    let clear = |img: &Image| !img.transparent.is_empty() && img.transparent.iter().all(|&t| t);
     let (pa, pb) = (args.a.display(), args.b.display());
-    match (clear(a), clear(b)) {
+    let nothing = "every pixel is fully transparent (alpha 0): nothing was drawn to compare";
+    match (a.nothing_drawn(), b.nothing_drawn()) {
         (true, true) => {
-            format!("{pa} and {pb}: every pixel is fully transparent (alpha 0): nothing was drawn to compare")
+            // One hint, of the first image whose colours are drawn.
+            let hint = if a.alpha_hint().is_empty() {
+                b.alpha_hint()
+            } else {
+                a.alpha_hint()
+            };
+            format!("{pa} and {pb}: {nothing}{hint}")
         }
-        (true, false) => format!("{pa}: every pixel is fully transparent (alpha 0): nothing was drawn to compare"),
-        (false, true) => format!("{pb}: every pixel is fully transparent (alpha 0): nothing was drawn to compare"),
+        (true, false) => format!("{pa}: {nothing}{}", a.alpha_hint()),
+        (false, true) => format!("{pb}: {nothing}{}", b.alpha_hint()),
         (false, false) => {
             format!("every pixel is fully transparent (alpha 0) in {pa} or in {pb}: no pixel drawn in both to compare")
         }

@@ -213,10 +213,11 @@ fn read_images(paths: &[PathBuf]) -> Result<Vec<Image>, CliError> {
         for note in &image.notes {
             eprintln!("lumiere: {}: {note}", path.display());
         }
-        if !image.transparent.is_empty() && image.transparent.iter().all(|&t| t) {
+        if image.nothing_drawn() {
             return Err(CliError::BadInput(format!(
-                "{}: every pixel is fully transparent: nothing was drawn",
-                path.display()
+                "{}: every pixel is fully transparent: nothing was drawn{}",
+                path.display(),
+                image.alpha_hint()
             )));
         }
         if let Some(first) = images.first()

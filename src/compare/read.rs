@@ -6,7 +6,9 @@
 //! - 16-bit PNG or PPM / PGM: each value `v` to `round(255 v / 65535)`;
 //! - grey (PGM, grey PNG, ...): the grey level in R, G and B;
 //! - alpha: dropped, the colour compared as stored (not composited); the fully transparent
-//!   pixels are marked ([`Image::transparent`]), which `compare` and `diagnose` leave out;
+//!   pixels are marked ([`Image::transparent`]), which `compare` and `diagnose` leave out
+//!   (an image with every pixel so is refused, with [`Image::alpha_hint`] when its colours
+//!   are drawn);
 //! - PFM and EXR (float radiance, as `lumiere render -o X.pfm` writes): each channel clamped
 //!   to [0, 1] and quantised to 8 bits exactly as lumiere's film does
 //!   ([`crate::film::quantize`], no gamma), so a float image compares as the PNG it would
@@ -35,6 +37,24 @@ pub struct Image {
     /// Per pixel, whether its alpha is 0 (never drawn: SIMRenderer's console mode leaves
     /// the last rows of an image wider than tall so); empty when no pixel is.
     pub transparent: Vec<bool>,
+}
+
+impl Image {
+    /// Whether every pixel is fully transparent: nothing was drawn.
+    pub fn nothing_drawn(&self) -> bool {
+        !self.transparent.is_empty() && self.transparent.iter().all(|&t| t)
+    }
+
+    /// What to add to the refusal of an image with nothing drawn: when its colours are not
+    /// all zero, they were drawn with alpha left at 0, the likely cause and its fix; else
+    /// nothing.
+    pub fn alpha_hint(&self) -> &'static str {
+        if self.nothing_drawn() && self.rgb.iter().any(|&v| v != 0) {
+            "; the colours are there but alpha is 0 everywhere, as in an image written as ARGB with alpha never set (Java's BufferedImage.TYPE_INT_ARGB filled by setRGB(x, y, rgb) without 0xFF000000): write TYPE_INT_RGB, or set alpha to 255"
+        } else {
+            ""
+        }
+    }
 }
 
 /// Reads an image file; errors name the file, what is wrong and what is read.
@@ -309,6 +329,29 @@ fn float_rgb(values: &[f32], stride: usize, format: &str, notes: &mut Vec<String
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn alpha_hint_only_when_nothing_drawn_holds_colours() {
+        let image = |rgb: Vec<u8>, transparent: Vec<bool>| Image {
+            width: 2,
+            height: 1,
+            rgb,
+            format: "PNG",
+            notes: Vec::new(),
+            transparent,
+        };
+        // Both pixels at alpha 0, one of them red: colours drawn, alpha never set.
+        let unset = image(vec![0, 0, 0, 255, 0, 0], vec![true, true]);
+        assert!(unset.nothing_drawn());
+        assert!(unset.alpha_hint().contains("TYPE_INT_ARGB"));
+        // Both at alpha 0 and black: nothing drawn, no hint.
+        let clear = image(vec![0; 6], vec![true, true]);
+        assert!(clear.nothing_drawn());
+        assert_eq!(clear.alpha_hint(), "");
+        // One pixel drawn, or none transparent: no hint either.
+        assert_eq!(image(vec![255, 0, 0, 0, 0, 0], vec![false, true]).alpha_hint(), "");
+        assert_eq!(image(vec![255; 6], Vec::new()).alpha_hint(), "");
+    }
 
     #[test]
     fn sixteen_bits_round_to_nearest() {
