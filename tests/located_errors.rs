@@ -228,6 +228,28 @@ fn errors_in_top_level_tables() {
         error_after("height = 12", "height = 99999999999999999999"),
         "s.toml:3:10: image.height: must be in [1, 16384] pixels, got 99999999999999999999"
     );
+    // A real too large for a double is its field's out-of-range number, as written; a whole
+    // number field given one is told it takes a whole number. Two of them on one line are
+    // each read so, and the next one's place stays where the file has it.
+    assert_eq!(
+        error_after("radius = 1\n", "radius = 1e400\n"),
+        "s.toml:21:10: shapes[1].radius: must be a finite number in (0, 1e9], got 1e400"
+    );
+    assert_eq!(
+        error_after("angle = 70", "angle = -1_0e400"),
+        "s.toml:45:9: lights[1].angle: must be a finite number in [0, 180], got -1_0e400"
+    );
+    assert_eq!(
+        error_after("height = 12", "height = 1e400"),
+        "s.toml:3:10: image.height: invalid type: floating point `1e400`, expected a whole number"
+    );
+    assert_eq!(
+        error_after(
+            "attenuation = { quadratic = 0.01 }",
+            "attenuation = { linear = 1e999, quadratik = 0.01 }"
+        ),
+        "s.toml:46:33: lights[1].attenuation.quadratik: unknown field `quadratik`, expected one of `constant`, `linear`, `quadratic`"
+    );
     // A seed takes every 64-bit unsigned value: its type's range is its own.
     assert_eq!(
         error_after("samples_per_pixel = 1", "samples_per_pixel = 1\nseed = -1"),

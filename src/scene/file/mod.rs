@@ -98,6 +98,14 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 
 /// Parses and validates scene text; `file` is the name used in error messages.
 pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
+    parse_as_written(text, text, file)
+}
+
+/// [`parse`] of `text`, whose numbers are shown in messages as `written` writes them: the
+/// same text, or the same with a real too large for a double (`1e400`, which the `toml`
+/// crate refuses without a range) read as an infinity, so that its field's rule names
+/// its range and the number as written ([`infinity_in_place`]).
+fn parse_as_written(text: &str, written_text: &str, file: &str) -> Result<Scene, SceneError> {
     let at = |offset: usize, field: String, message: String| {
         let (line, column) = line_col(text, offset);
         SceneError::Invalid {
@@ -110,7 +118,7 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
     };
     let located = |e: FieldError| {
         let message = match e.got {
-            Some(x) => format!("{}, got {}", e.message, written(text, &e.path, x)),
+            Some(x) => format!("{}, got {}", e.message, written(written_text, &e.path, x)),
             None => e.message,
         };
         at(locate(text, &e.path), e.path.to_string(), message)
@@ -149,7 +157,14 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
     }
     tag::lift(root.get_mut(), "shapes", SHAPE_TYPES).map_err(located)?;
     tag::lift(root.get_mut(), "lights", LIGHT_TYPES).map_err(located)?;
-    let raw = FileScene::deserialize(toml::de::Deserializer::from(root)).map_err(|e| {
+    let raw = FileScene::deserialize(toml::de::Deserializer::from(root));
+    if let Err(e) = &raw
+        && e.message().trim() == "floating-point number overflowed"
+        && let Some(read_as) = e.span().and_then(|span| infinity_in_place(text, span))
+    {
+        return parse_as_written(&read_as, written_text, file);
+    }
+    let raw = raw.map_err(|e| {
         // A type, length or unknown-field error knows its span only: name the field there.
         let (offset, path) = e
             .span()
@@ -159,11 +174,43 @@ pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
         } else {
             path.to_string()
         };
-        at(offset, field, serde_words::plain(e.message().trim()))
+        let mut message = serde_words::plain(e.message().trim());
+        // A value the message quotes as read (`inf`) is quoted as written (`1e400`).
+        if let Some(span) = e.span()
+            && let (Some(read), Some(given)) = (number_at(text, span.start), number_at(written_text, span.start))
+            && read != given
+        {
+            message = message.replace(&format!("`{read}`"), &format!("`{given}`"));
+        }
+        at(offset, field, message)
     })?;
     // Mesh files are read relative to the scene file.
     let dir = Path::new(file).parent().unwrap_or(Path::new(""));
     raw.validate(dir).map_err(located)
+}
+
+/// `text` with the real at `span` written as an infinity of its sign, padded with spaces to
+/// its length (so every place in the text stays where it was); `None` when the span holds no
+/// number that long.
+fn infinity_in_place(text: &str, span: std::ops::Range<usize>) -> Option<String> {
+    let number = number_at(text, span.start).filter(|n| n.len() == span.len())?;
+    let infinity = if number.starts_with('-') { "-inf" } else { "inf" };
+    let padding = " ".repeat(number.len().checked_sub(infinity.len())?);
+    Some(format!(
+        "{}{infinity}{padding}{}",
+        &text[..span.start],
+        &text[span.end..]
+    ))
+}
+
+/// The number written at byte `start` of `text` (digits, letters, signs, points and
+/// underscores), if any.
+fn number_at(text: &str, start: usize) -> Option<&str> {
+    let rest = text.get(start..)?;
+    let end = rest
+        .find(|c: char| !(c.is_ascii_alphanumeric() || "+-._".contains(c)))
+        .unwrap_or(rest.len());
+    (end > 0).then(|| &rest[..end])
 }
 
 /// A whole scene file as serde reads it: one field per top-level key ([`TOP_LEVEL`]).
