@@ -866,13 +866,17 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     assert!(phong_beyond(&whole) > 0);
     // Nothing drawn at all: refused; with colours written under alpha 0 (an ARGB image
     // whose alpha was never set), refused with the hint.
+    // The diagnosis's error, with exit code 2.
+    let refusal = |image: &std::path::Path| {
+        let args = diagnose_reference_centred(image);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = lumiere(&args);
+        assert_eq!(o.status.code(), Some(2));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
     let empty = dir.join("empty.png");
     image::RgbaImage::new(W, H).save(&empty).unwrap();
-    let args = diagnose_reference_centred(&empty);
-    let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    let o = lumiere(&args);
-    assert_eq!(o.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = refusal(&empty);
     assert!(
         err.ends_with(&format!(
             "{}: every pixel is fully transparent: nothing was drawn\n",
@@ -883,11 +887,7 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     let argb = dir.join("argb.png");
     let unset: Vec<u8> = rgba.chunks(4).flat_map(|p| [p[0], p[1], p[2], 0]).collect();
     image::RgbaImage::from_raw(W, H, unset).unwrap().save(&argb).unwrap();
-    let args = diagnose_reference_centred(&argb);
-    let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    let o = lumiere(&args);
-    assert_eq!(o.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = refusal(&argb);
     assert!(
         err.ends_with(&format!(
             "{}: every pixel is fully transparent: nothing was drawn; the colours are there but alpha is 0 everywhere, as in an image written as ARGB with alpha never set (Java's BufferedImage.TYPE_INT_ARGB filled by setRGB(x, y, rgb) without 0xFF000000): write TYPE_INT_RGB, or set alpha to 255\n",
