@@ -1,7 +1,7 @@
 //! SIGINT (Ctrl-C), SIGTERM and SIGHUP sent to a running `lumiere render` and `lumiere
 //! figures`: the exit code is 128 + the signal's number, the message says what was left,
 //! no output or temporary file (`.NAME.tmp-PID`) is left, and each figure set is wholly old
-//! or wholly new.
+//! or wholly new; a second signal ends a run that waits where the first is not seen.
 #![cfg(unix)]
 
 use crate::common::*;
@@ -142,4 +142,53 @@ fn a_signal_leaves_each_figure_set_wholly_old_or_wholly_new() {
         names.sort();
         assert_eq!(names, ["index.html", "lighting", "soft-shadows", "timings.json"]);
     }
+}
+
+/// Whether process `pid` has a handler for `signal` (its `SigCgt` mask in /proc).
+fn catches(pid: u32, signal: i32) -> bool {
+    let status = fs::read_to_string(format!("/proc/{pid}/status")).unwrap_or_default();
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("SigCgt:"))
+        .and_then(|mask| u64::from_str_radix(mask.trim(), 16).ok())
+        .is_some_and(|mask| mask >> (signal - 1) & 1 == 1)
+}
+
+#[test]
+fn a_second_signal_ends_a_run_blocked_on_a_pipe() {
+    let dir = temp_dir("signal-twice");
+    let fifo = dir.join("shard.fifo");
+    let c_path = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+    // SAFETY: a NUL-terminated path and a mode.
+    assert_eq!(unsafe { libc::mkfifo(c_path.as_ptr(), 0o600) }, 0);
+    let out = dir.join("merged.png");
+    // `merge` opens the pipe, which no one writes: it waits there, where no flag is polled.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(["merge", fifo.to_str().unwrap(), "-o", out.to_str().unwrap()])
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let started = std::time::Instant::now();
+    while !catches(child.id(), libc::SIGINT) {
+        assert!(started.elapsed().as_secs() < 30, "no handler installed");
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    send(&child, libc::SIGINT);
+    // The first only asks to stop: the run still waits on the pipe.
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    assert!(child.try_wait().unwrap().is_none());
+    send(&child, libc::SIGINT);
+    let ended = std::time::Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if ended.elapsed().as_secs() >= 30 {
+            child.kill().unwrap();
+            panic!("the second SIGINT did not end the run");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    };
+    assert_eq!(status.code(), Some(130));
+    assert!(!out.exists());
 }

@@ -1,7 +1,10 @@
 //! Termination signals as a request to stop: SIGINT (Ctrl-C), SIGTERM and SIGHUP. Once
-//! [`catch`] has run, each only sets a flag (and records which signal it was); the commands
-//! that write images poll the flag, stop rendering, leave every file old or whole, and exit
-//! with 128 + the signal's number, the shell's convention for a process a signal ended.
+//! [`catch`] has run, the first only sets a flag (and records which signal it was); the
+//! commands that write images poll the flag, stop rendering, leave every file old or whole,
+//! and exit with 128 + the signal's number, the shell's convention for a process a signal
+//! ended. A second signal ends the process at once with 128 + its number, as an uncaught one
+//! would: a run blocked where nothing polls the flag (reading a pipe that no one writes)
+//! is stopped by Ctrl-C pressed twice.
 
 use std::sync::Once;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -55,15 +58,19 @@ impl Signal {
     }
 }
 
-/// Makes the caught signals set the returned flag instead of ending the process (once per
-/// process). A signal for which no handler can be installed keeps its default action, which
-/// ends the process: every file is then old or whole, only a temporary file may be left if
-/// it lands while one is written.
+/// Makes the first caught signal set the returned flag instead of ending the process, and a
+/// second one end it (once per process). A signal for which no handler can be installed
+/// keeps its default action, which ends the process, as the second does: every file is then
+/// old or whole, only a temporary file may be left if it lands while one is written.
 pub fn catch() -> &'static AtomicBool {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         for signal in CAUGHT {
-            // The number first: whoever sees the flag set finds it recorded.
+            // Handlers run in the order registered: the shutdown sees the flag as the signals
+            // before this one left it. Then the number, before the flag: whoever sees the
+            // flag set finds it recorded.
+            let code = i32::from(Signal(signal).exit_code());
+            let _ = signal_hook::flag::register_conditional_shutdown(signal, code, &STOP);
             let _ = signal_hook::flag::register_usize(signal, &LAST, signal as usize);
             let _ = signal_hook::flag::register(signal, &STOP);
         }
