@@ -112,10 +112,11 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     let _lock = FolderLock::take(&args.out)?;
     let start = std::time::Instant::now();
     // A signal stops the set being rendered and leaves its folder as it was; the sets before
-    // it are complete (see `generate_until`). If the handler cannot be installed, the signal
-    // ends the process, which also leaves every set whole unless it lands in the
-    // milliseconds a set's files take to write.
-    let cancel = signals::catch();
+    // it are complete (see `generate_until`). A second signal is a request too: ending the
+    // process in the milliseconds a set's files take to write would leave it part old. If
+    // the handler cannot be installed, the signal ends the process, which also leaves every
+    // set whole unless it lands in those milliseconds.
+    let cancel = signals::catch_first_only();
     let mut written: Vec<&str> = Vec::new();
     let mut times: Vec<serde_json::Value> = Vec::new();
     let mut reuse = Reuse::for_sets(&chosen);

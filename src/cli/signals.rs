@@ -4,7 +4,8 @@
 //! and exit with 128 + the signal's number, the shell's convention for a process a signal
 //! ended. A second signal ends the process at once with 128 + its number, as an uncaught one
 //! would: a run blocked where nothing polls the flag (reading a pipe that no one writes)
-//! is stopped by Ctrl-C pressed twice.
+//! is stopped by Ctrl-C pressed twice. After [`catch_first_only`] (`figures`, whose sets
+//! must each stay wholly old or wholly new) every signal is only a request.
 
 use std::sync::Once;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -21,6 +22,8 @@ const CAUGHT: [i32; 2] = [signal_hook::consts::SIGINT, signal_hook::consts::SIGT
 
 /// Set by any caught signal.
 static STOP: AtomicBool = AtomicBool::new(false);
+/// Whether a second signal is only a request too ([`catch_first_only`]).
+static FIRST_ONLY: AtomicBool = AtomicBool::new(false);
 /// The number of the last caught signal (0: none yet).
 static LAST: AtomicUsize = AtomicUsize::new(0);
 
@@ -66,16 +69,29 @@ pub fn catch() -> &'static AtomicBool {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         for signal in CAUGHT {
-            // Handlers run in the order registered: the shutdown sees the flag as the signals
+            // Handlers run in the order registered: the first sees the flag as the signals
             // before this one left it. Then the number, before the flag: whoever sees the
             // flag set finds it recorded.
             let code = i32::from(Signal(signal).exit_code());
-            let _ = signal_hook::flag::register_conditional_shutdown(signal, code, &STOP);
+            let second_ends = move || {
+                if STOP.load(Ordering::SeqCst) && !FIRST_ONLY.load(Ordering::SeqCst) {
+                    signal_hook::low_level::exit(code);
+                }
+            };
+            // SAFETY: the action only loads two atomics and calls `_exit`, both
+            // async-signal-safe.
+            let _ = unsafe { signal_hook::low_level::register(signal, second_ends) };
             let _ = signal_hook::flag::register_usize(signal, &LAST, signal as usize);
             let _ = signal_hook::flag::register(signal, &STOP);
         }
     });
     &STOP
+}
+
+/// [`catch`], with every signal, the second too, only a request to stop.
+pub fn catch_first_only() -> &'static AtomicBool {
+    FIRST_ONLY.store(true, Ordering::SeqCst);
+    catch()
 }
 
 /// The signal that asked the program to stop, if one did.
