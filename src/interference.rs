@@ -285,8 +285,8 @@ impl ApertureLight {
     pub fn new(
         aperture: Aperture,
         wavelength_nm: f64,
-        oscillator_count: impl Into<i128>,
-        period_iteration: impl Into<i128>,
+        oscillator_count: impl Into<limits::Whole>,
+        period_iteration: impl Into<limits::Whole>,
         amplification: f64,
         attenuation: Attenuation,
     ) -> Result<Self, Invalid> {

@@ -9,6 +9,8 @@ pub const MAX_PIXELS: u64 = 1 << 25;
 pub const MAX_SAMPLES: u32 = 1024;
 /// Largest recursion depth.
 pub const MAX_DEPTH: u32 = 64;
+/// Most worker threads (each holds a stack; far beyond any machine's cores).
+pub const MAX_THREADS: usize = 1024;
 /// Most shapes in a scene.
 pub const MAX_OBJECTS: usize = 4_000_000;
 /// Most lights in a scene.
@@ -54,6 +56,10 @@ pub const DEFAULT_PHOTON_BOUNCES: u32 = 8;
 /// Default radius of the caustic estimate (scene units: a tenth of the reference scene's
 /// spheres' radius).
 pub const DEFAULT_PHOTON_RADIUS: f64 = 0.075;
+/// Largest adaptive depth control threshold, in 8-bit levels (a difference of every level).
+pub const MAX_ADAPTIVE_THRESHOLD: f64 = 255.0;
+/// Largest factor of the figures' image size (`lumiere figures --scale`).
+pub const MAX_FIGURE_SCALE: f64 = 4.0;
 /// Default adaptive depth control threshold, in 8-bit levels.
 pub const DEFAULT_ADAPTIVE_THRESHOLD: f64 = 0.25;
 
@@ -94,14 +100,53 @@ pub fn short(x: f64) -> String {
     if exponent.len() < plain.len() { exponent } else { plain }
 }
 
-/// An image side of `v` pixels, any whole number as a reader has it (TOML's reach beyond
-/// 64 bits): in [1, MAX_DIMENSION], or the message saying so.
-pub fn check_dimension(v: impl Into<i128>) -> Result<u32, String> {
-    let v = v.into();
-    match u32::try_from(v) {
-        Ok(n) if (1..=MAX_DIMENSION).contains(&n) => Ok(n),
-        _ => Err(format!("must be in [1, {MAX_DIMENSION}] pixels, got {v}")),
+/// A whole number as a reader has it: its value when it fits 128 bits (TOML's integers, a
+/// command line's text of any length), and the number as written, which messages show.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Whole {
+    value: Option<i128>,
+    written: String,
+}
+
+impl Whole {
+    /// The number `text` writes: one that is not a whole number of 128 bits (`1e400`,
+    /// `2.5`, 40 digits, `x`) has no value, so every check refuses it and shows it as written.
+    pub fn parse(text: &str) -> Whole {
+        Whole {
+            value: text.trim().parse().ok(),
+            written: text.to_string(),
+        }
     }
+
+    /// The value narrowed to `T` when it is in `[lo, hi]`.
+    fn within<T: TryFrom<i128> + PartialOrd>(&self, lo: T, hi: T) -> Option<T> {
+        let n = T::try_from(self.value?).ok()?;
+        (n >= lo && n <= hi).then_some(n)
+    }
+}
+
+impl std::fmt::Display for Whole {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.written)
+    }
+}
+
+macro_rules! whole_from {
+    ($($t:ty),*) => {$(
+        impl From<$t> for Whole {
+            fn from(n: $t) -> Whole {
+                Whole { value: Some(n.into()), written: n.to_string() }
+            }
+        }
+    )*};
+}
+whole_from!(i8, i16, i32, i64, i128, u8, u16, u32, u64);
+
+/// An image side of `v` pixels: in [1, MAX_DIMENSION], or the message saying so.
+pub fn check_dimension(v: impl Into<Whole>) -> Result<u32, String> {
+    let v = v.into();
+    v.within(1, MAX_DIMENSION)
+        .ok_or_else(|| format!("must be in [1, {MAX_DIMENSION}] pixels, got {v}"))
 }
 
 pub fn check_pixel_count(w: u32, h: u32) -> Result<(), String> {
@@ -115,35 +160,37 @@ pub fn check_pixel_count(w: u32, h: u32) -> Result<(), String> {
 }
 
 /// Samples per pixel: a perfect square in [1, MAX_SAMPLES] (the stratified grid's side squared).
-pub fn check_samples(v: impl Into<i128>) -> Result<u32, String> {
+pub fn check_samples(v: impl Into<Whole>) -> Result<u32, String> {
     let v = v.into();
-    match u32::try_from(v) {
-        Ok(n) if (1..=MAX_SAMPLES).contains(&n) && n.isqrt().pow(2) == n => Ok(n),
-        _ => Err(format!(
-            "must be a perfect square (1, 4, 9, 16, ...) in [1, {MAX_SAMPLES}], got {v}"
-        )),
-    }
+    v.within(1, MAX_SAMPLES)
+        .filter(|n| n.isqrt().pow(2) == *n)
+        .ok_or_else(|| format!("must be a perfect square (1, 4, 9, 16, ...) in [1, {MAX_SAMPLES}], got {v}"))
 }
 
 /// The recursion depth: in [1, MAX_DEPTH], 1 for no secondary rays.
-pub fn check_depth(v: impl Into<i128>) -> Result<u32, String> {
+pub fn check_depth(v: impl Into<Whole>) -> Result<u32, String> {
     let v = v.into();
-    match u32::try_from(v) {
-        Ok(n) if (1..=MAX_DEPTH).contains(&n) => Ok(n),
-        _ => Err(format!("must be in [1, {MAX_DEPTH}] (1 = no secondary rays), got {v}")),
-    }
+    v.within(1, MAX_DEPTH)
+        .ok_or_else(|| format!("must be in [1, {MAX_DEPTH}] (1 = no secondary rays), got {v}"))
 }
 
-/// A count in [1, `most`], any whole number as a reader has it, narrowed to `most`'s type.
-pub fn check_count<T>(v: impl Into<i128>, most: T) -> Result<T, String>
+/// A count in [1, `most`], narrowed to `most`'s type.
+pub fn check_count<T>(v: impl Into<Whole>, most: T) -> Result<T, String>
 where
     T: TryFrom<i128> + PartialOrd + From<u8> + std::fmt::Display,
 {
+    check_whole(v, T::from(1), most)
+}
+
+/// A whole number in [`lo`, `hi`], narrowed to their type: a seed's range is its type's,
+/// `[0, u64::MAX]`.
+pub fn check_whole<T>(v: impl Into<Whole>, lo: T, hi: T) -> Result<T, String>
+where
+    T: TryFrom<i128> + PartialOrd + std::fmt::Display,
+{
     let v = v.into();
-    match T::try_from(v) {
-        Ok(n) if n >= T::from(1) && n <= most => Ok(n),
-        _ => Err(format!("must be in [1, {most}], got {v}")),
-    }
+    let message = format!("must be in [{lo}, {hi}], got {v}");
+    v.within(lo, hi).ok_or(message)
 }
 
 #[cfg(test)]
@@ -186,6 +233,24 @@ mod tests {
             check_count(u64::MAX, 64u32),
             Err(format!("must be in [1, 64], got {}", u64::MAX))
         );
+        assert_eq!(check_whole(u64::MAX, 0, u64::MAX), Ok(u64::MAX));
+        assert_eq!(
+            check_whole(-1, 0, u64::MAX),
+            Err("must be in [0, 18446744073709551615], got -1".to_string())
+        );
+    }
+
+    #[test]
+    fn written_numbers_are_checked_and_shown_as_written() {
+        assert_eq!(check_dimension(Whole::parse("+16384")), Ok(16_384));
+        let forty = "9".repeat(40);
+        for text in ["1e400", "2.5", "", "x", forty.as_str()] {
+            assert_eq!(
+                check_dimension(Whole::parse(text)),
+                Err(format!("must be in [1, 16384] pixels, got {text}"))
+            );
+        }
+        assert_eq!(check_whole(Whole::parse("-0"), 0u8, 255), Ok(0));
     }
 
     #[test]

@@ -9,7 +9,7 @@ mod locate;
 mod names;
 mod overrides;
 mod read_text;
-mod rules;
+pub mod rules;
 mod serde_words;
 pub mod simrenderer;
 mod tag;

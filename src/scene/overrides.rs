@@ -3,6 +3,7 @@
 //! `--convention`), each checked against its limit as the scene file's value would be.
 
 use super::Scene;
+use super::rules::adaptive_threshold;
 use crate::conventions::Conventions;
 use crate::limits;
 
@@ -56,10 +57,7 @@ impl Overrides {
             s.depth = d;
         }
         if let Some(t) = self.adaptive_threshold {
-            if !(0.0..=255.0).contains(&t) {
-                return Err(format!("--adaptive-threshold: must be in [0, 255] levels, got {t}"));
-            }
-            s.adaptive_threshold = t;
+            s.adaptive_threshold = adaptive_threshold(t).map_err(|m| format!("--adaptive-threshold: {m}, got {t}"))?;
         }
         let mut conventions = match &self.conventions {
             Some(name) => Conventions::preset(name).map_err(bad("conventions"))?,
@@ -164,7 +162,7 @@ mod tests {
                 adaptive_threshold: Some(300.0),
                 ..Overrides::default()
             }),
-            "--adaptive-threshold: must be in [0, 255] levels, got 300"
+            "--adaptive-threshold: must be a finite number in [0, 255], got 300"
         );
         assert_eq!(
             err(Overrides {

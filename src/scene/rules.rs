@@ -24,6 +24,11 @@ pub fn positive(x: f64, hi: f64) -> Result<f64, String> {
     Ok(x)
 }
 
+/// An adaptive depth control threshold in 8-bit levels: in [0, MAX_ADAPTIVE_THRESHOLD].
+pub fn adaptive_threshold(x: f64) -> Result<f64, String> {
+    number_in(x, 0.0, limits::MAX_ADAPTIVE_THRESHOLD)
+}
+
 /// A point or vector: finite components of magnitude at most [`limits::MAX_COORDINATE`].
 pub fn point(v: [f64; 3]) -> Result<DVec3, String> {
     let m = limits::MAX_COORDINATE;

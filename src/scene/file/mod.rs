@@ -362,7 +362,12 @@ impl FileScene {
             },
             shadows: self.render.shadows,
             background: color(&r.key("background"), self.render.background, limits::MAX_LIGHT)?,
-            adaptive_threshold: in_range(&r.key("adaptive_threshold"), self.render.adaptive_threshold, 0.0, 255.0)?,
+            adaptive_threshold: in_range(
+                &r.key("adaptive_threshold"),
+                self.render.adaptive_threshold,
+                0.0,
+                limits::MAX_ADAPTIVE_THRESHOLD,
+            )?,
             conventions: self.conventions.validate(&root.key("conventions"))?,
             caustics: self
                 .caustics
