@@ -224,11 +224,13 @@ fn expect_error(name: &str, scene: &str, args: &[&str], line: &str) {
 
 #[test]
 fn depth_limit() {
-    expect_error(
-        "depth-flag",
-        GOOD,
-        &["--depth", "100000"],
-        "--depth: must be in [1, 64] (1 = no secondary rays), got 100000",
+    let (code, stderr, existed) = run_scene_with("depth-flag", GOOD, &["--depth", "100000"]);
+    assert_eq!((code, existed), (2, false), "{stderr}");
+    assert!(
+        stderr.starts_with(
+            "error: invalid value '100000' for '--depth <DEPTH>': must be in [1, 64] (1 = no secondary rays), got 100000\n"
+        ),
+        "{stderr}"
     );
     let scene = GOOD.replace("[materials.glass]", "[render]\ndepth = 100000\n\n[materials.glass]");
     expect_error(
@@ -402,7 +404,7 @@ fn bad_output_paths_leave_nothing() {
 fn overrides_are_checked() {
     let o = lumiere(&["render", "scenes/reference.toml", "-o", "/tmp/x.png", "--spp", "5"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--spp: must be a perfect square"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("'--spp <SPP>': must be a perfect square"));
     let o = lumiere(&["render", "scenes/reference.toml", "-o", "/tmp/x.png", "--threads", "0"]);
     assert_eq!(o.status.code(), Some(2));
 }

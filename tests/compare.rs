@@ -323,9 +323,12 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
     for (args, message) in [
         (
             vec!["--max-fraction", "1.5"],
-            "--max-fraction: must be in [0, 1], got 1.5",
+            "invalid value '1.5' for '--max-fraction <FRACTION>': must be a finite number in [0, 1], got 1.5",
         ),
-        (vec!["--max-flip=-0.1"], "--max-flip: must be in [0, 1], got -0.1"),
+        (
+            vec!["--max-flip=-0.1"],
+            "invalid value '-0.1' for '--max-flip <FLIP>': must be a finite number in [0, 1], got -0.1",
+        ),
         (
             vec!["--spp", "4"],
             "--spp sets the scene of --scene, which is not given",

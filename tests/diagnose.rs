@@ -352,7 +352,7 @@ fn command_line_text_json_report_and_errors() {
     for (extra, message) in [
         (
             vec![png.to_str().unwrap(), "--max-fraction", "2"],
-            "--max-fraction: must be in [0, 1], got 2",
+            "invalid value '2' for '--max-fraction <FRACTION>': must be a finite number in [0, 1], got 2",
         ),
         (vec![png.to_str().unwrap(), "--width", "50"], width_mismatch.as_str()),
         (

@@ -76,18 +76,71 @@ fn bad_options() {
     let (code, _, err) = render(&out, &["--depth", "0"]);
     assert_eq!(code, 2);
     assert_eq!(
-        err,
-        "lumiere: error: --depth: must be in [1, 64] (1 = no secondary rays), got 0\n"
+        first_line(&err),
+        "error: invalid value '0' for '--depth <DEPTH>': must be in [1, 64] (1 = no secondary rays), got 0"
     );
-    // Refused by the parser itself, which exits 2 as well.
     let (code, _, err) = render(&out, &["--accel", "fast"]);
     assert_eq!(code, 2);
     assert!(err.contains("invalid value 'fast' for '--accel <ACCEL>'"), "{err}");
     let (code, _, err) = result(lumiere(&["figures", "--scale", "9", "--out", dir.to_str().unwrap()]));
     assert_eq!(
-        (code, err.as_str()),
-        (2, "lumiere: error: --scale: must be in (0, 4], got 9\n")
+        (code, first_line(&err)),
+        (
+            2,
+            "error: invalid value '9' for '--scale <SCALE>': must be a finite number in (0, 4], got 9"
+        )
     );
+    assert_eq!(fs::read_dir(&*dir).unwrap().count(), 0);
+}
+
+/// The first line of clap's message (a blank line and a hint to `--help` follow it).
+fn first_line(err: &str) -> &str {
+    err.lines().next().unwrap_or_default()
+}
+
+/// A numeric option out of range is refused by the parser with the option, the range and
+/// the value as written, negative or beyond 64 bits alike, and exit 2.
+#[test]
+fn numeric_options_name_their_range() {
+    let dir = temp_dir("exit-ranges");
+    let out = dir.join("out.png");
+    let (o, scene) = (out.to_str().unwrap(), repo("scenes/reference.toml"));
+    let render = |more: &[&'static str]| {
+        let mut args = vec!["render", scene.to_str().unwrap(), "-o", o];
+        args.extend_from_slice(more);
+        args
+    };
+    let width =
+        |v: &str| format!("error: invalid value '{v}' for '--width <WIDTH>': must be in [1, 16384] pixels, got {v}");
+    let seed =
+        "error: invalid value '-1' for '--seed <SEED>': must be in [0, 18446744073709551615], got -1".to_string();
+    let threads =
+        |v: &str| format!("error: invalid value '{v}' for '--threads <THREADS>': must be in [1, 1024], got {v}");
+    let cases: Vec<(Vec<&str>, String)> = vec![
+        (render(&["--width=-4"]), width("-4")),
+        (render(&["--width", "-4"]), width("-4")),
+        (
+            render(&["--width", "99999999999999999999"]),
+            width("99999999999999999999"),
+        ),
+        (render(&["--width", "1e400"]), width("1e400")),
+        (render(&["--seed", "-1"]), seed.clone()),
+        (render(&["--seed=-1"]), seed),
+        (render(&["--threads", "0"]), threads("0")),
+        (render(&["--threads", "-1"]), threads("-1")),
+        (
+            vec!["compare", o, o, "--tolerance", "-1"],
+            "error: invalid value '-1' for '--tolerance <TOLERANCE>': must be in [0, 255], got -1".into(),
+        ),
+        (
+            vec!["figures", "--scale", "5", "--out", o],
+            "error: invalid value '5' for '--scale <SCALE>': must be a finite number in (0, 4], got 5".into(),
+        ),
+    ];
+    for (args, line) in cases {
+        let (code, _, err) = result(lumiere(&args));
+        assert_eq!((code, first_line(&err)), (2, line.as_str()), "{args:?}");
+    }
     assert_eq!(fs::read_dir(&*dir).unwrap().count(), 0);
 }
 

@@ -21,15 +21,15 @@ pub struct CompareArgs {
     pub a: PathBuf,
     /// The oracle's image (the same size).
     pub b: PathBuf,
-    /// Largest per-channel difference (8-bit levels) that still counts as equal.
-    #[arg(long, default_value_t = 0)]
+    /// Largest per-channel difference (8-bit levels, in [0, 255]) that still counts as equal.
+    #[arg(long, default_value_t = 0, value_parser = super::numbers::levels, allow_negative_numbers = true)]
     pub tolerance: u8,
     /// Largest fraction (0 to 1) of the judged pixels allowed beyond the tolerance
     /// (0.001 = 0.1 %). The default 0 fails on any such pixel.
-    #[arg(long, default_value_t = 0.0, value_name = "FRACTION")]
+    #[arg(long, default_value_t = 0.0, value_name = "FRACTION", value_parser = super::numbers::fraction, allow_negative_numbers = true)]
     pub max_fraction: f64,
     /// Also fail when the FLIP mean of the judged pixels exceeds this (0 to 1).
-    #[arg(long, value_name = "FLIP")]
+    #[arg(long, value_name = "FLIP", value_parser = super::numbers::fraction, allow_negative_numbers = true)]
     pub max_flip: Option<f64>,
     /// The scene both images render: pixels spanning an edge (an object's outline, a crease,
     /// a shadow's edge, also seen in a mirror or through glass) are reported apart
@@ -37,7 +37,7 @@ pub struct CompareArgs {
     #[arg(long, value_name = "SCENE")]
     pub scene: Option<PathBuf>,
     /// How many of the worst judged pixels to list, each with its `lumiere probe` line.
-    #[arg(long, default_value_t = 10, value_name = "N")]
+    #[arg(long, default_value_t = 10, value_name = "N", value_parser = super::numbers::how_many, allow_negative_numbers = true)]
     pub worst: usize,
     /// Write a heat-map of the level differences (black equal, blue small, red, white >= 16 levels).
     #[arg(long, value_name = "PNG")]
@@ -176,14 +176,6 @@ fn any_override(o: &Overrides) -> Option<&'static str> {
 /// Checks the options that need no file.
 fn check_args(args: &CompareArgs) -> Result<(), CliError> {
     let bad = |m: String| Err(CliError::BadInput(m));
-    if !(0.0..=1.0).contains(&args.max_fraction) {
-        return bad(format!("--max-fraction: must be in [0, 1], got {}", args.max_fraction));
-    }
-    if let Some(f) = args.max_flip
-        && !(0.0..=1.0).contains(&f)
-    {
-        return bad(format!("--max-flip: must be in [0, 1], got {f}"));
-    }
     if args.scene.is_none() {
         if let Some(name) = any_override(&args.overrides) {
             return bad(format!("{name} sets the scene of --scene, which is not given"));

@@ -30,18 +30,19 @@ pub struct DiagnoseArgs {
     /// with `--json`).
     #[arg(long, conflicts_with_all = ["scene", "images", "report"])]
     pub list: bool,
-    /// Largest per-channel difference (8-bit levels) that counts as equal.
-    #[arg(long, default_value_t = Options::default().tolerance)]
+    /// Largest per-channel difference (8-bit levels, in [0, 255]) that counts as equal.
+    #[arg(long, default_value_t = Options::default().tolerance, value_parser = super::numbers::levels, allow_negative_numbers = true)]
     pub tolerance: u8,
     /// Largest fraction (0 to 1) of the judged pixels beyond the tolerance for the image to
     /// match the oracle ("no mistake found").
-    #[arg(long, default_value_t = Options::default().max_fraction, value_name = "FRACTION")]
+    #[arg(long, default_value_t = Options::default().max_fraction, value_name = "FRACTION", value_parser = super::numbers::fraction, allow_negative_numbers = true)]
     pub max_fraction: f64,
-    /// Most pixels judged; a larger image is judged on a regular grid of every n-th pixel.
-    #[arg(long, default_value_t = Options::default().max_pixels, value_name = "N")]
+    /// Most pixels judged (at least 1); a larger image is judged on a regular grid of every
+    /// n-th pixel.
+    #[arg(long, default_value_t = Options::default().max_pixels, value_name = "N", value_parser = super::numbers::pixel_count, allow_negative_numbers = true)]
     pub max_pixels: usize,
     /// How many mistakes to print.
-    #[arg(long, default_value_t = 3, value_name = "N")]
+    #[arg(long, default_value_t = 3, value_name = "N", value_parser = super::numbers::how_many, allow_negative_numbers = true)]
     pub top: usize,
     /// Write an HTML report (index.html, the images and heat-maps) into this folder (made if
     /// its parent exists); with several images, into a folder of it per image.
@@ -55,7 +56,7 @@ pub struct DiagnoseArgs {
     #[arg(long)]
     pub json: bool,
     /// Worker threads (default: all cores). The diagnosis does not depend on it.
-    #[arg(long)]
+    #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
     pub threads: Option<usize>,
     /// The oracle's settings, as `render` takes them (the size is the image's).
     #[command(flatten)]
@@ -72,15 +73,6 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
             "diagnose: a scene and an image are needed (or --list)".into(),
         ));
     };
-    if !(0.0..=1.0).contains(&args.max_fraction) {
-        return Err(CliError::BadInput(format!(
-            "--max-fraction: must be in [0, 1], got {}",
-            args.max_fraction
-        )));
-    }
-    if args.max_pixels == 0 {
-        return Err(CliError::BadInput("--max-pixels: must be at least 1, got 0".into()));
-    }
     if let Some(dir) = &args.report {
         let parent = dir
             .parent()

@@ -29,7 +29,7 @@ pub struct FiguresArgs {
     #[arg(long, default_value = lumiere::figures::DEFAULT_DIR)]
     pub scenes: PathBuf,
     /// Image size factor, in (0, 4] (0.25 gives 200 x 150 previews).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = super::numbers::figure_scale, allow_negative_numbers = true)]
     pub scale: f64,
     /// List the sets and their images, render nothing.
     #[arg(long)]
@@ -45,7 +45,7 @@ pub struct FiguresArgs {
     #[arg(long, default_value = "target/review")]
     pub review: PathBuf,
     /// Worker threads (default: all cores). The images do not depend on it.
-    #[arg(long)]
+    #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
     pub threads: Option<usize>,
     /// Write each figure's scene into DIR/<set>/ (in --format), render nothing: a
     /// student renders each figure with their own SIMRenderer lab. The figures SIMRenderer
@@ -78,12 +78,6 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
             }
         }
         return Ok(());
-    }
-    if !(args.scale > 0.0 && args.scale <= 4.0) {
-        return Err(CliError::BadInput(format!(
-            "--scale: must be in (0, 4], got {}",
-            args.scale
-        )));
     }
     let names: Vec<&str> = all.iter().map(|s| s.name.as_str()).collect();
     for name in &args.sets {

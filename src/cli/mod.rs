@@ -10,6 +10,7 @@ mod error;
 mod figures;
 mod lock;
 mod merge;
+mod numbers;
 mod probe;
 mod render;
 mod review;
@@ -138,23 +139,24 @@ pub struct CompletionsArgs {
 /// Values that replace the scene file's own.
 #[derive(Args, Debug, Default, Clone)]
 pub struct Overrides {
-    /// Image width in pixels.
-    #[arg(long)]
+    /// Image width in pixels, in [1, 16384].
+    #[arg(long, value_parser = numbers::dimension, allow_negative_numbers = true)]
     pub width: Option<u32>,
-    /// Image height in pixels.
-    #[arg(long)]
+    /// Image height in pixels, in [1, 16384].
+    #[arg(long, value_parser = numbers::dimension, allow_negative_numbers = true)]
     pub height: Option<u32>,
-    /// Samples per pixel: a perfect square (1, 4, 9, ...), an n x n stratified grid.
-    #[arg(long)]
+    /// Samples per pixel: a perfect square (1, 4, 9, ...) in [1, 1024], an n x n stratified
+    /// grid.
+    #[arg(long, value_parser = numbers::samples, allow_negative_numbers = true)]
     pub spp: Option<u32>,
-    /// Seed of every random stream.
-    #[arg(long)]
+    /// Seed of every random stream, in [0, 18446744073709551615].
+    #[arg(long, value_parser = numbers::seed, allow_negative_numbers = true)]
     pub seed: Option<u64>,
-    /// Recursion depth (1 = no secondary rays).
-    #[arg(long)]
+    /// Recursion depth, in [1, 64] (1 = no secondary rays).
+    #[arg(long, value_parser = numbers::depth, allow_negative_numbers = true)]
     pub depth: Option<u32>,
-    /// Adaptive depth control threshold in 8-bit levels (0 = off).
-    #[arg(long)]
+    /// Adaptive depth control threshold in 8-bit levels, in [0, 255] (0 = off).
+    #[arg(long, value_parser = numbers::adaptive_threshold, allow_negative_numbers = true)]
     pub adaptive_threshold: Option<f64>,
     /// Conventions where the chapter and SIMRenderer differ: a preset, `chapter` or
     /// `simrenderer` (see scenes/README.md, "Conventions").
@@ -358,13 +360,11 @@ fn check_out_folder(dir: &Path, option: &str) -> Result<(), CliError> {
     }
 }
 
-/// Runs `f` on a rayon pool of `threads` workers (all cores when `None`).
+/// Runs `f` on a rayon pool of `threads` workers (all cores when `None`), a number
+/// `--threads`' parser ([`numbers::threads`]) has checked.
 fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> Result<T, CliError> {
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
-        if n == 0 || n > 1024 {
-            return Err(CliError::BadInput(format!("--threads: must be in [1, 1024], got {n}")));
-        }
         builder = builder.num_threads(n);
     }
     let pool = builder

@@ -10,10 +10,10 @@ pub struct ProbeArgs {
     /// The scene file: TOML, or SIMRenderer's format (see scenes/README.md).
     pub scene: PathBuf,
     /// The pixel, `X,Y`, from the top-left corner (0,0) of the image.
-    #[arg(long, value_parser = parse_pixel)]
+    #[arg(long, value_parser = parse_pixel, allow_hyphen_values = true)]
     pub pixel: (u32, u32),
     /// Trace only sample K (0-based) instead of every sample of the pixel.
-    #[arg(long, value_name = "K")]
+    #[arg(long, value_name = "K", value_parser = super::numbers::sample, allow_negative_numbers = true)]
     pub sample: Option<u32>,
     /// Print the tree as JSON (exact floats) instead of text (6 decimals).
     #[arg(long)]

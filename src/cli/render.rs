@@ -35,7 +35,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub overrides: Overrides,
     /// Worker threads (default: all cores). The image does not depend on it.
-    #[arg(long)]
+    #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
     pub threads: Option<usize>,
     /// Print ray counts, work skipped by reason and time by phase after rendering.
     #[arg(long)]
@@ -49,7 +49,7 @@ pub struct RenderArgs {
     pub json: bool,
     /// Render only shard K of N (0-based rows [K H / N, (K + 1) H / N), N at most the
     /// height H) into a shard file for `lumiere merge`.
-    #[arg(long, value_name = "K/N")]
+    #[arg(long, value_name = "K/N", allow_hyphen_values = true)]
     pub shard: Option<lumiere::shard::ShardSpec>,
     /// Render with the reference tracer (src/trace/reference.rs: the chapter as code, no
     /// shortcut): the same image, bit for bit, more slowly. It counts only camera rays.

@@ -10,24 +10,23 @@ const MAX_RAYS: usize = 10_000_000;
 /// Options of `lumiere stress`.
 #[derive(Args, Debug, Clone)]
 pub struct StressArgs {
-    /// Rays per (shape, family) cell.
-    #[arg(long, default_value_t = 2000)]
+    /// Rays per (shape, family) cell, in [1, 10000000].
+    #[arg(long, default_value_t = 2000, value_parser = rays, allow_negative_numbers = true)]
     pub rays: usize,
-    /// Seed of the campaign's random streams.
-    #[arg(long, default_value_t = 7)]
+    /// Seed of the campaign's random streams, in [0, 18446744073709551615].
+    #[arg(long, default_value_t = 7, value_parser = super::numbers::seed, allow_negative_numbers = true)]
     pub seed: u64,
     /// Print the table as JSON instead of text.
     #[arg(long)]
     pub json: bool,
 }
 
+/// `--rays`' value parser.
+fn rays(text: &str) -> Result<usize, String> {
+    lumiere::limits::check_count(lumiere::limits::Whole::parse(text), MAX_RAYS)
+}
+
 pub fn run(args: &StressArgs) -> Result<(), CliError> {
-    if args.rays == 0 || args.rays > MAX_RAYS {
-        return Err(CliError::BadInput(format!(
-            "--rays: must be in [1, {MAX_RAYS}], got {}",
-            args.rays
-        )));
-    }
     let rows = campaign(args.rays, args.seed);
     if args.json {
         let text = serde_json::to_string_pretty(&rows).map_err(|e| CliError::Failed(e.to_string()))?;
@@ -43,16 +42,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn bad_ray_counts_are_rejected() {
-        for rays in [0, 10_000_001] {
-            let err = run(&StressArgs {
-                rays,
-                seed: 1,
-                json: false,
-            })
-            .unwrap_err();
-            assert_eq!(err.exit_code(), 2);
-            assert_eq!(err.to_string(), format!("--rays: must be in [1, 10000000], got {rays}"));
+    fn ray_counts_are_checked_by_the_parser() {
+        assert_eq!((rays("1"), rays("10000000")), (Ok(1), Ok(10_000_000)));
+        for bad in ["0", "10000001"] {
+            assert_eq!(rays(bad), Err(format!("must be in [1, 10000000], got {bad}")));
         }
     }
 }

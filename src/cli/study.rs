@@ -61,8 +61,8 @@ pub struct CausticStudyArgs {
     /// Renders per configuration; the median time is reported (the images are identical).
     #[arg(long, default_value_t = 1)]
     pub repeats: u32,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
+    /// Worker threads, in [1, 1024] (default: all cores).
+    #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
     pub threads: Option<usize>,
     /// Output directory (created if missing).
     #[arg(long, default_value = "study-caustics")]
@@ -110,8 +110,8 @@ pub struct SoftShadowArgs {
     /// Also render a reference with twice the points and report how much the two differ.
     #[arg(long)]
     pub check_reference: bool,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
+    /// Worker threads, in [1, 1024] (default: all cores).
+    #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
     pub threads: Option<usize>,
     /// Output directory (created if missing).
     #[arg(long, default_value = "study")]
