@@ -129,6 +129,10 @@ fn numeric_options_name_their_range() {
         (render(&["--threads", "0"]), threads("0")),
         (render(&["--threads", "-1"]), threads("-1")),
         (
+            vec!["study", "soft-shadows", "--points", "1,-4,16", "--out", o],
+            "error: invalid value '-4' for '--points <POINTS>': must be in [1, 100000], got -4".into(),
+        ),
+        (
             vec!["compare", o, o, "--tolerance", "-1"],
             "error: invalid value '-1' for '--tolerance <TOLERANCE>': must be in [0, 255], got -1".into(),
         ),

@@ -4,12 +4,11 @@
 use super::{CliError, Verbosity, with_threads};
 use clap::{Args, Subcommand};
 use lumiere::film::{WriteError, write_atomic};
-use lumiere::limits;
+use lumiere::limits::{self, Whole};
 use lumiere::placement::Placement;
 use lumiere::scene;
-use lumiere::study::{
-    Config, Plan, first_area_light, outputs, parse_mode, parse_modes, parse_placements, parse_points,
-};
+use lumiere::scene::rules;
+use lumiere::study::{Config, Plan, first_area_light, outputs, parse_mode, parse_modes, parse_placements};
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -38,28 +37,29 @@ pub struct CausticStudyArgs {
     #[arg(default_value = "scenes/figures/caustics/01-reference-glass.toml")]
     pub scene: PathBuf,
     /// Photon counts, comma-separated, each in [1, 10000000].
-    #[arg(long, default_value = "10000,30000,100000,300000,1000000")]
-    pub photons: String,
-    /// Estimate radii, comma-separated, each > 0.
-    #[arg(long, default_value = "0.025,0.05,0.1")]
-    pub radii: String,
-    /// Photons of the reference.
-    #[arg(long, default_value_t = 10_000_000)]
+    #[arg(long, value_delimiter = ',', default_value = "10000,30000,100000,300000,1000000", value_parser = photons, allow_hyphen_values = true)]
+    pub photons: Vec<u64>,
+    /// Estimate radii, comma-separated, each in (0, 1e9].
+    #[arg(long, value_delimiter = ',', default_value = "0.025,0.05,0.1", value_parser = radius, allow_hyphen_values = true)]
+    pub radii: Vec<f64>,
+    /// Photons of the reference, in [1, 10000000].
+    #[arg(long, default_value_t = 10_000_000, value_parser = photons, allow_negative_numbers = true)]
     pub reference_photons: u64,
-    /// Radius of the reference's estimate.
-    #[arg(long, default_value_t = 0.025)]
+    /// Radius of the reference's estimate, in (0, 1e9].
+    #[arg(long, default_value_t = 0.025, value_parser = radius, allow_negative_numbers = true)]
     pub reference_radius: f64,
-    /// Image width in pixels.
-    #[arg(long, default_value_t = 200)]
+    /// Image width in pixels, in [1, 16384].
+    #[arg(long, default_value_t = 200, value_parser = super::numbers::dimension, allow_negative_numbers = true)]
     pub width: u32,
-    /// Image height in pixels.
-    #[arg(long, default_value_t = 150)]
+    /// Image height in pixels, in [1, 16384].
+    #[arg(long, default_value_t = 150, value_parser = super::numbers::dimension, allow_negative_numbers = true)]
     pub height: u32,
-    /// Samples per pixel (a perfect square); default: the scene's.
-    #[arg(long)]
+    /// Samples per pixel (a perfect square in [1, 1024]); default: the scene's.
+    #[arg(long, value_parser = super::numbers::samples, allow_negative_numbers = true)]
     pub spp: Option<u32>,
-    /// Renders per configuration; the median time is reported (the images are identical).
-    #[arg(long, default_value_t = 1)]
+    /// Renders per configuration, in [1, 100]; the median time is reported (the images are
+    /// identical).
+    #[arg(long, default_value_t = 1, value_parser = repeats, allow_negative_numbers = true)]
     pub repeats: u32,
     /// Worker threads, in [1, 1024] (default: all cores).
     #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
@@ -75,31 +75,32 @@ pub struct SoftShadowArgs {
     #[arg(default_value = "scenes/soft-shadows.toml")]
     pub scene: PathBuf,
     /// Numbers of points N, comma-separated, each in [1, 100000].
-    #[arg(long, default_value = "1,4,16,64,256,1024")]
-    pub points: String,
+    #[arg(long, value_delimiter = ',', default_value = "1,4,16,64,256,1024", value_parser = light_points, allow_hyphen_values = true)]
+    pub points: Vec<u32>,
     /// Placements, comma-separated: chapter, uniform, stratified, fibonacci.
     #[arg(long, default_value = "chapter,uniform,stratified,fibonacci")]
     pub placements: String,
     /// Modes, comma-separated: fixed, per_sample.
     #[arg(long, default_value = "fixed,per_sample")]
     pub modes: String,
-    /// Image width in pixels.
-    #[arg(long, default_value_t = 200)]
+    /// Image width in pixels, in [1, 16384].
+    #[arg(long, default_value_t = 200, value_parser = super::numbers::dimension, allow_negative_numbers = true)]
     pub width: u32,
-    /// Image height in pixels.
-    #[arg(long, default_value_t = 150)]
+    /// Image height in pixels, in [1, 16384].
+    #[arg(long, default_value_t = 150, value_parser = super::numbers::dimension, allow_negative_numbers = true)]
     pub height: u32,
-    /// Samples per pixel (a perfect square); default: the scene's.
-    #[arg(long)]
+    /// Samples per pixel (a perfect square in [1, 1024]); default: the scene's.
+    #[arg(long, value_parser = super::numbers::samples, allow_negative_numbers = true)]
     pub spp: Option<u32>,
-    /// Seed (default: the scene's).
-    #[arg(long)]
+    /// Seed, in [0, 18446744073709551615] (default: the scene's).
+    #[arg(long, value_parser = super::numbers::seed, allow_negative_numbers = true)]
     pub seed: Option<u64>,
-    /// Renders per configuration; the median time is reported (the images are identical).
-    #[arg(long, default_value_t = 1)]
+    /// Renders per configuration, in [1, 100]; the median time is reported (the images are
+    /// identical).
+    #[arg(long, default_value_t = 1, value_parser = repeats, allow_negative_numbers = true)]
     pub repeats: u32,
-    /// Points of the reference.
-    #[arg(long, default_value_t = 4096)]
+    /// Points of the reference, in [1, 100000] (in [1, 50000] with --check-reference).
+    #[arg(long, default_value_t = 4096, value_parser = light_points, allow_negative_numbers = true)]
     pub reference_points: u32,
     /// Placement of the reference's points.
     #[arg(long, default_value = "stratified")]
@@ -125,23 +126,38 @@ pub fn run(args: &StudyArgs, v: Verbosity) -> Result<(), CliError> {
     }
 }
 
-/// A comma-separated list of `what` (named `flag` in messages), each checked by `check`.
-fn parse_numbers<T: std::str::FromStr + PartialOrd + Copy>(
-    flag: &str,
-    text: &str,
-    check: &dyn Fn(T) -> Result<(), String>,
-) -> Result<Vec<T>, String> {
-    let mut out: Vec<T> = Vec::new();
-    for item in text.split(',').map(str::trim) {
-        let x: T = item
-            .parse()
-            .map_err(|_| format!("--{flag}: {item:?} is not a number"))?;
-        check(x).map_err(|m| format!("--{flag}: {m}"))?;
+/// Most renders per configuration.
+const MAX_REPEATS: u32 = 100;
+
+/// `--repeats`' value parser.
+fn repeats(text: &str) -> Result<u32, String> {
+    limits::check_count(Whole::parse(text), MAX_REPEATS)
+}
+
+/// A number of points of an area light (`--points`' elements, `--reference-points`).
+fn light_points(text: &str) -> Result<u32, String> {
+    limits::check_count(Whole::parse(text), limits::MAX_LIGHT_POINTS)
+}
+
+/// A number of photons (`--photons`' elements, `--reference-photons`).
+fn photons(text: &str) -> Result<u64, String> {
+    limits::check_count(Whole::parse(text), limits::MAX_PHOTONS)
+}
+
+/// A radius of the caustic estimate (`--radii`' elements, `--reference-radius`).
+fn radius(text: &str) -> Result<f64, String> {
+    super::numbers::real(text, |r| rules::positive(r, limits::MAX_COORDINATE))
+}
+
+/// `list` without its repeated values, in the order given.
+fn distinct<T: PartialEq + Copy>(list: &[T]) -> Vec<T> {
+    let mut out = Vec::new();
+    for &x in list {
         if !out.contains(&x) {
             out.push(x);
         }
     }
-    Ok(out)
+    out
 }
 
 fn caustics(args: &CausticStudyArgs, v: Verbosity) -> Result<(), CliError> {
@@ -154,31 +170,8 @@ fn caustics(args: &CausticStudyArgs, v: Verbosity) -> Result<(), CliError> {
             args.scene.display()
         )));
     }
-    let max = limits::MAX_PHOTONS;
-    let count = |n: u64| {
-        if n == 0 || n > max {
-            Err(format!("each count must be in [1, {max}], got {n}"))
-        } else {
-            Ok(())
-        }
-    };
-    let radius = |r: f64| {
-        if r.is_finite() && r > 0.0 && r <= limits::MAX_COORDINATE {
-            Ok(())
-        } else {
-            Err(format!(
-                "each radius must be in (0, {}], got {r}",
-                limits::MAX_COORDINATE
-            ))
-        }
-    };
-    let photons = parse_numbers("photons", &args.photons, &count).map_err(bad)?;
-    let radii = parse_numbers("radii", &args.radii, &radius).map_err(bad)?;
-    count(args.reference_photons).map_err(|m| bad(format!("--reference-photons: {m}")))?;
-    radius(args.reference_radius).map_err(|m| bad(format!("--reference-radius: {m}")))?;
-    if args.repeats == 0 || args.repeats > 100 {
-        return Err(bad(format!("--repeats: must be in [1, 100], got {}", args.repeats)));
-    }
+    let photons = distinct(&args.photons);
+    let radii = distinct(&args.radii);
     let size = scene::Overrides {
         width: Some(args.width),
         height: Some(args.height),
@@ -225,7 +218,9 @@ fn soft_shadows(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {
             args.scene.display()
         ))
     })?;
-    let points = parse_points(&args.points).map_err(bad)?;
+    let mut points = args.points.clone();
+    points.sort_unstable();
+    points.dedup();
     let placements = parse_placements(&args.placements).map_err(bad)?;
     let modes = parse_modes(&args.modes).map_err(bad)?;
     let reference = Config {
@@ -248,15 +243,7 @@ fn soft_shadows(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {
     } else {
         limits::MAX_LIGHT_POINTS
     };
-    if reference.points == 0 || reference.points > max_ref {
-        return Err(bad(format!(
-            "--reference-points: must be in [1, {max_ref}], got {}",
-            reference.points
-        )));
-    }
-    if args.repeats == 0 || args.repeats > 100 {
-        return Err(bad(format!("--repeats: must be in [1, 100], got {}", args.repeats)));
-    }
+    limits::check_count(reference.points, max_ref).map_err(|m| bad(format!("--reference-points: {m}")))?;
     let size = scene::Overrides {
         width: Some(args.width),
         height: Some(args.height),
@@ -289,4 +276,38 @@ fn soft_shadows(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {
     }
     print!("{}", lumiere::study::report(&study));
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each parser's lowest and highest value, and the values one beyond each.
+    #[test]
+    fn edges() {
+        assert_eq!((repeats("1"), repeats("100")), (Ok(1), Ok(100)));
+        for bad in ["0", "101"] {
+            assert_eq!(repeats(bad), Err(format!("must be in [1, 100], got {bad}")));
+        }
+        assert_eq!((light_points("1"), light_points("100000")), (Ok(1), Ok(100_000)));
+        for bad in ["0", "100001"] {
+            assert_eq!(light_points(bad), Err(format!("must be in [1, 100000], got {bad}")));
+        }
+        assert_eq!((photons("1"), photons("10000000")), (Ok(1), Ok(10_000_000)));
+        for bad in ["0", "10000001"] {
+            assert_eq!(photons(bad), Err(format!("must be in [1, 10000000], got {bad}")));
+        }
+        assert_eq!((radius("5e-324"), radius("1e9")), (Ok(5e-324), Ok(1e9)));
+        for bad in ["0", "1000000000.0000001", "-1"] {
+            assert_eq!(
+                radius(bad),
+                Err(format!("must be a finite number in (0, 1e9], got {bad}"))
+            );
+        }
+    }
+
+    #[test]
+    fn lists_keep_their_first_order_without_repeats() {
+        assert_eq!(distinct(&[0.1, 0.025, 0.1, 0.05]), vec![0.1, 0.025, 0.05]);
+    }
 }
