@@ -108,6 +108,62 @@ pub fn received() -> Option<Signal> {
 #[cfg(all(test, unix))]
 mod tests {
     use super::*;
+    use std::process::{Command, ExitStatus, Stdio};
+
+    /// Set in the copy of this test binary that [`alone`] starts.
+    const ALONE: &str = "LUMIERE_SIGNAL_TEST_ALONE";
+
+    /// Runs test `name` of this module alone, in a new process of this test binary (signals
+    /// and the flags they set are the whole process's), and returns how that process ended.
+    fn alone(name: &str) -> ExitStatus {
+        let path = format!("cli::signals::tests::{name}");
+        Command::new(std::env::current_exe().unwrap())
+            .args([path.as_str(), "--exact", "--test-threads=1"])
+            .env(ALONE, "1")
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .status()
+            .unwrap()
+    }
+
+    fn raise(signal: i32) {
+        // SAFETY: sends a signal to this thread; the handlers `catch` installs only store
+        // to atomics or call `_exit`.
+        assert_eq!(unsafe { libc::raise(signal) }, 0);
+    }
+
+    #[test]
+    fn after_catch_a_second_signal_ends_the_process() {
+        if std::env::var_os(ALONE).is_none() {
+            // 130: ended by the second SIGINT, after the first was only recorded (a process
+            // that survives both passes its test and exits 0).
+            assert_eq!(alone("after_catch_a_second_signal_ends_the_process").code(), Some(130));
+            return;
+        }
+        let stop = catch();
+        raise(libc::SIGINT);
+        assert!(stop.load(Ordering::SeqCst));
+        assert_eq!(received(), Some(Signal::INT));
+        raise(libc::SIGINT);
+    }
+
+    #[test]
+    fn after_catch_first_only_every_signal_is_a_request() {
+        if std::env::var_os(ALONE).is_none() {
+            // 0: the process survived three signals and its assertions held.
+            assert_eq!(
+                alone("after_catch_first_only_every_signal_is_a_request").code(),
+                Some(0)
+            );
+            return;
+        }
+        let stop = catch_first_only();
+        raise(libc::SIGINT);
+        raise(libc::SIGTERM);
+        raise(libc::SIGINT);
+        assert!(stop.load(Ordering::SeqCst));
+        assert_eq!(received(), Some(Signal::INT));
+    }
 
     #[test]
     fn exit_codes_and_names() {
