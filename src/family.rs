@@ -43,6 +43,7 @@ fn key(scene: &Scene) -> Scene {
         ambient: false,
         diffuse: false,
         specular: Specular::None,
+        no_light: false,
     };
     for m in &mut key.materials {
         (m.ka, m.kd, m.ks, m.shininess, m.metal) = (0.0, 0.0, 0.0, 0.0, 0.0);

@@ -27,7 +27,8 @@
 //! - `depth`: the mean distance `t` along the camera rays to their hits, infinite when a
 //!   sample sees the background.
 //!
-//! An aperture light's share counts in `diffuse` (it has no specular term).
+//! An aperture light's share counts in `diffuse` (it has no specular term), and so does the
+//! diffuse colour `k_d S` that the `no_light` model shows in place of every local term.
 //!
 //! So `ambient + diffuse + specular + caustic + reflected + transmitted + background` is the pixel's
 //! radiance (to rounding: the tracer sums in another order). The terms are gathered by a
@@ -188,6 +189,12 @@ impl Recorder for LayerRecorder<'_, '_> {
     fn ambient(&mut self, color: DVec3) {
         if self.at_camera() {
             self.sample.ambient = color;
+        }
+    }
+
+    fn no_light(&mut self, color: DVec3) {
+        if self.at_camera() {
+            self.sample.diffuse += color;
         }
     }
 

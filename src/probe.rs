@@ -86,6 +86,10 @@ pub struct RayNode {
     pub hit: Option<Hit>,
     /// Ambient term `k_a L_a S` at the hit, if the model has one.
     pub ambient: Option<[f64; 3]>,
+    /// The diffuse colour `k_d S` the hit shows under the `no_light` model, in place of the
+    /// ambient term and the lights' shares.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub diffuse_colour: Option<[f64; 3]>,
     /// Every non-ambient light, in scene order.
     pub lights: Vec<LightRecord>,
     /// The caustic share at the hit, when the scene has caustics and the surface a diffuse
@@ -263,6 +267,7 @@ impl Recorder for TreeRecorder<'_> {
             direction: v3(ray.dir),
             hit: None,
             ambient: None,
+            diffuse_colour: None,
             lights: Vec::new(),
             caustic: None,
             local: None,
@@ -293,6 +298,10 @@ impl Recorder for TreeRecorder<'_> {
 
     fn ambient(&mut self, color: DVec3) {
         self.top().ambient = Some(v3(color));
+    }
+
+    fn no_light(&mut self, color: DVec3) {
+        self.top().diffuse_colour = Some(v3(color));
     }
 
     fn unlit(&mut self, light: usize, n_dot_l: Option<f64>) {
@@ -566,6 +575,9 @@ fn write_ray(o: &mut String, r: &RayNode, depth: usize) {
     }
     if let Some(a) = &r.ambient {
         let _ = writeln!(o, "{pad}  ambient {}", vec(a));
+    }
+    if let Some(c) = &r.diffuse_colour {
+        let _ = writeln!(o, "{pad}  no light: diffuse colour k_d S {}", vec(c));
     }
     for l in &r.lights {
         write_light(o, l, &pad);

@@ -177,6 +177,12 @@ pub fn ambient(la: DVec3, ka: f64, color: DVec3) -> DVec3 {
     la * ka * color
 }
 
+/// The diffuse colour `S_d = k_d S` of a surface lit by no light: what SIMRenderer's
+/// `reflexion_algorithm no_light` shows at a hit, in place of every local term.
+pub fn no_light(kd: f64, color: DVec3) -> DVec3 {
+    color * kd
+}
+
 /// One light's diffuse share (slides, Lambert): `L k_d S max(N.L, 0)`, where `L` is the
 /// light arriving at the point (`A C_theta L_lum`, times the shadow filter).
 #[inline(always)]
@@ -393,6 +399,13 @@ mod tests {
         close(spot_factor(0.49, 0.5, 0.2, 1.0), 0.0);
         // Zero opening: dark even on the axis.
         close(spot_factor(1.0, 1.0, 0.0, 1.0), 0.0);
+    }
+
+    #[test]
+    fn no_light_is_the_diffuse_colour() {
+        // k_d 0.8, S (0.5, 0.25, 1): S_d = (0.4, 0.2, 0.8), each an exact product.
+        assert_eq!(no_light(0.8, DVec3::new(0.5, 0.25, 1.0)), DVec3::new(0.4, 0.2, 0.8));
+        assert_eq!(no_light(0.0, DVec3::ONE), DVec3::ZERO);
     }
 
     #[test]

@@ -631,8 +631,16 @@ fn remaining_bounds(scene: &Scene, ambient: DVec3, caustic_bound: Option<f64>) -
         .filter(|l| !matches!(l, Light::Ambient { .. }))
         .map(Light::max_intensity)
         .sum();
-    let local = (ambient.max_element() * max_of(&|m| m.ka) + direct * max_of(&|m| m.kd + m.ks))
-        .max(scene.settings.background.max_element());
+    let local = if scene.settings.shading.no_light {
+        // The diffuse colour `k_d S` alone; a diffuse image's texel (at most 1) takes `k_d = 1`.
+        max_of(&|m| {
+            let textured = m.texture.as_ref().is_some_and(|t| t.diffuse.is_some());
+            if textured { 1.0 } else { m.kd * m.color.max_element() }
+        })
+    } else {
+        ambient.max_element() * max_of(&|m| m.ka) + direct * max_of(&|m| m.kd + m.ks)
+    }
+    .max(scene.settings.background.max_element());
     let k = max_of(&|m| m.kr + m.kt);
     let depth = scene.settings.depth as usize;
     let local = match (scene.settings.caustics, caustic_bound) {

@@ -70,7 +70,8 @@ fn every_keyword_reads_to_the_value_written() {
         ShadingModel {
             ambient: true,
             diffuse: true,
-            specular: Specular::Phong
+            specular: Specular::Phong,
+            no_light: false
         }
     );
     assert!(t.shadows);
@@ -444,10 +445,6 @@ fn what_lumiere_does_not_model_is_refused_by_name() {
         (
             "raytracer\npixel_coordinate bottom_right\nend",
             "lab.txt:2:18: raytracer.pixel_coordinate: bottom_right is not supported yet by lumiere (its samples are at the pixel's top_left corner, its center, or random)",
-        ),
-        (
-            "raytracer\nreflexion_algorithm no_light\nend",
-            "lab.txt:2:21: raytracer.reflexion_algorithm: no_light (the diffuse colour, unlit) is not supported yet by lumiere",
         ),
         (
             "raytracer\ncolor_normalization division_factor\nend",

@@ -25,6 +25,7 @@ mod layers;
 mod lenses;
 mod located_errors;
 mod lock;
+mod no_light;
 mod output;
 mod probe;
 mod readme;

@@ -202,12 +202,26 @@ pub enum Specular {
 }
 
 /// The terms of the local illumination model (slides): each can be switched off to draw
-/// the slides' "ambient only", "diffuse only", "specular only" figures.
+/// the slides' "ambient only", "diffuse only", "specular only" figures. With `no_light`
+/// (SIMRenderer's `reflexion_algorithm no_light`) the three are off and a surface shows
+/// its diffuse colour `k_d S`, lit by no light and casting no shadow ray
+/// ([`crate::shading::no_light`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct ShadingModel {
     pub ambient: bool,
     pub diffuse: bool,
     pub specular: Specular,
+    pub no_light: bool,
+}
+
+impl ShadingModel {
+    /// The diffuse colour `k_d S` alone, no light.
+    pub const NO_LIGHT: ShadingModel = ShadingModel {
+        ambient: false,
+        diffuse: false,
+        specular: Specular::None,
+        no_light: true,
+    };
 }
 
 impl Default for ShadingModel {
@@ -217,6 +231,7 @@ impl Default for ShadingModel {
             ambient: true,
             diffuse: true,
             specular: Specular::Blinn,
+            no_light: false,
         }
     }
 }

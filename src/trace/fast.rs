@@ -26,7 +26,7 @@ use crate::material::Material;
 use crate::math::{Ray, offset_origin, reflect, refract};
 use crate::scene::ShadingModel;
 use crate::shading::{
-    ambient, beneath_notice, faces_away, local_weight, shadow_filter, transmission_weight, transparent_filter,
+    ambient, beneath_notice, faces_away, local_weight, no_light, shadow_filter, transmission_weight, transparent_filter,
 };
 use crate::skips::Skip;
 use crate::world::{Candidate, World};
@@ -102,9 +102,10 @@ impl<'w> Member<'w> {
         }
     }
 
-    /// Whether this member's scene has the world's light `index`.
+    /// Whether this member's scene has the world's light `index` and shades with it (not
+    /// under the `no_light` model).
     fn has_light(&self, index: usize) -> bool {
-        index >= 64 || self.lights >> index & 1 == 1
+        !self.shading.no_light && (index >= 64 || self.lights >> index & 1 == 1)
     }
 
     /// Whether this member shades every surface as `other` does.
@@ -389,6 +390,13 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                 let a = ambient(self.members[j].ambient, r.ka, r.ambient);
                 rec.ambient(a);
                 color[j] += a;
+            } else if model.no_light {
+                // No light reaches this member's hits: `has_light` leaves it out of every
+                // light's members.
+                let r = at.reflectance(mat);
+                let c = no_light(r.kd, r.diffuse);
+                rec.no_light(c);
+                color[j] += c;
             }
         }
         for (index, light) in scene.lights.iter().enumerate() {

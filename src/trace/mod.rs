@@ -184,6 +184,9 @@ pub trait Recorder {
     fn hit(&mut self, _object: usize, _t: f64, _point: DVec3, _normal: DVec3, _entering: bool) {}
     fn miss(&mut self) {}
     fn ambient(&mut self, _color: DVec3) {}
+    /// The diffuse colour `k_d S` a hit shows with no light (the `no_light` shading model),
+    /// in place of the ambient term and every light's share.
+    fn no_light(&mut self, _color: DVec3) {}
     fn light(&mut self, _share: &LightShare) {}
     /// A light that adds nothing at this hit and casts no shadow ray: `n_dot_l` is `None`
     /// when no light arrives at all (outside a spot's cone, or exactly at the light), else

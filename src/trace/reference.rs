@@ -27,7 +27,7 @@ use super::{SampleKey, Surface, caustic_share, point_light_terms_with};
 use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, aperture_share, point_incidence};
 use crate::math::Ray;
-use crate::shading::{ambient, beneath_notice, faces_away, local_weight, shadow_filter, transmission_weight};
+use crate::shading::{ambient, beneath_notice, faces_away, local_weight, no_light, shadow_filter, transmission_weight};
 use crate::world::World;
 use glam::DVec3;
 
@@ -131,6 +131,9 @@ impl<'w, 's, F: FormulaTable> Reference<'w, 's, F> {
         let (model, mat) = (world.scene.settings.shading, world.material_of(at.object));
         let mut color = DVec3::ZERO;
         let r = at.reflectance(mat);
+        if model.no_light {
+            return no_light(r.kd, r.diffuse);
+        }
         let ambient_term = ambient(world.ambient, r.ka, r.ambient);
         if model.ambient {
             color += ambient_term;

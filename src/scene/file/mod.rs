@@ -349,17 +349,25 @@ impl FileScene {
                 );
             }
         };
+        let shading = ShadingModel {
+            ambient: self.render.ambient,
+            diffuse: self.render.diffuse,
+            specular,
+            no_light: self.render.no_light,
+        };
+        if shading.no_light && shading != ShadingModel::NO_LIGHT {
+            return fail(
+                &r.key("no_light"),
+                "shows the diffuse colour in place of every local term: set ambient = false, diffuse = false and specular = \"none\" with it".to_string(),
+            );
+        }
         Ok(Settings {
             width,
             height,
             samples_per_pixel,
             seed: self.image.seed,
             depth,
-            shading: ShadingModel {
-                ambient: self.render.ambient,
-                diffuse: self.render.diffuse,
-                specular,
-            },
+            shading,
             shadows: self.render.shadows,
             background: color(&r.key("background"), self.render.background, limits::MAX_LIGHT)?,
             adaptive_threshold: in_range(

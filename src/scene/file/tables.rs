@@ -57,6 +57,8 @@ pub(super) struct FileRender {
     pub(super) diffuse: bool,
     /// "blinn", "phong" or "none".
     pub(super) specular: String,
+    /// The diffuse colour `k_d S` alone, no light (with the three terms above off).
+    pub(super) no_light: bool,
     pub(super) shadows: bool,
     pub(super) background: Xyz,
     pub(super) adaptive_threshold: f64,
@@ -69,6 +71,7 @@ impl Default for FileRender {
             ambient: true,
             diffuse: true,
             specular: "blinn".to_string(),
+            no_light: false,
             shadows: true,
             background: Xyz([0.0; 3]),
             adaptive_threshold: limits::DEFAULT_ADAPTIVE_THRESHOLD,

@@ -115,6 +115,9 @@ impl Writer<Toml> {
             Specular::None => "none",
         };
         self.line(format!("specular = \"{specular}\""));
+        if s.shading.no_light {
+            self.line("no_light = true");
+        }
         self.line(format!("shadows = {}", s.shadows));
         self.line(format!("background = {}", vec3(s.background)));
         self.line(format!("adaptive_threshold = {}", num(s.adaptive_threshold)));

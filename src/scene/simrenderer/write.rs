@@ -11,7 +11,7 @@ use crate::conventions::{Conventions, SamplePosition};
 use crate::interference::{Aperture, ApertureLight};
 use crate::light::Light;
 use crate::material::Material;
-use crate::scene::{Scene, Specular};
+use crate::scene::{Scene, ShadingModel, Specular};
 use crate::shape::{Cuboid, Shape};
 use glam::DVec3;
 
@@ -25,8 +25,11 @@ fn vec3(v: DVec3) -> String {
 }
 
 /// `reflexion_algorithm`'s name for a shading model, if SIMRenderer has it.
-fn algorithm(ambient: bool, diffuse: bool, specular: Specular) -> Option<&'static str> {
-    Some(match (ambient, diffuse, specular) {
+fn algorithm(model: &ShadingModel) -> Option<&'static str> {
+    if model.no_light {
+        return Some("no_light");
+    }
+    Some(match (model.ambient, model.diffuse, model.specular) {
         (true, false, Specular::None) => "ambient",
         (false, true, Specular::None) => "diffuse",
         (false, false, Specular::Phong) => "phong_specular",
@@ -160,7 +163,7 @@ impl Writer<SimRenderer> {
                 "center"
             }
         };
-        let shading = algorithm(s.shading.ambient, s.shading.diffuse, s.shading.specular).unwrap_or_else(|| {
+        let shading = algorithm(&s.shading).unwrap_or_else(|| {
             self.refused.push(format!(
                 "render shading (ambient {}, diffuse {}, specular {:?}): SIMRenderer's reflexion_algorithm keeps one term, ambient and diffuse (no_specular), or all three",
                 s.shading.ambient, s.shading.diffuse, s.shading.specular
@@ -534,17 +537,21 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_reflexion_algorithm_but_no_light_has_its_model() {
-        for i in 1..8 {
+    fn every_reflexion_algorithm_has_its_model() {
+        for i in 0..8 {
             let m = super::super::shading_of(i).unwrap();
-            assert_eq!(
-                algorithm(m.ambient, m.diffuse, m.specular),
-                Some(super::super::REFLEXION_ALGORITHMS[i])
-            );
+            assert_eq!(algorithm(&m), Some(super::super::REFLEXION_ALGORITHMS[i]));
         }
-        assert_eq!(super::super::shading_of(0), None);
-        assert_eq!(algorithm(true, false, Specular::Blinn), None);
-        assert_eq!(algorithm(false, false, Specular::None), None);
+        assert_eq!(super::super::shading_of(0), Some(ShadingModel::NO_LIGHT));
+        assert_eq!(super::super::shading_of(8), None);
+        let model = |ambient, specular| ShadingModel {
+            ambient,
+            diffuse: false,
+            specular,
+            no_light: false,
+        };
+        assert_eq!(algorithm(&model(true, Specular::Blinn)), None);
+        assert_eq!(algorithm(&model(false, Specular::None)), None);
     }
 
     #[test]

@@ -857,6 +857,7 @@ mod tests {
                 ambient: true,
                 diffuse: true,
                 specular: model_specular,
+                no_light: false,
             };
             let lanes = &mut lanes_of(&set, (p, n), &att, point_color);
             speculars(lanes, points.len(), n, eye, &mat, model);
@@ -1011,6 +1012,7 @@ mod tests {
             ambient: true,
             diffuse: true,
             specular: Specular::Blinn,
+            no_light: false,
         };
         let tinted: Vec<DVec3> = (0..len)
             .map(|i| [DVec3::ONE, DVec3::ZERO, DVec3::new(0.6, 0.27, 0.08)][i % 3])

@@ -174,14 +174,7 @@ impl<'a> Reader<'a> {
                 "reflexion_algorithm" => {
                     let read = lex::enumeration(l.value, l.value_column, &REFLEXION_ALGORITHMS);
                     if let Some(i) = self.value(&block, &l, read)? {
-                        match shading_of(i) {
-                            Some(s) => r.shading = Some(s),
-                            None => {
-                                let m =
-                                    "no_light (the diffuse colour, unlit) is not supported yet by lumiere".to_string();
-                                self.problem(&place, m, then)?;
-                            }
-                        }
+                        r.shading = shading_of(i);
                     }
                 }
                 "pixel_coordinate" => {

@@ -289,17 +289,18 @@ pub const PIXEL_COORDINATES: [&str; 6] = [
 pub(super) const SPACES: [&str; 3] = ["linear", "voxel", "multi_voxel"];
 pub(super) const COLOR_NORMALIZATIONS: [&str; 2] = ["clamp_channel", "division_factor"];
 
-/// The shading model of each `reflexion_algorithm` lumiere renders (`no_light`, which draws
-/// the diffuse colour unlit, it does not).
+/// The shading model of each `reflexion_algorithm`, by its number.
 pub fn shading_of(algorithm: usize) -> Option<ShadingModel> {
     let m = |ambient, diffuse, specular| {
         Some(ShadingModel {
             ambient,
             diffuse,
             specular,
+            no_light: false,
         })
     };
     match algorithm {
+        0 => Some(ShadingModel::NO_LIGHT),
         1 => m(true, false, Specular::None),
         2 => m(false, true, Specular::None),
         3 => m(false, false, Specular::Phong),
