@@ -19,6 +19,12 @@ pub enum SamplePosition {
     Center,
     /// The pixel's top-left corner, for every sample.
     Corner,
+    /// Its top-right corner, for every sample.
+    TopRight,
+    /// Its bottom-left corner, for every sample.
+    BottomLeft,
+    /// Its bottom-right corner, for every sample.
+    BottomRight,
 }
 
 /// Where a camera ray starts.
@@ -231,6 +237,9 @@ impl Conventions {
                         ("regular", S::Regular),
                         ("center", S::Center),
                         ("corner", S::Corner),
+                        ("top_right", S::TopRight),
+                        ("bottom_left", S::BottomLeft),
+                        ("bottom_right", S::BottomRight),
                     ],
                 )?
             }

@@ -46,7 +46,8 @@ fn jitter_stream(world: &World, x: u32, y: u32) -> ShortStream {
 /// (reading the stream's next two numbers); for `regular`, that cell's center; for
 /// `center`, the pixel's center; for `corner`, its top-left corner as SIMRenderer places it
 /// (the image's center measured with an integer division by 2: half a pixel right of or
-/// below the true corner along an odd width or height). `n` is the scene's
+/// below the true corner along an odd width or height), and for `top_right`, `bottom_left`
+/// and `bottom_right` the corner one pixel right, below, or both. `n` is the scene's
 /// [`grid_side`](crate::scene::Settings::grid_side), read once per pixel.
 #[inline]
 fn sample_at(world: &World, rng: &mut ShortStream, n: u32, x: u32, y: u32, k: u32) -> (f64, f64) {
@@ -61,9 +62,18 @@ fn sample_at(world: &World, rng: &mut ShortStream, n: u32, x: u32, y: u32, k: u3
         }
         SamplePosition::Regular => (x + cell(cx + 0.5), y + cell(cy + 0.5)),
         SamplePosition::Center => (x + 0.5, y + 0.5),
-        SamplePosition::Corner => {
+        SamplePosition::Corner
+        | SamplePosition::TopRight
+        | SamplePosition::BottomLeft
+        | SamplePosition::BottomRight => {
             let odd_half = |side: u32| f64::from(side % 2) * 0.5;
-            (x + odd_half(s.width), y + odd_half(s.height))
+            let (right, below) = match s.conventions.sample_position {
+                SamplePosition::TopRight => (1.0, 0.0),
+                SamplePosition::BottomLeft => (0.0, 1.0),
+                SamplePosition::BottomRight => (1.0, 1.0),
+                _ => (0.0, 0.0),
+            };
+            (x + right + odd_half(s.width), y + below + odd_half(s.height))
         }
     }
 }

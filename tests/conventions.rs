@@ -56,6 +56,10 @@ fn sample_positions_by_hand() {
     // SIMRenderer's corner: the image's center at (4 div 2, 3 div 2) = (2, 1) pixels from
     // the top-left, so along the odd height half a pixel below the true corner.
     assert_eq!(at("sample_position = \"corner\"", 1), (1.0, 2.5));
+    // SIMRenderer's other corners: one pixel right, below, or both.
+    assert_eq!(at("sample_position = \"top_right\"", 1), (2.0, 2.5));
+    assert_eq!(at("sample_position = \"bottom_left\"", 1), (1.0, 3.5));
+    assert_eq!(at("sample_position = \"bottom_right\"", 1), (2.0, 3.5));
     // The chapter's: sample 0 anywhere in the top-left cell, sample 3 in the bottom-right.
     let (x, y) = at("", 0);
     assert!((1.0..1.5).contains(&x) && (2.0..2.5).contains(&y), "({x}, {y})");
@@ -270,4 +274,32 @@ fn the_command_line_sets_presets_and_switches_and_probe_prints_them() {
         String::from_utf8_lossy(&out.stderr),
         "lumiere: error: --convention refracting: must be \"transparent\" or \"closed\", got \"open\"\n"
     );
+}
+
+#[test]
+fn a_pixels_bottom_right_corner_is_the_next_pixels_top_left() {
+    // A sphere and a floor seen at 9 x 7: pixel (x, y) under `bottom_right` traces the ray
+    // of pixel (x + 1, y + 1) under `corner`, to the bit; `top_right` that of (x + 1, y),
+    // `bottom_left` that of (x, y + 1).
+    let body = "[[shapes]]\ntype = \"sphere\"\ncenter = [0, 4, 0]\nradius = 1\n\
+                [[shapes]]\ntype = \"plane\"\npoint = [0, 0, -1]\nnormal = [0, 0, 1]\n\
+                [[lights]]\ntype = \"point\"\nposition = [2, 0, 3]\ncolor = [1, 1, 1]\n";
+    let film = |position: &str| {
+        let mut s = scene(body, &format!("sample_position = \"{position}\""), 1);
+        (s.settings.width, s.settings.height) = (9, 7);
+        lumiere::render::render(&World::new(&s), &|| {}).0
+    };
+    let corner = film("corner");
+    let at =
+        |f: &lumiere::film::Film, x: u32, y: u32| f.pixels[(y * f.width + x) as usize].to_array().map(f64::to_bits);
+    for (position, (dx, dy)) in [("top_right", (1, 0)), ("bottom_left", (0, 1)), ("bottom_right", (1, 1))] {
+        let f = film(position);
+        for y in 0..6 {
+            for x in 0..8 {
+                assert_eq!(at(&f, x, y), at(&corner, x + dx, y + dy), "{position} ({x}, {y})");
+            }
+        }
+    }
+    // Not a blank image: the sphere and the lit floor differ.
+    assert_ne!(at(&corner, 4, 3), at(&corner, 4, 6));
 }

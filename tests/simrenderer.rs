@@ -435,18 +435,6 @@ fn what_lumiere_does_not_model_is_refused_by_name() {
             "lab.txt:2:1: primitive.btriangle: barycentric triangles (btriangle) are not supported yet by lumiere",
         ),
         (
-            "raytracer\npixel_coordinate top_right\nend",
-            "lab.txt:2:18: raytracer.pixel_coordinate: top_right is not supported yet by lumiere (its samples are at the pixel's top_left corner, its center, or random)",
-        ),
-        (
-            "raytracer\ncoordonnee_pixel 2\nend",
-            "lab.txt:2:18: raytracer.coordonnee_pixel: bottom_left is not supported yet by lumiere (its samples are at the pixel's top_left corner, its center, or random)",
-        ),
-        (
-            "raytracer\npixel_coordinate bottom_right\nend",
-            "lab.txt:2:18: raytracer.pixel_coordinate: bottom_right is not supported yet by lumiere (its samples are at the pixel's top_left corner, its center, or random)",
-        ),
-        (
             "raytracer\ncolor_normalization division_factor\nend",
             "lab.txt:2:21: raytracer.color_normalization: division_factor is not supported yet by lumiere, which clamps each channel (clamp_channel)",
         ),
@@ -859,4 +847,21 @@ fn a_decimal_comma_is_named_where_it_splits_a_number() {
     let parsed = parse(&listed).unwrap();
     assert_eq!(parsed.warnings, []);
     assert_eq!(parsed.scene.camera.position, DVec3::new(0.0, -8.0, 5.0));
+}
+
+#[test]
+fn every_pixel_coordinate_is_a_sample_position() {
+    for (value, expected) in [
+        ("top_left", SamplePosition::Corner),
+        ("top_right", SamplePosition::TopRight),
+        ("bottom_left", SamplePosition::BottomLeft),
+        ("bottom_right", SamplePosition::BottomRight),
+        ("center", SamplePosition::Center),
+        ("random", SamplePosition::Jittered),
+        ("2", SamplePosition::BottomLeft),
+    ] {
+        let text = format!("raytracer\npixel_coordinate {value}\nend\n");
+        let parsed = parse(&text).unwrap_or_else(|e| panic!("{value}: {e}"));
+        assert_eq!(parsed.scene.settings.conventions.sample_position, expected, "{value}");
+    }
 }

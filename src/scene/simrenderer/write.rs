@@ -154,6 +154,9 @@ impl Writer<SimRenderer> {
         self.line("");
         let pixel = match conv.sample_position {
             SamplePosition::Corner => "top_left",
+            SamplePosition::TopRight => "top_right",
+            SamplePosition::BottomLeft => "bottom_left",
+            SamplePosition::BottomRight => "bottom_right",
             SamplePosition::Center => "center",
             SamplePosition::Jittered => "random",
             SamplePosition::Regular => {

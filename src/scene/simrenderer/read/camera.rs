@@ -180,18 +180,14 @@ impl<'a> Reader<'a> {
                 "pixel_coordinate" => {
                     let read = lex::enumeration(l.value, l.value_column, &PIXEL_COORDINATES);
                     if let Some(i) = self.value(&block, &l, read)? {
-                        match i {
-                            0 => r.pixel_coordinate = Some(SamplePosition::Corner),
-                            4 => r.pixel_coordinate = Some(SamplePosition::Center),
-                            5 => r.pixel_coordinate = Some(SamplePosition::Jittered),
-                            _ => {
-                                let m = format!(
-                                    "{} is not supported yet by lumiere (its samples are at the pixel's top_left corner, its center, or random)",
-                                    PIXEL_COORDINATES[i]
-                                );
-                                self.problem(&place, m, then)?;
-                            }
-                        }
+                        r.pixel_coordinate = Some(match i {
+                            0 => SamplePosition::Corner,
+                            1 => SamplePosition::TopRight,
+                            2 => SamplePosition::BottomLeft,
+                            3 => SamplePosition::BottomRight,
+                            4 => SamplePosition::Center,
+                            _ => SamplePosition::Jittered,
+                        });
                     }
                 }
                 _ => {
