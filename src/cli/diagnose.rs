@@ -10,6 +10,7 @@ use lumiere::compare::read::{Image, read_image};
 use lumiere::diagnose::mistakes::{Change, catalogue};
 use lumiere::diagnose::{Diagnosis, Options, Oracle, Score, report};
 use lumiere::film::WriteError;
+use lumiere::limits::MAX_THREADS;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -30,10 +31,15 @@ pub struct DiagnoseArgs {
     /// with `--json`).
     #[arg(long, conflicts_with_all = ["scene", "images", "report"])]
     pub list: bool,
-    /// Largest per-channel difference (8-bit levels, in [0, 255]) that counts as equal.
-    #[arg(long, default_value_t = Options::default().tolerance, value_parser = super::numbers::levels, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = Options::default().tolerance,
+        help = format!("Largest per-channel difference (8-bit levels, in [0, {}]) that counts as equal", u8::MAX),
+        value_parser = super::numbers::levels,
+        allow_negative_numbers = true
+    )]
     pub tolerance: u8,
-    /// Largest fraction (0 to 1) of the judged pixels beyond the tolerance for the image to
+    /// Largest fraction (in [0, 1]) of the judged pixels beyond the tolerance for the image to
     /// match the oracle ("no mistake found").
     #[arg(long, default_value_t = Options::default().max_fraction, value_name = "FRACTION", value_parser = super::numbers::fraction, allow_negative_numbers = true)]
     pub max_fraction: f64,
@@ -55,8 +61,12 @@ pub struct DiagnoseArgs {
     /// Print the diagnosis as JSON.
     #[arg(long)]
     pub json: bool,
-    /// Worker threads (default: all cores). The diagnosis does not depend on it.
-    #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Worker threads, in [1, {MAX_THREADS}] (default: all cores). The diagnosis does not depend on it"),
+        value_parser = super::numbers::threads,
+        allow_negative_numbers = true
+    )]
     pub threads: Option<usize>,
     /// The oracle's settings, as `render` takes them (the size is the image's).
     #[command(flatten)]
