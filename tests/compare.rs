@@ -292,6 +292,36 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
         )
     );
     assert!(out.is_empty());
+    // BMP and PPM headers alike, which their decoders refuse in their own words (a BMP side
+    // past 65535, PPM sides whose bytes pass 64 bits): a BMP file and info header of
+    // 100000 x 100000 pixels at 24 bits, and a PPM header with no pixel after it.
+    let mut bmp = b"BM".to_vec();
+    for field in [54u32, 0, 54, 40, 100_000, 100_000] {
+        bmp.extend(field.to_le_bytes());
+    }
+    bmp.extend([1, 0, 24, 0]);
+    bmp.extend([0; 24]);
+    let ppm = b"P6\n4294967295 4294967295\n255\n".to_vec();
+    for (name, bytes, size) in [
+        ("bomb.bmp", bmp, "BMP image is 100000 x 100000 = 10000000000"),
+        (
+            "bomb.ppm",
+            ppm,
+            "PPM image is 4294967295 x 4294967295 = 18446744065119617025",
+        ),
+    ] {
+        let bomb = dir.join(name);
+        fs::write(&bomb, bytes).unwrap();
+        let (code, out, err) = compare(&[s(&bomb), s(&a)]);
+        assert_eq!((code, out.as_str()), (2, ""));
+        assert_eq!(
+            err,
+            format!(
+                "lumiere: error: {}: the {size} pixels: compare reads at most 33554432 (as many as lumiere renders)\n",
+                bomb.display()
+            )
+        );
+    }
     // A decoder's message that ends in a line break is still one line.
     let cut = dir.join("cut.jpg");
     fs::write(&cut, b"\xff\xd8\xff\xe0\x00\x10JFIF\x00").unwrap();

@@ -11,6 +11,7 @@ mod compare;
 mod conventions;
 mod culled_scans;
 mod diagnose;
+mod diagnose_size;
 mod exit_codes;
 mod family;
 mod figures;

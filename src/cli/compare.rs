@@ -21,14 +21,19 @@ pub struct CompareArgs {
     pub a: PathBuf,
     /// The oracle's image (the same size).
     pub b: PathBuf,
-    /// Largest per-channel difference (8-bit levels, in [0, 255]) that still counts as equal.
-    #[arg(long, default_value_t = 0, value_parser = super::numbers::levels, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 0,
+        help = format!("Largest per-channel difference (8-bit levels, in [0, {}]) that still counts as equal", u8::MAX),
+        value_parser = super::numbers::levels,
+        allow_negative_numbers = true
+    )]
     pub tolerance: u8,
-    /// Largest fraction (0 to 1) of the judged pixels allowed beyond the tolerance
+    /// Largest fraction (in [0, 1]) of the judged pixels allowed beyond the tolerance
     /// (0.001 = 0.1 %). The default 0 fails on any such pixel.
     #[arg(long, default_value_t = 0.0, value_name = "FRACTION", value_parser = super::numbers::fraction, allow_negative_numbers = true)]
     pub max_fraction: f64,
-    /// Also fail when the FLIP mean of the judged pixels exceeds this (0 to 1).
+    /// Also fail when the FLIP mean of the judged pixels exceeds this (in [0, 1]).
     #[arg(long, value_name = "FLIP", value_parser = super::numbers::fraction, allow_negative_numbers = true)]
     pub max_flip: Option<f64>,
     /// The scene both images render: pixels spanning an edge (an object's outline, a crease,

@@ -10,6 +10,8 @@ use lumiere::compare::read::{Image, read_image};
 use lumiere::diagnose::mistakes::{Change, catalogue};
 use lumiere::diagnose::{Diagnosis, Options, Oracle, Score, report};
 use lumiere::film::WriteError;
+use lumiere::limits::MAX_THREADS;
+use lumiere::scene::{self, Scene};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -30,10 +32,15 @@ pub struct DiagnoseArgs {
     /// with `--json`).
     #[arg(long, conflicts_with_all = ["scene", "images", "report"])]
     pub list: bool,
-    /// Largest per-channel difference (8-bit levels, in [0, 255]) that counts as equal.
-    #[arg(long, default_value_t = Options::default().tolerance, value_parser = super::numbers::levels, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = Options::default().tolerance,
+        help = format!("Largest per-channel difference (8-bit levels, in [0, {}]) that counts as equal", u8::MAX),
+        value_parser = super::numbers::levels,
+        allow_negative_numbers = true
+    )]
     pub tolerance: u8,
-    /// Largest fraction (0 to 1) of the judged pixels beyond the tolerance for the image to
+    /// Largest fraction (in [0, 1]) of the judged pixels beyond the tolerance for the image to
     /// match the oracle ("no mistake found").
     #[arg(long, default_value_t = Options::default().max_fraction, value_name = "FRACTION", value_parser = super::numbers::fraction, allow_negative_numbers = true)]
     pub max_fraction: f64,
@@ -55,8 +62,12 @@ pub struct DiagnoseArgs {
     /// Print the diagnosis as JSON.
     #[arg(long)]
     pub json: bool,
-    /// Worker threads (default: all cores). The diagnosis does not depend on it.
-    #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Worker threads, in [1, {MAX_THREADS}] (default: all cores). The diagnosis does not depend on it"),
+        value_parser = super::numbers::threads,
+        allow_negative_numbers = true
+    )]
     pub threads: Option<usize>,
     /// The oracle's settings, as `render` takes them (the size is the image's).
     #[command(flatten)]
@@ -103,10 +114,9 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
     let reports = report_folders(args.report.as_deref(), &args.images)?;
     check_reports_spare_inputs(&reports, scene_path, &args.images, args.top)?;
     let (width, height) = (images[0].width, images[0].height);
-    let mut overrides = args.overrides.clone();
     for (given, actual, flag) in [
-        (overrides.width, width, "--width"),
-        (overrides.height, height, "--height"),
+        (args.overrides.width, width, "--width"),
+        (args.overrides.height, height, "--height"),
     ] {
         if let Some(g) = given
             && g != actual
@@ -117,9 +127,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
             )));
         }
     }
-    overrides.width = Some(width);
-    overrides.height = Some(height);
-    let scene = load_scene(scene_path, &overrides)?;
+    let (scene, scene_size) = load_at_size(scene_path, &args.overrides, (width, height))?;
     let options = Options {
         tolerance: args.tolerance,
         max_fraction: args.max_fraction,
@@ -136,6 +144,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
     let scene_name = scene_path.display().to_string();
     for (k, (d, path)) in diagnoses.iter().zip(&args.images).enumerate() {
         let image_name = path.display().to_string();
+        let size_note = size_note(&image_name, (width, height), scene_size);
         if let Some(dir) = reports.get(k) {
             if !dir.exists() {
                 std::fs::create_dir_all(dir)
@@ -149,15 +158,54 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
             value["scene"] = scene_name.as_str().into();
             value["image"] = image_name.into();
             value["top"] = d.top(args.top).map(|c| c.name).collect::<Vec<_>>().into();
+            value["size_note"] = size_note.into();
             println!("{value}");
         } else {
             if k > 0 {
                 println!();
             }
+            if let Some(note) = size_note {
+                println!("note: {note}");
+            }
             print!("{}", text(d, &scene_name, &image_name, args.top));
         }
     }
     Ok(())
+}
+
+/// The scene of `path` with `overrides`, set to the image's size `(width, height)`, and its
+/// own size (the file's, which [`size_note`] gives).
+fn load_at_size(
+    path: &Path,
+    overrides: &Overrides,
+    (width, height): (u32, u32),
+) -> Result<(Scene, (u32, u32)), CliError> {
+    let at_own_size = Overrides {
+        width: None,
+        height: None,
+        ..overrides.clone()
+    };
+    let mut scene = load_scene(path, &at_own_size)?;
+    let own_size = (scene.settings.width, scene.settings.height);
+    let image_size = scene::Overrides {
+        width: Some(width),
+        height: Some(height),
+        ..scene::Overrides::default()
+    };
+    image_size.apply(&mut scene).map_err(CliError::BadInput)?;
+    Ok((scene, own_size))
+}
+
+/// The note for an image whose aspect ratio is not the scene's: the oracle is rendered at
+/// the image's size all the same, so the scene's own size is said. `None` for an image of
+/// the scene's aspect ratio (a smaller or larger render of the same view).
+fn size_note(image: &str, (width, height): (u32, u32), (scene_width, scene_height): (u32, u32)) -> Option<String> {
+    let same_aspect = width as u64 * scene_height as u64 == scene_width as u64 * height as u64;
+    (!same_aspect).then(|| {
+        format!(
+            "{image} is {width} x {height}; the scene is {scene_width} x {scene_height}, another aspect ratio: rendered at {width} x {height}"
+        )
+    })
 }
 
 /// What kind of change a mistake makes to the oracle's render, as `--list` names it.

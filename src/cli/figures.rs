@@ -9,6 +9,7 @@ use clap::Args;
 use lumiere::figures::check::{Problem, check_index, check_set, extra_folders, recorded_scale};
 use lumiere::figures::{FigureSet, FiguresError, Reuse, Run, files, generate_until, write_index};
 use lumiere::film::{WriteError, write_atomic};
+use lumiere::limits::{self, MAX_FIGURE_SCALE, MAX_THREADS};
 use lumiere::review::{self, PageItem, Section};
 use lumiere::scene::{Format, simrenderer};
 use serde_json::json;
@@ -28,8 +29,13 @@ pub struct FiguresArgs {
     /// The figure files: one folder per set, with its set.toml and one scene file per figure.
     #[arg(long, default_value = lumiere::figures::DEFAULT_DIR)]
     pub scenes: PathBuf,
-    /// Image size factor, in (0, 4] (0.25 gives 200 x 150 previews).
-    #[arg(long, default_value_t = 1.0, value_parser = super::numbers::figure_scale, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 1.0,
+        help = format!("Image size factor, in (0, {}] (0.25 gives 200 x 150 previews)", limits::short(MAX_FIGURE_SCALE)),
+        value_parser = super::numbers::figure_scale,
+        allow_negative_numbers = true
+    )]
     pub scale: f64,
     /// List the sets and their images, render nothing.
     #[arg(long)]
@@ -44,8 +50,12 @@ pub struct FiguresArgs {
     /// that differ (index.html, shared with `lumiere review-snapshots`).
     #[arg(long, default_value = "target/review")]
     pub review: PathBuf,
-    /// Worker threads (default: all cores). The images do not depend on it.
-    #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Worker threads, in [1, {MAX_THREADS}] (default: all cores). The images do not depend on it"),
+        value_parser = super::numbers::threads,
+        allow_negative_numbers = true
+    )]
     pub threads: Option<usize>,
     /// Write each figure's scene into DIR/<set>/ (in --format), render nothing: a
     /// student renders each figure with their own SIMRenderer lab. The figures SIMRenderer

@@ -24,6 +24,7 @@ use clap::builder::{PossibleValue, PossibleValuesParser, StyledStr, TypedValuePa
 use clap::{Args, Parser, Subcommand};
 use lumiere::accel::AccelChoice;
 use lumiere::conventions::Conventions;
+use lumiere::limits::{self, MAX_ADAPTIVE_THRESHOLD, MAX_DEPTH, MAX_DIMENSION, MAX_SAMPLES};
 use lumiere::scene::{self, Format, LoadOptions, Loaded, Scene};
 use lumiere::skips::Skip;
 use std::path::{Path, PathBuf};
@@ -139,24 +140,52 @@ pub struct CompletionsArgs {
 /// Values that replace the scene file's own.
 #[derive(Args, Debug, Default, Clone)]
 pub struct Overrides {
-    /// Image width in pixels, in [1, 16384].
-    #[arg(long, value_parser = numbers::dimension, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Image width in pixels, in [1, {MAX_DIMENSION}]"),
+        value_parser = numbers::dimension,
+        allow_negative_numbers = true
+    )]
     pub width: Option<u32>,
-    /// Image height in pixels, in [1, 16384].
-    #[arg(long, value_parser = numbers::dimension, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Image height in pixels, in [1, {MAX_DIMENSION}]"),
+        value_parser = numbers::dimension,
+        allow_negative_numbers = true
+    )]
     pub height: Option<u32>,
-    /// Samples per pixel: a perfect square (1, 4, 9, ...) in [1, 1024], an n x n stratified
-    /// grid.
-    #[arg(long, value_parser = numbers::samples, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!(
+            "Samples per pixel: a perfect square (1, 4, 9, ...) in [1, {MAX_SAMPLES}], an n x n stratified grid"
+        ),
+        value_parser = numbers::samples,
+        allow_negative_numbers = true
+    )]
     pub spp: Option<u32>,
-    /// Seed of every random stream, in [0, 18446744073709551615].
-    #[arg(long, value_parser = numbers::seed, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Seed of every random stream, in [0, {}]", u64::MAX),
+        value_parser = numbers::seed,
+        allow_negative_numbers = true
+    )]
     pub seed: Option<u64>,
-    /// Recursion depth, in [1, 64] (1 = no secondary rays).
-    #[arg(long, value_parser = numbers::depth, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Recursion depth, in [1, {MAX_DEPTH}] (1 = no secondary rays)"),
+        value_parser = numbers::depth,
+        allow_negative_numbers = true
+    )]
     pub depth: Option<u32>,
-    /// Adaptive depth control threshold in 8-bit levels, in [0, 255] (0 = off).
-    #[arg(long, value_parser = numbers::adaptive_threshold, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!(
+            "Adaptive depth control threshold in 8-bit levels, in [0, {}] (0 = off)",
+            limits::short(MAX_ADAPTIVE_THRESHOLD)
+        ),
+        value_parser = numbers::adaptive_threshold,
+        allow_negative_numbers = true
+    )]
     pub adaptive_threshold: Option<f64>,
     /// Conventions where the chapter and SIMRenderer differ: a preset, `chapter` or
     /// `simrenderer` (see scenes/README.md, "Conventions").

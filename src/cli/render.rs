@@ -6,6 +6,7 @@ use clap::{ArgGroup, Args};
 use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::film::{WriteError, write_atomic};
 use lumiere::layers::render_layers;
+use lumiere::limits::MAX_THREADS;
 use lumiere::render::{RenderStats, render_rows, render_rows_reference};
 use lumiere::skips::Skip;
 use lumiere::world::World;
@@ -34,8 +35,12 @@ pub struct RenderArgs {
     pub srgb: bool,
     #[command(flatten)]
     pub overrides: Overrides,
-    /// Worker threads (default: all cores). The image does not depend on it.
-    #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Worker threads, in [1, {MAX_THREADS}] (default: all cores). The image does not depend on it"),
+        value_parser = super::numbers::threads,
+        allow_negative_numbers = true
+    )]
     pub threads: Option<usize>,
     /// Print ray counts, work skipped by reason and time by phase after rendering.
     #[arg(long)]

@@ -10,11 +10,21 @@ const MAX_RAYS: usize = 10_000_000;
 /// Options of `lumiere stress`.
 #[derive(Args, Debug, Clone)]
 pub struct StressArgs {
-    /// Rays per (shape, family) cell, in [1, 10000000].
-    #[arg(long, default_value_t = 2000, value_parser = rays, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 2000,
+        help = format!("Rays per (shape, family) cell, in [1, {MAX_RAYS}]"),
+        value_parser = rays,
+        allow_negative_numbers = true
+    )]
     pub rays: usize,
-    /// Seed of the campaign's random streams, in [0, 18446744073709551615].
-    #[arg(long, default_value_t = 7, value_parser = super::numbers::seed, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 7,
+        help = format!("Seed of the campaign's random streams, in [0, {}]", u64::MAX),
+        value_parser = super::numbers::seed,
+        allow_negative_numbers = true
+    )]
     pub seed: u64,
     /// Print the table as JSON instead of text.
     #[arg(long)]

@@ -4,7 +4,9 @@
 use super::{CliError, Verbosity, with_threads};
 use clap::{Args, Subcommand};
 use lumiere::film::{WriteError, write_atomic};
-use lumiere::limits::{self, Whole};
+use lumiere::limits::{
+    self, MAX_COORDINATE, MAX_DIMENSION, MAX_LIGHT_POINTS, MAX_PHOTONS, MAX_SAMPLES, MAX_THREADS, Whole,
+};
 use lumiere::placement::Placement;
 use lumiere::scene;
 use lumiere::scene::rules;
@@ -36,33 +38,79 @@ pub struct CausticStudyArgs {
     /// The scene file; it must have a `[caustics]` table (its filter and bounces are kept).
     #[arg(default_value = "scenes/figures/caustics/01-reference-glass.toml")]
     pub scene: PathBuf,
-    /// Photon counts, comma-separated, each in [1, 10000000].
-    #[arg(long, value_delimiter = ',', default_value = "10000,30000,100000,300000,1000000", value_parser = photons, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "10000,30000,100000,300000,1000000",
+        help = format!("Photon counts, comma-separated, each in [1, {MAX_PHOTONS}]"),
+        value_parser = photons,
+        allow_hyphen_values = true
+    )]
     pub photons: Vec<u64>,
-    /// Estimate radii, comma-separated, each in (0, 1e9].
-    #[arg(long, value_delimiter = ',', default_value = "0.025,0.05,0.1", value_parser = radius, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0.025,0.05,0.1",
+        help = format!("Estimate radii, comma-separated, each in (0, {}]", limits::short(MAX_COORDINATE)),
+        value_parser = radius,
+        allow_hyphen_values = true
+    )]
     pub radii: Vec<f64>,
-    /// Photons of the reference, in [1, 10000000].
-    #[arg(long, default_value_t = 10_000_000, value_parser = photons, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 10_000_000,
+        help = format!("Photons of the reference, in [1, {MAX_PHOTONS}]"),
+        value_parser = photons,
+        allow_negative_numbers = true
+    )]
     pub reference_photons: u64,
-    /// Radius of the reference's estimate, in (0, 1e9].
-    #[arg(long, default_value_t = 0.025, value_parser = radius, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 0.025,
+        help = format!("Radius of the reference's estimate, in (0, {}]", limits::short(MAX_COORDINATE)),
+        value_parser = radius,
+        allow_negative_numbers = true
+    )]
     pub reference_radius: f64,
-    /// Image width in pixels, in [1, 16384].
-    #[arg(long, default_value_t = 200, value_parser = super::numbers::dimension, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 200,
+        help = format!("Image width in pixels, in [1, {MAX_DIMENSION}]"),
+        value_parser = super::numbers::dimension,
+        allow_negative_numbers = true
+    )]
     pub width: u32,
-    /// Image height in pixels, in [1, 16384].
-    #[arg(long, default_value_t = 150, value_parser = super::numbers::dimension, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 150,
+        help = format!("Image height in pixels, in [1, {MAX_DIMENSION}]"),
+        value_parser = super::numbers::dimension,
+        allow_negative_numbers = true
+    )]
     pub height: u32,
-    /// Samples per pixel (a perfect square in [1, 1024]); default: the scene's.
-    #[arg(long, value_parser = super::numbers::samples, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Samples per pixel (a perfect square in [1, {MAX_SAMPLES}]); default: the scene's"),
+        value_parser = super::numbers::samples,
+        allow_negative_numbers = true
+    )]
     pub spp: Option<u32>,
-    /// Renders per configuration, in [1, 100]; the median time is reported (the images are
-    /// identical).
-    #[arg(long, default_value_t = 1, value_parser = repeats, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 1,
+        help = format!(
+            "Renders per configuration, in [1, {MAX_REPEATS}]; the median time is reported (the images are identical)"
+        ),
+        value_parser = repeats,
+        allow_negative_numbers = true
+    )]
     pub repeats: u32,
-    /// Worker threads, in [1, 1024] (default: all cores).
-    #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Worker threads, in [1, {MAX_THREADS}] (default: all cores)"),
+        value_parser = super::numbers::threads,
+        allow_negative_numbers = true
+    )]
     pub threads: Option<usize>,
     /// Output directory (created if missing).
     #[arg(long, default_value = "study-caustics")]
@@ -74,8 +122,14 @@ pub struct SoftShadowArgs {
     /// The scene file; its first area light is studied.
     #[arg(default_value = "scenes/soft-shadows.toml")]
     pub scene: PathBuf,
-    /// Numbers of points N, comma-separated, each in [1, 100000].
-    #[arg(long, value_delimiter = ',', default_value = "1,4,16,64,256,1024", value_parser = light_points, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "1,4,16,64,256,1024",
+        help = format!("Numbers of points N, comma-separated, each in [1, {MAX_LIGHT_POINTS}]"),
+        value_parser = light_points,
+        allow_hyphen_values = true
+    )]
     pub points: Vec<u32>,
     /// Placements, comma-separated: chapter, uniform, stratified, fibonacci.
     #[arg(long, default_value = "chapter,uniform,stratified,fibonacci")]
@@ -83,24 +137,55 @@ pub struct SoftShadowArgs {
     /// Modes, comma-separated: fixed, per_sample.
     #[arg(long, default_value = "fixed,per_sample")]
     pub modes: String,
-    /// Image width in pixels, in [1, 16384].
-    #[arg(long, default_value_t = 200, value_parser = super::numbers::dimension, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 200,
+        help = format!("Image width in pixels, in [1, {MAX_DIMENSION}]"),
+        value_parser = super::numbers::dimension,
+        allow_negative_numbers = true
+    )]
     pub width: u32,
-    /// Image height in pixels, in [1, 16384].
-    #[arg(long, default_value_t = 150, value_parser = super::numbers::dimension, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 150,
+        help = format!("Image height in pixels, in [1, {MAX_DIMENSION}]"),
+        value_parser = super::numbers::dimension,
+        allow_negative_numbers = true
+    )]
     pub height: u32,
-    /// Samples per pixel (a perfect square in [1, 1024]); default: the scene's.
-    #[arg(long, value_parser = super::numbers::samples, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Samples per pixel (a perfect square in [1, {MAX_SAMPLES}]); default: the scene's"),
+        value_parser = super::numbers::samples,
+        allow_negative_numbers = true
+    )]
     pub spp: Option<u32>,
-    /// Seed, in [0, 18446744073709551615] (default: the scene's).
-    #[arg(long, value_parser = super::numbers::seed, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Seed, in [0, {}] (default: the scene's)", u64::MAX),
+        value_parser = super::numbers::seed,
+        allow_negative_numbers = true
+    )]
     pub seed: Option<u64>,
-    /// Renders per configuration, in [1, 100]; the median time is reported (the images are
-    /// identical).
-    #[arg(long, default_value_t = 1, value_parser = repeats, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 1,
+        help = format!(
+            "Renders per configuration, in [1, {MAX_REPEATS}]; the median time is reported (the images are identical)"
+        ),
+        value_parser = repeats,
+        allow_negative_numbers = true
+    )]
     pub repeats: u32,
-    /// Points of the reference, in [1, 100000] (in [1, 50000] with --check-reference).
-    #[arg(long, default_value_t = 4096, value_parser = light_points, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        default_value_t = 4096,
+        help = format!(
+            "Points of the reference, in [1, {MAX_LIGHT_POINTS}] (in [1, {MAX_CHECKED_REFERENCE_POINTS}] with --check-reference)"
+        ),
+        value_parser = light_points,
+        allow_negative_numbers = true
+    )]
     pub reference_points: u32,
     /// Placement of the reference's points.
     #[arg(long, default_value = "stratified")]
@@ -111,8 +196,12 @@ pub struct SoftShadowArgs {
     /// Also render a reference with twice the points and report how much the two differ.
     #[arg(long)]
     pub check_reference: bool,
-    /// Worker threads, in [1, 1024] (default: all cores).
-    #[arg(long, value_parser = super::numbers::threads, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        help = format!("Worker threads, in [1, {MAX_THREADS}] (default: all cores)"),
+        value_parser = super::numbers::threads,
+        allow_negative_numbers = true
+    )]
     pub threads: Option<usize>,
     /// Output directory (created if missing).
     #[arg(long, default_value = "study")]
@@ -134,19 +223,23 @@ fn repeats(text: &str) -> Result<u32, String> {
     limits::check_count(Whole::parse(text), MAX_REPEATS)
 }
 
+/// Most points of the reference with `--check-reference`, which renders a second reference
+/// with twice its points.
+const MAX_CHECKED_REFERENCE_POINTS: u32 = MAX_LIGHT_POINTS / 2;
+
 /// A number of points of an area light (`--points`' elements, `--reference-points`).
 fn light_points(text: &str) -> Result<u32, String> {
-    limits::check_count(Whole::parse(text), limits::MAX_LIGHT_POINTS)
+    limits::check_count(Whole::parse(text), MAX_LIGHT_POINTS)
 }
 
 /// A number of photons (`--photons`' elements, `--reference-photons`).
 fn photons(text: &str) -> Result<u64, String> {
-    limits::check_count(Whole::parse(text), limits::MAX_PHOTONS)
+    limits::check_count(Whole::parse(text), MAX_PHOTONS)
 }
 
 /// A radius of the caustic estimate (`--radii`' elements, `--reference-radius`).
 fn radius(text: &str) -> Result<f64, String> {
-    super::numbers::real(text, |r| rules::positive(r, limits::MAX_COORDINATE))
+    super::numbers::real(text, |r| rules::positive(r, MAX_COORDINATE))
 }
 
 /// `list` without its repeated values, in the order given.
@@ -239,9 +332,9 @@ fn soft_shadows(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {
         points: args.reference_points,
     };
     let max_ref = if args.check_reference {
-        limits::MAX_LIGHT_POINTS / 2
+        MAX_CHECKED_REFERENCE_POINTS
     } else {
-        limits::MAX_LIGHT_POINTS
+        MAX_LIGHT_POINTS
     };
     limits::check_count(reference.points, max_ref).map_err(|m| bad(format!("--reference-points: {m}")))?;
     let size = scene::Overrides {

@@ -73,30 +73,84 @@ pub fn decode(bytes: &[u8], extension: &str) -> Result<Image, String> {
     }
     let image = decode_any(bytes, extension)?;
     if image.width == 0 || image.height == 0 {
-        return Err(no_pixels(image.format, image.width, image.height));
+        return Err(no_pixels(image.format, image.width.into(), image.height.into()));
     }
     Ok(image)
 }
 
-fn no_pixels(format: &str, width: u32, height: u32) -> String {
+fn no_pixels(format: &str, width: u64, height: u64) -> String {
     format!("the {format} image is {width} x {height} pixels: it has no pixel to compare")
 }
 
-/// The size a PNG, BMP or TGA header declares, read where each format keeps it (PNG's
-/// IHDR, big-endian; BMP's info header, whose height is negative for rows stored top down;
-/// TGA's image specification), for the images their decoders refuse before saying why.
-fn declared_size(bytes: &[u8], format: ImageFormat) -> Option<(u32, u32)> {
-    let u16_le = |at: usize| Some(u16::from_le_bytes(bytes.get(at..at + 2)?.try_into().ok()?) as u32);
-    let i32_le = |at: usize| Some(i32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?).unsigned_abs());
-    let u32_be = |at: usize| Some(u32::from_be_bytes(bytes.get(at..at + 4)?.try_into().ok()?));
+/// The refusal of a `format` image of `width` x `height` pixels when it has more than
+/// [`limits::MAX_PIXELS`], the most lumiere renders; `None` when it has no more.
+fn too_many_pixels(format: &str, width: u64, height: u64) -> Option<String> {
+    let pixels = width as u128 * height as u128;
+    (pixels > limits::MAX_PIXELS as u128).then(|| {
+        format!(
+            "the {format} image is {width} x {height} = {pixels} pixels: compare reads at most {} (as many as lumiere renders)",
+            limits::MAX_PIXELS
+        )
+    })
+}
+
+/// The size an image's header declares, before any pixel is decoded: as its decoder reads
+/// it, or, for a header the decoder refuses (a side of 0; BMP's sides past 65535, PPM's
+/// sides whose bytes pass 64 bits), as [`declared_size`] reads it.
+fn header_size(bytes: &[u8], format: ImageFormat) -> Option<(u64, u64)> {
+    let reader = image::ImageReader::with_format(std::io::Cursor::new(bytes), format);
+    match reader.into_dimensions() {
+        Ok((w, h)) => Some((w.into(), h.into())),
+        Err(_) => declared_size(bytes, format),
+    }
+}
+
+/// The size a PNG, BMP, TGA or PPM header declares, read where each format keeps it (PNG's
+/// IHDR, big-endian; BMP's info header, whose height is negative for rows stored top down,
+/// and a negative width declares no size; TGA's image specification;
+/// [`pnm_declared_size`]), for the images their decoders refuse before saying why.
+fn declared_size(bytes: &[u8], format: ImageFormat) -> Option<(u64, u64)> {
+    let u16_le = |at: usize| Some(u16::from_le_bytes(bytes.get(at..at + 2)?.try_into().ok()?).into());
+    let i32_le = |at: usize| Some(i32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?));
+    let u32_be = |at: usize| Some(u32::from_be_bytes(bytes.get(at..at + 4)?.try_into().ok()?).into());
     match format {
         ImageFormat::Png => Some((u32_be(16)?, u32_be(20)?)),
         // A 12-byte core header keeps 16-bit sides; the later headers 32-bit ones.
         ImageFormat::Bmp if u16_le(14)? == 12 => Some((u16_le(18)?, u16_le(20)?)),
-        ImageFormat::Bmp => Some((i32_le(18)?, i32_le(22)?)),
+        ImageFormat::Bmp => Some((u64::try_from(i32_le(18)?).ok()?, i32_le(22)?.unsigned_abs().into())),
         ImageFormat::Tga => Some((u16_le(12)?, u16_le(14)?)),
+        ImageFormat::Pnm => pnm_declared_size(bytes),
         _ => None,
     }
+}
+
+/// The size a PNM header declares: the two numbers after the magic number (P1 to P6), or
+/// the values of WIDTH and HEIGHT (P7, PAM); comments (`#` to the line's end) are skipped.
+fn pnm_declared_size(bytes: &[u8]) -> Option<(u64, u64)> {
+    let (magic, header) = bytes.split_at_checked(2)?;
+    let mut words = header
+        .split(|&b| b == b'\n')
+        .flat_map(|line| {
+            line.split(|&b| b == b'#')
+                .next()
+                .unwrap_or_default()
+                .split(u8::is_ascii_whitespace)
+        })
+        .filter(|word| !word.is_empty());
+    let number = |word: Option<&[u8]>| std::str::from_utf8(word?).ok()?.parse::<u64>().ok();
+    if magic != b"P7" {
+        return Some((number(words.next())?, number(words.next())?));
+    }
+    let (mut width, mut height) = (None, None);
+    let mut fields = words.take_while(|&word| word != b"ENDHDR");
+    while let Some(key) = fields.next() {
+        match key {
+            b"WIDTH" => width = number(fields.next()),
+            b"HEIGHT" => height = number(fields.next()),
+            _ => {}
+        }
+    }
+    Some((width?, height?))
 }
 
 /// The name messages give a format lumiere reads through the `image` crate (`PPM` for the
@@ -183,16 +237,11 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
     };
     // The size from the header, before any pixel is decoded: a header may claim more than
     // memory holds.
-    if let Ok((w, h)) = image::ImageReader::with_format(std::io::Cursor::new(bytes), format).into_dimensions()
-        && w as u64 * h as u64 > limits::MAX_PIXELS
-    {
-        return Err(format!(
-            "the {name} image is {w} x {h} = {} pixels: compare reads at most {} (as many as lumiere renders)",
-            w as u64 * h as u64,
-            limits::MAX_PIXELS
-        ));
+    let size = header_size(bytes, format);
+    if let Some(refusal) = size.and_then(|(w, h)| too_many_pixels(name, w, h)) {
+        return Err(refusal);
     }
-    let img = image::load_from_memory_with_format(bytes, format).map_err(|e| match declared_size(bytes, format) {
+    let img = image::load_from_memory_with_format(bytes, format).map_err(|e| match size {
         Some((w, h)) if w == 0 || h == 0 => no_pixels(name, w, h),
         _ => format!("cannot decode the {name} image: {e}"),
     })?;
@@ -425,13 +474,7 @@ mod tests {
             &[0, 0, 0, 0, 0, 0, 0, 4, 8, 2, 0, 0, 0],
         ]
         .concat();
-        let mut bmp = b"BM".to_vec();
-        bmp.extend([54u32, 0, 54].iter().flat_map(|v| v.to_le_bytes()));
-        bmp.extend(40u32.to_le_bytes());
-        bmp.extend(5i32.to_le_bytes());
-        bmp.extend(0i32.to_le_bytes());
-        bmp.extend([1u8, 0, 24, 0]);
-        bmp.extend([0u8; 24]);
+        let bmp = bmp_header(5, 0);
         let tga = [0u8, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 24, 0];
         for (bytes, extension, message) in [
             (&png[..], "png", "the PNG image is 0 x 4 pixels"),
@@ -441,6 +484,65 @@ mod tests {
             assert_eq!(
                 decode(bytes, extension).unwrap_err(),
                 format!("{message}: it has no pixel to compare")
+            );
+        }
+    }
+
+    /// The file and info headers of a 24-bit BMP of `width` x `height` pixels (a negative
+    /// height for rows stored top down), without its pixels.
+    fn bmp_header(width: i32, height: i32) -> Vec<u8> {
+        let mut bmp = b"BM".to_vec();
+        bmp.extend([54u32, 0, 54].iter().flat_map(|v| v.to_le_bytes()));
+        bmp.extend(40u32.to_le_bytes());
+        bmp.extend(width.to_le_bytes());
+        bmp.extend(height.to_le_bytes());
+        bmp.extend([1u8, 0, 24, 0]);
+        bmp.extend([0u8; 24]);
+        bmp
+    }
+
+    /// Headers claiming more pixels than lumiere renders, which BMP's and PPM's decoders
+    /// refuse in their own words (a side past 65535; sides whose bytes pass 64 bits), are
+    /// refused naming the size, as PNG's are.
+    #[test]
+    fn huge_bmp_and_ppm_headers_are_refused_naming_their_size() {
+        let mut core = b"BM".to_vec();
+        core.extend([26u32, 0, 26].iter().flat_map(|v| v.to_le_bytes()));
+        core.extend(12u32.to_le_bytes());
+        core.extend([65535u16, 65535, 1, 24].iter().flat_map(|v| v.to_le_bytes()));
+        let bmp = |w, h| (bmp_header(w, h), "bmp");
+        let ppm = |text: &'static str| (text.as_bytes().to_vec(), "ppm");
+        for ((bytes, extension), message) in [
+            (
+                bmp(100_000, 100_000),
+                "the BMP image is 100000 x 100000 = 10000000000 pixels",
+            ),
+            (
+                bmp(100_000, -100_000),
+                "the BMP image is 100000 x 100000 = 10000000000 pixels",
+            ),
+            (bmp(1, i32::MIN), "the BMP image is 1 x 2147483648 = 2147483648 pixels"),
+            ((core, "bmp"), "the BMP image is 65535 x 65535 = 4294836225 pixels"),
+            (
+                ppm("P6\n4294967295 4294967295\n255\n"),
+                "the PPM image is 4294967295 x 4294967295 = 18446744065119617025 pixels",
+            ),
+            (
+                ppm("P3 # made by hand\n# a whole line of comment\n4294967295\r\n4294967295 255\n"),
+                "the PPM image is 4294967295 x 4294967295 = 18446744065119617025 pixels",
+            ),
+            (
+                ppm("P5\n4294967296 1\n255\n"),
+                "the PPM image is 4294967296 x 1 = 4294967296 pixels",
+            ),
+            (
+                ppm("P7\nWIDTH 4294967295\nHEIGHT 4294967295\nDEPTH 3\nMAXVAL 255\nTUPLTYPE RGB\nENDHDR\n"),
+                "the PPM image is 4294967295 x 4294967295 = 18446744065119617025 pixels",
+            ),
+        ] {
+            assert_eq!(
+                decode(&bytes, extension).unwrap_err(),
+                format!("{message}: compare reads at most 33554432 (as many as lumiere renders)")
             );
         }
     }
