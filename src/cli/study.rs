@@ -33,6 +33,44 @@ pub enum StudyKind {
     Caustics(CausticStudyArgs),
 }
 
+/// The renders of a study: their size, samples and repeats.
+#[derive(Args, Debug)]
+pub struct StudyImage {
+    #[arg(
+        long,
+        default_value_t = 200,
+        help = format!("Image width in pixels, in [1, {MAX_DIMENSION}]"),
+        value_parser = super::numbers::dimension,
+        allow_negative_numbers = true
+    )]
+    pub width: u32,
+    #[arg(
+        long,
+        default_value_t = 150,
+        help = format!("Image height in pixels, in [1, {MAX_DIMENSION}]"),
+        value_parser = super::numbers::dimension,
+        allow_negative_numbers = true
+    )]
+    pub height: u32,
+    #[arg(
+        long,
+        help = format!("Samples per pixel (a perfect square in [1, {MAX_SAMPLES}]); default: the scene's"),
+        value_parser = super::numbers::samples,
+        allow_negative_numbers = true
+    )]
+    pub spp: Option<u32>,
+    #[arg(
+        long,
+        default_value_t = 1,
+        help = format!(
+            "Renders per configuration, in [1, {MAX_REPEATS}]; the median time is reported (the images are identical)"
+        ),
+        value_parser = repeats,
+        allow_negative_numbers = true
+    )]
+    pub repeats: u32,
+}
+
 #[derive(Args, Debug)]
 pub struct CausticStudyArgs {
     /// The scene file; it must have a `[caustics]` table (its filter and bounces are kept).
@@ -72,39 +110,8 @@ pub struct CausticStudyArgs {
         allow_negative_numbers = true
     )]
     pub reference_radius: f64,
-    #[arg(
-        long,
-        default_value_t = 200,
-        help = format!("Image width in pixels, in [1, {MAX_DIMENSION}]"),
-        value_parser = super::numbers::dimension,
-        allow_negative_numbers = true
-    )]
-    pub width: u32,
-    #[arg(
-        long,
-        default_value_t = 150,
-        help = format!("Image height in pixels, in [1, {MAX_DIMENSION}]"),
-        value_parser = super::numbers::dimension,
-        allow_negative_numbers = true
-    )]
-    pub height: u32,
-    #[arg(
-        long,
-        help = format!("Samples per pixel (a perfect square in [1, {MAX_SAMPLES}]); default: the scene's"),
-        value_parser = super::numbers::samples,
-        allow_negative_numbers = true
-    )]
-    pub spp: Option<u32>,
-    #[arg(
-        long,
-        default_value_t = 1,
-        help = format!(
-            "Renders per configuration, in [1, {MAX_REPEATS}]; the median time is reported (the images are identical)"
-        ),
-        value_parser = repeats,
-        allow_negative_numbers = true
-    )]
-    pub repeats: u32,
+    #[command(flatten)]
+    pub image: StudyImage,
     #[arg(
         long,
         help = format!("Worker threads, in [1, {MAX_THREADS}] (default: all cores)"),
@@ -137,29 +144,8 @@ pub struct SoftShadowArgs {
     /// Modes, comma-separated: fixed, per_sample.
     #[arg(long, default_value = "fixed,per_sample")]
     pub modes: String,
-    #[arg(
-        long,
-        default_value_t = 200,
-        help = format!("Image width in pixels, in [1, {MAX_DIMENSION}]"),
-        value_parser = super::numbers::dimension,
-        allow_negative_numbers = true
-    )]
-    pub width: u32,
-    #[arg(
-        long,
-        default_value_t = 150,
-        help = format!("Image height in pixels, in [1, {MAX_DIMENSION}]"),
-        value_parser = super::numbers::dimension,
-        allow_negative_numbers = true
-    )]
-    pub height: u32,
-    #[arg(
-        long,
-        help = format!("Samples per pixel (a perfect square in [1, {MAX_SAMPLES}]); default: the scene's"),
-        value_parser = super::numbers::samples,
-        allow_negative_numbers = true
-    )]
-    pub spp: Option<u32>,
+    #[command(flatten)]
+    pub image: StudyImage,
     #[arg(
         long,
         help = format!("Seed, in [0, {}] (default: the scene's)", u64::MAX),
@@ -167,16 +153,6 @@ pub struct SoftShadowArgs {
         allow_negative_numbers = true
     )]
     pub seed: Option<u64>,
-    #[arg(
-        long,
-        default_value_t = 1,
-        help = format!(
-            "Renders per configuration, in [1, {MAX_REPEATS}]; the median time is reported (the images are identical)"
-        ),
-        value_parser = repeats,
-        allow_negative_numbers = true
-    )]
-    pub repeats: u32,
     #[arg(
         long,
         default_value_t = 4096,
@@ -266,9 +242,9 @@ fn caustics(args: &CausticStudyArgs, v: Verbosity) -> Result<(), CliError> {
     let photons = distinct(&args.photons);
     let radii = distinct(&args.radii);
     let size = scene::Overrides {
-        width: Some(args.width),
-        height: Some(args.height),
-        spp: args.spp,
+        width: Some(args.image.width),
+        height: Some(args.image.height),
+        spp: args.image.spp,
         ..scene::Overrides::default()
     };
     size.apply(&mut scene).map_err(bad)?;
@@ -277,7 +253,7 @@ fn caustics(args: &CausticStudyArgs, v: Verbosity) -> Result<(), CliError> {
     let plan = lumiere::caustic_study::Plan {
         photons,
         radii,
-        repeats: args.repeats,
+        repeats: args.image.repeats,
         reference: lumiere::caustic_study::Config {
             photons: args.reference_photons,
             radius: args.reference_radius,
@@ -338,9 +314,9 @@ fn soft_shadows(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {
     };
     limits::check_count(reference.points, max_ref).map_err(|m| bad(format!("--reference-points: {m}")))?;
     let size = scene::Overrides {
-        width: Some(args.width),
-        height: Some(args.height),
-        spp: args.spp,
+        width: Some(args.image.width),
+        height: Some(args.image.height),
+        spp: args.image.spp,
         seed: args.seed,
         ..scene::Overrides::default()
     };
@@ -351,7 +327,7 @@ fn soft_shadows(args: &SoftShadowArgs, v: Verbosity) -> Result<(), CliError> {
         points,
         placements,
         modes,
-        repeats: args.repeats,
+        repeats: args.image.repeats,
         reference,
         check_reference: args.check_reference,
     };
