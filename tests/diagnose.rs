@@ -9,7 +9,9 @@
 //! another seed is diagnosed "no mistake found" (a corner-sampled one naming SIMRenderer's
 //! sample position within sampling). The mistakes again in images sampled on a jittered
 //! grid (not equal to any render). The oracle's image mirrored, upside down and with red
-//! and blue exchanged, each named by its post-process. The gains of a
+//! and blue exchanged, each named by its post-process. Images made with the specular
+//! exponent doubled, halved, a quarter and four times, at the pixels' centres and jittered,
+//! named with the exponent fitted, and `render --mistake specular-exponent`. The gains of a
 //! doubled specular term and of opaque filters; an sRGB oracle; the README's fixture; the
 //! same diagnosis for any thread count and from one oracle for many images; the command
 //! line's text, JSON and report, for one image and for several, its bad input, and the
@@ -722,8 +724,9 @@ fn command_line_lists_the_catalogue() {
     assert_eq!(names, list.iter().map(|m| m.name).collect::<Vec<_>>());
     let kinds = |kind: &str| entries.iter().filter(|e| e["kind"] == kind).count();
     // Four post-processes (gamma, the two flips, red and blue exchanged), two recursion
-    // depths (one level short, one over), one mistake per convention where SIMRenderer's
-    // preset differs from the chapter's, the rest formulas.
+    // depths (one level short, one over), the specular exponent fitted to the image, one
+    // mistake per convention where SIMRenderer's preset differs from the chapter's, the rest
+    // formulas.
     let conventions = lumiere::conventions::Conventions::CHAPTER
         .describe()
         .into_iter()
@@ -732,8 +735,9 @@ fn command_line_lists_the_catalogue() {
         .count();
     assert_eq!(kinds("post-process"), 4);
     assert_eq!(kinds("recursion"), 2);
+    assert_eq!(kinds("fitted"), 1);
     assert_eq!(kinds("convention"), conventions);
-    assert_eq!(kinds("formula"), list.len() - 6 - conventions);
+    assert_eq!(kinds("formula"), list.len() - 7 - conventions);
     // With a scene it is refused: --list renders nothing.
     let o = lumiere(&["diagnose", "--list", "scenes/reference.toml"]);
     assert_eq!(o.status.code(), Some(2));
@@ -894,5 +898,210 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
             argb.display()
         )),
         "{err}"
+    );
+}
+
+#[test]
+fn a_wrong_specular_exponent_is_named_with_the_exponent_used() {
+    // A student's image made with every material's specular exponent multiplied (the
+    // scene's own renderer on the scene so edited): on the reference scene (Blinn, n = 20)
+    // and on the Phong figure of n = 8 (its sphere; the floor has no highlight), doubled,
+    // halved, and on the reference a quarter (Phong's exponent kept for Blinn's term) and
+    // four times. Each is named the exponent mistake first, with the exponent used: the
+    // factors fitted are 2.0005, 0.4999, 0.2501, 4.0010, 2.0005 and 0.5000, each leaving no
+    // pixel beyond the tolerance (RMS at most 0.08 levels) and explaining every one of the
+    // 278, 945, 3384, 296, 117 and 200 beyond against the oracle. Phong's term for Blinn's
+    // leaves 106 pixels beyond on the doubled exponent; on four times the exponent, none
+    // (Phong's n and Blinn's 4n draw the same highlight within the tolerance), at RMS 0.15
+    // where the exponent's is 0.00.
+    for (path, factor, words) in [
+        ("scenes/reference.toml", 2.0, "yours looks like 40, the scene's is 20"),
+        ("scenes/reference.toml", 0.5, "yours looks like 10, the scene's is 20"),
+        ("scenes/reference.toml", 0.25, "yours looks like 5, the scene's is 20"),
+        ("scenes/reference.toml", 4.0, "yours looks like 80, the scene's is 20"),
+        (
+            "scenes/figures/shading/07-phong-n8.toml",
+            2.0,
+            "yours looks like 16, the scene's is 8",
+        ),
+        (
+            "scenes/figures/shading/07-phong-n8.toml",
+            0.5,
+            "yours looks like 4, the scene's is 8",
+        ),
+    ] {
+        let scene = centred(path);
+        let mut student = scene.clone();
+        for m in &mut student.materials {
+            m.shininess *= factor;
+        }
+        let d = diagnose(&scene, &rendered(&student), &Options::default());
+        let best = d.top(1).next().unwrap();
+        let fit = best.fitted.as_ref().unwrap();
+        println!(
+            "{path} x{factor}: {} beyond, fitted x{:.4}, after {} beyond, RMS {:.4}, explains {:?}; second {:?}",
+            d.oracle.beyond,
+            fit.factor,
+            best.score.beyond,
+            best.score.rms,
+            best.fixes.as_ref().map(|r| r.pixels),
+            d.top(2).nth(1).map(|c| (c.name, c.score.beyond))
+        );
+        assert_eq!(d.verdict, Verdict::MistakeFound, "{path} x{factor}");
+        assert_eq!(best.name, "specular-exponent", "{path} x{factor}");
+        assert!(
+            (fit.factor / factor - 1.0).abs() < 0.001,
+            "{path} x{factor}: {}",
+            fit.factor
+        );
+        assert_eq!(fit.words, format!("the specular exponent n: {words}"));
+        assert_eq!(best.score.beyond, 0, "{path} x{factor}");
+        assert!(best.score.rms < 0.1, "{path} x{factor}: {}", best.score.rms);
+        assert_eq!(best.fixes.as_ref().unwrap().pixels, d.oracle.beyond, "{path} x{factor}");
+    }
+}
+
+#[test]
+fn a_wrong_specular_exponent_sampled_otherwise_is_named() {
+    // The student's image with the exponent doubled or halved, sampled as the scenes say
+    // (2 x 2 jittered), against the oracle at the pixels' centres: no factor renders it
+    // exactly. The fits are 2.0319 and 0.5023 on the reference scene (19 and 8 pixels left
+    // beyond), 2.0161 and 0.4981 on the Phong figure (0 and 0), each within 2 %, and the
+    // exponent mistake is first. Four times the exponent on the reference scene is Phong's
+    // term for Blinn's within sampling (Phong's n and Blinn's 4n draw the same highlight):
+    // phong-for-blinn, with nothing fitted, is named first (13 pixels beyond, RMS 0.81) and
+    // the exponent second (fitted 4.3109: 11 beyond, RMS 0.76).
+    let sampled_otherwise = |scene: &Scene, factor: f64| {
+        let mut student = scene.clone();
+        student.settings.samples_per_pixel = 4;
+        let mut c = student.settings.conventions;
+        c.set("sample_position", "jittered").unwrap();
+        student.set_conventions(c);
+        for m in &mut student.materials {
+            m.shininess *= factor;
+        }
+        rendered(&student)
+    };
+    for (path, factor) in [
+        ("scenes/reference.toml", 2.0),
+        ("scenes/reference.toml", 0.5),
+        ("scenes/figures/shading/07-phong-n8.toml", 2.0),
+        ("scenes/figures/shading/07-phong-n8.toml", 0.5),
+        ("scenes/reference.toml", 4.0),
+    ] {
+        let scene = centred(path);
+        let d = diagnose(&scene, &sampled_otherwise(&scene, factor), &Options::default());
+        let top: Vec<_> = d.top(2).map(|c| (c.name, c.score.beyond, c.score.rms)).collect();
+        let fit = d.ranking.iter().find_map(|c| c.fitted.as_ref()).unwrap();
+        println!(
+            "{path} x{factor}: fitted x{:.4}, {} beyond against the oracle, {top:?}",
+            fit.factor, d.oracle.beyond
+        );
+        let names: Vec<&str> = top.iter().map(|t| t.0).collect();
+        let off = (fit.factor / factor - 1.0).abs();
+        if factor == 4.0 {
+            assert_eq!(names, ["phong-for-blinn", "specular-exponent"], "{path} x{factor}");
+            assert!(off < 0.1, "{path} x{factor}: {}", fit.factor);
+        } else {
+            assert_eq!(names[0], "specular-exponent", "{path} x{factor}");
+            assert!(off < 0.02, "{path} x{factor}: {}", fit.factor);
+        }
+    }
+}
+
+#[test]
+fn command_line_renders_a_doubled_exponent_that_diagnose_names() {
+    // `render --mistake specular-exponent` draws the scene with every exponent doubled, the
+    // bytes of the scene with its exponents written doubled; diagnose names it first and
+    // says the exponent in its text and JSON.
+    let dir = temp_dir("render-exponent");
+    let image = dir.join("exponent.png");
+    let reference = repo("scenes/reference.toml");
+    let (w, h) = (W.to_string(), H.to_string());
+    let settings = [
+        "--width",
+        &w,
+        "--height",
+        &h,
+        "--spp",
+        "1",
+        "--convention",
+        "sample_position=center",
+    ];
+    let render = |scene: &std::path::Path, out: &std::path::Path| {
+        let args = [
+            "render",
+            scene.to_str().unwrap(),
+            "--mistake",
+            "specular-exponent",
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        lumiere(&[&args[..], &settings[..]].concat())
+    };
+    let o = render(&reference, &image);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut doubled = centred("scenes/reference.toml");
+    for m in &mut doubled.materials {
+        m.shininess *= 2.0;
+    }
+    assert_eq!(
+        lumiere::film::encode_png(W, H, &rendered(&doubled)).unwrap(),
+        std::fs::read(&image).unwrap()
+    );
+    let args = diagnose_reference_centred(&image);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = lumiere(&args);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        text.contains("verdict            mistake found\n1. specular-exponent: "),
+        "{text}"
+    );
+    assert!(
+        text.contains("\n     fitted        the specular exponent n: yours looks like 40, the scene's is 20\n"),
+        "{text}"
+    );
+    let report = dir.join("report");
+    let o = lumiere(&[&args[..], &["--report", report.to_str().unwrap()]].concat());
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert!(
+        html.contains("(Phong's exponent kept where Blinn's term takes four times it); fitted: the specular exponent n: yours looks like 40, the scene's is 20</td>"),
+        "{html}"
+    );
+    let o = lumiere(&[&args[..], &["--json"]].concat());
+    let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(d["ranking"][0]["name"], "specular-exponent");
+    let factor = d["ranking"][0]["fitted"]["factor"].as_f64().unwrap();
+    assert!((factor - 2.0).abs() < 0.002, "{factor}");
+    assert!(d["ranking"][1].get("fitted").is_none(), "{}", d["ranking"][1]);
+
+    // A scene without a specular term shows no exponent: nothing to render, exit 2, and
+    // the mistake does not apply when diagnosed.
+    let diffuse = repo("scenes/figures/shading/02-diffuse.toml");
+    let out = dir.join("diffuse.png");
+    let o = render(&diffuse, &out);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains(&format!(
+            "--mistake specular-exponent: nothing to render on {}: it shows no highlight (no object's material has k_s > 0, or the specular term is off)",
+            diffuse.display()
+        )),
+        "{err}"
+    );
+    assert!(!out.exists());
+    let mut grey = centred("scenes/figures/shading/02-diffuse.toml");
+    grey.materials.iter_mut().for_each(|m| m.kd = 0.5);
+    let d = diagnose(
+        &centred("scenes/figures/shading/02-diffuse.toml"),
+        &rendered(&grey),
+        &Options::default(),
+    );
+    assert!(
+        d.not_applicable.contains(&"specular-exponent"),
+        "{:?}",
+        d.not_applicable
     );
 }

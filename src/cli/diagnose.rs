@@ -28,8 +28,8 @@ pub struct DiagnoseArgs {
     #[arg(required_unless_present = "list", value_name = "IMAGE")]
     pub images: Vec<PathBuf>,
     /// Print the catalogue of named mistakes instead, one a line: its name, what kind of
-    /// change it is (formula, convention, post-process) and what the wrong code does (JSON
-    /// with `--json`).
+    /// change it is (formula, convention, recursion, post-process, or fitted to the image)
+    /// and what the wrong code does (JSON with `--json`).
     #[arg(long, conflicts_with_all = ["scene", "images", "report"])]
     pub list: bool,
     #[arg(
@@ -214,6 +214,7 @@ fn change_kind(change: &Change) -> &'static str {
         Change::Formulas(_) => "formula",
         Change::Convention(_) => "convention",
         Change::Depth(_) => "recursion",
+        Change::SpecularExponent(_) => "fitted",
         Change::Gamma | Change::FlipVertical | Change::FlipHorizontal | Change::SwapRedBlue => "post-process",
     }
 }
@@ -394,6 +395,9 @@ fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
     if d.verdict.names_mistakes() {
         for (k, c) in d.top(top).enumerate() {
             let _ = writeln!(out, "{}. {}: {}", k + 1, c.name, c.description);
+            if let Some(fit) = &c.fitted {
+                let _ = writeln!(out, "     fitted        {}", fit.words);
+            }
             let _ = writeln!(out, "     after         {}", score_line(&c.score, d.tolerance));
             if let Some(r) = &c.fixes {
                 let _ = writeln!(

@@ -235,6 +235,9 @@ fn write_mistake(scene: &lumiere::scene::Scene, name: &str, output: &Path, args:
                 scene.settings.depth,
                 lumiere::limits::MAX_DEPTH
             ),
+            lumiere::diagnose::mistakes::Change::SpecularExponent(_) => {
+                "it shows no highlight (no object's material has k_s > 0, or the specular term is off)".to_string()
+            }
             _ => "it already follows this convention".to_string(),
         };
         return Err(CliError::BadInput(format!(

@@ -4,6 +4,8 @@
 //! - a convention switch ([`crate::conventions`]) set to SIMRenderer's value where the
 //!   oracle follows the chapter's (and to the chapter's where it follows SIMRenderer's);
 //! - the recursion depth one level short or over;
+//! - every material's specular exponent multiplied by a factor, which the diagnosis fits
+//!   to each image ([`super::exponent`]) instead of rendering it once;
 //! - a post-process of the oracle's image (the sRGB transfer, a vertical or horizontal
 //!   flip, red and blue exchanged).
 //!
@@ -12,7 +14,7 @@
 use crate::conventions::{Conventions, ShadowFilter};
 use crate::material::Material;
 use crate::math::{Ray, mirror, refract};
-use crate::scene::Specular;
+use crate::scene::{Scene, Specular};
 use crate::shading::{phong, positive_part, pow, transparent_filter};
 use crate::shape::{Shape, SurfaceHit};
 use crate::trace::Formulas;
@@ -31,6 +33,9 @@ pub enum Change {
     /// The recursion depth off by this many levels: the depth test compared one way where
     /// the other is meant, or the levels counted from 0.
     Depth(i32),
+    /// Every material's specular exponent `n` multiplied by this factor. The diagnosis fits
+    /// the factor to the image; this one is what `render --mistake` draws.
+    SpecularExponent(f64),
     /// The sRGB transfer function applied before quantisation.
     Gamma,
     /// The image upside down.
@@ -273,6 +278,33 @@ fn ambient_attenuated(term: DVec3, context: AmbientContext) -> DVec3 {
     term * context.attenuation
 }
 
+/// The chapter's formulas with every material's specular exponent multiplied by `factor`.
+pub fn exponent_scaled(factor: f64) -> Formulas {
+    Formulas {
+        exponent_scale: factor,
+        ..Formulas::CHAPTER
+    }
+}
+
+/// The specular exponents a render of `scene` shows, each once, ascending: those of the
+/// materials of its objects with a highlight (`k_s > 0`); none when its model has no
+/// specular term, where no exponent changes the image.
+pub fn shown_exponents(scene: &Scene) -> Vec<f64> {
+    if scene.settings.shading.specular == Specular::None {
+        return Vec::new();
+    }
+    let mut exponents: Vec<f64> = scene
+        .objects
+        .iter()
+        .map(|o| &scene.materials[o.material()])
+        .filter(|m| m.ks > 0.0)
+        .map(|m| m.shininess)
+        .collect();
+    exponents.sort_by(f64::total_cmp);
+    exponents.dedup();
+    exponents
+}
+
 /// The chapter's formulas with some entries replaced.
 fn with(change: fn(Formulas) -> Formulas) -> Change {
     Change::Formulas(change(Formulas::CHAPTER))
@@ -322,6 +354,11 @@ pub fn catalogue() -> Vec<Mistake> {
                 specular: eye_reversed,
                 ..f
             }),
+        ),
+        m(
+            "specular-exponent",
+            "a specular exponent other than the scene's n, by a factor fitted to the image: 2n, n/2, or n/4 (Phong's exponent kept where Blinn's term takes four times it)",
+            Change::SpecularExponent(2.0),
         ),
         m(
             "reflection-wrong-sign",
@@ -930,6 +967,77 @@ radius = 3
         let up = Ray::new(DVec3::new(10.0, 0.0, 5.0), DVec3::Z);
         let (j, h) = sphere_normal_unnormalised(&world, &up, f64::INFINITY).unwrap();
         assert_eq!((j, h.t, h.normal), (1, 5.0, -DVec3::Z));
+    }
+
+    #[test]
+    fn exponent_scaled_by_hand() {
+        // N = E = z, L = (0.6, 0, 0.8): L + E = (0.6, 0, 1.8), (N.H)^2 = 3.24 / 3.6 = 0.9, so
+        // Blinn's term at n = 20 is 0.9^10, and at twice the exponent 0.9^20. Phong's
+        // R = 2 (N.L) N - L = (-0.6, 0, 0.8), R.E = 0.8: at half the exponent, 0.8^10.
+        use crate::trace::formulas::FormulaTable;
+        let (n, l, e) = (DVec3::Z, DVec3::new(0.6, 0.0, 0.8), DVec3::Z);
+        let chapter = Formulas::CHAPTER;
+        assert!((chapter.specular(Specular::Blinn, n, l, e, 20.0) - 0.9f64.powi(10)).abs() < 1e-14);
+        let doubled = exponent_scaled(2.0).specular(Specular::Blinn, n, l, e, 20.0);
+        assert!((doubled - 0.9f64.powi(20)).abs() < 1e-14, "{doubled}");
+        let halved = exponent_scaled(0.5).specular(Specular::Phong, n, l, e, 20.0);
+        assert!((halved - 0.8f64.powi(10)).abs() < 1e-14, "{halved}");
+        // The chapter's scale leaves the term's bits as they are.
+        assert_eq!(
+            chapter.specular(Specular::Blinn, n, l, e, 20.0).to_bits(),
+            specular_term(Specular::Blinn, n, l, e, 20.0).to_bits()
+        );
+    }
+
+    #[test]
+    fn exponents_shown_by_hand() {
+        // Materials: a highlight of n = 20 on two shapes, n = 100 on one, n = 50 without k_s,
+        // and n = 8 on no shape. The exponents shown are 20 and 100; none when the model has
+        // no specular term.
+        let shapes = r#"
+[materials.twenty]
+ks = 0.5
+shininess = 20
+
+[materials.matte]
+ks = 0
+shininess = 50
+
+[materials.unused]
+ks = 0.5
+shininess = 8
+
+[materials.hundred]
+ks = 0.3
+shininess = 100
+
+[[shapes]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 1
+material = "twenty"
+
+[[shapes]]
+type = "sphere"
+center = [3, 0, 0]
+radius = 1
+material = "hundred"
+
+[[shapes]]
+type = "sphere"
+center = [-3, 0, 0]
+radius = 1
+material = "matte"
+
+[[shapes]]
+type = "sphere"
+center = [0, 3, 0]
+radius = 1
+material = "twenty"
+"#;
+        assert_eq!(shown_exponents(&scene_of(shapes)), [20.0, 100.0]);
+        let off = format!("[render]\nspecular = \"none\"\n{shapes}");
+        assert_eq!(shown_exponents(&scene_of(&off)), [] as [f64; 0]);
     }
 
     #[test]

@@ -5,7 +5,7 @@
 //! image's difference from it (`heat-N.png`). Heat-maps are black where equal, white at
 //! 16 levels or more ([`crate::compare::heat_map`]).
 
-use super::Diagnosis;
+use super::{Candidate, Diagnosis};
 use crate::compare::heat_map;
 use crate::film::{encode_png, write_atomic};
 use std::fmt::Write as _;
@@ -113,7 +113,7 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.4}</td><td>{}</td><td>{}</td></tr>",
             k + 1,
             c.name,
-            escape(c.description),
+            escape(&what_it_does(c)),
             c.score.beyond,
             c.score.rms,
             c.fixes.as_ref().map_or(0, |r| r.pixels),
@@ -136,7 +136,7 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
             html,
             "<p>Within sampling, the image is closer with {}: {} ({} pixels beyond, RMS {:.4}).</p>",
             c.name,
-            escape(c.description),
+            escape(&what_it_does(c)),
             c.score.beyond,
             c.score.rms
         );
@@ -153,4 +153,12 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
     write_atomic(&path, html.as_bytes())?;
     written.push(path);
     Ok(written)
+}
+
+/// A candidate's description, and for the fitted one what the fit found.
+fn what_it_does(c: &Candidate) -> String {
+    match &c.fitted {
+        Some(fit) => format!("{}; fitted: {}", c.description, fit.words),
+        None => c.description.to_string(),
+    }
 }

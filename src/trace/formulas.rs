@@ -3,8 +3,9 @@
 //! in [`crate::shading`], [`crate::math`] or [`crate::light`]) and is what the reference
 //! tracer uses unless told otherwise, compiled as direct calls; [`Formulas`] is the same
 //! table as function pointers, [`Formulas::CHAPTER`] holding the same functions, and a copy
-//! with some entries replaced by a wrong formula is how `lumiere diagnose` renders a named
-//! mistake (src/diagnose/mistakes.rs) without a second tracer. An entry that is the
+//! with some entries replaced by a wrong formula, or with every specular exponent scaled, is
+//! how `lumiere diagnose` renders a named mistake (src/diagnose/mistakes.rs) without a
+//! second tracer. An entry that is the
 //! identity in the chapter's table (`light_share`, `ambient`) is applied only where it
 //! changes the value, so the chapter's table gives the reference tracer's bits exactly.
 
@@ -36,6 +37,9 @@ pub struct Formulas {
     pub closest: fn(&World<'_>, &Ray, f64) -> Option<(usize, SurfaceHit)>,
     /// The specular term `spec` of a model: [`specular_term`].
     pub specular: fn(Specular, DVec3, DVec3, DVec3, f64) -> f64,
+    /// The factor a material's specular exponent `n` is multiplied by before the specular
+    /// entry reads it: 1, which leaves every exponent's bits as they are.
+    pub exponent_scale: f64,
     /// The law of reflection of an incident direction about the normal on its side:
     /// [`reflect`].
     pub reflect: fn(DVec3, DVec3) -> DVec3,
@@ -101,6 +105,7 @@ impl Formulas {
     pub const CHAPTER: Formulas = Formulas {
         closest: closest_before,
         specular: specular_term,
+        exponent_scale: 1.0,
         reflect,
         refract,
         refraction_normal: normal_on_the_rays_side,
@@ -206,7 +211,7 @@ impl FormulaTable for Formulas {
         (self.closest)(world, ray, t_max)
     }
     fn specular(&self, model: Specular, n: DVec3, l: DVec3, e: DVec3, exponent: f64) -> f64 {
-        (self.specular)(model, n, l, e, exponent)
+        (self.specular)(model, n, l, e, exponent * self.exponent_scale)
     }
     fn reflect(&self, v: DVec3, n: DVec3) -> DVec3 {
         (self.reflect)(v, n)
