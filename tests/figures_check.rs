@@ -87,7 +87,8 @@ fn a_swapped_figure_fails() {
     );
     assert!(
         lines[1].starts_with("lighting/01-ambient.png: ")
-            && lines[1].contains(" of 1200 pixels differ from a fresh render, largest difference ")
+            && lines[1].contains(" of 1200 pixels differ from a fresh render, in x ")
+            && lines[1].contains(", largest difference ")
             && lines[1].ends_with("; heat map D/review/figures/lighting/01-ambient.heat.png"),
         "{out}"
     );
@@ -126,7 +127,7 @@ fn an_edited_figure_fails_and_is_shown_on_the_review_page() {
     assert_eq!(
         lines[1],
         format!(
-            "lighting/01-ambient.png: 1 of 1200 pixels differ from a fresh render, largest difference 7 levels; heat map {d}/review/figures/lighting/01-ambient.heat.png"
+            "lighting/01-ambient.png: 1 of 1200 pixels differ from a fresh render, in x 3..3, y 2..2, largest difference 7 levels; heat map {d}/review/figures/lighting/01-ambient.heat.png"
         )
     );
     assert_eq!(lines[2], "lighting     DIFFERS");

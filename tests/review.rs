@@ -44,9 +44,12 @@ fn sheets_show_old_new_and_difference() {
     let stdout = String::from_utf8(o.stdout).unwrap();
     let lines: Vec<&str> = stdout.lines().collect();
     assert_eq!(lines.len(), 3, "{stdout}");
-    // Differences 20 and 4 levels on 36 channels: RMS sqrt((400 + 16) / 36) = 3.3993.
+    // Differences 20 and 4 levels on 36 channels: RMS sqrt((400 + 16) / 36) = 3.3993; the
+    // two pixels, (1, 2) and (3, 0), span x 1..3, y 0..2.
     assert!(
-        lines[0].starts_with("changed: max difference 20 levels, 2 of 12 pixels differ, RMS 3.3993 levels -> "),
+        lines[0].starts_with(
+            "changed: max difference 20 levels, 2 of 12 pixels differ in x 1..3, y 0..2, RMS 3.3993 levels -> "
+        ),
         "{stdout}"
     );
     assert!(

@@ -7,7 +7,7 @@
 //! review folder, listed on its page ([`crate::review`]).
 
 use super::{BuiltSet, FigureSet, FiguresError, Reuse, Run, build_set, provenance};
-use crate::compare::{compare_rgb8, heat_map};
+use crate::compare::{DifferingBox, compare_rgb8, differing_box, heat_map};
 use crate::film::pixel_hash;
 use crate::review::{self, HEAT_SCALE, PageItem, ReviewError, Rgb8};
 use serde_json::Value;
@@ -31,10 +31,11 @@ pub enum What {
     Extra,
     /// The file cannot be read or decoded.
     Unreadable(String),
-    /// Its pixels differ from the fresh render's.
+    /// Its pixels differ from the fresh render's, within `within`.
     Pixels {
         differing: u64,
         total: u64,
+        within: Option<DifferingBox>,
         largest: u8,
         heat_map: Option<PathBuf>,
     },
@@ -67,13 +68,15 @@ impl std::fmt::Display for Problem {
             What::Pixels {
                 differing,
                 total,
+                within,
                 largest,
                 heat_map,
             } => {
-                write!(
-                    f,
-                    "{file}: {differing} of {total} pixels differ from a fresh render, largest difference {largest} levels"
-                )?;
+                write!(f, "{file}: {differing} of {total} pixels differ from a fresh render")?;
+                if let Some(within) = within {
+                    write!(f, ", in {within}")?;
+                }
+                write!(f, ", largest difference {largest} levels")?;
                 match heat_map {
                     Some(p) => write!(f, "; heat map {}", p.display()),
                     None => Ok(()),
@@ -296,6 +299,7 @@ pub fn check_set(set: &FigureSet, run: &Run, reuse: &mut Reuse, review_dir: &Pat
                 what: What::Pixels {
                     differing: c.differing_pixels,
                     total: c.width as u64 * c.height as u64,
+                    within: differing_box(&disk_img.data, &fresh_img.data, disk_img.width, 0),
                     largest: c.max_diff,
                     heat_map: Some(heat_path),
                 },
