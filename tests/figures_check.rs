@@ -1,6 +1,7 @@
 //! `lumiere figures --check` holds the files on disk to a fresh render: a swapped, an
-//! edited, a missing and an extra figure each fail with what differs, and the differing
-//! figures get a heat-map and a place on the review page.
+//! edited, a missing and an extra figure each fail with what differs, the differing
+//! figures get a heat-map and a place on the review page, and the error says which command
+//! regenerates the sets and which files and folders, no set's, are to be removed.
 
 use crate::common::*;
 use lumiere::figures::provenance;
@@ -173,14 +174,93 @@ fn a_missing_figure_fails() {
 }
 
 #[test]
-fn an_extra_figure_fails() {
-    let (code, out) = tampered("check-extra", |d| {
-        std::fs::copy(d.join("01-ambient.png"), d.join("04-extra.png")).unwrap();
-    });
-    assert_eq!(code, 1);
+fn an_extra_figure_fails_and_regenerating_leaves_it_with_a_warning() {
+    let dir = temp_dir("check-extra");
+    generate(&dir);
+    let set = dir.join("figures/lighting");
+    std::fs::copy(set.join("01-ambient.png"), set.join("04-extra.png")).unwrap();
+    let extra_line =
+        "lighting/04-extra.png: extra file: no figure of the set makes it; remove it (regenerating the set leaves it)";
+    let d = dir.display().to_string();
+    let (o, stdout) = check(&dir);
+    assert_eq!(o.status.code(), Some(1));
     assert_eq!(
-        out,
-        "lighting/04-extra.png: extra file: the set makes no such file\nlighting     DIFFERS\nreview page: D/review/index.html\n"
+        stdout,
+        format!("{extra_line}\nlighting     DIFFERS\nreview page: {d}/review/index.html\n")
+    );
+    // No command is offered that would leave the check failing.
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr),
+        "lumiere: error: 1 problems: the figures on disk differ from their sets; 1 extra file(s) or folder(s) listed above, which regenerating leaves: remove them\n"
+    );
+    // Regenerating the set writes it whole, says the file is left, and the check still fails.
+    let out = dir.join("figures");
+    let o = lumiere(&[
+        "figures",
+        "lighting",
+        "--scale",
+        "0.05",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr),
+        format!(
+            "lumiere: warning: {d}/figures/lighting/04-extra.png: no figure of the set \"lighting\" makes this file; remove it (`lumiere figures --check` reports it)\n"
+        )
+    );
+    assert!(set.join("04-extra.png").is_file());
+    let (o, stdout) = check(&dir);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(stdout.lines().next(), Some(extra_line));
+    // Removed, the set passes.
+    std::fs::remove_file(set.join("04-extra.png")).unwrap();
+    assert_eq!(check(&dir).0.status.code(), Some(0));
+}
+
+#[test]
+fn an_extra_folder_and_a_missing_figure_name_both_remedies() {
+    // A figure folder of the lighting set alone, so that checking every set is quick.
+    let dir = temp_dir("check-extra-folder");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(scenes.join("lighting")).unwrap();
+    for e in std::fs::read_dir(repo("scenes/figures/lighting")).unwrap() {
+        let e = e.unwrap();
+        std::fs::copy(e.path(), scenes.join("lighting").join(e.file_name())).unwrap();
+    }
+    let (out, review) = (dir.join("figures"), dir.join("review"));
+    let args = |more: &[&str]| -> Vec<String> {
+        let mut a: Vec<String> = ["figures", "--scale", "0.05", "--out", out.to_str().unwrap()]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        a.extend(["--scenes".to_string(), scenes.display().to_string()]);
+        a.extend(more.iter().map(|s| s.to_string()));
+        a
+    };
+    let run = |more: &[&str]| {
+        let a = args(more);
+        lumiere(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    assert_eq!(run(&["--quiet"]).status.code(), Some(0));
+    std::fs::create_dir(out.join("old-set")).unwrap();
+    std::fs::remove_file(out.join("lighting/02-directional.png")).unwrap();
+    let o = run(&["--check", "--review", review.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("\nold-set/: extra folder: no figure set has this name; remove it (regenerating leaves it)\n"),
+        "{stdout}"
+    );
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr),
+        format!(
+            "lumiere: error: 2 problems: the figures on disk differ from their sets (`lumiere figures lighting --scale 0.05 --out {} --scenes {}` regenerates them); 1 extra file(s) or folder(s) listed above, which regenerating leaves: remove them\n",
+            out.display(),
+            scenes.display()
+        )
     );
 }
 

@@ -137,6 +137,13 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
                 ),
             ));
         };
+        for name in &report.extra {
+            eprintln!(
+                "lumiere: warning: {}: no figure of the set {:?} makes this file; remove it (`lumiere figures --check` reports it)",
+                report.dir.join(name).display(),
+                report.name
+            );
+        }
         written.push(&set.name);
         times.push(json!({"set": report.name, "images": report.images, "seconds": round_ms(report.seconds)}));
         write_timings(args, &times, start.elapsed().as_secs_f64())?;
@@ -274,7 +281,7 @@ fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosit
                 if checked.problems.is_empty() { "ok" } else { "DIFFERS" }
             );
         }
-        if !checked.problems.is_empty() {
+        if checked.problems.iter().any(Problem::regenerating_fixes) {
             differing.push(&set.name);
             remake.scale = run.scale;
         }
@@ -304,17 +311,31 @@ fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosit
     if v != Verbosity::Quiet && !items.is_empty() {
         println!("review page: {}", review_dir.join("index.html").display());
     }
-    // The gallery alone differs: regenerating any set rewrites it.
-    let names = if differing.is_empty() {
-        sets[0].name.clone()
-    } else {
-        differing.join(" ")
-    };
-    Err(CliError::Failed(format!(
-        "{} problems: the figures on disk differ from their sets (`{}` regenerates them)",
-        problems.len(),
-        remake.command(&names)
-    )))
+    Err(CliError::Failed(check_failure(&problems, &differing, sets, &remake)))
+}
+
+/// The error of a check that found `problems`: how many, the command that regenerates the
+/// sets whose files it fixes (`differing`, or any set when the gallery alone differs), and
+/// the files and folders to remove, which no regeneration does.
+fn check_failure(problems: &[Problem], differing: &[&str], sets: &[&FigureSet], remake: &Run) -> String {
+    let extra = problems.iter().filter(|p| !p.regenerating_fixes()).count();
+    let mut message = format!(
+        "{} problems: the figures on disk differ from their sets",
+        problems.len()
+    );
+    if extra < problems.len() {
+        let names = if differing.is_empty() {
+            sets[0].name.clone()
+        } else {
+            differing.join(" ")
+        };
+        message += &format!(" (`{}` regenerates them)", remake.command(&names));
+    }
+    if extra > 0 {
+        message +=
+            &format!("; {extra} extra file(s) or folder(s) listed above, which regenerating leaves: remove them");
+    }
+    message
 }
 
 fn review_error(e: review::ReviewError) -> CliError {

@@ -27,8 +27,10 @@ pub struct Problem {
 pub enum What {
     /// The set makes this file, and it is not there.
     Missing,
-    /// The file is there, and the set does not make it.
+    /// The file is there, and the set does not make it (regenerating the set leaves it).
     Extra,
+    /// The folder of the output is no set's (regenerating leaves it).
+    ExtraFolder,
     /// The file cannot be read or decoded.
     Unreadable(String),
     /// Its pixels differ from the fresh render's, within `within`.
@@ -63,7 +65,14 @@ impl std::fmt::Display for Problem {
         let file = &self.file;
         match &self.what {
             What::Missing => write!(f, "{file}: missing"),
-            What::Extra => write!(f, "{file}: extra file: the set makes no such file"),
+            What::Extra => write!(
+                f,
+                "{file}: extra file: no figure of the set makes it; remove it (regenerating the set leaves it)"
+            ),
+            What::ExtraFolder => write!(
+                f,
+                "{file}: extra folder: no figure set has this name; remove it (regenerating leaves it)"
+            ),
             What::Unreadable(why) => write!(f, "{file}: cannot be read: {why}"),
             What::Pixels {
                 differing,
@@ -110,6 +119,14 @@ impl std::fmt::Display for Problem {
             ),
             What::Bytes => write!(f, "{file}: differs from its regenerated self"),
         }
+    }
+}
+
+impl Problem {
+    /// Whether regenerating the file's set makes the file right (not so for a file or
+    /// folder that no set makes).
+    pub fn regenerating_fixes(&self) -> bool {
+        !matches!(self.what, What::Extra | What::ExtraFolder)
     }
 }
 
@@ -327,26 +344,17 @@ pub fn check_set(set: &FigureSet, run: &Run, reuse: &mut Reuse, review_dir: &Pat
             });
         }
     }
-    // Files of the folder that the set does not make.
-    if let Ok(entries) = std::fs::read_dir(&dir) {
-        let mut extra: Vec<String> = entries
-            .filter_map(Result::ok)
-            .map(|e| e.file_name().to_string_lossy().into_owned())
-            .filter(|n| !files.iter().any(|(f, _)| f == n))
-            .collect();
-        extra.sort();
-        for name in extra {
-            let file = format!("{}/{name}", set.name);
-            review_items.push(PageItem {
-                name: file.clone(),
-                summary: format!("{file}: extra file: the set makes no such file"),
-                sheet: None,
-            });
-            problems.push(Problem {
-                file,
-                what: What::Extra,
-            });
-        }
+    for name in super::extra_files(&dir, &files) {
+        let p = Problem {
+            file: format!("{}/{name}", set.name),
+            what: What::Extra,
+        };
+        review_items.push(PageItem {
+            name: p.file.clone(),
+            summary: p.to_string(),
+            sheet: None,
+        });
+        problems.push(p);
     }
     Ok(SetCheck {
         problems,
@@ -420,7 +428,7 @@ pub fn extra_folders(out: &Path, sets: &[FigureSet]) -> Vec<Problem> {
         .into_iter()
         .map(|n| Problem {
             file: format!("{n}/"),
-            what: What::Extra,
+            what: What::ExtraFolder,
         })
         .collect()
 }

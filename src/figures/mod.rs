@@ -592,6 +592,22 @@ pub fn build_set(
     }))
 }
 
+/// The names in set folder `dir` that are none of `files` (the set's files, as
+/// [`BuiltSet::files`] names them), sorted: what an earlier version of the set or someone
+/// else left there.
+pub fn extra_files(dir: &Path, files: &[(String, Vec<u8>)]) -> Vec<String> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut extra: Vec<String> = entries
+        .filter_map(Result::ok)
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| !files.iter().any(|(f, _)| f == n))
+        .collect();
+    extra.sort();
+    extra
+}
+
 /// What generating a set wrote.
 pub struct SetReport {
     pub name: String,
@@ -599,6 +615,9 @@ pub struct SetReport {
     /// Wall time of the set (with the figures of later sets rendered in its passes).
     pub seconds: f64,
     pub dir: PathBuf,
+    /// The files of the set's folder that the set does not make, left as they were
+    /// ([`extra_files`]).
+    pub extra: Vec<String>,
 }
 
 /// Renders every figure of `set` into `run.out/<set>/`, with its manifest and contact sheet.
@@ -635,6 +654,7 @@ pub fn generate_until(
         name: set.name.clone(),
         images: built.rendered.len(),
         seconds: start.elapsed().as_secs_f64(),
+        extra: extra_files(&dir, &built.files),
         dir,
     }))
 }
