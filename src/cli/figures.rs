@@ -144,6 +144,9 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
                 report.name
             );
         }
+        // The gallery of the sets in the folder, this one's included, whatever stops the run
+        // after it.
+        write_index(&args.out, &all)?;
         written.push(&set.name);
         times.push(json!({"set": report.name, "images": report.images, "seconds": round_ms(report.seconds)}));
         write_timings(args, &times, start.elapsed().as_secs_f64())?;
@@ -166,7 +169,6 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
             ));
         }
     }
-    write_index(&args.out, &all)?;
     let total = start.elapsed().as_secs_f64();
     write_timings(args, &times, total)?;
     if v != Verbosity::Quiet {
