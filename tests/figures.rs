@@ -196,6 +196,95 @@ fn folder_bytes(dir: &Path) -> Vec<(String, Vec<u8>)> {
     files
 }
 
+/// The names of a folder's entries, sorted.
+fn names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn a_folder_in_the_place_of_a_file_leaves_the_set_as_it_was() {
+    // The lighting set at 40 x 30, then its manifest.json replaced by a folder, then the set
+    // again at 80 x 60: refused before any file is written, so the images and the contact
+    // sheet stay the 40 x 30 ones.
+    let dir = temp_dir("figures-folder-in-the-way");
+    figures_in(&dir, &["lighting", "--scale", "0.05"]);
+    let set = dir.join("figures/lighting");
+    std::fs::remove_file(set.join("manifest.json")).unwrap();
+    std::fs::create_dir(set.join("manifest.json")).unwrap();
+    let before = folder_bytes(&set);
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(["figures", "lighting", "--scale", "0.1", "--scenes"])
+        .arg(repo("scenes/figures"))
+        .current_dir(&*dir)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr),
+        "lumiere: error: figures/lighting/manifest.json: cannot write: a folder is in its place\n"
+    );
+    assert!(o.stdout.is_empty());
+    assert_eq!(folder_bytes(&set), before);
+    assert_eq!(
+        names(&set),
+        [
+            "01-ambient.png",
+            "02-directional.png",
+            "03-ambient-directional.png",
+            "contact-sheet.png",
+            "manifest.json"
+        ]
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn a_full_disk_leaves_the_set_as_it_was() {
+    use std::os::unix::process::CommandExt;
+    // The lighting set at 40 x 30, then at 200 x 150 under a file-size limit of 20 KB, as a
+    // full disk: the three images (5 to 15 KB) can be written, the contact sheet (about 41
+    // KB) cannot, and the set stays the 40 x 30 one, manifest and images alike, with no
+    // temporary file. Failed work: exit 1.
+    let dir = temp_dir("figures-full-disk");
+    figures_in(&dir, &["lighting", "--scale", "0.05"]);
+    let set = dir.join("figures/lighting");
+    let before = folder_bytes(&set);
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"));
+    command
+        .args(["figures", "lighting", "--scale", "0.25", "--scenes"])
+        .arg(repo("scenes/figures"))
+        .current_dir(&*dir);
+    // SAFETY: only async-signal-safe calls between fork and exec. SIGXFSZ ignored, a write
+    // past the limit fails with EFBIG instead of ending the process.
+    unsafe {
+        command.pre_exec(|| {
+            libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+            let limit = libc::rlimit {
+                rlim_cur: 20_000,
+                rlim_max: 20_000,
+            };
+            if libc::setrlimit(libc::RLIMIT_FSIZE, &limit) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    let o = command.output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.starts_with("lumiere: error: figures/lighting/contact-sheet.png: cannot write: File too large"),
+        "{err}"
+    );
+    assert_eq!(folder_bytes(&set), before);
+    assert_eq!(names(&set).len(), 5, "{:?}", names(&set));
+}
+
 #[test]
 fn a_set_writes_the_same_bytes_alone_or_with_others() {
     // The reference scene's lightings of three sets share one pass in a run over the three,

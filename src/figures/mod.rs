@@ -17,7 +17,7 @@ pub mod sheet;
 
 pub use files::{DEFAULT_DIR, Figure, FigureSet, RegistryError};
 
-use crate::film::{WriteError, pixel_hash, write_atomic};
+use crate::film::{WriteError, pixel_hash, write_atomic, write_beside};
 use crate::render::render_rows;
 use crate::scene::{self, Scene};
 use crate::trace::RayCounts;
@@ -629,8 +629,8 @@ pub fn generate(set: &FigureSet, run: &Run) -> Result<SetReport, FiguresError> {
 /// returns `Ok(None)` and the set's folder is as it was. Every image is rendered, and every
 /// file encoded, in memory before the first file is written, so a set on disk is wholly old
 /// or wholly new: the writes take milliseconds, and a signal only sets `cancel` (the
-/// caller's handler), which is looked at again after the set is written. Each file is
-/// written atomically, the manifest last.
+/// caller's handler), which is looked at again after the set is written. A write that
+/// fails leaves the set as it was too ([`write_set_files`]).
 pub fn generate_until(
     set: &FigureSet,
     run: &Run,
@@ -646,10 +646,7 @@ pub fn generate_until(
         return Ok(None);
     }
     std::fs::create_dir_all(&dir).map_err(|e| WriteError::new(&dir, "cannot create", e))?;
-    for (name, bytes) in &built.files {
-        let path = dir.join(name);
-        write_atomic(&path, bytes).map_err(|e| WriteError::new(&path, "cannot write", e))?;
-    }
+    write_set_files(&dir, &built.files)?;
     Ok(Some(SetReport {
         name: set.name.clone(),
         images: built.rendered.len(),
@@ -657,6 +654,44 @@ pub fn generate_until(
         extra: extra_files(&dir, &built.files),
         dir,
     }))
+}
+
+/// Writes a set's `files` into its folder `dir`, leaving the folder as it was on any error:
+/// a folder in the place of a file is refused before anything is written; then every file
+/// is written and flushed beside its place ([`write_beside`]), where a full disk stops it;
+/// only when all are written are they renamed into place, in order (the manifest last),
+/// which takes no space. On an error the temporary files are removed.
+fn write_set_files(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), WriteError> {
+    for (name, _) in files {
+        let path = dir.join(name);
+        if path.is_dir() {
+            let in_the_way = std::io::Error::new(std::io::ErrorKind::IsADirectory, "a folder is in its place");
+            return Err(WriteError::new(&path, "cannot write", in_the_way));
+        }
+    }
+    let discard = |staged: &[(PathBuf, PathBuf)]| {
+        for (tmp, _) in staged {
+            let _ = std::fs::remove_file(tmp);
+        }
+    };
+    let mut staged: Vec<(PathBuf, PathBuf)> = Vec::new();
+    for (name, bytes) in files {
+        let path = dir.join(name);
+        match write_beside(&path, bytes) {
+            Ok(tmp) => staged.push((tmp, path)),
+            Err(e) => {
+                discard(&staged);
+                return Err(WriteError::new(&path, "cannot write", e));
+            }
+        }
+    }
+    for (i, (tmp, path)) in staged.iter().enumerate() {
+        if let Err(e) = std::fs::rename(tmp, path) {
+            discard(&staged[i..]);
+            return Err(WriteError::new(path, "cannot write", e));
+        }
+    }
+    Ok(())
 }
 
 /// `out/index.html`: the gallery of the sets of `sets` whose manifest is in `out`.
