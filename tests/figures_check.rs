@@ -291,3 +291,47 @@ fn an_edited_manifest_sheet_or_gallery_fails() {
         "{out}"
     );
 }
+
+#[test]
+fn nothing_to_check_is_refused_before_rendering() {
+    let dir = temp_dir("check-nothing");
+    let (missing, file, review) = (dir.join("none"), dir.join("a-file"), dir.join("review"));
+    std::fs::write(&file, "a file").unwrap();
+    let run = |out: &Path, review: &Path| {
+        let o = lumiere(&[
+            "figures",
+            "lighting",
+            "--check",
+            "--out",
+            out.to_str().unwrap(),
+            "--review",
+            review.to_str().unwrap(),
+        ]);
+        assert!(o.stdout.is_empty());
+        (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
+    };
+    let (m, f) = (missing.display(), file.display());
+    assert_eq!(
+        run(&missing, &review),
+        (
+            Some(2),
+            format!(
+                "lumiere: error: --out: {m} does not exist, so it holds no figure to check (`lumiere figures lighting --out {m}` writes them)\n"
+            )
+        )
+    );
+    assert_eq!(
+        run(&file, &review),
+        (Some(2), format!("lumiere: error: --out: {f} is a file, not a folder\n"))
+    );
+    generate(&dir);
+    assert_eq!(
+        run(&dir.join("figures"), &file),
+        (
+            Some(2),
+            format!("lumiere: error: --review: {f} is a file, not a folder\n")
+        )
+    );
+    // Nothing was made: neither the missing folder nor a review folder.
+    assert!(!missing.exists() && !review.exists());
+}

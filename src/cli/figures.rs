@@ -251,6 +251,22 @@ fn write_timings(args: &FiguresArgs, sets: &[serde_json::Value], total: f64) -> 
 /// the gallery, and with every set chosen, the output's folders; one line per problem,
 /// heat-maps and the review page in `--review` when a figure differs, exit 1 if any.
 fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
+    // Refused before anything is rendered: an output with nothing to check, a review folder
+    // that cannot be made.
+    super::check_out_folder(&args.out, "--out")?;
+    super::check_out_folder(&args.review, "--review")?;
+    if !args.out.is_dir() {
+        let generate = Run {
+            out: args.out.clone(),
+            scenes: args.scenes.clone(),
+            scale: args.scale,
+        };
+        return Err(CliError::BadInput(format!(
+            "--out: {} does not exist, so it holds no figure to check (`{}` writes them)",
+            args.out.display(),
+            generate.command(&args.sets.join(" "))
+        )));
+    }
     let review_dir = &args.review;
     let figures_dir = review_dir.join(review::FIGURES);
     review::clear_sheets(&figures_dir).map_err(review_error)?;

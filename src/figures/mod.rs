@@ -126,10 +126,13 @@ fn shell_word(path: &Path) -> String {
 }
 
 impl Run {
-    /// The command that remakes set `set` as this run does, from the repository's root:
-    /// options at their defaults are left out.
+    /// The command that remakes set `set` (every set when empty) as this run does, from the
+    /// repository's root: options at their defaults are left out.
     pub fn command(&self, set: &str) -> String {
-        let mut c = format!("lumiere figures {set}");
+        let mut c = "lumiere figures".to_string();
+        if !set.is_empty() {
+            c += &format!(" {set}");
+        }
         if self.scale != 1.0 {
             c += &format!(" --scale {}", self.scale);
         }
