@@ -335,6 +335,21 @@ impl Section {
         }
     }
 
+    /// How the changes of the section are accepted or rejected, as the page says it (HTML).
+    fn acceptance(self) -> &'static str {
+        match self {
+            Section::Snapshots => {
+                "To accept them: <code>cargo insta accept</code> (without cargo-insta: README, \"Reviewing snapshot changes\"); \
+                 to reject them: delete the pending <code>*.snap.new*</code> files."
+            }
+            Section::Figures => {
+                "To accept them: regenerate the sets with the command <code>lumiere figures --check</code> ends with, \
+                 accept the figures' snapshots, and commit both (docs/figures.md, \"Changing a figure on purpose\"); \
+                 to reject them: restore the scene files."
+            }
+        }
+    }
+
     fn source(self) -> &'static str {
         match self {
             Section::Snapshots => "lumiere review-snapshots",
@@ -387,6 +402,8 @@ pub fn write_section(dir: &Path, section: Section, items: &[PageItem]) -> Result
         html += &format!("<h2>{} ({})</h2>\n", s.heading(), list.len());
         if list.is_empty() {
             html += &format!("<p>None at the last <code>{}</code>.</p>\n", s.source());
+        } else {
+            html += &format!("<p>{}</p>\n", s.acceptance());
         }
         for item in &list {
             html += &format!(

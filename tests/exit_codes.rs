@@ -357,7 +357,7 @@ fn figures_differ_from_their_manifests() {
     assert_eq!(
         err,
         format!(
-            "lumiere: error: 2 problems: the figures on disk differ from their sets (`lumiere figures lighting --scale 0.05 --out {d}` regenerates them)\n"
+            "lumiere: error: 2 problems: the figures on disk differ from their sets (`lumiere figures lighting --scale 0.05 --out {d}` regenerates them; a change made on purpose is accepted as docs/figures.md, \"Changing a figure on purpose\", says)\n"
         )
     );
 }

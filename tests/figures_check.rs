@@ -152,6 +152,11 @@ fn an_edited_figure_fails_and_is_shown_on_the_review_page() {
     assert!(page.contains("<img src=\"figures/lighting/01-ambient.png\""));
     assert!(page.contains("1 of 1200 pixels differ"));
     assert!(page.contains("Not reviewed yet: run <code>lumiere review-snapshots</code>"));
+    assert!(page.contains(
+        "<p>To accept them: regenerate the sets with the command <code>lumiere figures --check</code> ends with, \
+         accept the figures' snapshots, and commit both (docs/figures.md, \"Changing a figure on purpose\"); \
+         to reject them: restore the scene files.</p>"
+    ));
     // Put back, the next check passes and empties the page's list.
     std::fs::write(&path, &png).unwrap();
     let (o, _) = check(&dir);
@@ -257,7 +262,7 @@ fn an_extra_folder_and_a_missing_figure_name_both_remedies() {
     assert_eq!(
         String::from_utf8_lossy(&o.stderr),
         format!(
-            "lumiere: error: 2 problems: the figures on disk differ from their sets (`lumiere figures lighting --scale 0.05 --out {} --scenes {}` regenerates them); 1 extra file(s) or folder(s) listed above, which regenerating leaves: remove them\n",
+            "lumiere: error: 2 problems: the figures on disk differ from their sets (`lumiere figures lighting --scale 0.05 --out {} --scenes {}` regenerates them; a change made on purpose is accepted as docs/figures.md, \"Changing a figure on purpose\", says); 1 extra file(s) or folder(s) listed above, which regenerating leaves: remove them\n",
             out.display(),
             scenes.display()
         )

@@ -347,7 +347,10 @@ fn check_failure(problems: &[Problem], differing: &[&str], sets: &[&FigureSet], 
         } else {
             differing.join(" ")
         };
-        message += &format!(" (`{}` regenerates them)", remake.command(&names));
+        message += &format!(
+            " (`{}` regenerates them; a change made on purpose is accepted as docs/figures.md, \"Changing a figure on purpose\", says)",
+            remake.command(&names)
+        );
     }
     if extra > 0 {
         message +=
