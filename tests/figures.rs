@@ -142,6 +142,29 @@ fn figures_command_rejects_bad_requests() {
     let o = lumiere(&["figures", "--list"]);
     assert_eq!(o.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&o.stdout).contains("01-top-depth-01.png  Récursivité : 1 (vue de haut)"));
+    // Sets named: those alone; an unknown one is refused as for a render.
+    let o = lumiere(&["figures", "--list", "spotlight", "attenuation"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        "attenuation: Source ponctuelle et atténuation\n  01-no-attenuation.png  Sans facteur d'atténuation\n  \
+         02-quadratic-0p01.png  Avec facteur d'atténuation C_quad = 0.01\nspotlight: Source ponctuelle orientée (spotlight)\n  \
+         01-theta-70.png  Avec un angle d'ouverture θ = 70°\n  02-theta-120.png  Avec un angle d'ouverture θ = 120°\n"
+    );
+    let o = lumiere(&["figures", "--list", "lightning"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr)
+            .starts_with("lumiere: error: unknown figure set \"lightning\"; the sets are: lighting,")
+    );
+    // --list and --check do not go together.
+    let o = lumiere(&["figures", "--list", "--check"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).starts_with("error: the argument '--list' cannot be used with '--check'"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let o = lumiere(&["figures", "--list", "--scenes", "/tmp/lumiere-no-figure-files"]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);

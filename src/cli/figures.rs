@@ -31,8 +31,8 @@ pub struct FiguresArgs {
     /// Image size factor, in (0, 4] (0.25 gives 200 x 150 previews).
     #[arg(long, default_value_t = 1.0, value_parser = super::numbers::figure_scale, allow_negative_numbers = true)]
     pub scale: f64,
-    /// List the sets and their images, render nothing.
-    #[arg(long)]
+    /// List the sets (those named, else all) and their images, render nothing.
+    #[arg(long, conflicts_with = "check")]
     pub list: bool,
     /// Check the sets' files in the output directory: each PNG against its manifest's pixel
     /// hash and a fresh render (at the manifest's scale), the contact sheets, manifests and
@@ -70,15 +70,6 @@ fn registry_error(e: files::RegistryError) -> CliError {
 
 pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     let all = files::load(&args.scenes).map_err(registry_error)?;
-    if args.list {
-        for set in &all {
-            println!("{}: {}", set.name, set.title);
-            for f in &set.figures {
-                println!("  {}.png  {}", f.stem, f.caption);
-            }
-        }
-        return Ok(());
-    }
     let names: Vec<&str> = all.iter().map(|s| s.name.as_str()).collect();
     for name in &args.sets {
         if !names.contains(&name.as_str()) {
@@ -92,6 +83,15 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
         .iter()
         .filter(|s| args.sets.is_empty() || args.sets.contains(&s.name))
         .collect();
+    if args.list {
+        for set in &chosen {
+            println!("{}: {}", set.name, set.title);
+            for f in &set.figures {
+                println!("  {}.png  {}", f.stem, f.caption);
+            }
+        }
+        return Ok(());
+    }
     if args.check {
         return check(&all, &chosen, args, v);
     }
