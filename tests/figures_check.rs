@@ -69,7 +69,7 @@ fn an_untouched_set_passes() {
         "{stdout}{}",
         String::from_utf8_lossy(&o.stderr)
     );
-    assert_eq!(stdout, "lighting     ok\n");
+    assert_eq!(stdout, "lighting     ok (at scale 0.05, as its manifest records)\n");
     // Nothing to review, so no review folder.
     assert!(!dir.join("review").exists());
 }
@@ -99,7 +99,10 @@ fn a_swapped_figure_fails() {
     );
     assert_eq!(
         lines[lines.len() - 2..],
-        ["lighting     DIFFERS", "review page: D/review/index.html"]
+        [
+            "lighting     DIFFERS (at scale 0.05, as its manifest records)",
+            "review page: D/review/index.html"
+        ]
     );
 }
 
@@ -131,7 +134,10 @@ fn an_edited_figure_fails_and_is_shown_on_the_review_page() {
             "lighting/01-ambient.png: 1 of 1200 pixels differ from a fresh render, in x 3..3, y 2..2, largest difference 7 levels; heat map {d}/review/figures/lighting/01-ambient.heat.png"
         )
     );
-    assert_eq!(lines[2], "lighting     DIFFERS");
+    assert_eq!(
+        lines[2],
+        "lighting     DIFFERS (at scale 0.05, as its manifest records)"
+    );
     assert_eq!(lines[3], format!("review page: {d}/review/index.html"));
     assert_eq!(lines.len(), 4);
     // The heat-map: black but the edited pixel (7 of 16 levels: between blue and red).
@@ -174,7 +180,7 @@ fn a_missing_figure_fails() {
     assert_eq!(code, 1);
     assert_eq!(
         out,
-        "lighting/03-ambient-directional.png: missing\nlighting     DIFFERS\nreview page: D/review/index.html\n"
+        "lighting/03-ambient-directional.png: missing\nlighting     DIFFERS (at scale 0.05, as its manifest records)\nreview page: D/review/index.html\n"
     );
 }
 
@@ -191,7 +197,9 @@ fn an_extra_figure_fails_and_regenerating_leaves_it_with_a_warning() {
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stdout,
-        format!("{extra_line}\nlighting     DIFFERS\nreview page: {d}/review/index.html\n")
+        format!(
+            "{extra_line}\nlighting     DIFFERS (at scale 0.05, as its manifest records)\nreview page: {d}/review/index.html\n"
+        )
     );
     // No command is offered that would leave the check failing.
     assert_eq!(
@@ -290,7 +298,10 @@ fn an_edited_manifest_sheet_or_gallery_fails() {
             && lines[1].ends_with(": \"      \\\"seed\\\": 43,\", regenerated \"      \\\"seed\\\": 42,\""),
         "{out}"
     );
-    assert_eq!(lines[2], "lighting     DIFFERS");
+    assert_eq!(
+        lines[2],
+        "lighting     DIFFERS (at scale 0.05, as its manifest records)"
+    );
     assert!(
         lines[3].starts_with("index.html: differs from its regenerated self at line 9"),
         "{out}"
@@ -339,4 +350,59 @@ fn nothing_to_check_is_refused_before_rendering() {
     );
     // Nothing was made: neither the missing folder nor a review folder.
     assert!(!missing.exists() && !review.exists());
+}
+
+#[test]
+fn the_scale_of_a_set_on_disk_is_said() {
+    // Full-size figures replaced by previews (`--scale` without `--out`) are said before the
+    // run, and a check says the scale it held the previews to.
+    let dir = temp_dir("check-scale");
+    generate(&dir);
+    let out = dir.join("figures");
+    let o = lumiere(&[
+        "figures",
+        "lighting",
+        "--scale",
+        "0.1",
+        "-q",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr),
+        format!(
+            "lumiere: warning: {}/lighting holds the set at scale 0.05; this run writes it at scale 0.1\n",
+            out.display()
+        )
+    );
+    let (o, stdout) = check(&dir);
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(stdout, "lighting     ok (at scale 0.1, as its manifest records)\n");
+    // At the same scale, no warning; a set with no manifest is checked at --scale.
+    let o = lumiere(&[
+        "figures",
+        "lighting",
+        "--scale",
+        "0.1",
+        "-q",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.stderr.is_empty());
+    std::fs::remove_dir_all(out.join("lighting")).unwrap();
+    let o = lumiere(&[
+        "figures",
+        "lighting",
+        "--check",
+        "--scale",
+        "0.5",
+        "--out",
+        out.to_str().unwrap(),
+        "--review",
+        dir.join("review").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("\nlighting     DIFFERS (at scale 0.5)\n"), "{stdout}");
 }

@@ -127,11 +127,14 @@ fn a_signal_leaves_each_figure_set_wholly_old_or_wholly_new() {
         let o = child.wait_with_output().unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(code), "{err}");
+        // The soft shadows on disk are at scale 0.05, which the warning says before the run.
         assert_eq!(
             err,
             format!(
-                "lumiere: error: {how} figure set \"soft-shadows\" and the sets after it were left as they were; \
-                 complete: [lighting]\n"
+                "lumiere: warning: {}/soft-shadows holds the set at scale 0.05; this run writes it at scale 0.5\n\
+                 lumiere: error: {how} figure set \"soft-shadows\" and the sets after it were left as they were; \
+                 complete: [lighting]\n",
+                out.display()
             )
         );
         // The set written before the signal is whole and new; the one being rendered is the

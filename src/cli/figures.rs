@@ -6,7 +6,7 @@
 use super::lock::FolderLock;
 use super::{CliError, Verbosity, signals, with_threads};
 use clap::Args;
-use lumiere::figures::check::{Problem, check_index, check_set, extra_folders, recorded_scale};
+use lumiere::figures::check::{Problem, check_index, check_set, extra_folders, manifest_scale};
 use lumiere::figures::{FigureSet, FiguresError, Reuse, Run, files, generate_until, write_index};
 use lumiere::film::{WriteError, write_atomic};
 use lumiere::review::{self, PageItem, Section};
@@ -110,6 +110,17 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     // process in the milliseconds a set's files take to write would leave it part old. If
     // the handler cannot be installed, the signal ends the process, which also leaves every
     // set whole unless it lands in those milliseconds.
+    // A set on disk at another scale is replaced all the same: said before the run, so that
+    // previews written over full-size figures (`--scale 0.25` without `--out`) are seen.
+    for set in &chosen {
+        if let Some(scale) = manifest_scale(&args.out, &set.name).filter(|s| *s != args.scale) {
+            eprintln!(
+                "lumiere: warning: {} holds the set at scale {scale}; this run writes it at scale {}",
+                args.out.join(&set.name).display(),
+                args.scale
+            );
+        }
+    }
     let cancel = signals::catch_first_only();
     let mut written: Vec<&str> = Vec::new();
     let mut times: Vec<serde_json::Value> = Vec::new();
@@ -282,10 +293,17 @@ fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosit
         scale: args.scale,
     };
     for set in sets {
+        let recorded = manifest_scale(&args.out, &set.name);
         let run = Run {
             out: args.out.clone(),
             scenes: args.scenes.clone(),
-            scale: recorded_scale(&args.out, &set.name, args.scale),
+            scale: recorded.unwrap_or(args.scale),
+        };
+        // The scale checked, when it is not the figures' own size.
+        let scale_note = match recorded {
+            Some(s) if s != 1.0 => format!(" (at scale {s}, as its manifest records)"),
+            None if args.scale != 1.0 => format!(" (at scale {})", args.scale),
+            _ => String::new(),
         };
         let checked = with_threads(args.threads, || check_set(set, &run, &mut reuse, review_dir))?
             .map_err(|e| CliError::Failed(e.to_string()))?;
@@ -293,11 +311,8 @@ fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosit
             println!("{p}");
         }
         if v != Verbosity::Quiet {
-            println!(
-                "{:<12} {}",
-                set.name,
-                if checked.problems.is_empty() { "ok" } else { "DIFFERS" }
-            );
+            let verdict = if checked.problems.is_empty() { "ok" } else { "DIFFERS" };
+            println!("{:<12} {verdict}{scale_note}", set.name);
         }
         if checked.problems.iter().any(Problem::regenerating_fixes) {
             differing.push(&set.name);

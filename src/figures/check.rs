@@ -149,14 +149,19 @@ pub struct SetCheck {
     pub manifest: Value,
 }
 
-/// The scale a set was generated at: its manifest's on disk, else `fallback`.
-pub fn recorded_scale(out: &Path, set: &str, fallback: f64) -> f64 {
+/// The scale set `set` of `out` was generated at, as its manifest on disk records it
+/// (`None` without a manifest or a scale in (0, 4]).
+pub fn manifest_scale(out: &Path, set: &str) -> Option<f64> {
     std::fs::read_to_string(out.join(set).join("manifest.json"))
         .ok()
         .and_then(|t| serde_json::from_str::<Value>(&t).ok())
         .and_then(|m| m["scale"].as_f64())
         .filter(|s| *s > 0.0 && *s <= 4.0)
-        .unwrap_or(fallback)
+}
+
+/// The scale a set was generated at: its manifest's on disk, else `fallback`.
+pub fn recorded_scale(out: &Path, set: &str, fallback: f64) -> f64 {
+    manifest_scale(out, set).unwrap_or(fallback)
 }
 
 /// The first line where two texts differ (1-based) and that line of each.
