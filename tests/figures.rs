@@ -675,3 +675,26 @@ fn figure_files_that_do_not_go_together_are_refused() {
         "spotlight/01-theta-70.toml:114:9: lights[1].angle: must be a finite number in [0, 180], got 270"
     );
 }
+
+#[test]
+fn every_caption_and_title_is_drawn_with_its_own_glyphs() {
+    // The contact sheets draw captions and titles with 8 x 8 glyphs, and a character the
+    // font lacks as '?': each character of the course's captions and titles has its own.
+    use image::{Rgb, RgbImage};
+    let drawn = |c: char| {
+        let mut img = RgbImage::new(8, 8);
+        lumiere::text::draw_text(&mut img, 0, 0, &c.to_string(), 1, Rgb([255, 255, 255]));
+        img.into_raw()
+    };
+    let unknown = drawn('?');
+    let mut missing: Vec<String> = Vec::new();
+    for set in registry().unwrap() {
+        let texts = std::iter::once(set.title.clone()).chain(set.figures.iter().map(|f| f.caption.clone()));
+        for text in texts {
+            for c in text.chars().filter(|&c| c != '?' && drawn(c) == unknown) {
+                missing.push(format!("{}: {c:?} in {text:?}", set.name));
+            }
+        }
+    }
+    assert_eq!(missing, Vec::<String>::new());
+}
