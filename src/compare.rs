@@ -81,6 +81,36 @@ pub fn compare_rgb8(a: &[u8], b: &[u8], width: u32, height: u32, tolerance: u8) 
     }
 }
 
+/// Where two images differ: the bounding box, in pixels (inclusive), of the pixels where
+/// some channel differs by more than a tolerance.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DifferingBox {
+    pub x: [u32; 2],
+    pub y: [u32; 2],
+}
+
+impl std::fmt::Display for DifferingBox {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "x {}..{}, y {}..{}", self.x[0], self.x[1], self.y[0], self.y[1])
+    }
+}
+
+/// The bounding box of the pixels of interleaved RGB8 buffers `a` and `b` (rows of `width`
+/// pixels) where some channel differs by more than `tolerance`; `None` where none does.
+pub fn differing_box(a: &[u8], b: &[u8], width: u32, tolerance: u8) -> Option<DifferingBox> {
+    let mut found: Option<DifferingBox> = None;
+    for (i, (pa, pb)) in a.chunks_exact(3).zip(b.chunks_exact(3)).enumerate() {
+        if pa.iter().zip(pb).all(|(x, y)| x.abs_diff(*y) <= tolerance) {
+            continue;
+        }
+        let (x, y) = ((i % width.max(1) as usize) as u32, (i / width.max(1) as usize) as u32);
+        let r = found.get_or_insert(DifferingBox { x: [x, x], y: [y, y] });
+        r.x = [r.x[0].min(x), r.x[1].max(x)];
+        r.y = [r.y[0].min(y), r.y[1].max(y)];
+    }
+    found
+}
+
 /// Heat-map of the per-pixel largest channel difference: black = equal, then blue, to red,
 /// to white at `scale_max` levels or more.
 pub fn heat_map(a: &[u8], b: &[u8], scale_max: u8) -> Vec<u8> {
@@ -371,6 +401,22 @@ mod tests {
         // The level heat-map's input: the undrawn pixel in the oracle's colour.
         assert_eq!(&undrawn_from_oracle(&a, &b, &undrawn)[9..], [200, 100, 50]);
         assert!(matches!(undrawn_from_oracle(&a, &b, &[]), Cow::Borrowed(_)));
+    }
+
+    #[test]
+    fn the_differing_box_bounds_the_pixels_beyond_the_tolerance() {
+        // A 4 x 3 image: (1, 0) differs by 5 levels, (3, 2) by 1, (2, 1) by 9.
+        let a = [0u8; 36];
+        let mut b = a;
+        b[3] = 5;
+        b[(2 * 4 + 3) * 3 + 2] = 1;
+        b[(4 + 2) * 3 + 1] = 9;
+        let all = differing_box(&a, &b, 4, 0).unwrap();
+        assert_eq!(all, DifferingBox { x: [1, 3], y: [0, 2] });
+        assert_eq!(all.to_string(), "x 1..3, y 0..2");
+        assert_eq!(differing_box(&a, &b, 4, 4).unwrap().to_string(), "x 1..2, y 0..1");
+        assert_eq!(differing_box(&a, &b, 4, 5).unwrap().to_string(), "x 2..2, y 1..1");
+        assert_eq!(differing_box(&a, &b, 4, 9), None);
     }
 
     #[test]

@@ -94,17 +94,29 @@ impl WriteError {
 /// then renamed over the target. On any error the temporary file is removed, so the target
 /// is either the old file or the complete new one, never half-written.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let tmp = write_beside(path, bytes)?;
+    fs::rename(&tmp, path).inspect_err(|_| {
+        let _ = fs::remove_file(&tmp);
+    })
+}
+
+/// The first half of [`write_atomic`]: `bytes` written and flushed to the temporary file
+/// beside `path`, whose path it returns; renaming that file over `path` is the second half.
+/// On any error the temporary file is removed.
+pub fn write_beside(path: &Path, bytes: &[u8]) -> std::io::Result<PathBuf> {
     let tmp = temp_path(path);
     let result = (|| {
         let mut f = fs::File::create(&tmp)?;
         f.write_all(bytes)?;
-        f.sync_all()?;
-        fs::rename(&tmp, path)
+        f.sync_all()
     })();
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
+    match result {
+        Ok(()) => Ok(tmp),
+        Err(e) => {
+            let _ = fs::remove_file(&tmp);
+            Err(e)
+        }
     }
-    result
 }
 
 /// `dir/.name.tmp-PID` next to `path`.

@@ -14,7 +14,7 @@
 //! the last `review-snapshots` and the figure changes of the last `figures --check` that
 //! wrote into `OUT`, each with its sheet ([`write_section`]).
 
-use crate::compare::{Comparison, compare_rgb8, heat_map, load_rgb8};
+use crate::compare::{Comparison, DifferingBox, compare_rgb8, differing_box, heat_map, load_rgb8};
 use crate::film::{WriteError, encode_png, write_atomic};
 use crate::text::draw_text;
 use serde::{Deserialize, Serialize};
@@ -65,8 +65,8 @@ pub struct Rgb8 {
 pub enum Change {
     /// No accepted snapshot: the image is new.
     New { width: u32, height: u32 },
-    /// Same size: the comparison (tolerance 0).
-    Changed(Comparison),
+    /// Same size: the comparison (tolerance 0) and where the pixels differ.
+    Changed(Comparison, Option<DifferingBox>),
     /// The size changed; no difference panel.
     Resized { old: (u32, u32), new: (u32, u32) },
     /// A pending text snapshot (no `.snap.new.png`): nothing to draw.
@@ -209,7 +209,10 @@ pub fn review_one(dir: &Path, name: &str, out: &Path) -> Result<Reviewed, Review
                 data: heat_map(&old.data, &new.data, HEAT_SCALE),
             };
             (
-                Change::Changed(compare_rgb8(&old.data, &new.data, new.width, new.height, 0)),
+                Change::Changed(
+                    compare_rgb8(&old.data, &new.data, new.width, new.height, 0),
+                    differing_box(&old.data, &new.data, new.width, 0),
+                ),
                 sheet(&[("accepted", old), ("new", &new), ("difference", &diff)]),
             )
         }
@@ -278,12 +281,13 @@ pub fn summary(r: &Reviewed) -> String {
         Change::New { width, height } => {
             format!("{}: new snapshot, {width} x {height}, no accepted one{sheet}", r.name)
         }
-        Change::Changed(c) => format!(
-            "{}: max difference {} levels, {} of {} pixels differ, RMS {:.4} levels{sheet}",
+        Change::Changed(c, within) => format!(
+            "{}: max difference {} levels, {} of {} pixels differ{}, RMS {:.4} levels{sheet}",
             r.name,
             c.max_diff,
             c.differing_pixels,
             c.width as u64 * c.height as u64,
+            within.map_or(String::new(), |b| format!(" in {b}")),
             c.rms
         ),
         Change::Resized { old, new } => format!(
@@ -328,6 +332,21 @@ impl Section {
         match self {
             Section::Snapshots => "Pending snapshots",
             Section::Figures => "Figures that differ from a fresh render",
+        }
+    }
+
+    /// How the changes of the section are accepted or rejected, as the page says it (HTML).
+    fn acceptance(self) -> &'static str {
+        match self {
+            Section::Snapshots => {
+                "To accept them: <code>cargo insta accept</code> (without cargo-insta: README, \"Reviewing snapshot changes\"); \
+                 to reject them: delete the pending <code>*.snap.new*</code> files."
+            }
+            Section::Figures => {
+                "To accept them: regenerate the sets with the command <code>lumiere figures --check</code> ends with, \
+                 accept the figures' snapshots, and commit both (docs/figures.md, \"Changing a figure on purpose\"); \
+                 to reject them: restore the scene files."
+            }
         }
     }
 
@@ -383,6 +402,8 @@ pub fn write_section(dir: &Path, section: Section, items: &[PageItem]) -> Result
         html += &format!("<h2>{} ({})</h2>\n", s.heading(), list.len());
         if list.is_empty() {
             html += &format!("<p>None at the last <code>{}</code>.</p>\n", s.source());
+        } else {
+            html += &format!("<p>{}</p>\n", s.acceptance());
         }
         for item in &list {
             html += &format!(

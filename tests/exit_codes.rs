@@ -328,7 +328,10 @@ fn figures_differ_from_their_manifests() {
     let review = dir.join("review");
     let r = review.to_str().unwrap();
     let (code, out, _) = result(lumiere(&["figures", "lighting", "--check", "--out", d, "--review", r]));
-    assert_eq!((code, out.as_str()), (0, "lighting     ok\n"));
+    assert_eq!(
+        (code, out.as_str()),
+        (0, "lighting     ok (at scale 0.05, as its manifest records)\n")
+    );
     // One manifest hash changed: that figure differs.
     let path = dir.join("lighting/manifest.json");
     let mut manifest: serde_json::Value = serde_json::from_slice(&fs::read(&path).unwrap()).unwrap();
@@ -352,12 +355,15 @@ fn figures_differ_from_their_manifests() {
     );
     assert_eq!(
         lines[2..],
-        ["lighting     DIFFERS", &format!("review page: {r}/index.html")]
+        [
+            "lighting     DIFFERS (at scale 0.05, as its manifest records)",
+            &format!("review page: {r}/index.html")
+        ]
     );
     assert_eq!(
         err,
         format!(
-            "lumiere: error: 2 problems: the figures on disk differ from their sets (`lumiere figures lighting --scale 0.05 --out {d}` regenerates them)\n"
+            "lumiere: error: 2 problems: the figures on disk differ from their sets (`lumiere figures lighting --scale 0.05 --out {d}` regenerates them; a change made on purpose is accepted as docs/figures.md, \"Changing a figure on purpose\", says)\n"
         )
     );
 }

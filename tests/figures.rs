@@ -142,6 +142,29 @@ fn figures_command_rejects_bad_requests() {
     let o = lumiere(&["figures", "--list"]);
     assert_eq!(o.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&o.stdout).contains("01-top-depth-01.png  Récursivité : 1 (vue de haut)"));
+    // Sets named: those alone; an unknown one is refused as for a render.
+    let o = lumiere(&["figures", "--list", "spotlight", "attenuation"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        "attenuation: Source ponctuelle et atténuation\n  01-no-attenuation.png  Sans facteur d'atténuation\n  \
+         02-quadratic-0p01.png  Avec facteur d'atténuation C_quad = 0.01\nspotlight: Source ponctuelle orientée (spotlight)\n  \
+         01-theta-70.png  Avec un angle d'ouverture θ = 70°\n  02-theta-120.png  Avec un angle d'ouverture θ = 120°\n"
+    );
+    let o = lumiere(&["figures", "--list", "lightning"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr)
+            .starts_with("lumiere: error: unknown figure set \"lightning\"; the sets are: lighting,")
+    );
+    // --list and --check do not go together.
+    let o = lumiere(&["figures", "--list", "--check"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).starts_with("error: the argument '--list' cannot be used with '--check'"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let o = lumiere(&["figures", "--list", "--scenes", "/tmp/lumiere-no-figure-files"]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
@@ -194,6 +217,98 @@ fn folder_bytes(dir: &Path) -> Vec<(String, Vec<u8>)> {
         .collect();
     files.sort();
     files
+}
+
+/// The names of a folder's entries, sorted.
+fn names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn a_folder_in_the_place_of_a_file_leaves_the_set_as_it_was() {
+    // The lighting set at 40 x 30, then its manifest.json replaced by a folder, then the set
+    // again at 80 x 60: refused before any file is written, so the images and the contact
+    // sheet stay the 40 x 30 ones.
+    let dir = temp_dir("figures-folder-in-the-way");
+    figures_in(&dir, &["lighting", "--scale", "0.05"]);
+    let set = dir.join("figures/lighting");
+    std::fs::remove_file(set.join("manifest.json")).unwrap();
+    std::fs::create_dir(set.join("manifest.json")).unwrap();
+    let before = folder_bytes(&set);
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(["figures", "lighting", "--scale", "0.1", "--scenes"])
+        .arg(repo("scenes/figures"))
+        .current_dir(&*dir)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr),
+        "lumiere: error: figures/lighting/manifest.json: cannot write: a folder is in its place\n"
+    );
+    assert!(o.stdout.is_empty());
+    assert_eq!(folder_bytes(&set), before);
+    assert_eq!(
+        names(&set),
+        [
+            "01-ambient.png",
+            "02-directional.png",
+            "03-ambient-directional.png",
+            "contact-sheet.png",
+            "manifest.json"
+        ]
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn a_full_disk_leaves_the_set_as_it_was() {
+    use std::os::unix::process::CommandExt;
+    // The lighting set at 40 x 30, then at 200 x 150 under a file-size limit of 20 KB, as a
+    // full disk: the three images (5 to 15 KB) can be written, the contact sheet (about 41
+    // KB) cannot, and the set stays the 40 x 30 one, manifest and images alike, with no
+    // temporary file. Failed work: exit 1.
+    let dir = temp_dir("figures-full-disk");
+    figures_in(&dir, &["lighting", "--scale", "0.05"]);
+    let set = dir.join("figures/lighting");
+    let before = folder_bytes(&set);
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"));
+    command
+        .args(["figures", "lighting", "--scale", "0.25", "--scenes"])
+        .arg(repo("scenes/figures"))
+        .current_dir(&*dir);
+    // SAFETY: only async-signal-safe calls between fork and exec. SIGXFSZ ignored, a write
+    // past the limit fails with EFBIG instead of ending the process.
+    unsafe {
+        command.pre_exec(|| {
+            libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+            let limit = libc::rlimit {
+                rlim_cur: 20_000,
+                rlim_max: 20_000,
+            };
+            if libc::setrlimit(libc::RLIMIT_FSIZE, &limit) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    let o = command.output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.starts_with(
+            "lumiere: warning: figures/lighting holds the set at scale 0.05; this run writes it at scale 0.25\n\
+             lumiere: error: figures/lighting/contact-sheet.png: cannot write: File too large"
+        ),
+        "{err}"
+    );
+    assert_eq!(folder_bytes(&set), before);
+    assert_eq!(names(&set).len(), 5, "{:?}", names(&set));
 }
 
 #[test]
@@ -559,4 +674,27 @@ fn figure_files_that_do_not_go_together_are_refused() {
         }),
         "spotlight/01-theta-70.toml:114:9: lights[1].angle: must be a finite number in [0, 180], got 270"
     );
+}
+
+#[test]
+fn every_caption_and_title_is_drawn_with_its_own_glyphs() {
+    // The contact sheets draw captions and titles with 8 x 8 glyphs, and a character the
+    // font lacks as '?': each character of the course's captions and titles has its own.
+    use image::{Rgb, RgbImage};
+    let drawn = |c: char| {
+        let mut img = RgbImage::new(8, 8);
+        lumiere::text::draw_text(&mut img, 0, 0, &c.to_string(), 1, Rgb([255, 255, 255]));
+        img.into_raw()
+    };
+    let unknown = drawn('?');
+    let mut missing: Vec<String> = Vec::new();
+    for set in registry().unwrap() {
+        let texts = std::iter::once(set.title.clone()).chain(set.figures.iter().map(|f| f.caption.clone()));
+        for text in texts {
+            for c in text.chars().filter(|&c| c != '?' && drawn(c) == unknown) {
+                missing.push(format!("{}: {c:?} in {text:?}", set.name));
+            }
+        }
+    }
+    assert_eq!(missing, Vec::<String>::new());
 }

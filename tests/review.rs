@@ -43,10 +43,13 @@ fn sheets_show_old_new_and_difference() {
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8(o.stdout).unwrap();
     let lines: Vec<&str> = stdout.lines().collect();
-    assert_eq!(lines.len(), 3, "{stdout}");
-    // Differences 20 and 4 levels on 36 channels: RMS sqrt((400 + 16) / 36) = 3.3993.
+    assert_eq!(lines.len(), 5, "{stdout}");
+    // Differences 20 and 4 levels on 36 channels: RMS sqrt((400 + 16) / 36) = 3.3993; the
+    // two pixels, (1, 2) and (3, 0), span x 1..3, y 0..2.
     assert!(
-        lines[0].starts_with("changed: max difference 20 levels, 2 of 12 pixels differ, RMS 3.3993 levels -> "),
+        lines[0].starts_with(
+            "changed: max difference 20 levels, 2 of 12 pixels differ in x 1..3, y 0..2, RMS 3.3993 levels -> "
+        ),
         "{stdout}"
     );
     assert!(
@@ -54,6 +57,15 @@ fn sheets_show_old_new_and_difference() {
         "{stdout}"
     );
     assert!(lines[2].starts_with("words: text snapshot"), "{stdout}");
+    // Where to look, and how to accept or reject.
+    assert_eq!(lines[3], format!("review page: {}", out.join("index.html").display()));
+    assert_eq!(
+        lines[4],
+        format!(
+            "accept them: `cargo insta accept` (without cargo-insta: README, \"Reviewing snapshot changes\"); reject them: `rm {}/*.snap.new*`",
+            dir.display()
+        )
+    );
 
     // Three 4 x 3 panels enlarged 80 times to 320 x 240, labels 16 pixels tall above them,
     // 8 pixels around and between: (8 + 3 x 328) x (8 + 16 + 8 + 240 + 8) = 992 x 280.
@@ -98,6 +110,10 @@ fn sheets_show_old_new_and_difference() {
     assert!(page.contains("<img src=\"snapshots/fresh.png\""));
     assert!(!page.contains("snapshots/words.png"));
     assert!(page.contains("Not reviewed yet: run <code>lumiere figures --check</code>"));
+    assert!(page.contains(
+        "<p>To accept them: <code>cargo insta accept</code> (without cargo-insta: README, \"Reviewing snapshot changes\"); \
+         to reject them: delete the pending <code>*.snap.new*</code> files.</p>"
+    ));
 }
 
 #[test]

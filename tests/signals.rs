@@ -1,7 +1,8 @@
 //! SIGINT (Ctrl-C), SIGTERM and SIGHUP sent to a running `lumiere render` and `lumiere
 //! figures`: the exit code is 128 + the signal's number, the message says what was left,
-//! no output or temporary file (`.NAME.tmp-PID`) is left, and each figure set is wholly old
-//! or wholly new; a second signal ends a run that waits where the first is not seen.
+//! no output or temporary file (`.NAME.tmp-PID`) is left, each figure set is wholly old or
+//! wholly new and the gallery shows the sets written; a second signal ends a run that
+//! waits where the first is not seen.
 #![cfg(unix)]
 
 use crate::common::*;
@@ -126,18 +127,28 @@ fn a_signal_leaves_each_figure_set_wholly_old_or_wholly_new() {
         let o = child.wait_with_output().unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(code), "{err}");
+        // The soft shadows on disk are at scale 0.05, which the warning says before the run.
         assert_eq!(
             err,
             format!(
-                "lumiere: error: {how} figure set \"soft-shadows\" and the sets after it were left as they were; \
-                 complete: [lighting]\n"
+                "lumiere: warning: {}/soft-shadows holds the set at scale 0.05; this run writes it at scale 0.5\n\
+                 lumiere: error: {how} figure set \"soft-shadows\" and the sets after it were left as they were; \
+                 complete: [lighting]\n",
+                out.display()
             )
         );
         // The set written before the signal is whole and new; the one being rendered is the
-        // old one, byte for byte, and so is the gallery (written last); no temporary file.
+        // old one, byte for byte; the gallery shows both, as `figures --check` expects it;
+        // no temporary file.
         assert_complete_set(&out.join("lighting"), 400, 300);
         assert_eq!(files(&out.join("soft-shadows")), old_soft);
-        assert_eq!(fs::read(out.join("index.html")).unwrap(), old_index);
+        let index = fs::read_to_string(out.join("index.html")).unwrap();
+        assert_ne!(index.as_bytes(), old_index);
+        assert_eq!(
+            index,
+            lumiere::figures::gallery::index_html(&out, &lumiere::figures::registry().unwrap(), &[])
+        );
+        assert!(index.contains("<h2 id=\"lighting\">") && index.contains("<h2 id=\"soft-shadows\">"));
         let mut names: Vec<_> = fs::read_dir(&*out).unwrap().map(|f| f.unwrap().file_name()).collect();
         names.sort();
         assert_eq!(names, ["index.html", "lighting", "soft-shadows", "timings.json"]);

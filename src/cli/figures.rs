@@ -6,7 +6,7 @@
 use super::lock::FolderLock;
 use super::{CliError, Verbosity, signals, with_threads};
 use clap::Args;
-use lumiere::figures::check::{Problem, check_index, check_set, extra_folders, recorded_scale};
+use lumiere::figures::check::{Problem, check_index, check_set, extra_folders, manifest_scale};
 use lumiere::figures::{FigureSet, FiguresError, Reuse, Run, files, generate_until, write_index};
 use lumiere::film::{WriteError, write_atomic};
 use lumiere::limits::{self, MAX_FIGURE_SCALE, MAX_THREADS};
@@ -37,8 +37,8 @@ pub struct FiguresArgs {
         allow_negative_numbers = true
     )]
     pub scale: f64,
-    /// List the sets and their images, render nothing.
-    #[arg(long)]
+    /// List the sets (those named, else all) and their images, render nothing.
+    #[arg(long, conflicts_with = "check")]
     pub list: bool,
     /// Check the sets' files in the output directory: each PNG against its manifest's pixel
     /// hash and a fresh render (at the manifest's scale), the contact sheets, manifests and
@@ -80,15 +80,6 @@ fn registry_error(e: files::RegistryError) -> CliError {
 
 pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     let all = files::load(&args.scenes).map_err(registry_error)?;
-    if args.list {
-        for set in &all {
-            println!("{}: {}", set.name, set.title);
-            for f in &set.figures {
-                println!("  {}.png  {}", f.stem, f.caption);
-            }
-        }
-        return Ok(());
-    }
     let names: Vec<&str> = all.iter().map(|s| s.name.as_str()).collect();
     for name in &args.sets {
         if !names.contains(&name.as_str()) {
@@ -102,6 +93,15 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
         .iter()
         .filter(|s| args.sets.is_empty() || args.sets.contains(&s.name))
         .collect();
+    if args.list {
+        for set in &chosen {
+            println!("{}: {}", set.name, set.title);
+            for f in &set.figures {
+                println!("  {}.png  {}", f.stem, f.caption);
+            }
+        }
+        return Ok(());
+    }
     if args.check {
         return check(&all, &chosen, args, v);
     }
@@ -120,6 +120,17 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
     // process in the milliseconds a set's files take to write would leave it part old. If
     // the handler cannot be installed, the signal ends the process, which also leaves every
     // set whole unless it lands in those milliseconds.
+    // A set on disk at another scale is replaced all the same: said before the run, so that
+    // previews written over full-size figures (`--scale 0.25` without `--out`) are seen.
+    for set in &chosen {
+        if let Some(scale) = manifest_scale(&args.out, &set.name).filter(|s| *s != args.scale) {
+            eprintln!(
+                "lumiere: warning: {} holds the set at scale {scale}; this run writes it at scale {}",
+                args.out.join(&set.name).display(),
+                args.scale
+            );
+        }
+    }
     let cancel = signals::catch_first_only();
     let mut written: Vec<&str> = Vec::new();
     let mut times: Vec<serde_json::Value> = Vec::new();
@@ -147,6 +158,16 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
                 ),
             ));
         };
+        for name in &report.extra {
+            eprintln!(
+                "lumiere: warning: {}: no figure of the set {:?} makes this file; remove it (`lumiere figures --check` reports it)",
+                report.dir.join(name).display(),
+                report.name
+            );
+        }
+        // The gallery of the sets in the folder, this one's included, whatever stops the run
+        // after it.
+        write_index(&args.out, &all)?;
         written.push(&set.name);
         times.push(json!({"set": report.name, "images": report.images, "seconds": round_ms(report.seconds)}));
         write_timings(args, &times, start.elapsed().as_secs_f64())?;
@@ -169,7 +190,6 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
             ));
         }
     }
-    write_index(&args.out, &all)?;
     let total = start.elapsed().as_secs_f64();
     write_timings(args, &times, total)?;
     if v != Verbosity::Quiet {
@@ -252,6 +272,22 @@ fn write_timings(args: &FiguresArgs, sets: &[serde_json::Value], total: f64) -> 
 /// the gallery, and with every set chosen, the output's folders; one line per problem,
 /// heat-maps and the review page in `--review` when a figure differs, exit 1 if any.
 fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
+    // Refused before anything is rendered: an output with nothing to check, a review folder
+    // that cannot be made.
+    super::check_out_folder(&args.out, "--out")?;
+    super::check_out_folder(&args.review, "--review")?;
+    if !args.out.is_dir() {
+        let generate = Run {
+            out: args.out.clone(),
+            scenes: args.scenes.clone(),
+            scale: args.scale,
+        };
+        return Err(CliError::BadInput(format!(
+            "--out: {} does not exist, so it holds no figure to check (`{}` writes them)",
+            args.out.display(),
+            generate.command(&args.sets.join(" "))
+        )));
+    }
     let review_dir = &args.review;
     let figures_dir = review_dir.join(review::FIGURES);
     review::clear_sheets(&figures_dir).map_err(review_error)?;
@@ -267,10 +303,17 @@ fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosit
         scale: args.scale,
     };
     for set in sets {
+        let recorded = manifest_scale(&args.out, &set.name);
         let run = Run {
             out: args.out.clone(),
             scenes: args.scenes.clone(),
-            scale: recorded_scale(&args.out, &set.name, args.scale),
+            scale: recorded.unwrap_or(args.scale),
+        };
+        // The scale checked, when it is not the figures' own size.
+        let scale_note = match recorded {
+            Some(s) if s != 1.0 => format!(" (at scale {s}, as its manifest records)"),
+            None if args.scale != 1.0 => format!(" (at scale {})", args.scale),
+            _ => String::new(),
         };
         let checked = with_threads(args.threads, || check_set(set, &run, &mut reuse, review_dir))?
             .map_err(|e| CliError::Failed(e.to_string()))?;
@@ -278,13 +321,10 @@ fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosit
             println!("{p}");
         }
         if v != Verbosity::Quiet {
-            println!(
-                "{:<12} {}",
-                set.name,
-                if checked.problems.is_empty() { "ok" } else { "DIFFERS" }
-            );
+            let verdict = if checked.problems.is_empty() { "ok" } else { "DIFFERS" };
+            println!("{:<12} {verdict}{scale_note}", set.name);
         }
-        if !checked.problems.is_empty() {
+        if checked.problems.iter().any(Problem::regenerating_fixes) {
             differing.push(&set.name);
             remake.scale = run.scale;
         }
@@ -314,17 +354,34 @@ fn check(all: &[FigureSet], sets: &[&FigureSet], args: &FiguresArgs, v: Verbosit
     if v != Verbosity::Quiet && !items.is_empty() {
         println!("review page: {}", review_dir.join("index.html").display());
     }
-    // The gallery alone differs: regenerating any set rewrites it.
-    let names = if differing.is_empty() {
-        sets[0].name.clone()
-    } else {
-        differing.join(" ")
-    };
-    Err(CliError::Failed(format!(
-        "{} problems: the figures on disk differ from their sets (`{}` regenerates them)",
-        problems.len(),
-        remake.command(&names)
-    )))
+    Err(CliError::Failed(check_failure(&problems, &differing, sets, &remake)))
+}
+
+/// The error of a check that found `problems`: how many, the command that regenerates the
+/// sets whose files it fixes (`differing`, or any set when the gallery alone differs), and
+/// the files and folders to remove, which no regeneration does.
+fn check_failure(problems: &[Problem], differing: &[&str], sets: &[&FigureSet], remake: &Run) -> String {
+    let extra = problems.iter().filter(|p| !p.regenerating_fixes()).count();
+    let mut message = format!(
+        "{} problems: the figures on disk differ from their sets",
+        problems.len()
+    );
+    if extra < problems.len() {
+        let names = if differing.is_empty() {
+            sets[0].name.clone()
+        } else {
+            differing.join(" ")
+        };
+        message += &format!(
+            " (`{}` regenerates them; a change made on purpose is accepted as docs/figures.md, \"Changing a figure on purpose\", says)",
+            remake.command(&names)
+        );
+    }
+    if extra > 0 {
+        message +=
+            &format!("; {extra} extra file(s) or folder(s) listed above, which regenerating leaves: remove them");
+    }
+    message
 }
 
 fn review_error(e: review::ReviewError) -> CliError {

@@ -29,5 +29,12 @@ pub fn run(args: &ReviewArgs) -> Result<(), CliError> {
     for r in &reviewed {
         println!("{}", summary(r));
     }
+    if !reviewed.is_empty() {
+        println!("review page: {}", args.out.join("index.html").display());
+        println!(
+            "accept them: `cargo insta accept` (without cargo-insta: README, \"Reviewing snapshot changes\"); reject them: `rm {}`",
+            args.dir.join("*.snap.new*").display()
+        );
+    }
     Ok(())
 }

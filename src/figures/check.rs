@@ -7,7 +7,7 @@
 //! review folder, listed on its page ([`crate::review`]).
 
 use super::{BuiltSet, FigureSet, FiguresError, Reuse, Run, build_set, provenance};
-use crate::compare::{compare_rgb8, heat_map};
+use crate::compare::{DifferingBox, compare_rgb8, differing_box, heat_map};
 use crate::film::pixel_hash;
 use crate::review::{self, HEAT_SCALE, PageItem, ReviewError, Rgb8};
 use serde_json::Value;
@@ -27,14 +27,17 @@ pub struct Problem {
 pub enum What {
     /// The set makes this file, and it is not there.
     Missing,
-    /// The file is there, and the set does not make it.
+    /// The file is there, and the set does not make it (regenerating the set leaves it).
     Extra,
+    /// The folder of the output is no set's (regenerating leaves it).
+    ExtraFolder,
     /// The file cannot be read or decoded.
     Unreadable(String),
-    /// Its pixels differ from the fresh render's.
+    /// Its pixels differ from the fresh render's, within `within`.
     Pixels {
         differing: u64,
         total: u64,
+        within: Option<DifferingBox>,
         largest: u8,
         heat_map: Option<PathBuf>,
     },
@@ -62,18 +65,27 @@ impl std::fmt::Display for Problem {
         let file = &self.file;
         match &self.what {
             What::Missing => write!(f, "{file}: missing"),
-            What::Extra => write!(f, "{file}: extra file: the set makes no such file"),
+            What::Extra => write!(
+                f,
+                "{file}: extra file: no figure of the set makes it; remove it (regenerating the set leaves it)"
+            ),
+            What::ExtraFolder => write!(
+                f,
+                "{file}: extra folder: no figure set has this name; remove it (regenerating leaves it)"
+            ),
             What::Unreadable(why) => write!(f, "{file}: cannot be read: {why}"),
             What::Pixels {
                 differing,
                 total,
+                within,
                 largest,
                 heat_map,
             } => {
-                write!(
-                    f,
-                    "{file}: {differing} of {total} pixels differ from a fresh render, largest difference {largest} levels"
-                )?;
+                write!(f, "{file}: {differing} of {total} pixels differ from a fresh render")?;
+                if let Some(within) = within {
+                    write!(f, ", in {within}")?;
+                }
+                write!(f, ", largest difference {largest} levels")?;
                 match heat_map {
                     Some(p) => write!(f, "; heat map {}", p.display()),
                     None => Ok(()),
@@ -110,6 +122,14 @@ impl std::fmt::Display for Problem {
     }
 }
 
+impl Problem {
+    /// Whether regenerating the file's set makes the file right (not so for a file or
+    /// folder that no set makes).
+    pub fn regenerating_fixes(&self) -> bool {
+        !matches!(self.what, What::Extra | What::ExtraFolder)
+    }
+}
+
 /// Why a check could not be made.
 #[derive(Debug, thiserror::Error)]
 pub enum CheckError {
@@ -129,14 +149,19 @@ pub struct SetCheck {
     pub manifest: Value,
 }
 
-/// The scale a set was generated at: its manifest's on disk, else `fallback`.
-pub fn recorded_scale(out: &Path, set: &str, fallback: f64) -> f64 {
+/// The scale set `set` of `out` was generated at, as its manifest on disk records it
+/// (`None` without a manifest or a scale in (0, 4]).
+pub fn manifest_scale(out: &Path, set: &str) -> Option<f64> {
     std::fs::read_to_string(out.join(set).join("manifest.json"))
         .ok()
         .and_then(|t| serde_json::from_str::<Value>(&t).ok())
         .and_then(|m| m["scale"].as_f64())
         .filter(|s| *s > 0.0 && *s <= 4.0)
-        .unwrap_or(fallback)
+}
+
+/// The scale a set was generated at: its manifest's on disk, else `fallback`.
+pub fn recorded_scale(out: &Path, set: &str, fallback: f64) -> f64 {
+    manifest_scale(out, set).unwrap_or(fallback)
 }
 
 /// The first line where two texts differ (1-based) and that line of each.
@@ -296,6 +321,7 @@ pub fn check_set(set: &FigureSet, run: &Run, reuse: &mut Reuse, review_dir: &Pat
                 what: What::Pixels {
                     differing: c.differing_pixels,
                     total: c.width as u64 * c.height as u64,
+                    within: differing_box(&disk_img.data, &fresh_img.data, disk_img.width, 0),
                     largest: c.max_diff,
                     heat_map: Some(heat_path),
                 },
@@ -323,26 +349,17 @@ pub fn check_set(set: &FigureSet, run: &Run, reuse: &mut Reuse, review_dir: &Pat
             });
         }
     }
-    // Files of the folder that the set does not make.
-    if let Ok(entries) = std::fs::read_dir(&dir) {
-        let mut extra: Vec<String> = entries
-            .filter_map(Result::ok)
-            .map(|e| e.file_name().to_string_lossy().into_owned())
-            .filter(|n| !files.iter().any(|(f, _)| f == n))
-            .collect();
-        extra.sort();
-        for name in extra {
-            let file = format!("{}/{name}", set.name);
-            review_items.push(PageItem {
-                name: file.clone(),
-                summary: format!("{file}: extra file: the set makes no such file"),
-                sheet: None,
-            });
-            problems.push(Problem {
-                file,
-                what: What::Extra,
-            });
-        }
+    for name in super::extra_files(&dir, &files) {
+        let p = Problem {
+            file: format!("{}/{name}", set.name),
+            what: What::Extra,
+        };
+        review_items.push(PageItem {
+            name: p.file.clone(),
+            summary: p.to_string(),
+            sheet: None,
+        });
+        problems.push(p);
     }
     Ok(SetCheck {
         problems,
@@ -416,7 +433,7 @@ pub fn extra_folders(out: &Path, sets: &[FigureSet]) -> Vec<Problem> {
         .into_iter()
         .map(|n| Problem {
             file: format!("{n}/"),
-            what: What::Extra,
+            what: What::ExtraFolder,
         })
         .collect()
 }

@@ -17,7 +17,7 @@ pub mod sheet;
 
 pub use files::{DEFAULT_DIR, Figure, FigureSet, RegistryError};
 
-use crate::film::{WriteError, pixel_hash, write_atomic};
+use crate::film::{WriteError, pixel_hash, write_atomic, write_beside};
 use crate::render::render_rows;
 use crate::scene::{self, Scene};
 use crate::trace::RayCounts;
@@ -126,10 +126,13 @@ fn shell_word(path: &Path) -> String {
 }
 
 impl Run {
-    /// The command that remakes set `set` as this run does, from the repository's root:
-    /// options at their defaults are left out.
+    /// The command that remakes set `set` (every set when empty) as this run does, from the
+    /// repository's root: options at their defaults are left out.
     pub fn command(&self, set: &str) -> String {
-        let mut c = format!("lumiere figures {set}");
+        let mut c = "lumiere figures".to_string();
+        if !set.is_empty() {
+            c += &format!(" {set}");
+        }
         if self.scale != 1.0 {
             c += &format!(" --scale {}", self.scale);
         }
@@ -592,6 +595,22 @@ pub fn build_set(
     }))
 }
 
+/// The names in set folder `dir` that are none of `files` (the set's files, as
+/// [`BuiltSet::files`] names them), sorted: what an earlier version of the set or someone
+/// else left there.
+pub fn extra_files(dir: &Path, files: &[(String, Vec<u8>)]) -> Vec<String> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut extra: Vec<String> = entries
+        .filter_map(Result::ok)
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| !files.iter().any(|(f, _)| f == n))
+        .collect();
+    extra.sort();
+    extra
+}
+
 /// What generating a set wrote.
 pub struct SetReport {
     pub name: String,
@@ -599,6 +618,9 @@ pub struct SetReport {
     /// Wall time of the set (with the figures of later sets rendered in its passes).
     pub seconds: f64,
     pub dir: PathBuf,
+    /// The files of the set's folder that the set does not make, left as they were
+    /// ([`extra_files`]).
+    pub extra: Vec<String>,
 }
 
 /// Renders every figure of `set` into `run.out/<set>/`, with its manifest and contact sheet.
@@ -610,8 +632,8 @@ pub fn generate(set: &FigureSet, run: &Run) -> Result<SetReport, FiguresError> {
 /// returns `Ok(None)` and the set's folder is as it was. Every image is rendered, and every
 /// file encoded, in memory before the first file is written, so a set on disk is wholly old
 /// or wholly new: the writes take milliseconds, and a signal only sets `cancel` (the
-/// caller's handler), which is looked at again after the set is written. Each file is
-/// written atomically, the manifest last.
+/// caller's handler), which is looked at again after the set is written. A write that
+/// fails leaves the set as it was too ([`write_set_files`]).
 pub fn generate_until(
     set: &FigureSet,
     run: &Run,
@@ -627,16 +649,52 @@ pub fn generate_until(
         return Ok(None);
     }
     std::fs::create_dir_all(&dir).map_err(|e| WriteError::new(&dir, "cannot create", e))?;
-    for (name, bytes) in &built.files {
-        let path = dir.join(name);
-        write_atomic(&path, bytes).map_err(|e| WriteError::new(&path, "cannot write", e))?;
-    }
+    write_set_files(&dir, &built.files)?;
     Ok(Some(SetReport {
         name: set.name.clone(),
         images: built.rendered.len(),
         seconds: start.elapsed().as_secs_f64(),
+        extra: extra_files(&dir, &built.files),
         dir,
     }))
+}
+
+/// Writes a set's `files` into its folder `dir`, leaving the folder as it was on any error:
+/// a folder in the place of a file is refused before anything is written; then every file
+/// is written and flushed beside its place ([`write_beside`]), where a full disk stops it;
+/// only when all are written are they renamed into place, in order (the manifest last),
+/// which takes no space. On an error the temporary files are removed.
+fn write_set_files(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), WriteError> {
+    for (name, _) in files {
+        let path = dir.join(name);
+        if path.is_dir() {
+            let in_the_way = std::io::Error::new(std::io::ErrorKind::IsADirectory, "a folder is in its place");
+            return Err(WriteError::new(&path, "cannot write", in_the_way));
+        }
+    }
+    let discard = |staged: &[(PathBuf, PathBuf)]| {
+        for (tmp, _) in staged {
+            let _ = std::fs::remove_file(tmp);
+        }
+    };
+    let mut staged: Vec<(PathBuf, PathBuf)> = Vec::new();
+    for (name, bytes) in files {
+        let path = dir.join(name);
+        match write_beside(&path, bytes) {
+            Ok(tmp) => staged.push((tmp, path)),
+            Err(e) => {
+                discard(&staged);
+                return Err(WriteError::new(&path, "cannot write", e));
+            }
+        }
+    }
+    for (i, (tmp, path)) in staged.iter().enumerate() {
+        if let Err(e) = std::fs::rename(tmp, path) {
+            discard(&staged[i..]);
+            return Err(WriteError::new(path, "cannot write", e));
+        }
+    }
+    Ok(())
 }
 
 /// `out/index.html`: the gallery of the sets of `sets` whose manifest is in `out`.
