@@ -10,11 +10,15 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     // A closed stdout (`lumiere figures --list | head`) ends the program quietly, as for
-    // other command-line tools, instead of a panic on the next print.
+    // other command-line tools, instead of a panic on the next print. A write past the
+    // file-size limit (`ulimit -f`) fails with EFBIG, an error like a full disk's (exit 1,
+    // the temporary file removed, every set or image old or whole), instead of SIGXFSZ
+    // ending the process there.
     #[cfg(unix)]
     // SAFETY: called first thing, before any other thread exists.
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
     }
     let args = cli::Cli::parse();
     // glibc serves blocks under a threshold from its heap, and raises that threshold to the

@@ -266,11 +266,12 @@ fn storage_exhausted_while_writing() {
         .args(["render", repo("scenes/reference.toml").to_str().unwrap()])
         .args(["--width", "200", "--height", "150", "--spp", "1", "-q", "-o"])
         .arg(&out);
-    // SAFETY: only async-signal-safe calls between fork and exec. SIGXFSZ ignored, a write
-    // past the limit fails with EFBIG instead of ending the process.
+    // SAFETY: only async-signal-safe calls between fork and exec. SIGXFSZ at its default
+    // action (ending the process): lumiere ignores it itself, so that a write past the
+    // limit fails with EFBIG.
     unsafe {
         command.pre_exec(|| {
-            libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+            libc::signal(libc::SIGXFSZ, libc::SIG_DFL);
             let limit = libc::rlimit {
                 rlim_cur: 1024,
                 rlim_max: 1024,

@@ -282,11 +282,12 @@ fn a_full_disk_leaves_the_set_as_it_was() {
         .args(["figures", "lighting", "--scale", "0.25", "--scenes"])
         .arg(repo("scenes/figures"))
         .current_dir(&*dir);
-    // SAFETY: only async-signal-safe calls between fork and exec. SIGXFSZ ignored, a write
-    // past the limit fails with EFBIG instead of ending the process.
+    // SAFETY: only async-signal-safe calls between fork and exec. SIGXFSZ at its default
+    // action (ending the process): lumiere ignores it itself, so that a write past the
+    // limit fails with EFBIG.
     unsafe {
         command.pre_exec(|| {
-            libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+            libc::signal(libc::SIGXFSZ, libc::SIG_DFL);
             let limit = libc::rlimit {
                 rlim_cur: 20_000,
                 rlim_max: 20_000,
