@@ -699,3 +699,51 @@ fn every_caption_and_title_is_drawn_with_its_own_glyphs() {
     }
     assert_eq!(missing, Vec::<String>::new());
 }
+
+#[test]
+fn verbose_figures_says_each_set_as_it_starts_and_ends() {
+    let dir = temp_dir("figures-verbose");
+    let out = dir.join("out");
+    let o = lumiere(&[
+        "-v",
+        "figures",
+        "lighting",
+        "spotlight",
+        "--scale",
+        "0.1",
+        "--threads",
+        "1",
+        "--scenes",
+        repo("scenes/figures").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8_lossy(&o.stderr);
+    let expected = [
+        "lumiere: lighting: rendering 3 figure(s) at scale 0.1 on 1 thread(s)".to_string(),
+        format!(
+            "lumiere: lighting: wrote 3 image(s), its manifest and contact sheet into {}",
+            out.join("lighting").display()
+        ),
+        "lumiere: spotlight: rendering 2 figure(s) at scale 0.1 on 1 thread(s)".to_string(),
+        format!(
+            "lumiere: spotlight: wrote 2 image(s), its manifest and contact sheet into {}",
+            out.join("spotlight").display()
+        ),
+    ];
+    assert_eq!(err.lines().collect::<Vec<_>>(), expected);
+    // Without -v, none of these lines.
+    let o = lumiere(&[
+        "figures",
+        "lighting",
+        "--scale",
+        "0.1",
+        "--scenes",
+        repo("scenes/figures").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    assert_eq!(String::from_utf8_lossy(&o.stderr), "");
+}

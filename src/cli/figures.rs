@@ -141,6 +141,15 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
         scale: args.scale,
     };
     for set in &chosen {
+        v.note(|| {
+            format!(
+                "{}: rendering {} figure(s) at scale {} on {} thread(s)",
+                set.name,
+                set.figures.len(),
+                args.scale,
+                args.threads.unwrap_or_else(rayon::current_num_threads)
+            )
+        });
         let report =
             with_threads(args.threads, || generate_until(set, &run, cancel, &mut reuse))?.map_err(|e| match e {
                 FiguresError::Encode(m) => CliError::Failed(m),
@@ -168,6 +177,14 @@ pub fn run(args: &FiguresArgs, v: Verbosity) -> Result<(), CliError> {
         // The gallery of the sets in the folder, this one's included, whatever stops the run
         // after it.
         write_index(&args.out, &all)?;
+        v.note(|| {
+            format!(
+                "{}: wrote {} image(s), its manifest and contact sheet into {}",
+                report.name,
+                report.images,
+                report.dir.display()
+            )
+        });
         written.push(&set.name);
         times.push(json!({"set": report.name, "images": report.images, "seconds": round_ms(report.seconds)}));
         write_timings(args, &times, start.elapsed().as_secs_f64())?;
