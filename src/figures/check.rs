@@ -56,6 +56,9 @@ pub enum What {
     Encoding,
     /// A text file differs from its regenerated self from this line on (1-based).
     Text { line: usize, found: String, fresh: String },
+    /// A JSON file (a manifest) differs from its regenerated self in these values, each
+    /// named by its path ([`json_changes`]).
+    Json { changes: Vec<String> },
     /// A binary file differs from its regenerated self.
     Bytes,
 }
@@ -117,6 +120,15 @@ impl std::fmt::Display for Problem {
                 f,
                 "{file}: differs from its regenerated self at line {line}: {found:?}, regenerated {fresh:?}"
             ),
+            What::Json { changes } => {
+                write!(f, "{file}: differs from its regenerated self in ")?;
+                let shown = changes.len().min(MOST_CHANGES_SHOWN);
+                write!(f, "{}", changes[..shown].join(", "))?;
+                match changes.len() - shown {
+                    0 => Ok(()),
+                    more => write!(f, " and {more} more"),
+                }
+            }
             What::Bytes => write!(f, "{file}: differs from its regenerated self"),
         }
     }
@@ -180,9 +192,68 @@ fn first_difference(found: &str, fresh: &str) -> (usize, String, String) {
 }
 
 /// The bytes of a file compared with its regenerated self.
+/// Most of a JSON file's differing values a problem names.
+const MOST_CHANGES_SHOWN: usize = 8;
+
+/// The paths of the values that differ between JSON values `found` and `fresh`, in key
+/// order: `key.key` into objects; in an array of objects that each name their `file` (a
+/// manifest's images), `images[01-ambient.png].pixel_hash`; an array otherwise, or a value
+/// of another type, is named whole.
+fn json_changes(found: &Value, fresh: &Value, path: &str, changes: &mut Vec<String>) {
+    if found == fresh {
+        return;
+    }
+    let file_of = |v: &Value| v.get("file").and_then(Value::as_str).map(str::to_string);
+    match (found, fresh) {
+        (Value::Object(a), Value::Object(b)) => {
+            let mut keys: Vec<&String> = a.keys().chain(b.keys()).collect();
+            keys.sort();
+            keys.dedup();
+            for key in keys {
+                let inner = if path.is_empty() {
+                    key.clone()
+                } else {
+                    format!("{path}.{key}")
+                };
+                json_changes(
+                    a.get(key).unwrap_or(&Value::Null),
+                    b.get(key).unwrap_or(&Value::Null),
+                    &inner,
+                    changes,
+                );
+            }
+        }
+        (Value::Array(a), Value::Array(b))
+            if a.len() == b.len()
+                && a.iter()
+                    .zip(b)
+                    .all(|(x, y)| file_of(x).is_some() && file_of(x) == file_of(y)) =>
+        {
+            for (x, y) in a.iter().zip(b) {
+                let name = file_of(x).unwrap_or_default();
+                json_changes(x, y, &format!("{path}[{name}]"), changes);
+            }
+        }
+        _ => changes.push(path.to_string()),
+    }
+}
+
 fn compare_file(file: String, found: &[u8], fresh: &[u8]) -> Option<Problem> {
     if found == fresh {
         return None;
+    }
+    let json = |bytes: &[u8]| serde_json::from_slice::<Value>(bytes).ok();
+    if file.ends_with(".json")
+        && let (Some(a), Some(b)) = (json(found), json(fresh))
+    {
+        let mut changes = Vec::new();
+        json_changes(&a, &b, "", &mut changes);
+        if !changes.is_empty() {
+            return Some(Problem {
+                file,
+                what: What::Json { changes },
+            });
+        }
     }
     let what = match (std::str::from_utf8(found), std::str::from_utf8(fresh)) {
         (Ok(a), Ok(b)) => {
@@ -436,4 +507,56 @@ pub fn extra_folders(out: &Path, sets: &[FigureSet]) -> Vec<Problem> {
             what: What::ExtraFolder,
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn json_changes_name_the_values_by_path() {
+        let found = json!({
+            "scale": 1.0,
+            "images": [
+                {"file": "a.png", "pixel_hash": "1", "family": ["b.png"]},
+                {"file": "b.png", "pixel_hash": "2", "facts": {"white": 0.5}}
+            ],
+            "sets": [1, 2]
+        });
+        let mut fresh = found.clone();
+        fresh["images"][0]["family"] = json!([]);
+        fresh["images"][1]["facts"]["white"] = json!(0.25);
+        fresh["images"][1]["seed"] = json!(7);
+        fresh["sets"] = json!([1, 3]);
+        let mut changes = Vec::new();
+        json_changes(&found, &fresh, "", &mut changes);
+        assert_eq!(
+            changes,
+            [
+                "images[a.png].family",
+                "images[b.png].facts.white",
+                "images[b.png].seed",
+                "sets"
+            ]
+        );
+        // Images in another order: the array is named whole.
+        let mut swapped = found.clone();
+        swapped["images"] = json!([found["images"][1], found["images"][0]]);
+        changes.clear();
+        json_changes(&found, &swapped, "", &mut changes);
+        assert_eq!(changes, ["images"]);
+        // The display names the first eight.
+        let many = What::Json {
+            changes: (0..10).map(|i| format!("k{i}")).collect(),
+        };
+        let problem = Problem {
+            file: "m.json".into(),
+            what: many,
+        };
+        assert_eq!(
+            problem.to_string(),
+            "m.json: differs from its regenerated self in k0, k1, k2, k3, k4, k5, k6, k7 and 2 more"
+        );
+    }
 }
