@@ -236,7 +236,8 @@ fn render_pass<const K: usize>(members: &[&Scene], cancel: &AtomicBool) -> Optio
         }
     });
     let h = largest.settings.height;
-    let quantise = |c: [DVec3; K]| c.map(|c| [c.x, c.y, c.z].map(crate::film::quantize));
+    let normalization = largest.settings.color_normalization;
+    let quantise = |c: [DVec3; K]| c.map(|c| crate::film::rgb8(c, normalization));
     let (pixels, stats) = render_rows_members(&world, views, 0..h, &|| {}, Some(cancel), quantise);
     if cancel.load(std::sync::atomic::Ordering::Relaxed) || stats[0].diverged {
         return None;

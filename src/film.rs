@@ -1,17 +1,58 @@
 //! The image being made: per-pixel radiance, its 8-bit quantisation (clamp to [0, 1], no
-//! gamma, as the course's renderer writes), and atomic PNG output.
+//! gamma, as the course's renderer writes; or each colour first divided by its largest
+//! channel, SIMRenderer's `division_factor`), and atomic PNG output.
 
 use glam::DVec3;
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// Radiance per pixel, row 0 at the top.
+/// Radiance per pixel, row 0 at the top, and how its colours go to 8 bits.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Film {
     pub width: u32,
     pub height: u32,
     pub pixels: Vec<DVec3>,
+    pub normalization: Normalization,
+}
+
+/// How a pixel's colour is brought into [0, 1] before quantisation (SIMRenderer's
+/// `color_normalization`, a global setting of its ray tracer, applied when it writes the
+/// image): the radiance itself (PFM, EXR, shards) is not changed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Normalization {
+    /// Each channel clamped to [0, 1] (the chapter's, and SIMRenderer's default).
+    #[default]
+    ClampChannel,
+    /// The colour divided by its largest channel where that exceeds 1, keeping its hue;
+    /// then clamped as above (a negative channel to 0).
+    DivisionFactor,
+}
+
+impl Normalization {
+    /// Whether this is the default, [`Normalization::ClampChannel`] (which files leave out).
+    pub fn is_clamp_channel(&self) -> bool {
+        *self == Normalization::ClampChannel
+    }
+
+    /// `c` as this normalization brings it into [0, 1] before [`quantize`] clamps it.
+    pub fn apply(self, c: DVec3) -> DVec3 {
+        match self {
+            Normalization::ClampChannel => c,
+            Normalization::DivisionFactor => {
+                let largest = c.max_element();
+                if largest > 1.0 { c / largest } else { c }
+            }
+        }
+    }
+}
+
+/// A pixel's colour in 8 bits: normalized ([`Normalization::apply`]), then each channel
+/// quantised.
+pub fn rgb8(c: DVec3, normalization: Normalization) -> [u8; 3] {
+    let c = normalization.apply(c);
+    [quantize(c.x), quantize(c.y), quantize(c.z)]
 }
 
 /// One channel clamped to [0, 1], NaN to 0: the value [`quantize`] rounds.
@@ -32,6 +73,7 @@ impl Film {
             width,
             height,
             pixels: vec![DVec3::ZERO; width as usize * height as usize],
+            normalization: Normalization::ClampChannel,
         }
     }
 
@@ -39,12 +81,9 @@ impl Film {
         self.pixels[(y * self.width + x) as usize]
     }
 
-    /// Interleaved 8-bit RGB.
+    /// Interleaved 8-bit RGB ([`rgb8`] of each pixel).
     pub fn to_rgb8(&self) -> Vec<u8> {
-        self.pixels
-            .iter()
-            .flat_map(|p| [quantize(p.x), quantize(p.y), quantize(p.z)])
-            .collect()
+        self.pixels.iter().flat_map(|&p| rgb8(p, self.normalization)).collect()
     }
 
     /// PNG-encodes the 8-bit image.
@@ -142,6 +181,14 @@ mod tests {
         assert_eq!(quantize(1.0), 255);
         assert_eq!(quantize(7.3), 255);
         assert_eq!(quantize(f64::NAN), 0);
+        // Division by the largest channel above 1 keeps the hue; at most 1, nothing changes.
+        let bright = DVec3::new(2.0, 1.0, 0.5);
+        assert_eq!(Normalization::DivisionFactor.apply(bright), DVec3::new(1.0, 0.5, 0.25));
+        assert_eq!(rgb8(bright, Normalization::DivisionFactor), [255, 128, 64]);
+        assert_eq!(rgb8(bright, Normalization::ClampChannel), [255, 255, 128]);
+        let dim = DVec3::new(0.5, 0.2, -0.1);
+        assert_eq!(Normalization::DivisionFactor.apply(dim), dim);
+        assert_eq!(rgb8(dim, Normalization::DivisionFactor), [128, 51, 0]);
         // Rounding half up at every level's boundary `(k + 0.5) / 255` and one ulp either
         // side: the cast gives `floor`'s result.
         for k in 0..255 {

@@ -466,6 +466,7 @@ impl Layers {
                     width: self.width,
                     height: self.height,
                     pixels: plane.values.chunks(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect(),
+                    normalization: crate::film::Normalization::ClampChannel,
                 };
                 let path = dir.join(pfm);
                 write_atomic(&path, &crate::output::encode_pfm(&film))?;

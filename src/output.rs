@@ -57,11 +57,12 @@ pub fn srgb_decode(c: f64) -> f64 {
     }
 }
 
-/// 8-bit RGB of a film with each channel sRGB-encoded before quantisation.
+/// 8-bit RGB of a film with each channel sRGB-encoded before quantisation (after the
+/// film's normalization).
 pub fn to_srgb8(film: &Film) -> Vec<u8> {
     film.pixels
         .iter()
-        .flat_map(|p| [p.x, p.y, p.z].map(|c| quantize(srgb_encode(c))))
+        .flat_map(|&p| film.normalization.apply(p).to_array().map(|c| quantize(srgb_encode(c))))
         .collect()
 }
 

@@ -9,7 +9,7 @@
 
 use crate::accel::AccelChoice;
 use crate::caustics::Estimate;
-use crate::film::{clamp_unit, quantize};
+use crate::film::{clamp_unit, rgb8};
 use crate::light::Light;
 use crate::math::Ray;
 use crate::render::{render_pixel_recorded, render_sample};
@@ -67,6 +67,10 @@ pub struct FinalColor {
     /// `"mean"` of every sample (the pixel's value) or `"sample"` (one sample alone).
     pub of: &'static str,
     pub radiance: [f64; 3],
+    /// Under `color_normalization = "division_factor"`, the radiance divided by its largest
+    /// channel where that exceeds 1 (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub divided: Option<[f64; 3]>,
     pub clamped: [f64; 3],
     pub rgb8: [u8; 3],
 }
@@ -483,11 +487,15 @@ pub fn probe_with(
         adaptive_threshold: s.adaptive_threshold,
         conventions: s.conventions.summary(),
         samples: rec.samples,
-        color: FinalColor {
-            of,
-            radiance: v3(radiance),
-            clamped: radiance.to_array().map(clamp_unit),
-            rgb8: radiance.to_array().map(quantize),
+        color: {
+            let normalized = s.color_normalization.apply(radiance);
+            FinalColor {
+                of,
+                radiance: v3(radiance),
+                divided: (!s.color_normalization.is_clamp_channel()).then(|| v3(normalized)),
+                clamped: normalized.to_array().map(clamp_unit),
+                rgb8: rgb8(radiance, s.color_normalization),
+            }
         },
         counts: *c,
     })
@@ -540,6 +548,13 @@ pub fn format_text(p: &PixelProbe) -> String {
         format!("sample {} alone", p.samples.first().map_or(0, |s| s.index))
     };
     let _ = writeln!(o, "colour ({what}) {}", vec(&c.radiance));
+    if let Some(d) = &c.divided {
+        let _ = writeln!(
+            o,
+            "  divided by its largest channel above 1 (division_factor) {}",
+            vec(d)
+        );
+    }
     let _ = writeln!(o, "  clamped to [0, 1] {}", vec(&c.clamped));
     let _ = writeln!(o, "  8-bit ({}, {}, {})", c.rgb8[0], c.rgb8[1], c.rgb8[2]);
     let n = &p.counts;

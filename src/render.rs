@@ -249,6 +249,7 @@ pub fn render(world: &World, progress: &(dyn Fn() + Sync)) -> (Film, RenderStats
         width: s.width,
         height: s.height,
         pixels,
+        normalization: s.color_normalization,
     };
     (film, stats)
 }
@@ -298,6 +299,7 @@ pub fn render_reference(world: &World, progress: &(dyn Fn() + Sync)) -> (Film, R
         width: s.width,
         height: s.height,
         pixels,
+        normalization: s.color_normalization,
     };
     (film, stats)
 }

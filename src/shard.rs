@@ -17,7 +17,7 @@
 //! `LUMIERE-SHARD-1` file (the same layout without the checksum) is refused: it must be
 //! rendered again.
 
-use crate::film::{Film, pixel_hash};
+use crate::film::{Film, Normalization, pixel_hash};
 use crate::limits;
 use crate::scene::Scene;
 use glam::DVec3;
@@ -95,6 +95,9 @@ pub struct ShardHeader {
     /// FNV-1a 64 of the scene as JSON (settings included): shards of different scenes,
     /// seeds or sizes cannot be mixed.
     pub scene_hash: String,
+    /// How the merged image's colours go to 8 bits (absent: each channel clamped).
+    #[serde(default, skip_serializing_if = "Normalization::is_clamp_channel")]
+    pub color_normalization: Normalization,
 }
 
 impl ShardHeader {
@@ -146,6 +149,7 @@ pub fn encode(scene: &Scene, spec: ShardSpec, pixels: &[DVec3]) -> Vec<u8> {
         shards: spec.count,
         rows: [rows.start, rows.end],
         scene_hash: scene_hash(scene),
+        color_normalization: scene.settings.color_normalization,
     };
     let mut out = MAGIC.to_vec();
     out.extend(serde_json::to_vec(&header).unwrap_or_default());
@@ -280,6 +284,7 @@ pub fn merge(shards: Vec<(String, ShardHeader, Vec<DVec3>)>) -> Result<Film, Str
     }
     // Every header is checked and every shard present once: the rows tile the film.
     let mut film = Film::new(first.width, first.height);
+    film.normalization = first.color_normalization;
     for (_, h, pixels) in shards {
         let at = h.rows[0] as usize * h.width as usize;
         film.pixels[at..at + pixels.len()].copy_from_slice(&pixels);
@@ -326,6 +331,7 @@ mod tests {
             shards,
             rows: [rows.start, rows.end],
             scene_hash: "0123456789abcdef".into(),
+            color_normalization: Normalization::ClampChannel,
         }
     }
 

@@ -282,7 +282,15 @@ proptest! {
             && shard_index < shards
             && rows == [own_rows(shard_index), own_rows(shard_index + 1)]
             && pixels as u64 == count;
-        let h = ShardHeader { width, height, shard: shard_index, shards, rows, scene_hash: "5".repeat(16) };
+        let h = ShardHeader {
+            width,
+            height,
+            shard: shard_index,
+            shards,
+            rows,
+            scene_hash: "5".repeat(16),
+            color_normalization: Default::default(),
+        };
         let mut file = b"LUMIERE-SHARD-2\n".to_vec();
         file.extend(serde_json::to_vec(&h).unwrap());
         file.push(b'\n');

@@ -434,10 +434,6 @@ fn what_lumiere_does_not_model_is_refused_by_name() {
             "primitive\nbtriangle\nend\nend",
             "lab.txt:2:1: primitive.btriangle: barycentric triangles (btriangle) are not supported yet by lumiere",
         ),
-        (
-            "raytracer\ncolor_normalization division_factor\nend",
-            "lab.txt:2:21: raytracer.color_normalization: division_factor is not supported yet by lumiere, which clamps each channel (clamp_channel)",
-        ),
         // A refractive index of 0 (SIMRenderer's value for an opaque material) on a
         // transparent material: at the index's own value, as written, whichever comes first.
         (

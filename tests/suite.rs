@@ -27,6 +27,7 @@ mod lenses;
 mod located_errors;
 mod lock;
 mod no_light;
+mod normalization;
 mod output;
 mod probe;
 mod readme;

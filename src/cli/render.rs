@@ -155,6 +155,7 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
                 width: scene.settings.width,
                 height: scene.settings.height,
                 pixels,
+                normalization: scene.settings.color_normalization,
             };
             lumiere::output::encode(&film, format, args.srgb)
                 .map_err(|e| CliError::Failed(format!("cannot encode the image: {e}")))?

@@ -171,6 +171,7 @@ pub fn render_figure_until(figure: Figure, scale: f64, cancel: &AtomicBool) -> O
         width: w,
         height: h,
         pixels,
+        normalization: scene.settings.color_normalization,
     };
     let image = image::RgbImage::from_raw(w, h, film.to_rgb8()).expect("film size");
     Some(RenderedFigure {

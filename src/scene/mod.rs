@@ -21,6 +21,7 @@ pub use overrides::Overrides;
 pub use read_text::{read_text, text_of};
 
 use crate::conventions::Conventions;
+use crate::film::Normalization;
 use crate::light::Light;
 use crate::material::Material;
 use crate::shape::Shape;
@@ -251,6 +252,9 @@ pub struct Settings {
     pub shadows: bool,
     /// Colour of rays that hit nothing.
     pub background: DVec3,
+    /// How each pixel's colour is brought into [0, 1] for 8-bit images.
+    #[serde(skip_serializing_if = "Normalization::is_clamp_channel")]
+    pub color_normalization: Normalization,
     /// Adaptive depth control: a secondary ray is not traced when the most it could add to
     /// the pixel is below this many 8-bit levels (0 = off).
     pub adaptive_threshold: f64,

@@ -25,6 +25,7 @@ use super::tag;
 use super::{CameraSpec, Object, ObjectNames, Scene, Settings, ShadingModel, Specular};
 use super::{decimal_comma, serde_words};
 use crate::conventions::Highlight;
+use crate::film::Normalization;
 use crate::light::Light;
 use crate::limits;
 use crate::material::Material;
@@ -361,6 +362,16 @@ impl FileScene {
                 "shows the diffuse colour in place of every local term: set ambient = false, diffuse = false and specular = \"none\" with it".to_string(),
             );
         }
+        let color_normalization = match self.render.color_normalization.as_str() {
+            "clamp_channel" => Normalization::ClampChannel,
+            "division_factor" => Normalization::DivisionFactor,
+            other => {
+                return fail(
+                    &r.key("color_normalization"),
+                    format!("must be \"clamp_channel\" or \"division_factor\", got {other:?}"),
+                );
+            }
+        };
         Ok(Settings {
             width,
             height,
@@ -370,6 +381,7 @@ impl FileScene {
             shading,
             shadows: self.render.shadows,
             background: color(&r.key("background"), self.render.background, limits::MAX_LIGHT)?,
+            color_normalization,
             adaptive_threshold: in_range(
                 &r.key("adaptive_threshold"),
                 self.render.adaptive_threshold,

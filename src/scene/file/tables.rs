@@ -61,6 +61,8 @@ pub(super) struct FileRender {
     pub(super) no_light: bool,
     pub(super) shadows: bool,
     pub(super) background: Xyz,
+    /// "clamp_channel" or "division_factor" ([`crate::film::Normalization`]).
+    pub(super) color_normalization: String,
     pub(super) adaptive_threshold: f64,
 }
 
@@ -74,6 +76,7 @@ impl Default for FileRender {
             no_light: false,
             shadows: true,
             background: Xyz([0.0; 3]),
+            color_normalization: "clamp_channel".to_string(),
             adaptive_threshold: limits::DEFAULT_ADAPTIVE_THRESHOLD,
         }
     }

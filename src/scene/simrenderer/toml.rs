@@ -9,6 +9,7 @@ use super::exact::{self, number, unit_once, unit_twice};
 use super::writer::{Format, Writer};
 use super::{Refused, Written, object_label};
 use crate::area_light::AreaShape;
+use crate::film::Normalization;
 use crate::interference::Aperture;
 use crate::light::{Attenuation, Light};
 use crate::material::Material;
@@ -120,6 +121,9 @@ impl Writer<Toml> {
         }
         self.line(format!("shadows = {}", s.shadows));
         self.line(format!("background = {}", vec3(s.background)));
+        if s.color_normalization == Normalization::DivisionFactor {
+            self.line("color_normalization = \"division_factor\"");
+        }
         self.line(format!("adaptive_threshold = {}", num(s.adaptive_threshold)));
         self.line("");
         // The nearer preset, then the switches that differ from it.

@@ -8,6 +8,7 @@ use super::exact::{self, number, unit_once, unit_twice};
 use super::writer::{Format, Writer};
 use super::{DEFAULT_SEED, Refused, Written, object_label};
 use crate::conventions::{Conventions, SamplePosition};
+use crate::film::Normalization;
 use crate::interference::{Aperture, ApertureLight};
 use crate::light::Light;
 use crate::material::Material;
@@ -194,6 +195,9 @@ impl Writer<SimRenderer> {
         self.line(format!("recursive_level     {}", s.depth));
         self.line(format!("reflexion_algorithm {shading}"));
         self.line(format!("pixel_coordinate    {pixel}"));
+        if s.color_normalization == Normalization::DivisionFactor {
+            self.line("color_normalization division_factor");
+        }
         // What lumiere needs and SIMRenderer does not read, as comments it skips.
         if s.seed != DEFAULT_SEED {
             self.line(format!("# lumiere: seed {}", s.seed));

@@ -46,6 +46,7 @@ impl<'a> Reader<'a> {
             shading: r.shading.unwrap_or_default(),
             shadows: true,
             background: DVec3::ZERO,
+            color_normalization: r.color_normalization,
             adaptive_threshold: self.adaptive_threshold.unwrap_or(0.0),
             conventions,
             // SIMRenderer has no photon pass.

@@ -7,6 +7,7 @@ use super::keywords::{
 use super::values::{direction, far, int_in, number_in, point, positive, unit};
 use super::{At, Reader, at, at_value};
 use crate::conventions::SamplePosition;
+use crate::film::Normalization;
 use crate::limits;
 use crate::scene::simrenderer::lex::{self, Line};
 use crate::scene::{CameraSpec, SceneError, ShadingModel};
@@ -46,6 +47,7 @@ pub(super) struct RaytracerBlock {
     pub(super) depth: Option<u32>,
     pub(super) shading: Option<ShadingModel>,
     pub(super) pixel_coordinate: Option<SamplePosition>,
+    pub(super) color_normalization: Normalization,
 }
 
 impl<'a> Reader<'a> {
@@ -192,10 +194,12 @@ impl<'a> Reader<'a> {
                 }
                 _ => {
                     let read = lex::enumeration(l.value, l.value_column, &COLOR_NORMALIZATIONS);
-                    if let Some(1) = self.value(&block, &l, read)? {
-                        let m = "division_factor is not supported yet by lumiere, which clamps each channel (clamp_channel)"
-                            .to_string();
-                        self.problem(&place, m, then)?;
+                    if let Some(i) = self.value(&block, &l, read)? {
+                        r.color_normalization = if i == 1 {
+                            Normalization::DivisionFactor
+                        } else {
+                            Normalization::ClampChannel
+                        };
                     }
                 }
             }
