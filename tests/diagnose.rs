@@ -28,6 +28,20 @@ use lumiere::world::World;
 const W: u32 = 96;
 const H: u32 = 72;
 
+/// The command-line options that render a scene as [`centred`] loads it.
+const CENTRED_OPTIONS: [&str; 8] = [
+    "--width",
+    "96",
+    "--height",
+    "72",
+    "--spp",
+    "1",
+    "--convention",
+    "sample_position=center",
+];
+// The options' size is `W x H`, written out.
+const _: () = assert!(W == 96 && H == 72);
+
 /// A scene of `scenes/` (or the fixture) at `W x H`, one sample at each pixel's centre.
 fn centred(path: &str) -> Scene {
     let mut s = scene::load(&repo(path)).unwrap();
@@ -750,17 +764,7 @@ fn command_line_renders_a_mistake_that_diagnose_then_names() {
     let dir = temp_dir("render-mistake");
     let image = dir.join("far.png");
     let reference = repo("scenes/reference.toml");
-    let (w, h) = (W.to_string(), H.to_string());
-    let settings = [
-        "--width",
-        &w,
-        "--height",
-        &h,
-        "--spp",
-        "1",
-        "--convention",
-        "sample_position=center",
-    ];
+    let settings = CENTRED_OPTIONS;
     let render = |mistake: &str, out: &std::path::Path, more: &[&str]| {
         let args = [
             "render",
@@ -1017,17 +1021,7 @@ fn command_line_renders_a_doubled_exponent_that_diagnose_names() {
     let dir = temp_dir("render-exponent");
     let image = dir.join("exponent.png");
     let reference = repo("scenes/reference.toml");
-    let (w, h) = (W.to_string(), H.to_string());
-    let settings = [
-        "--width",
-        &w,
-        "--height",
-        &h,
-        "--spp",
-        "1",
-        "--convention",
-        "sample_position=center",
-    ];
+    let settings = CENTRED_OPTIONS;
     let render = |scene: &std::path::Path, out: &std::path::Path| {
         let args = [
             "render",
