@@ -201,7 +201,7 @@ impl<'s> World<'s> {
         let ball = |o: &Object| {
             let flat = matches!(
                 o.shape,
-                Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Triangle(_)
+                Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Triangle(_) | Shape::SmoothTriangle(_)
             );
             o.shape.bounding_sphere().filter(|_| !flat)
         };

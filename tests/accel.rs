@@ -13,7 +13,8 @@ use lumiere::render::render;
 use lumiere::sampling::{Purpose, Stream};
 use lumiere::scene::Object;
 use lumiere::shape::{
-    Cone, Cuboid, Cylinder, Disk, Lens, Plane, Rectangle, Shape, Sphere, SphericalCap, Torus, Transform, Triangle,
+    Cone, Cuboid, Cylinder, Disk, Lens, NormalInterpolation, Plane, Rectangle, Shape, SmoothTriangle, Sphere,
+    SphericalCap, Torus, Transform, Triangle,
 };
 use lumiere::world::World;
 
@@ -81,7 +82,18 @@ fn random_new_shapes(seed: u64, n: usize, half: f64) -> Vec<Object> {
         let axis = unit(&mut s);
         let kind = (s.next_f64() * 6.0) as usize;
         let shape = match kind {
-            0 => Shape::Triangle(Triangle::new(c, c + unit(&mut s) * r, c + unit(&mut s) * r)),
+            0 => {
+                let flat = Triangle::new(c, c + unit(&mut s) * r, c + unit(&mut s) * r);
+                if i % 3 == 0 {
+                    // Every third a smooth triangle, of either interpolation rule.
+                    let normals = [unit(&mut s), unit(&mut s), unit(&mut s)];
+                    let rule = [NormalInterpolation::Linear, NormalInterpolation::Normalized][i % 2];
+                    let smooth = SmoothTriangle::new(flat, normals, SmoothTriangle::FLAT_UVS, rule);
+                    Shape::SmoothTriangle(Box::new(smooth.unwrap()))
+                } else {
+                    Shape::Triangle(flat)
+                }
+            }
             1 => Shape::Cylinder(Box::new(Cylinder::tube(c, axis, 2.0 * r, 0.5 * r))),
             2 => {
                 // An ellipsoid or a box, scaled, turned and moved.

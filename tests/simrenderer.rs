@@ -431,8 +431,8 @@ fn errors_name_the_line_column_keyword_and_range() {
 fn what_lumiere_does_not_model_is_refused_by_name() {
     for (text, expected) in [
         (
-            "primitive\nbtriangle\nend\nend",
-            "lab.txt:2:1: primitive.btriangle: barycentric triangles (btriangle) are not supported yet by lumiere",
+            "primitive\ngeometry\nbtriangle\nend\nend\nend",
+            "lab.txt:3:1: geometry.btriangle: SIMRenderer does not transform a btriangle (its SBTriangleGeometry.transform is not implemented); give its points and normals where they are",
         ),
         // A refractive index of 0 (SIMRenderer's value for an opaque material) on a
         // transparent material: at the index's own value, as written, whichever comes first.
@@ -473,7 +473,6 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
             "lab.txt:7:1: material.colour: unknown keyword \"colour\"; material's keywords are name (nom), color (couleur), ka, kd, ks, kr, kt, shininess (brillance), plasticity (p), refractive_index (n), end (fin); the line is skipped",
             "lab.txt:8:4: material.ka: must be a finite number in [0, 1], got 2; the value before it is kept",
             "lab.txt:11:13: linear_aperture_light.wave_length: must be a finite number in [380, 780], got 900; the value before it is kept",
-            "lab.txt:15:1: primitive.btriangle: barycentric triangles (btriangle) are not supported yet by lumiere; the geometry is skipped",
             "lab.txt:17:1: primitive.sphere: a primitive has one geometry; this is a second one (after a btriangle); this geometry is skipped",
             "lab.txt:23:1: primitive.plane: a primitive has one geometry; this is a second one (after a sphere); this geometry is skipped",
             "lab.txt:27:10: raytracer.sampling: lumiere averages a perfect square of samples (1, 4, 9, ..., 1024), got 2: other counts are not supported yet; the value before it is kept",
@@ -496,9 +495,12 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
     assert_eq!(s.materials[1].ka, 0.2);
     assert_eq!(s.settings.samples_per_pixel, 1);
     assert_eq!(s.settings.conventions.sample_position, SamplePosition::Jittered);
-    // The btriangle primitive is dropped with its geometry; the second keeps its sphere.
-    assert_eq!(s.objects.len(), 1);
-    assert_eq!(s.name_of(&s.objects[0]), "sphere#0");
+    // The first primitive keeps its (default) btriangle, the second its sphere.
+    assert_eq!(s.objects.len(), 2);
+    assert_eq!(
+        [s.name_of(&s.objects[0]), s.name_of(&s.objects[1])],
+        ["triangle#0", "sphere#1"]
+    );
     // An object SIMRenderer cannot build is dropped with a warning.
     let p = lenient("primitive\ntriangle\npoint 1 1 1\npoint 1 1 1\nend\nend\nprimitive\nsphere\nend\nend");
     assert_eq!(p.scene.objects.len(), 1);

@@ -44,6 +44,7 @@ mod simrenderer_convert;
 mod simrenderer_formulas;
 mod simrenderer_fuzz;
 mod skips;
+mod smooth_triangles;
 mod soft_shadows;
 mod stress;
 mod textures;

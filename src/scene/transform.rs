@@ -90,6 +90,12 @@ impl Similarity {
                 let [p0, p1, p2] = t.points().map(|p| self.point(p));
                 Shape::Triangle(Triangle::new(p0, p1, p2))
             }
+            Shape::SmoothTriangle(t) => {
+                let [p0, p1, p2] = t.triangle.points().map(|p| self.point(p));
+                let mut moved = t.clone();
+                moved.triangle = Triangle::new(p0, p1, p2);
+                Shape::SmoothTriangle(moved)
+            }
             Shape::SphericalCap(c) => Shape::SphericalCap(Box::new(SphericalCap::new(
                 self.point(c.center),
                 c.normal,

@@ -1,8 +1,9 @@
 //! The closed set of shapes. Each shape answers three questions: the closest hit in a
 //! parameter range (camera, reflection and refraction rays), whether any hit exists in a
 //! range (shadow rays: cheaper, may stop at the first root), and its bounding box when it
-//! is finite. Normals are unit length and point outward; the tracer decides which side the
-//! ray is on. Rays that start inside a shape get the exit hit. Open surfaces (plane,
+//! is finite. Normals are unit length and point outward (but a smooth triangle's under
+//! SIMRenderer's linear interpolation: [`NormalInterpolation`]); the tracer decides which
+//! side the ray is on. Rays that start inside a shape get the exit hit. Open surfaces (plane,
 //! rectangle, disk, triangle, tube, spherical cap) bound no solid. Each shape also has
 //! texture coordinates ([`Shape::uv`], in `uv`).
 
@@ -15,6 +16,7 @@ mod lens;
 pub mod mesh;
 mod plane;
 mod rectangle;
+mod smooth_triangle;
 mod sphere;
 mod spherical_cap;
 mod torus;
@@ -30,6 +32,7 @@ pub use fan::{Fan, Verdict, fan_verdicts, occludes_undecided};
 pub use lens::Lens;
 pub use plane::Plane;
 pub use rectangle::Rectangle;
+pub use smooth_triangle::{NormalInterpolation, SmoothTriangle};
 pub use sphere::Sphere;
 #[cfg(test)]
 pub(crate) use sphere::sphere_discriminant;
@@ -114,6 +117,8 @@ pub enum Shape {
     /// Inline (32 bytes: the shared vertex array and three indices), no allocation per
     /// triangle.
     Triangle(Triangle),
+    /// A triangle with vertex normals and texture coordinates.
+    SmoothTriangle(Box<SmoothTriangle>),
     /// Any shape through an affine map.
     Transformed(Box<Transformed>),
     /// SIMRenderer's spherical cap: an open piece of a sphere over a disk.
@@ -134,6 +139,7 @@ macro_rules! dispatch {
             Shape::Cone($s) => $e,
             Shape::Torus($s) => $e,
             Shape::Triangle($s) => $e,
+            Shape::SmoothTriangle($s) => $e,
             Shape::Transformed($s) => $e,
             Shape::SphericalCap($s) => $e,
             Shape::Lens($s) => $e,
@@ -158,6 +164,7 @@ impl Shape {
             Shape::Sphere(s) => s.occludes(ray, t_min, t_max),
             Shape::Torus(s) => s.occludes(ray, t_min, t_max),
             Shape::Triangle(s) => s.occludes(ray, t_min, t_max),
+            Shape::SmoothTriangle(s) => s.occludes(ray, t_min, t_max),
             _ => self.intersect(ray, t_min, t_max).is_some(),
         }
     }
@@ -200,6 +207,7 @@ impl Shape {
             Shape::Cone(c) => c.bounding_sphere(),
             Shape::Torus(t) => (t.center, t.major + t.minor),
             Shape::Triangle(t) => t.bounding_sphere(),
+            Shape::SmoothTriangle(t) => t.triangle.bounding_sphere(),
             Shape::Transformed(t) => return t.bounding_sphere(),
             Shape::SphericalCap(c) => c.bounding_sphere(),
             Shape::Lens(l) => l.bounding_sphere(),
@@ -211,7 +219,12 @@ impl Shape {
     /// (plane, rectangle, disk, triangle, tube) and for the torus (its center is in the hole).
     pub fn inner_ball(&self) -> Option<(DVec3, f64)> {
         match self {
-            Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Torus(_) | Shape::Triangle(_) => None,
+            Shape::Plane(_)
+            | Shape::Rectangle(_)
+            | Shape::Disk(_)
+            | Shape::Torus(_)
+            | Shape::Triangle(_)
+            | Shape::SmoothTriangle(_) => None,
             // The lens's thinnest place depends on its caps: no ball is claimed.
             Shape::SphericalCap(_) | Shape::Lens(_) => None,
             Shape::Sphere(s) => Some((s.center, s.radius)),
@@ -260,9 +273,12 @@ impl Shape {
     /// SIMRenderer's cap, a disk geometry, does not close its rim).
     pub fn is_closed(&self) -> bool {
         match self {
-            Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Triangle(_) | Shape::SphericalCap(_) => {
-                false
-            }
+            Shape::Plane(_)
+            | Shape::Rectangle(_)
+            | Shape::Disk(_)
+            | Shape::Triangle(_)
+            | Shape::SmoothTriangle(_)
+            | Shape::SphericalCap(_) => false,
             Shape::Cylinder(c) => !c.open,
             Shape::Transformed(t) => t.shape.is_closed(),
             Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cone(_) | Shape::Torus(_) | Shape::Lens(_) => true,
@@ -281,7 +297,7 @@ impl Shape {
             Shape::Cylinder(_) => "cylinder",
             Shape::Cone(_) => "cone",
             Shape::Torus(_) => "torus",
-            Shape::Triangle(_) => "triangle",
+            Shape::Triangle(_) | Shape::SmoothTriangle(_) => "triangle",
             Shape::SphericalCap(_) => "spherical_cap",
             Shape::Lens(_) => "lens",
             // Written as the inner shape's table with a `transform`.

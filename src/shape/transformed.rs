@@ -111,17 +111,38 @@ impl Transform {
         self.to_world.transform_point3(p)
     }
 
+    /// A normal seen through the map, `A^-T n`, of the same length as `n` when the map
+    /// is a rotation (and not unit in general).
+    pub fn normal(&self, n: DVec3) -> DVec3 {
+        self.to_local.transpose() * n
+    }
+
+    /// The vertices `[p0, p1, p2]` moved, in the order that keeps the winding outward
+    /// (`p1` and `p2` swapped when the map mirrors), with the order's permutation.
+    fn triangle_points(&self, points: [DVec3; 3]) -> ([DVec3; 3], [usize; 3]) {
+        let order = if self.mirrors() { [0, 2, 1] } else { [0, 1, 2] };
+        (order.map(|i| self.point(points[i])), order)
+    }
+
     /// The shape seen through the map: a triangle's vertices are moved (its winding kept
-    /// outward: swapped when the map mirrors); any other shape is wrapped.
+    /// outward: swapped when the map mirrors), and a smooth triangle's vertex normals with
+    /// them; any other shape is wrapped.
     pub fn apply(&self, shape: Shape) -> Shape {
         match shape {
             Shape::Triangle(t) => {
-                let [p0, p1, p2] = t.points().map(|p| self.point(p));
-                Shape::Triangle(if self.mirrors() {
-                    super::Triangle::new(p0, p2, p1)
-                } else {
-                    super::Triangle::new(p0, p1, p2)
-                })
+                let ([p0, p1, p2], _) = self.triangle_points(t.points());
+                Shape::Triangle(super::Triangle::new(p0, p1, p2))
+            }
+            Shape::SmoothTriangle(s) => {
+                let ([p0, p1, p2], order) = self.triangle_points(s.triangle.points());
+                let normals = order.map(|i| self.normal(s.normals[i]));
+                let uvs = order.map(|i| s.uvs[i]);
+                let flat = super::Triangle::new(p0, p1, p2);
+                // An invertible map keeps a normal's direction non-zero.
+                match super::SmoothTriangle::new(flat, normals, uvs, s.interpolation) {
+                    Some(moved) => Shape::SmoothTriangle(Box::new(moved)),
+                    None => Shape::Transformed(Box::new(Transformed::new(Shape::SmoothTriangle(s), *self))),
+                }
             }
             other => Shape::Transformed(Box::new(Transformed::new(other, *self))),
         }
@@ -142,13 +163,19 @@ impl Transform {
                 })),
             },
             Shape::Triangle(t) => t.points().iter().all(|p| limits::within_coordinates(*p)),
+            Shape::SmoothTriangle(t) => t.triangle.points().iter().all(|p| limits::within_coordinates(*p)),
             _ => true,
         };
         if !inside {
             let m = limits::MAX_COORDINATE;
             return Err(format!("moves the shape beyond the coordinates' range [-{m:e}, {m:e}]"));
         }
-        if let Shape::Triangle(t) = &moved
+        let flat = match &moved {
+            Shape::Triangle(t) => Some(t),
+            Shape::SmoothTriangle(t) => Some(&t.triangle),
+            _ => None,
+        };
+        if let Some(t) = flat
             && let [a, b, c] = t.points()
             && let Some(why) = super::Triangle::degenerate(a, b, c)
         {

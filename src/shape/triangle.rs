@@ -82,17 +82,38 @@ impl Triangle {
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let [p0, p1, p2] = self.points();
-        let t = watertight(p0, p1, p2, ray, t_min)?;
-        (t < t_max).then(|| SurfaceHit {
-            t,
+        let c = watertight(p0, p1, p2, ray, t_min)?;
+        (c.t < t_max).then(|| SurfaceHit {
+            t: c.t,
             normal: (p1 - p0).cross(p2 - p0).normalize(),
         })
+    }
+
+    /// The hit's parameter and barycentric coordinates `(b0, b1, b2)` (the weights of
+    /// `p0`, `p1`, `p2` at the hit point, summing to 1), with `t_min < t < t_max`.
+    #[inline]
+    pub fn crossing(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, [f64; 3])> {
+        let [p0, p1, p2] = self.points();
+        let c = watertight(p0, p1, p2, ray, t_min)?;
+        (c.t < t_max).then(|| (c.t, c.edges.map(|e| e / c.det)))
     }
 
     #[inline]
     pub fn occludes(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let [p0, p1, p2] = self.points();
-        watertight(p0, p1, p2, ray, t_min).is_some_and(|t| t < t_max)
+        watertight(p0, p1, p2, ray, t_min).is_some_and(|c| c.t < t_max)
+    }
+
+    /// The barycentric coordinates `(b1, b2)` of `p` (a point of the triangle's plane): the
+    /// solution of `p - p0 = b1 (p1 - p0) + b2 (p2 - p0)` by the normal equations
+    /// (Cramer's rule). `b0 = 1 - b1 - b2`.
+    pub fn barycentric(&self, p: DVec3) -> (f64, f64) {
+        let [p0, p1, p2] = self.points();
+        let (e1, e2, d) = (p1 - p0, p2 - p0, p - p0);
+        let (a11, a12, a22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let (r1, r2) = (d.dot(e1), d.dot(e2));
+        let det = a11 * a22 - a12 * a12;
+        ((r1 * a22 - r2 * a12) / det, (a11 * r2 - a12 * r1) / det)
     }
 
     /// Bound on the distance from `p` (a hit inside the triangle) to its plane: the
@@ -119,9 +140,18 @@ impl Triangle {
     }
 }
 
-/// The watertight test of the module doc: `t` of the hit with `t > t_min`, if any.
+/// A ray's crossing of the triangle's plane inside the triangle: the parameter `t` and
+/// the edge functions `e_i` (`e_0` of the edge `p1 p2`, opposite `p0`, and so on), whose
+/// sum is `det`: `e_i / det` is the barycentric weight of `p_i`.
+struct Crossing {
+    t: f64,
+    edges: [f64; 3],
+    det: f64,
+}
+
+/// The watertight test of the module doc: the crossing with `t > t_min`, if any.
 #[inline(always)]
-fn watertight(p0: DVec3, p1: DVec3, p2: DVec3, ray: &Ray, t_min: f64) -> Option<f64> {
+fn watertight(p0: DVec3, p1: DVec3, p2: DVec3, ray: &Ray, t_min: f64) -> Option<Crossing> {
     let d = ray.dir;
     let a = d.abs();
     // The axis of the largest |d| becomes z; the other two follow it cyclically, which
@@ -179,7 +209,11 @@ fn watertight(p0: DVec3, p1: DVec3, p2: DVec3, ray: &Ray, t_min: f64) -> Option<
     let delta_e = 2.0 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
     let max_e = e0.abs().max(e1.abs()).max(e2.abs());
     let delta_t = 3.0 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) / det.abs();
-    (t > delta_t).then_some(t)
+    (t > delta_t).then_some(Crossing {
+        t,
+        edges: [e0, e1, e2],
+        det,
+    })
 }
 
 /// `a b - c d` to within 1.5 ulp, its sign exact (Kahan's algorithm: the rounding error of

@@ -84,15 +84,8 @@ impl Shape {
                 let rho = libm::hypot(l.x, l.y);
                 (turn(l.y, l.x), turn(l.z, rho - t.major))
             }
-            Shape::Triangle(t) => {
-                let [p0, p1, p2] = t.points();
-                let (e1, e2, d) = (p1 - p0, p2 - p0, p - p0);
-                // Solve d = b1 e1 + b2 e2 by the normal equations (Cramer's rule).
-                let (a11, a12, a22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
-                let (r1, r2) = (d.dot(e1), d.dot(e2));
-                let det = a11 * a22 - a12 * a12;
-                ((r1 * a22 - r2 * a12) / det, (a11 * r2 - a12 * r1) / det)
-            }
+            Shape::Triangle(t) => t.barycentric(p),
+            Shape::SmoothTriangle(t) => t.uv(p),
             Shape::Transformed(t) => {
                 let local = t.transform.to_local * (p - t.transform.to_world.translation);
                 t.shape.uv(local)

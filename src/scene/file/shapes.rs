@@ -3,14 +3,16 @@
 //! transform.
 
 use super::Listed;
-use super::check::{Check, Xyz, angles, direction, fail, in_range, plus_z, positive, spanning_edges, vec3};
+use super::check::{Check, Xyz, angles, direction, fail, in_range, placed, plus_z, positive, spanning_edges, vec3};
 use super::material::resolve_material;
 use super::mesh::FileMesh;
 use super::transform::{FileTransform, moved, transform_of};
 use crate::limits;
 use crate::scene::locate::FieldPath;
+use crate::scene::rules;
 use crate::shape::{
-    Cone, Cuboid, Cylinder, Disk, Lens, Plane, Rectangle, Shape, Sphere, SphericalCap, Torus, Triangle,
+    Cone, Cuboid, Cylinder, Disk, Lens, NormalInterpolation, Plane, Rectangle, Shape, SmoothTriangle, Sphere,
+    SphericalCap, Torus, Triangle,
 };
 use glam::DVec3;
 use serde::Deserialize;
@@ -151,13 +153,20 @@ pub(super) struct FileTorus {
     transform: Option<FileTransform>,
 }
 
-/// Three points; the normal by the right-hand rule `(p1 - p0) x (p2 - p0)`.
+/// Three points; the normal by the right-hand rule `(p1 - p0) x (p2 - p0)`. With vertex
+/// `normals` or `uvs` (texture coordinates) it is a smooth triangle
+/// ([`crate::shape::SmoothTriangle`]): the missing normals are the face's, the missing
+/// coordinates `(0, 0), (1, 0), (0, 1)`, and `normal_interpolation` says what becomes of
+/// the interpolated normal's length (`"normalized"`, or SIMRenderer's `"linear"`).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct FileTriangle {
     p0: Xyz,
     p1: Xyz,
     p2: Xyz,
+    normals: Option<[Xyz; 3]>,
+    uvs: Option<[[f64; 2]; 3]>,
+    normal_interpolation: Option<String>,
     material: Option<String>,
     name: Option<String>,
     transform: Option<FileTransform>,
@@ -210,6 +219,53 @@ pub(super) struct FileTube {
 
 fn minus_y() -> Xyz {
     Xyz([0.0, -1.0, 0.0])
+}
+
+/// The smooth triangle over `flat` of the triangle entry at `path` (see [`FileTriangle`]).
+fn smooth_triangle(
+    path: &FieldPath,
+    flat: Triangle,
+    normals: Option<[Xyz; 3]>,
+    uvs: Option<[[f64; 2]; 3]>,
+    interpolation: Option<String>,
+) -> Check<SmoothTriangle> {
+    let interpolation = match interpolation {
+        None => NormalInterpolation::default(),
+        Some(name) => match NormalInterpolation::from_name(&name) {
+            Some(rule) => rule,
+            None => {
+                let names: Vec<String> = NormalInterpolation::NAMES.iter().map(|n| format!("{n:?}")).collect();
+                return fail(
+                    &path.key("normal_interpolation"),
+                    format!("must be {}, got {name:?}", names.join(" or ")),
+                );
+            }
+        },
+    };
+    let normals = match normals {
+        None => [flat.normal(); 3],
+        Some(ns) => {
+            let mut out = [DVec3::ZERO; 3];
+            for (i, n) in ns.into_iter().enumerate() {
+                out[i] = placed(&path.key("normals").index(i), rules::direction(n.0))?;
+            }
+            out
+        }
+    };
+    let uvs = match uvs {
+        None => SmoothTriangle::FLAT_UVS,
+        Some(uvs) => {
+            let m = limits::MAX_COORDINATE;
+            for (i, uv) in uvs.iter().enumerate() {
+                for (j, &x) in uv.iter().enumerate() {
+                    in_range(&path.key("uvs").index(i).index(j), x, -m, m)?;
+                }
+            }
+            uvs
+        }
+    };
+    SmoothTriangle::new(flat, normals, uvs, interpolation)
+        .map_or_else(|| fail(&path.key("normals"), "each normal must have a direction"), Ok)
 }
 
 impl FileShape {
@@ -393,6 +449,9 @@ impl FileShape {
                 p0,
                 p1,
                 p2,
+                normals,
+                uvs,
+                normal_interpolation,
                 material,
                 name,
                 transform,
@@ -408,7 +467,25 @@ impl FileShape {
                         format!("p0 {p0:?}, p1 {p1:?} and p2 {p2:?} make no triangle: {why}"),
                     );
                 }
-                (Shape::Triangle(Triangle::new(a, b, c)), material, name, transform)
+                let flat = Triangle::new(a, b, c);
+                let shape = if normals.is_none() && uvs.is_none() {
+                    if normal_interpolation.is_some() {
+                        return fail(
+                            &path.key("normal_interpolation"),
+                            "applies to a triangle with vertex normals or uvs; this one has neither",
+                        );
+                    }
+                    Shape::Triangle(flat)
+                } else {
+                    Shape::SmoothTriangle(Box::new(smooth_triangle(
+                        path,
+                        flat,
+                        normals,
+                        uvs,
+                        normal_interpolation,
+                    )?))
+                };
+                (shape, material, name, transform)
             }
             FileShape::Tube(FileTube {
                 start,

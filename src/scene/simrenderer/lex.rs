@@ -386,12 +386,22 @@ pub fn integer(value: &str, column: usize) -> Result<i128, ValueError> {
 
 /// The three numbers that start `value`.
 pub fn vector(value: &str, column: usize) -> Result<[f64; 3], ValueError> {
+    numbers(value, column, "x y z")
+}
+
+/// The two numbers that start `value`: texture coordinates `u v`.
+pub fn pair(value: &str, column: usize) -> Result<[f64; 2], ValueError> {
+    numbers(value, column, "u v")
+}
+
+/// The `N` numbers that start `value`, named `names` in the message when some are missing.
+fn numbers<const N: usize>(value: &str, column: usize, names: &str) -> Result<[f64; N], ValueError> {
     let tokens = tokens(value, column);
-    let mut v = [0.0; 3];
+    let mut v = [0.0; N];
     for (k, slot) in v.iter_mut().enumerate() {
         let Some(t) = tokens.get(k) else {
             let at = tokens.last().map_or(column, |t| t.column + t.text.chars().count());
-            return value_error(at, format!("expects 3 numbers x y z, got {}", tokens.len()));
+            return value_error(at, format!("expects {N} numbers {names}, got {}", tokens.len()));
         };
         *slot = java_double(t.text).map_or_else(
             || value_error(t.column, format!("expects a number, got {:?}", t.text)),

@@ -14,7 +14,7 @@ use crate::interference::Aperture;
 use crate::light::{Attenuation, Light};
 use crate::material::Material;
 use crate::scene::{Scene, Specular};
-use crate::shape::{Shape, Transform};
+use crate::shape::{NormalInterpolation, Shape, SmoothTriangle, Transform};
 use glam::DVec3;
 
 fn num(x: f64) -> String {
@@ -282,6 +282,30 @@ impl Writer<Toml> {
                     format!("p1 = {}", vec3(b)),
                     format!("p2 = {}", vec3(c)),
                 ]
+            }
+            Shape::SmoothTriangle(t) => {
+                let [a, b, c] = t.triangle.points();
+                let mut lines = vec![
+                    format!("p0 = {}", vec3(a)),
+                    format!("p1 = {}", vec3(b)),
+                    format!("p2 = {}", vec3(c)),
+                ];
+                let normals: Vec<String> = (0..3)
+                    .map(|i| self.direction(|| format!("{label}: normal {i}"), t.normals[i], unit_once))
+                    .collect();
+                lines.push(format!("normals = [{}]", normals.join(", ")));
+                if t.uvs != SmoothTriangle::FLAT_UVS {
+                    let uvs: Vec<String> = t
+                        .uvs
+                        .iter()
+                        .map(|[u, v]| format!("[{}, {}]", num(*u), num(*v)))
+                        .collect();
+                    lines.push(format!("uvs = [{}]", uvs.join(", ")));
+                }
+                if t.interpolation != NormalInterpolation::default() {
+                    lines.push(format!("normal_interpolation = \"{}\"", t.interpolation.name()));
+                }
+                lines
             }
             Shape::SphericalCap(c) => vec![
                 format!("center = {}", vec3(c.center)),

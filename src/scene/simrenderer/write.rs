@@ -13,7 +13,7 @@ use crate::interference::{Aperture, ApertureLight};
 use crate::light::Light;
 use crate::material::Material;
 use crate::scene::{Scene, ShadingModel, Specular};
-use crate::shape::{Cuboid, Shape};
+use crate::shape::{Cuboid, NormalInterpolation, Shape};
 use glam::DVec3;
 
 /// The file's number for `x` (`Infinity` for an infinite one).
@@ -478,6 +478,31 @@ impl Writer<SimRenderer> {
                     vec3(b),
                     vec3(c)
                 ));
+            }
+            Shape::SmoothTriangle(t) => {
+                if t.interpolation != NormalInterpolation::Linear {
+                    self.refused.push(format!(
+                        "{label}: SIMRenderer's btriangle keeps the interpolated normal's length (normal_interpolation = \"linear\"); this triangle's is \"{}\"",
+                        t.interpolation.name()
+                    ));
+                    return false;
+                }
+                let [a, b, c] = t.triangle.points();
+                let mut lines = vec![
+                    "btriangle".to_string(),
+                    format!("point  {}", vec3(a)),
+                    format!("point  {}", vec3(b)),
+                    format!("point  {}", vec3(c)),
+                ];
+                for (i, n) in t.normals.iter().enumerate() {
+                    let n = self.direction(|| format!("{label}: normal {i}"), *n, unit_once);
+                    lines.push(format!("normal {n}"));
+                }
+                for [u, v] in t.uvs {
+                    lines.push(format!("uv     {} {}", num(u), num(v)));
+                }
+                lines.push("end".to_string());
+                put(lines.join("\n"));
             }
             Shape::Rectangle(_) => {
                 self.refused.push(format!(

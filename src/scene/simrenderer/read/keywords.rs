@@ -78,6 +78,7 @@ const KEYWORDS: &[&[&str]] = &[
     &["translation"],
     &["file", "fichier"],
     &["uv_format"],
+    &["uv"],
     &["orientation"],
     &["amplification"],
     &["constant_attenuator"],
@@ -158,8 +159,7 @@ pub(super) const WRAPPER: &[&str] = &[
     "lens",
 ];
 
-/// The geometry blocks of a primitive or a `geometry` wrapper; `btriangle` is refused as not
-/// supported yet.
+/// The geometry blocks of a primitive or a `geometry` wrapper.
 pub(super) const GEOMETRIES: &[&str] = WRAPPER.split_at(3).1;
 
 pub(super) const CAMERA: &[&str] = &[

@@ -3,14 +3,15 @@
 //! when degenerate, beyond the coordinates' range or not supported.
 
 use super::keywords::{GEOMETRIES, MODEL, WRAPPER, canonical};
-use super::values::{angles, direction, number_in, point, positive, scale_factors, unit};
+use super::values::{angles, direction, number_in, point, positive, scale_factors, unit, uv};
 use super::{At, Reader, at, at_value};
 use crate::limits;
 use crate::scene::SceneError;
 use crate::scene::simrenderer::lex::{self, Item, Line};
 use crate::shape::mesh::Mesh;
 use crate::shape::{
-    Cone, Cuboid, Cylinder, Disk, Lens, Plane, Shape, Sphere, SphericalCap, Torus, Transform, Triangle,
+    Cone, Cuboid, Cylinder, Disk, Lens, NormalInterpolation, Plane, Shape, SmoothTriangle, Sphere, SphericalCap, Torus,
+    Transform, Triangle,
 };
 use glam::DVec3;
 use std::collections::BTreeMap;
@@ -90,12 +91,8 @@ impl<'a> Reader<'a> {
     fn geometry(&mut self, parent: &str, open: &Line<'a>, kind: &'static str) -> Result<Option<Shape>, SceneError> {
         let block = open.keyword.clone();
         let place = at(open, parent);
-        let what = match kind {
-            "btriangle" => Some("barycentric triangles (btriangle) are"),
-            _ => None,
-        };
-        if let Some(what) = what {
-            let m = format!("{what} not supported yet by lumiere");
+        if kind == "btriangle" && canonical(parent) == Some("geometry") {
+            let m = "SIMRenderer does not transform a btriangle (its SBTriangleGeometry.transform is not implemented); give its points and normals where they are".to_string();
             self.problem(&place, m, "the geometry is skipped")?;
             self.skip_geometry(kind);
             return Ok(None);
@@ -105,6 +102,7 @@ impl<'a> Reader<'a> {
             "plane" => &["position", "normal"],
             "disk" => &["position", "normal", "ray"],
             "triangle" => &["point"],
+            "btriangle" => &["point", "normal", "uv"],
             "tube" | "cylinder" | "cone" => &["point", "position", "ray"],
             "cube" => &["position", "size"],
             "torus" => &["position", "normal", "major_radius", "minor_radius"],
@@ -121,6 +119,9 @@ impl<'a> Reader<'a> {
         // is the default radius, 1.
         let mut curvatures: Vec<(f64, At)> = Vec::new();
         let mut points: Vec<(DVec3, At)> = Vec::new();
+        // A btriangle's vertex normals and texture coordinates, in vertex order.
+        let mut normals: Vec<DVec3> = Vec::new();
+        let mut uvs: Vec<[f64; 2]> = Vec::new();
         let (mut scale, mut rotation, mut translation) = (DVec3::ONE, DVec3::ZERO, DVec3::ZERO);
         let mut inner: Option<Shape> = None;
         let mut inner_seen = false;
@@ -128,8 +129,8 @@ impl<'a> Reader<'a> {
         while let Some((k, l)) = self.next_key(&block, keywords, None)? {
             let here = at(&l, &block);
             match k {
-                "point" | "position" if kind == "triangle" || points_kind(kind) => {
-                    let most = if kind == "triangle" { 3 } else { 2 };
+                "point" | "position" if triangle_kind(kind) || points_kind(kind) => {
+                    let most = if triangle_kind(kind) { 3 } else { 2 };
                     if points.len() == most {
                         let m = format!("a {kind} takes {most} points; this is one more");
                         self.problem(&here, m, "the line is skipped")?;
@@ -138,6 +139,19 @@ impl<'a> Reader<'a> {
                     }
                 }
                 "position" => self.set(&block, &l, point(&l), &mut position)?,
+                "normal" | "uv" if kind == "btriangle" => {
+                    let full = if k == "normal" { normals.len() } else { uvs.len() };
+                    if full == 3 {
+                        let m = format!("a btriangle takes 3 {k}s (one a vertex); this is one more");
+                        self.problem(&here, m, "the line is skipped")?;
+                    } else if k == "normal" {
+                        if let Some(n) = self.value(&block, &l, direction(&l))? {
+                            normals.push(n);
+                        }
+                    } else if let Some(uv) = self.value(&block, &l, uv(&l))? {
+                        uvs.push(uv);
+                    }
+                }
                 "normal" => self.set(&block, &l, direction(&l), &mut normal)?,
                 "ray" => self.set(&block, &l, positive(&l, limits::MAX_COORDINATE), &mut ray)?,
                 "size" => self.set(&block, &l, positive(&l, limits::MAX_COORDINATE), &mut size)?,
@@ -194,7 +208,7 @@ impl<'a> Reader<'a> {
                 }
                 Shape::Torus(Box::new(Torus::new(position, unit(normal), major, minor)))
             }
-            "triangle" => {
+            "triangle" | "btriangle" => {
                 let defaults = [DVec3::ZERO, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)];
                 let p: Vec<DVec3> = (0..3).map(|i| points.get(i).map_or(defaults[i], |(p, _)| *p)).collect();
                 if let Some(why) = Triangle::degenerate(p[0], p[1], p[2]) {
@@ -208,7 +222,20 @@ impl<'a> Reader<'a> {
                     self.problem(&here, m, dropped)?;
                     return Ok(None);
                 }
-                Shape::Triangle(Triangle::new(p[0], p[1], p[2]))
+                let flat = Triangle::new(p[0], p[1], p[2]);
+                if kind == "triangle" {
+                    Shape::Triangle(flat)
+                } else {
+                    // SIMRenderer's defaults: the face's normal, and (0, 0) at each vertex.
+                    let face = flat.normal();
+                    let normals = [0, 1, 2].map(|i| normals.get(i).copied().unwrap_or(face));
+                    let uvs = [0, 1, 2].map(|i| uvs.get(i).copied().unwrap_or([0.0, 0.0]));
+                    // Every normal read has a direction (`direction` refuses one without).
+                    match SmoothTriangle::new(flat, normals, uvs, NormalInterpolation::Linear) {
+                        Some(t) => Shape::SmoothTriangle(Box::new(t)),
+                        None => return Ok(None),
+                    }
+                }
             }
             "spherical_cap" => {
                 let (curvature, curvature_at) = curvatures.pop().unwrap_or((1.0, place.clone()));
@@ -340,6 +367,11 @@ impl<'a> Reader<'a> {
 }
 
 /// Whether a geometry of this kind takes its two points from `point` or `position` lines.
+/// The geometries of three `point`s.
+fn triangle_kind(kind: &str) -> bool {
+    matches!(kind, "triangle" | "btriangle")
+}
+
 fn points_kind(kind: &str) -> bool {
     matches!(kind, "tube" | "cylinder" | "cone" | "lens")
 }

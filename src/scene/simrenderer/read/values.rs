@@ -2,6 +2,7 @@
 //! a colour, scale factors, angles), each refusing a value out of its range at the value's
 //! column; and `unit`, which makes a direction unit.
 
+use crate::limits;
 use crate::scene::rules;
 use crate::scene::simrenderer::lex::{self, Line, ValueError};
 use glam::DVec3;
@@ -28,6 +29,15 @@ pub(super) fn point(l: &Line) -> Result<DVec3, ValueError> {
 /// A direction: a point of non-zero length (not yet made unit).
 pub(super) fn direction(l: &Line) -> Result<DVec3, ValueError> {
     placed(l, rules::direction(lex::vector(l.value, l.value_column)?))
+}
+
+/// Texture coordinates `u v`, each finite within the coordinates' range.
+pub(super) fn uv(l: &Line) -> Result<[f64; 2], ValueError> {
+    let [u, v] = lex::pair(l.value, l.value_column)?;
+    let m = limits::MAX_COORDINATE;
+    placed(l, rules::number_in(u, -m, m))?;
+    placed(l, rules::number_in(v, -m, m))?;
+    Ok([u, v])
 }
 
 /// A number in `[lo, hi]`.
