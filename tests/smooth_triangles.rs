@@ -243,3 +243,45 @@ fn both_tracers_agree_on_smooth_triangles() {
         "{darker} darker, {brighter} brighter"
     );
 }
+
+/// A SIMRenderer model whose faces give vertex normals and texture coordinates is made of
+/// smooth triangles, as SIMRenderer's model reader builds `SBTriangleGeometry` for them; a
+/// face without them stays flat; the model's transform turns the normals by `A^-T`.
+#[test]
+fn a_model_with_vertex_normals_is_smooth() {
+    let dir = temp_dir("smooth-triangles-model");
+    let obj = "v -1 -1 0\nv 2 -1 0\nv -1 2 0\nv 5 5 0\n\
+               vn 0 0 1\nvn 1 0 1\nvn 0 1 1\n\
+               vt 0 0\nvt 1 0\nvt 0 1\n\
+               f 1/1/1 2/2/2 3/3/3\nf 2 4 3\n";
+    write(&dir, "two.obj", obj);
+    let lab = |extra: &str| {
+        SIMRENDERER.replace(
+            "primitive\nmaterial_name white\nbtriangle\n\
+             point -1 -1 0\npoint 2 -1 0\npoint -1 2 0\n\
+             normal 0 0 1\nnormal 1 0 1\nnormal 0 1 1\n\
+             uv 0 0\nuv 1 0\nuv 0 1\n\
+             end\nend\n",
+            &format!("model\nfile two.obj\n{extra}end\n"),
+        )
+    };
+    // The model's triangles take the material named "none": SIMRenderer's default grey
+    // (diffuse 0.6), so the centroid's diffuse term is 0.6 (1 + sqrt 2) / 3 = 0.48284, 123.
+    let plain = write(&dir, "model.txt", &lab(""));
+    let s = scene::load(Path::new(&plain)).unwrap();
+    assert!(matches!(s.objects[0].shape, Shape::SmoothTriangle(_)));
+    assert!(matches!(s.objects[1].shape, Shape::Triangle(_)));
+    assert_eq!(middle(&dir, &plain), [123; 3]);
+    // Scaled by 2 along z: the plane z = 0 stays, the normals (0, 0, 1), (2, 0, 1) / sqrt 5
+    // and (0, 2, 1) / sqrt 5 give 0.6 (1 + 2 / sqrt 5) / 3 = 0.37889, 97.
+    let scaled = write(&dir, "scaled.txt", &lab("scale 1 1 2\n"));
+    assert_eq!(middle(&dir, &scaled), [97; 3]);
+    // A face that gives some of its vertices a normal is refused on its line.
+    write(&dir, "mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2 3\n");
+    let mixed = write(&dir, "mixed.txt", &lab("").replace("two.obj", "mixed.obj"));
+    let e = scene::load(Path::new(&mixed)).unwrap_err().to_string();
+    assert!(
+        e.contains("mixed.obj:5: 1 of the face's 3 vertices have a normal: give it to all of them or none"),
+        "{e}"
+    );
+}

@@ -10,10 +10,12 @@
 //! vertex that is not `v`, `v/vt`, `v//vn` or `v/vt/vn` in whole numbers, line elements
 //! (`l`), indices out of range, and more triangles than allowed. `tobj`'s own errors are
 //! placed on the line it stopped at. Material libraries
-//! (`mtllib`) are not read: the scene file gives the material. Normals and texture
-//! coordinates are checked but not used (the renderer shades with the face normal).
+//! (`mtllib`) are not read: the scene file gives the material. A face gives normals or
+//! texture coordinates to all its vertices or to none; they are kept for each triangle
+//! ([`Mesh::smooth_shapes`], SIMRenderer's models), and a TOML mesh shades with the face
+//! normal ([`Mesh::triangles`]).
 
-use super::{Transform, Triangle};
+use super::{NormalInterpolation, Shape, SmoothTriangle, Transform, Triangle};
 use crate::limits;
 use glam::DVec3;
 use std::io::{BufRead, Read};
@@ -21,13 +23,30 @@ use std::path::Path;
 use std::sync::Arc;
 
 /// A mesh read from a file: vertices, triangles (indices into them, in winding order) and
-/// the file's line of the face each triangle comes from.
+/// the file's line of the face each triangle comes from; for a triangle whose face gives
+/// every vertex a normal (`v//vn`, `v/vt/vn`) or texture coordinates (`v/vt`, `v/vt/vn`),
+/// those of its three corners.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mesh {
     pub vertices: Vec<DVec3>,
     pub faces: Vec<[u32; 3]>,
     /// 1-based line of the face of each triangle.
     pub lines: Vec<usize>,
+    /// Each triangle's corner normals (as the file writes them, not made unit), if its
+    /// face has them.
+    pub normals: Vec<Option<[DVec3; 3]>>,
+    /// Each triangle's corner texture coordinates, if its face has them.
+    pub uvs: Vec<Option<[[f64; 2]; 3]>>,
+}
+
+/// What a face of the file gives: its line, its number of vertices, and whether every
+/// vertex has a normal and texture coordinates.
+#[derive(Clone, Copy)]
+struct FaceLine {
+    line: usize,
+    corners: usize,
+    normals: bool,
+    uvs: bool,
 }
 
 /// Why a mesh file was refused: the message, and the line it concerns when there is one.
@@ -122,6 +141,10 @@ impl Mesh {
             .map_err(|e| at(reader.line(), e.to_string()))?;
         let mut vertices = Vec::new();
         let mut triangles = Vec::new();
+        // Each triangle's corner normals and texture coordinates as tobj gives them (it
+        // fills a vertex without them with another's: the face's flags say which to keep).
+        let mut corner_normals = Vec::new();
+        let mut corner_uvs = Vec::new();
         for m in &models {
             let first = vertices.len() as u32;
             vertices.extend(m.mesh.positions.chunks_exact(3).map(|p| DVec3::new(p[0], p[1], p[2])));
@@ -131,23 +154,53 @@ impl Mesh {
                     .chunks_exact(3)
                     .map(|f| [first + f[0], first + f[1], first + f[2]]),
             );
+            let count = m.mesh.indices.len() / 3;
+            let normal = |i: u32| {
+                let k = 3 * i as usize;
+                m.mesh.normals.get(k..k + 3).map(|n| DVec3::new(n[0], n[1], n[2]))
+            };
+            let uv = |i: u32| {
+                m.mesh
+                    .texcoords
+                    .get(2 * i as usize..2 * i as usize + 2)
+                    .map(|t| [t[0], t[1]])
+            };
+            for k in 0..count {
+                let corners = |indices: &[u32]| indices.get(3 * k..3 * k + 3).map(|c| [c[0], c[1], c[2]]);
+                corner_normals.push(
+                    corners(&m.mesh.normal_indices).and_then(|[a, b, c]| Some([normal(a)?, normal(b)?, normal(c)?])),
+                );
+                corner_uvs.push(corners(&m.mesh.texcoord_indices).and_then(|[a, b, c]| Some([uv(a)?, uv(b)?, uv(c)?])));
+            }
         }
         // Face `k` of the file gives `n_k - 2` triangles, in the file's order.
-        let lines: Vec<usize> = faces
+        let per_triangle: Vec<FaceLine> = faces
             .iter()
-            .flat_map(|&(line, n)| std::iter::repeat_n(line, n - 2))
+            .flat_map(|f| std::iter::repeat_n(*f, f.corners - 2))
             .collect();
-        if lines.len() != triangles.len() || vertices.len() > u32::MAX as usize {
+        if per_triangle.len() != triangles.len() || vertices.len() > u32::MAX as usize {
             return Err(whole(format!(
                 "the faces give {} triangles, the parser found {}",
-                lines.len(),
+                per_triangle.len(),
                 triangles.len()
             )));
         }
+        let normals = per_triangle
+            .iter()
+            .zip(corner_normals)
+            .map(|(f, n)| n.filter(|_| f.normals))
+            .collect();
+        let uvs = per_triangle
+            .iter()
+            .zip(corner_uvs)
+            .map(|(f, uv)| uv.filter(|_| f.uvs))
+            .collect();
         Ok(Mesh {
             vertices,
             faces: triangles,
-            lines,
+            lines: per_triangle.iter().map(|f| f.line).collect(),
+            normals,
+            uvs,
         })
     }
 
@@ -166,9 +219,18 @@ impl Mesh {
                 v.to_array()
             ));
         }
+        for n in self.normals.iter_mut().flatten() {
+            *n = n.map(|n| t.normal(n));
+        }
         if t.mirrors() {
             for f in &mut self.faces {
                 f.swap(1, 2);
+            }
+            for n in self.normals.iter_mut().flatten() {
+                n.swap(1, 2);
+            }
+            for uv in self.uvs.iter_mut().flatten() {
+                uv.swap(1, 2);
             }
         }
         Ok(())
@@ -191,6 +253,29 @@ impl Mesh {
             .map(|(line, why)| format!("{file}:{line}: the face makes no triangle{after}: {why}"))
     }
 
+    /// The shapes of the triangles: smooth ones ([`SmoothTriangle`], under `interpolation`)
+    /// where the face gives normals or texture coordinates, as SIMRenderer's model reader
+    /// builds its `SBTriangleGeometry` (a missing normal the face's, missing coordinates
+    /// (0, 0)); flat ones over one shared copy of `vertices` elsewhere.
+    pub fn smooth_shapes(&self, interpolation: NormalInterpolation) -> Vec<Shape> {
+        self.triangles()
+            .into_iter()
+            .zip(self.normals.iter().zip(&self.uvs))
+            .map(|(t, (normals, uvs))| {
+                if normals.is_none() && uvs.is_none() {
+                    return Shape::Triangle(t);
+                }
+                let normals = normals.unwrap_or([t.normal(); 3]);
+                let uvs = uvs.unwrap_or([[0.0, 0.0]; 3]);
+                match SmoothTriangle::new(t.clone(), normals, uvs, interpolation) {
+                    Some(s) => Shape::SmoothTriangle(Box::new(s)),
+                    // A normal of no direction (`vn 0 0 0`): the face's own.
+                    None => Shape::Triangle(t),
+                }
+            })
+            .collect()
+    }
+
     /// The triangles over one shared copy of `vertices`.
     pub fn triangles(&self) -> Vec<Triangle> {
         let shared: Arc<[DVec3]> = Arc::from(self.vertices.as_slice());
@@ -201,8 +286,8 @@ impl Mesh {
     }
 }
 
-/// The checks of the module doc; returns the line and vertex count of every face.
-fn check(text: &str, max_triangles: usize) -> Result<Vec<(usize, usize)>, ObjError> {
+/// The checks of the module doc; returns what every face gives ([`FaceLine`]).
+fn check(text: &str, max_triangles: usize) -> Result<Vec<FaceLine>, ObjError> {
     // Counts of vertices, texture coordinates and normals in the whole file: `tobj`
     // resolves positive indices against them (relative ones against those read so far).
     let (mut v_total, mut vt_total, mut vn_total) = (0, 0, 0);
@@ -267,8 +352,11 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<(usize, usize)>, ObjErr
                         format!("a face needs at least 3 vertices, got {}", corners.len()),
                     ));
                 }
+                let (mut with_uv, mut with_normal) = (0, 0);
                 for corner in &corners {
                     let parts: Vec<&str> = corner.split('/').collect();
+                    with_uv += usize::from(parts.get(1).is_some_and(|p| !p.is_empty()));
+                    with_normal += usize::from(parts.get(2).is_some_and(|p| !p.is_empty()));
                     let form = "a face's vertex is v, v/vt, v//vn or v/vt/vn, each a whole number";
                     if parts.len() > 3 || parts[0].is_empty() {
                         return Err(at(number, format!("`{corner}`: {form}")));
@@ -301,7 +389,23 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<(usize, usize)>, ObjErr
                         )
                     });
                 }
-                faces.push((number, corners.len()));
+                for (count, what) in [(with_uv, "texture coordinates"), (with_normal, "a normal")] {
+                    if count != 0 && count != corners.len() {
+                        return Err(at(
+                            number,
+                            format!(
+                                "{count} of the face's {} vertices have {what}: give it to all of them or none",
+                                corners.len()
+                            ),
+                        ));
+                    }
+                }
+                faces.push(FaceLine {
+                    line: number,
+                    corners: corners.len(),
+                    normals: with_normal > 0,
+                    uvs: with_uv > 0,
+                });
             }
             _ => {}
         }

@@ -353,7 +353,7 @@ impl<'a> Reader<'a> {
             &place,
             "the model's triangles take the material of a primitive without material_name (\"none\"): lumiere does not read .mtl materials yet".to_string(),
         );
-        let shapes: Vec<Shape> = mesh.triangles().into_iter().map(Shape::Triangle).collect();
+        let shapes = mesh.smooth_shapes(NormalInterpolation::Linear);
         self.objects += shapes.len();
         Ok(Some(ShapeEntry {
             at: place.clone(),
@@ -366,12 +366,12 @@ impl<'a> Reader<'a> {
     }
 }
 
-/// Whether a geometry of this kind takes its two points from `point` or `position` lines.
 /// The geometries of three `point`s.
 fn triangle_kind(kind: &str) -> bool {
     matches!(kind, "triangle" | "btriangle")
 }
 
+/// Whether a geometry of this kind takes its two points from `point` or `position` lines.
 fn points_kind(kind: &str) -> bool {
     matches!(kind, "tube" | "cylinder" | "cone" | "lens")
 }
