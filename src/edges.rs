@@ -136,13 +136,15 @@ pub fn path_at(world: &World, px: f64, py: f64) -> Vec<Node> {
 }
 
 /// Whether two paths are in one region: the same objects and light states, normals less
-/// than [`CREASE_DEGREES`] apart.
+/// than [`CREASE_DEGREES`] apart (the angle between their directions: a smooth triangle's
+/// normal need not be unit).
 pub fn same_region(a: &[Node], b: &[Node]) -> bool {
     let cos_crease = libm::cos(CREASE_DEGREES.to_radians());
     a.len() == b.len()
         && a.iter().zip(b).all(|(p, q)| {
             p.object == q.object
-                && (p.object.is_none() || p.normal.dot(q.normal) >= cos_crease)
+                && (p.object.is_none()
+                    || p.normal.dot(q.normal) >= cos_crease * (p.normal.length() * q.normal.length()))
                 && p.lights.len() == q.lights.len()
                 && p.lights.iter().zip(&q.lights).all(|((i, l), (j, m))| {
                     i == j && (matches!((l, m), (LightState::Away, _) | (_, LightState::Away)) || l == m)

@@ -2,7 +2,8 @@
 //! mirrors scenes and on four fixtures of tests/fixtures/diagnose/ (spot.toml: a spotlight,
 //! an attenuated point light, an open transparent disk; tir.toml: the prism framed on its
 //! totally reflecting block; near.toml: a sphere nearer than the near plane and a light's
-//! share above 1 seen in a mirror; behind.toml: a shiny open disk lit from behind), with
+//! share above 1 seen in a mirror; behind.toml: a shiny open disk lit from behind;
+//! smooth.toml: an octahedron of smooth triangles, as SIMRenderer's btriangle shades them), with
 //! pixel-centre sampling at 96 x 72, then diagnosed: the mistake must be named first (at
 //! least 90 % of the cases where it shows) and in the top three (all of them), and every
 //! mistake must show on some scene. A correct image at each sampling convention and with
@@ -54,7 +55,7 @@ fn centred(path: &str) -> Scene {
     s
 }
 
-const SCENES: [&str; 7] = [
+const SCENES: [&str; 8] = [
     "scenes/reference.toml",
     "scenes/prism.toml",
     "scenes/mirrors.toml",
@@ -62,6 +63,7 @@ const SCENES: [&str; 7] = [
     "tests/fixtures/diagnose/tir.toml",
     "tests/fixtures/diagnose/near.toml",
     "tests/fixtures/diagnose/behind.toml",
+    "tests/fixtures/diagnose/smooth.toml",
 ];
 
 /// The names a diagnosis gives, best first: the top mistakes when it finds one, what the

@@ -16,7 +16,7 @@ use crate::material::Material;
 use crate::math::{Ray, mirror, refract};
 use crate::scene::{Scene, Specular};
 use crate::shading::{phong, positive_part, pow, transparent_filter};
-use crate::shape::{Shape, SurfaceHit};
+use crate::shape::{NormalInterpolation, Shape, SmoothTriangle, SurfaceHit};
 use crate::trace::Formulas;
 use crate::trace::formulas::AmbientContext;
 use crate::trace::specular_term;
@@ -179,6 +179,39 @@ fn sphere_normal_unnormalised(world: &World<'_>, ray: &Ray, t_max: f64) -> Optio
         _ => hit.normal,
     };
     Some((j, SurfaceHit { t: hit.t, normal }))
+}
+
+/// The chapter's closest hit with a smooth triangle's normal replaced by `other(triangle,
+/// hit point)`.
+fn smooth_normal_replaced(
+    world: &World<'_>,
+    ray: &Ray,
+    t_max: f64,
+    other: fn(&SmoothTriangle, DVec3) -> DVec3,
+) -> Option<(usize, SurfaceHit)> {
+    let (j, hit) = world.closest_before(ray, t_max)?;
+    let normal = match &world.objects()[j].shape {
+        Shape::SmoothTriangle(s) => other(s, ray.at(hit.t)),
+        _ => hit.normal,
+    };
+    Some((j, SurfaceHit { t: hit.t, normal }))
+}
+
+/// A smooth triangle's interpolated normal by the other rule: made unit where the triangle
+/// keeps its length (SIMRenderer's `btriangle`), its length kept where it is made unit.
+fn smooth_normal_other_length(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
+    smooth_normal_replaced(world, ray, t_max, |s, p| {
+        let other = match s.interpolation {
+            NormalInterpolation::Linear => NormalInterpolation::Normalized,
+            NormalInterpolation::Normalized => NormalInterpolation::Linear,
+        };
+        s.normal_at_point(p, other)
+    })
+}
+
+/// A smooth triangle shaded with its face's normal, its vertex normals ignored.
+fn smooth_face_normal(world: &World<'_>, ray: &Ray, t_max: f64) -> Option<(usize, SurfaceHit)> {
+    smooth_normal_replaced(world, ray, t_max, |s, _| s.triangle.normal())
 }
 
 /// Shadow rays not stopped at a point light: an object beyond the light shadows the point.
@@ -386,6 +419,22 @@ pub fn catalogue() -> Vec<Mistake> {
             "a sphere's normal left as P - C, of length r, not divided by the radius",
             with(|f| Formulas {
                 closest: sphere_normal_unnormalised,
+                ..f
+            }),
+        ),
+        m(
+            "smooth-normal-length",
+            "a smooth triangle's interpolated normal made unit where its length is kept (SIMRenderer's btriangle), or kept where it is made unit",
+            with(|f| Formulas {
+                closest: smooth_normal_other_length,
+                ..f
+            }),
+        ),
+        m(
+            "smooth-face-normal",
+            "a smooth triangle (btriangle) shaded with its face's normal, its vertex normals ignored",
+            with(|f| Formulas {
+                closest: smooth_face_normal,
                 ..f
             }),
         ),

@@ -99,6 +99,16 @@ impl SmoothTriangle {
         }
     }
 
+    /// The normal at `p`, a point of the triangle, by `rule` (whatever the triangle's own).
+    pub fn normal_at_point(&self, p: DVec3, rule: NormalInterpolation) -> DVec3 {
+        let (b1, b2) = self.triangle.barycentric(p);
+        let n = Self::weighted([1.0 - b1 - b2, b1, b2], self.normals);
+        match rule {
+            NormalInterpolation::Normalized => n.normalize(),
+            NormalInterpolation::Linear => n,
+        }
+    }
+
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let (t, b) = self.triangle.crossing(ray, t_min, t_max)?;
