@@ -121,16 +121,20 @@ fn square_counts_place_samples_as_x_plus_k_mod_n_plus_jitter_over_n() {
     }
 }
 
-/// The SIMRenderer reference scene of the fixtures at 40 x 30, with `raytracer` lines
-/// `sampling N` and `pixel_coordinate`, rendered.
-fn lab_render(samples: u32, pixel_coordinate: &str) -> Film {
+/// The SIMRenderer reference scene of the fixtures with the `raytracer` lines
+/// `sampling {samples}` and `pixel_coordinate {pixel_coordinate}`.
+fn lab_text(samples: u32, pixel_coordinate: &str) -> String {
     let text = fs::read_to_string(repo("tests/fixtures/simrenderer/reference.txt")).unwrap();
-    let text = text
-        .replace("sampling            1", &format!("sampling {samples}"))
+    text.replace("sampling            1", &format!("sampling {samples}"))
         .replace(
             "pixel_coordinate    center",
             &format!("pixel_coordinate {pixel_coordinate}"),
-        );
+        )
+}
+
+/// [`lab_text`] rendered at 40 x 30.
+fn lab_render(samples: u32, pixel_coordinate: &str) -> Film {
+    let text = lab_text(samples, pixel_coordinate);
     let mut s = simrenderer::parse(&text, "lab.txt", &Options::default()).unwrap().scene;
     assert_eq!(s.settings.samples_per_pixel, samples);
     (s.settings.width, s.settings.height) = (40, 30);
@@ -171,14 +175,8 @@ fn a_lab_samples_any_count_and_its_corner_samples_are_one_ray() {
 #[test]
 fn a_lab_with_sampling_2_renders_on_the_command_line() {
     let dir = temp_dir("sampling-lab");
-    let text = fs::read_to_string(repo("tests/fixtures/simrenderer/reference.txt")).unwrap();
     let lab = dir.join("lab.txt");
-    fs::write(
-        &lab,
-        text.replace("sampling            1", "sampling 2")
-            .replace("pixel_coordinate    center", "pixel_coordinate random"),
-    )
-    .unwrap();
+    fs::write(&lab, lab_text(2, "random")).unwrap();
     let out = dir.join("lab.png");
     let o = lumiere(&[
         "render",
