@@ -23,7 +23,7 @@ fn scene_with(samples: u32, position: &str) -> Scene {
     s
 }
 
-/// The position of sample `k` of pixel (1, 2) at `samples` per pixel, by `convention`.
+/// The position of sample `k` of pixel (1, 2) at `samples` per pixel, placed by `position`.
 fn at(samples: u32, position: &str, k: u32) -> (f64, f64) {
     sample_position(&World::new(&scene_with(samples, position)), 1, 2, k)
 }
