@@ -11,9 +11,10 @@ use serde::Serialize;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SamplePosition {
-    /// A uniformly random point of each cell of the pixel's `n x n` grid.
+    /// A uniformly random point of each cell of the pixel's
+    /// [`SampleGrid`](crate::scene::SampleGrid).
     Jittered,
-    /// The centers of the `n x n` grid's cells.
+    /// The centers of the sample grid's cells.
     Regular,
     /// The pixel's center, for every sample.
     Center,

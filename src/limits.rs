@@ -159,12 +159,10 @@ pub fn check_pixel_count(w: u32, h: u32) -> Result<(), String> {
     Ok(())
 }
 
-/// Samples per pixel: a perfect square in [1, MAX_SAMPLES] (the stratified grid's side squared).
+/// Samples per pixel: any count in [1, MAX_SAMPLES], one in each cell of the pixel's
+/// [`SampleGrid`](crate::scene::SampleGrid).
 pub fn check_samples(v: impl Into<Whole>) -> Result<u32, String> {
-    let v = v.into();
-    v.within(1, MAX_SAMPLES)
-        .filter(|n| n.isqrt().pow(2) == *n)
-        .ok_or_else(|| format!("must be a perfect square (1, 4, 9, 16, ...) in [1, {MAX_SAMPLES}], got {v}"))
+    check_count(v, MAX_SAMPLES)
 }
 
 /// The recursion depth: in [1, MAX_DEPTH], 1 for no secondary rays.
@@ -209,14 +207,11 @@ mod tests {
             check_dimension(huge),
             Err("must be in [1, 16384] pixels, got 99999999999999999999".to_string())
         );
-        assert_eq!(check_samples(1024), Ok(1024));
-        for bad in [0, 3, 1025, 1089, -1] {
-            assert_eq!(
-                check_samples(bad),
-                Err(format!(
-                    "must be a perfect square (1, 4, 9, 16, ...) in [1, 1024], got {bad}"
-                ))
-            );
+        for good in [1, 2, 3, 6, 7, 1021, 1024] {
+            assert_eq!(check_samples(good), Ok(good as u32));
+        }
+        for bad in [0, 1025, 1089, -1] {
+            assert_eq!(check_samples(bad), Err(format!("must be in [1, 1024], got {bad}")));
         }
         assert_eq!(check_depth(64), Ok(64));
         assert_eq!(

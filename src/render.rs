@@ -6,6 +6,7 @@ use crate::conventions::{RayOrigin, SamplePosition};
 use crate::film::Film;
 use crate::math::Ray;
 use crate::sampling::{LANES, Purpose, ShortStream};
+use crate::scene::SampleGrid;
 use crate::trace::formulas::{Chapter, FormulaTable};
 use crate::trace::{Formulas, Member, NoRecord, RayCounts, Recorder, Reference, SampleKey, Tracer};
 use crate::world::World;
@@ -42,25 +43,26 @@ fn jitter_stream(world: &World, x: u32, y: u32) -> ShortStream {
 
 /// Image position of sample `k` of pixel `(x, y)`, by the scene's sample-position
 /// convention, with the jitter stream at sample `k`: for `jittered`, cell
-/// `(k mod n, k div n)` of the pixel's `n x n` grid, jittered uniformly within the cell
-/// (reading the stream's next two numbers); for `regular`, that cell's center; for
+/// `(k mod columns, k div columns)` of the pixel's `grid`, jittered uniformly within the
+/// cell (reading the stream's next two numbers); for `regular`, that cell's center; for
 /// `center`, the pixel's center; for `corner`, its top-left corner as SIMRenderer places it
 /// (the image's center measured with an integer division by 2: half a pixel right of or
 /// below the true corner along an odd width or height), and for `top_right`, `bottom_left`
-/// and `bottom_right` the corner one pixel right, below, or both. `n` is the scene's
-/// [`grid_side`](crate::scene::Settings::grid_side), read once per pixel.
+/// and `bottom_right` the corner one pixel right, below, or both. `grid` is the world's
+/// [`sample_grid`](World::sample_grid).
 #[inline]
-fn sample_at(world: &World, rng: &mut ShortStream, n: u32, x: u32, y: u32, k: u32) -> (f64, f64) {
+fn sample_at(world: &World, rng: &mut ShortStream, grid: SampleGrid, x: u32, y: u32, k: u32) -> (f64, f64) {
     let s = &world.scene.settings;
-    let (cx, cy) = ((k % n) as f64, (k / n) as f64);
-    let cell = |t: f64| over_grid_side(t, n);
+    let (cx, cy) = ((k % grid.columns) as f64, (k / grid.columns) as f64);
+    let across = |t: f64| over_grid_side(t, grid.columns);
+    let down = |t: f64| over_grid_side(t, grid.rows);
     let (x, y) = (x as f64, y as f64);
     match s.conventions.sample_position {
         SamplePosition::Jittered => {
             let (jx, jy) = (rng.next_f64(), rng.next_f64());
-            (x + cell(cx + jx), y + cell(cy + jy))
+            (x + across(cx + jx), y + down(cy + jy))
         }
-        SamplePosition::Regular => (x + cell(cx + 0.5), y + cell(cy + 0.5)),
+        SamplePosition::Regular => (x + across(cx + 0.5), y + down(cy + 0.5)),
         SamplePosition::Center => (x + 0.5, y + 0.5),
         SamplePosition::Corner
         | SamplePosition::TopRight
@@ -78,8 +80,9 @@ fn sample_at(world: &World, rng: &mut ShortStream, n: u32, x: u32, y: u32, k: u3
     }
 }
 
-/// `t / n`, a position in cells of the `n x n` grid made a fraction of the pixel. For a
-/// power of two `n = 2^m` it is `t * 2^-m`, the same bits without waiting on a division.
+/// `t / n`, a position in cells along a grid side of `n` cells made a fraction of the
+/// pixel. For a power of two `n = 2^m` it is `t * 2^-m`, the same bits without waiting on a
+/// division.
 #[inline]
 fn over_grid_side(t: f64, n: u32) -> f64 {
     if n.is_power_of_two() {
@@ -92,7 +95,7 @@ fn over_grid_side(t: f64, n: u32) -> f64 {
 /// Image position of sample `k` of pixel `(x, y)` (see `sample_at`).
 pub fn sample_position(world: &World, x: u32, y: u32, k: u32) -> (f64, f64) {
     let mut rng = jitter_stream(world, x, y).skip_words(4 * k as u128);
-    sample_at(world, &mut rng, world.scene.settings.grid_side(), x, y, k)
+    sample_at(world, &mut rng, world.sample_grid, x, y, k)
 }
 
 /// The camera ray through image position `(px, py)`: from the eye, or from the image plane
@@ -138,7 +141,7 @@ fn pixel_mean<const K: usize>(
     mut trace: impl FnMut((f64, f64), &Ray, SampleKey) -> [DVec3; K],
 ) -> [DVec3; K] {
     let settings = &world.scene.settings;
-    let (spp, n) = (settings.samples_per_pixel, settings.grid_side());
+    let (spp, grid) = (settings.samples_per_pixel, world.sample_grid);
     let pixel = pixel_index(world, x, y);
     let mut sum = [DVec3::ZERO; K];
     let mut positions = [(0.0, 0.0); BATCH];
@@ -147,7 +150,7 @@ fn pixel_mean<const K: usize>(
         let batch = (spp - first).min(BATCH as u32) as usize;
         let (positions, rays) = (&mut positions[..batch], &mut rays[..batch]);
         for (b, position) in positions.iter_mut().enumerate() {
-            *position = sample_at(world, &mut rng, n, x, y, first + b as u32);
+            *position = sample_at(world, &mut rng, grid, x, y, first + b as u32);
         }
         for (ray, &position) in rays.iter_mut().zip(positions.iter()) {
             *ray = camera_ray(world, position);
@@ -440,10 +443,11 @@ mod tests {
         // Cell 1 plus jitter 0.75 over a 2 x 2 grid: 0.875; over 4 x 4: 0.4375.
         assert_eq!(over_grid_side(1.75, 2), 0.875);
         assert_eq!(over_grid_side(1.75, 4), 0.4375);
-        // Every grid side up to 64 (powers of two multiplied, the others divided), on cell
-        // positions plus jitters of 53 random bits, the largest jitter below 1 and 0.
+        // Every grid side up to 64 and some longer ones (powers of two multiplied, the
+        // others divided), on cell positions plus jitters of 53 random bits, the largest
+        // jitter below 1 and 0.
         let mut bits = 0x9e37_79b9_7f4a_7c15_u64;
-        for n in 1..=64u32 {
+        for n in (1..=64u32).chain([128, 256, 512, 1021, 1024]) {
             for i in 0..2000 {
                 bits ^= bits << 13;
                 bits ^= bits >> 7;

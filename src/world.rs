@@ -12,7 +12,7 @@ use crate::caustics::{self, PhotonMap};
 use crate::light::Light;
 use crate::material::Material;
 use crate::math::Ray;
-use crate::scene::{Object, Scene};
+use crate::scene::{Object, SampleGrid, Scene};
 use crate::shape::{Shape, SurfaceHit, misses_bounding_sphere};
 use crate::skips::{Skip, Skips};
 use along::BallsAlong;
@@ -97,6 +97,10 @@ pub struct World<'s> {
     pub accel_seconds: f64,
     /// Sum of the ambient lights' colours `L_a`.
     pub ambient: DVec3,
+    /// The cells of a pixel its samples are placed in
+    /// ([`Settings::sample_grid`](crate::scene::Settings::sample_grid)), made
+    /// once for the render rather than for each pixel.
+    pub sample_grid: SampleGrid,
     /// Whether any object is transparent (else shadow rays need no filtered walk).
     pub has_transparent: bool,
     /// Whether any material has images (else no hit needs texture coordinates).
@@ -256,6 +260,7 @@ impl<'s> World<'s> {
             accel,
             accel_seconds,
             ambient,
+            sample_grid: s.sample_grid(),
             has_transparent,
             has_textures,
             remaining_bound: remaining_bounds(scene, ambient, caustic_bound),

@@ -3,7 +3,7 @@
 //! caustic term, determinism across threads, shards and tracers, and the `[caustics]` table's
 //! errors.
 
-use crate::common::{lumiere, repo, scene, temp_dir};
+use crate::common::{lumiere, radiance_bits, repo, scene, temp_dir};
 use glam::DVec3;
 use lumiere::accel::{Accel, AccelChoice};
 use lumiere::caustics::{self, emit::Spread, emit::Start, path};
@@ -351,10 +351,6 @@ fn glass_reference(width: u32, height: u32, photons: u64) -> Scene {
     s
 }
 
-fn bits(pixels: &[DVec3]) -> Vec<u64> {
-    pixels.iter().flat_map(|p| p.to_array()).map(f64::to_bits).collect()
-}
-
 #[test]
 fn one_and_two_threads_give_the_same_photons_and_image() {
     let scene = glass_reference(64, 48, 50_000);
@@ -369,7 +365,7 @@ fn one_and_two_threads_give_the_same_photons_and_image() {
                 .flat_map(|p| p.position.to_array())
                 .map(f64::to_bits)
                 .collect();
-            (photons, bits(&render(&world, &|| {}).0.pixels))
+            (photons, radiance_bits(&render(&world, &|| {}).0.pixels))
         })
     };
     let (one, two) = (run(1), run(2));
@@ -384,12 +380,12 @@ fn both_tracers_give_the_same_bits_with_caustics() {
     let world = World::new(&scene);
     let (fast, _) = render(&world, &|| {});
     let (reference, _) = render_reference(&world, &|| {});
-    assert_eq!(bits(&fast.pixels), bits(&reference.pixels));
+    assert_eq!(radiance_bits(&fast.pixels), radiance_bits(&reference.pixels));
     // The caustics change the image: without them the same glass scene differs.
     let mut plain = scene.clone();
     plain.settings.caustics = None;
     let (without, _) = render(&World::new(&plain), &|| {});
-    assert_ne!(bits(&fast.pixels), bits(&without.pixels));
+    assert_ne!(radiance_bits(&fast.pixels), radiance_bits(&without.pixels));
 }
 
 #[test]

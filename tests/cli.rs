@@ -205,8 +205,8 @@ fn absurd_resolution_is_refused() {
     expect_bad(
         "spp",
         "samples_per_pixel = 1",
-        "samples_per_pixel = 3",
-        &["perfect square"],
+        "samples_per_pixel = 0",
+        &["image.samples_per_pixel", "[1, 1024]", "got 0"],
     );
 }
 
@@ -261,8 +261,33 @@ fn pixel_and_sample_limits() {
         "spp-file",
         &GOOD.replace("samples_per_pixel = 1", "samples_per_pixel = 2025"),
         &[],
-        "scene.toml:4:21: image.samples_per_pixel: must be a perfect square (1, 4, 9, 16, ...) in [1, 1024], got 2025",
+        "scene.toml:4:21: image.samples_per_pixel: must be in [1, 1024], got 2025",
     );
+}
+
+#[test]
+fn any_sample_count_in_range_renders() {
+    let six = GOOD.replace("samples_per_pixel = 1", "samples_per_pixel = 6");
+    assert_eq!(run_scene("spp-file-6", &six), (0, String::new(), true));
+    assert_eq!(
+        run_scene_with("spp-flag-2", GOOD, &["--spp", "2"]),
+        (0, String::new(), true)
+    );
+    for bad in ["0", "1025"] {
+        let (code, stderr, existed) = run_scene_with("spp-flag-out", GOOD, &["--spp", bad]);
+        assert_eq!((code, existed), (2, false), "{stderr}");
+        let message = format!("must be in [1, 1024], got {bad}");
+        assert!(
+            stderr.starts_with(&format!("error: invalid value '{bad}' for '--spp <SPP>': {message}\n")),
+            "{stderr}"
+        );
+        expect_error(
+            "spp-file-out",
+            &GOOD.replace("samples_per_pixel = 1", &format!("samples_per_pixel = {bad}")),
+            &[],
+            &format!("scene.toml:4:21: image.samples_per_pixel: {message}"),
+        );
+    }
 }
 
 #[test]
@@ -402,9 +427,9 @@ fn bad_output_paths_leave_nothing() {
 
 #[test]
 fn overrides_are_checked() {
-    let o = lumiere(&["render", "scenes/reference.toml", "-o", "/tmp/x.png", "--spp", "5"]);
+    let o = lumiere(&["render", "scenes/reference.toml", "-o", "/tmp/x.png", "--spp", "1025"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("'--spp <SPP>': must be a perfect square"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("'--spp <SPP>': must be in [1, 1024], got 1025"));
     let o = lumiere(&["render", "scenes/reference.toml", "-o", "/tmp/x.png", "--threads", "0"]);
     assert_eq!(o.status.code(), Some(2));
 }

@@ -449,8 +449,8 @@ fn what_lumiere_does_not_model_is_refused_by_name() {
             "lab.txt:3:3: material.n: must be a finite number in [0, 10], got 20",
         ),
         (
-            "raytracer\nsampling 3\nend",
-            "lab.txt:2:10: raytracer.sampling: lumiere averages a perfect square of samples (1, 4, 9, ..., 1024), got 3: other counts are not supported yet",
+            "raytracer\nsampling 1025\nend",
+            "lab.txt:2:10: raytracer.sampling: must be an integer in [1, 1024], got 1025",
         ),
     ] {
         assert_eq!(error(text), expected, "{text}");
@@ -464,7 +464,7 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
                 linear_aperture_light\nwave_length 900\nend\n\
                 primitive\nmaterial_name red\nbtriangle\nend\nsphere\nend\nend\n\
                 primitive\nsphere\nend\nplane\nend\nend\n\
-                raytracer\nsampling 2\npixel_coordinate random\nend\n";
+                raytracer\nsampling 2000\npixel_coordinate random\nend\n";
     let p = lenient(text);
     assert_eq!(
         warnings(&p),
@@ -475,7 +475,7 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
             "lab.txt:11:13: linear_aperture_light.wave_length: must be a finite number in [380, 780], got 900; the value before it is kept",
             "lab.txt:17:1: primitive.sphere: a primitive has one geometry; this is a second one (after a btriangle); this geometry is skipped",
             "lab.txt:23:1: primitive.plane: a primitive has one geometry; this is a second one (after a sphere); this geometry is skipped",
-            "lab.txt:27:10: raytracer.sampling: lumiere averages a perfect square of samples (1, 4, 9, ..., 1024), got 2: other counts are not supported yet; the value before it is kept",
+            "lab.txt:27:10: raytracer.sampling: must be an integer in [1, 1024], got 2000; the value before it is kept",
             "lab.txt:20:1: scene.primitive: no material is named \"none\" (a primitive without material_name takes the material named \"none\"); it gets SIMRenderer's grey default material (ambient 0.2, diffuse 0.6, specular 0.7)",
         ]
     );

@@ -446,7 +446,7 @@ fn lumiere_convert_writes_what_reads_back_or_nothing() {
     );
     // A SIMRenderer file with an error, and with --lenient.
     let lab = dir.join("lab.txt");
-    std::fs::write(&lab, "raytracer\nsampling 2\nend\nprimitive\nsphere\nend\nend\n").unwrap();
+    std::fs::write(&lab, "raytracer\nsampling 2000\nend\nprimitive\nsphere\nend\nend\n").unwrap();
     let (code, err) = run(&["convert", &path("lab.txt"), "-o", &path("lab.toml")]);
     assert_eq!(code, Some(2), "{err}");
     assert!(!dir.join("lab.toml").exists());

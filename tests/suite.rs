@@ -34,6 +34,7 @@ mod readme;
 mod recursion;
 mod reference;
 mod review;
+mod sampling;
 mod scene_tables;
 mod self_intersection;
 mod shadows;

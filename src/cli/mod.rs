@@ -157,7 +157,7 @@ pub struct Overrides {
     #[arg(
         long,
         help = format!(
-            "Samples per pixel: a perfect square (1, 4, 9, ...) in [1, {MAX_SAMPLES}], an n x n stratified grid"
+            "Samples per pixel, in [1, {MAX_SAMPLES}]: one in each cell of the pixel's most nearly square grid (6: 2 columns by 3 rows)"
         ),
         value_parser = numbers::samples,
         allow_negative_numbers = true

@@ -54,7 +54,7 @@ pub struct StudyImage {
     pub height: u32,
     #[arg(
         long,
-        help = format!("Samples per pixel (a perfect square in [1, {MAX_SAMPLES}]); default: the scene's"),
+        help = format!("Samples per pixel, in [1, {MAX_SAMPLES}]; default: the scene's"),
         value_parser = super::numbers::samples,
         allow_negative_numbers = true
     )]

@@ -14,7 +14,7 @@ pub struct Overrides {
     pub width: Option<u32>,
     /// Image height in pixels.
     pub height: Option<u32>,
-    /// Samples per pixel (a perfect square).
+    /// Samples per pixel.
     pub spp: Option<u32>,
     /// Seed of every random stream.
     pub seed: Option<u64>,
@@ -31,7 +31,7 @@ pub struct Overrides {
 impl Overrides {
     /// Replaces the scene's settings, checking each value against its limits (and the
     /// resulting width x height against the pixel limit). An error names the value as its
-    /// command-line option, e.g. `--spp: must be a perfect square ...`; the scene is then
+    /// command-line option, e.g. `--spp: must be in [1, 1024], got 0`; the scene is then
     /// partly changed and should be dropped.
     pub fn apply(&self, scene: &mut Scene) -> Result<(), String> {
         let bad = |flag: &'static str| move |m: String| format!("--{flag}: {m}");
@@ -90,7 +90,7 @@ mod tests {
         let o = Overrides {
             width: Some(40),
             height: Some(30),
-            spp: Some(4),
+            spp: Some(6),
             seed: Some(9),
             depth: Some(2),
             adaptive_threshold: Some(0.0),
@@ -108,7 +108,7 @@ mod tests {
         let t = &s.settings;
         assert_eq!(
             (t.width, t.height, t.samples_per_pixel, t.seed, t.depth),
-            (40, 30, 4, 9, 2)
+            (40, 30, 6, 9, 2)
         );
         assert_eq!(t.adaptive_threshold, 0.0);
         // No override keeps everything.
@@ -142,13 +142,15 @@ mod tests {
             }),
             "--convention near: must be a finite distance above 0, got 0"
         );
-        assert_eq!(
-            err(Overrides {
-                spp: Some(5),
-                ..Overrides::default()
-            }),
-            "--spp: must be a perfect square (1, 4, 9, 16, ...) in [1, 1024], got 5"
-        );
+        for spp in [0, 1025] {
+            assert_eq!(
+                err(Overrides {
+                    spp: Some(spp),
+                    ..Overrides::default()
+                }),
+                format!("--spp: must be in [1, 1024], got {spp}")
+            );
+        }
         assert_eq!(
             err(Overrides {
                 width: Some(16384),

@@ -31,6 +31,11 @@ pub fn render_small(scene: &Scene, width: u32, height: u32, spp: u32, threads: u
     pool.install(|| render(&world, &|| {})).0
 }
 
+/// Every channel of `pixels` as its bits, to compare radiances exactly.
+pub fn radiance_bits(pixels: &[glam::DVec3]) -> Vec<u64> {
+    pixels.iter().flat_map(|p| p.to_array()).map(f64::to_bits).collect()
+}
+
 /// Runs the `lumiere` binary with `args`.
 pub fn lumiere(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_lumiere"))

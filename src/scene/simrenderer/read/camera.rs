@@ -5,7 +5,7 @@ use super::keywords::{
     CAMERA, COLOR_NORMALIZATIONS, PIXEL_COORDINATES, RAYTRACER, REFLEXION_ALGORITHMS, SPACES, VIEWPORT, shading_of,
 };
 use super::values::{direction, far, int_in, number_in, point, positive, unit};
-use super::{At, Reader, at, at_value};
+use super::{At, Reader, at};
 use crate::conventions::SamplePosition;
 use crate::film::Normalization;
 use crate::limits;
@@ -144,8 +144,6 @@ impl<'a> Reader<'a> {
         let block = open.keyword.clone();
         let mut r = RaytracerBlock::default();
         while let Some((k, l)) = self.next_key(&block, RAYTRACER, None)? {
-            let place = at_value(&l, &block, l.value_column);
-            let then = "the value before it is kept";
             match k {
                 // lumiere picks its own threads and intersection structure.
                 "task" => {
@@ -155,17 +153,9 @@ impl<'a> Reader<'a> {
                     self.value(&block, &l, lex::enumeration(l.value, l.value_column, &SPACES))?;
                 }
                 "sampling" => {
-                    if let Some(n) = self.value(&block, &l, int_in(&l, 1, i32::MAX))? {
-                        let n = n as u32;
-                        if limits::check_samples(n).is_ok() {
-                            r.sampling = Some((n, at(&l, &block)));
-                        } else {
-                            let m = format!(
-                                "lumiere averages a perfect square of samples (1, 4, 9, ..., {}), got {n}: other counts are not supported yet",
-                                limits::MAX_SAMPLES
-                            );
-                            self.problem(&place, m, then)?;
-                        }
+                    let most = limits::MAX_SAMPLES as i32;
+                    if let Some(n) = self.value(&block, &l, int_in(&l, 1, most))? {
+                        r.sampling = Some((n as u32, at(&l, &block)));
                     }
                 }
                 "recursive_level" => {
