@@ -53,6 +53,8 @@ use glam::DVec3;
 use mistakes::{Change, Mistake, catalogue, convention_value, exponent_scaled, shown_exponents};
 use rayon::prelude::*;
 use serde::Serialize;
+use std::collections::HashMap;
+use std::sync::{Mutex, PoisonError};
 
 /// The rule and the budget of a diagnosis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -510,10 +512,25 @@ fn evenly_spread(items: Vec<usize>, most: usize) -> Vec<usize> {
     (0..most).map(|k| items[k * items.len() / most]).collect()
 }
 
+/// The renders of the scene with every specular exponent scaled that an [`Oracle`] keeps
+/// for the images after the first: a render depends only on the scene, the factor and the
+/// pixel, and the fits of images of one scene meet the same factors again. Every fit tries
+/// the same half-octave steps; fits whose best step is the same try the same first
+/// golden-section factors, on pixel sets that overlap where the images differ alike; and
+/// identical images find the same factor, whose render of the whole grid is then kept.
+#[derive(Default)]
+struct ExponentRenders {
+    /// The radiance of the grid pixels a fit rendered, by the factor's bits, then the
+    /// pixel's index on the grid.
+    trials: Mutex<HashMap<u64, HashMap<usize, DVec3>>>,
+    /// The whole grid's 8-bit RGB at each factor fitted, by its bits.
+    fitted: Mutex<HashMap<u64, Vec<u8>>>,
+}
+
 /// What a diagnosis needs of the scene alone, rendered once for any number of images: the
 /// world, the grid and its edges, the oracle's render and the range of each pixel's
 /// footprint, the oracle's layers, and the render of every mistake of the catalogue but the
-/// specular exponent, which is fitted to each image.
+/// specular exponent, which is fitted to each image (its renders kept for the next ones).
 pub struct Oracle<'s> {
     options: Options,
     world: World<'s>,
@@ -529,6 +546,7 @@ pub struct Oracle<'s> {
     exponents: Vec<f64>,
     /// Each mistake of the catalogue as prepared for every image.
     mistakes: Vec<(Mistake, Prepared)>,
+    exponent_renders: ExponentRenders,
 }
 
 /// A mistake of the catalogue as the oracle holds it before any image.
@@ -583,6 +601,7 @@ impl<'s> Oracle<'s> {
             layers,
             exponents,
             mistakes: list.into_iter().zip(prepared).collect(),
+            exponent_renders: ExponentRenders::default(),
         }
     }
 
@@ -604,21 +623,72 @@ impl<'s> Oracle<'s> {
         if differing.is_empty() {
             return None;
         }
-        let at: Vec<(u32, u32)> = differing.iter().map(|&i| self.pixels[i]).collect();
         let encode = output_encoding(self.options.srgb);
         let factor = exponent::fit_factor(|factor| {
-            let radiance = render_pixels_with(&self.world, exponent_scaled(factor), &at);
+            let radiance = self.trial_radiance(factor, &differing);
             radiance
                 .iter()
                 .zip(&differing)
                 .map(|(&r, &i)| squared_level_error(r, &image[3 * i..3 * i + 3], encode))
                 .sum()
         });
+        Some((self.fitted_rgb(factor), ExponentFit::new(factor, &self.exponents)))
+    }
+
+    /// The radiance of the grid pixels `indices` with every specular exponent multiplied by
+    /// `factor`: those an earlier fit rendered at this factor as they were, the others
+    /// rendered and kept.
+    fn trial_radiance(&self, factor: f64, indices: &[usize]) -> Vec<DVec3> {
+        let trials = &self.exponent_renders.trials;
+        let mut known: Vec<Option<DVec3>> = {
+            let trials = trials.lock().unwrap_or_else(PoisonError::into_inner);
+            let at_factor = trials.get(&factor.to_bits());
+            indices
+                .iter()
+                .map(|i| at_factor.and_then(|m| m.get(i).copied()))
+                .collect()
+        };
+        let missing: Vec<usize> = indices
+            .iter()
+            .zip(&known)
+            .filter(|(_, k)| k.is_none())
+            .map(|(&i, _)| i)
+            .collect();
+        if !missing.is_empty() {
+            let at: Vec<(u32, u32)> = missing.iter().map(|&i| self.pixels[i]).collect();
+            let rendered = render_pixels_with(&self.world, exponent_scaled(factor), &at);
+            let mut trials = trials.lock().unwrap_or_else(PoisonError::into_inner);
+            trials
+                .entry(factor.to_bits())
+                .or_default()
+                .extend(missing.iter().copied().zip(rendered.iter().copied()));
+            for (k, r) in known.iter_mut().filter(|k| k.is_none()).zip(rendered) {
+                *k = Some(r);
+            }
+        }
+        known.into_iter().flatten().collect()
+    }
+
+    /// The whole grid's 8-bit RGB with every specular exponent multiplied by `factor`,
+    /// rendered once for all the images fitted to it.
+    fn fitted_rgb(&self, factor: f64) -> Vec<u8> {
+        let fitted = &self.exponent_renders.fitted;
+        if let Some(rgb) = fitted
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .get(&factor.to_bits())
+        {
+            return rgb.clone();
+        }
         let rgb = to_rgb8(
             &render_pixels_with(&self.world, exponent_scaled(factor), &self.pixels),
-            encode,
+            output_encoding(self.options.srgb),
         );
-        Some((rgb, ExponentFit::new(factor, &self.exponents)))
+        fitted
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .insert(factor.to_bits(), rgb.clone());
+        rgb
     }
 
     /// Diagnoses `image` with the pixels `transparent` marks (one per image pixel, or none
