@@ -518,14 +518,32 @@ fn evenly_spread(items: Vec<usize>, most: usize) -> Vec<usize> {
 /// the same half-octave steps; fits whose best step is the same try the same first
 /// golden-section factors, on pixel sets that overlap where the images differ alike; and
 /// identical images find the same factor, whose render of the whole grid is then kept.
+/// Past [`MOST_KEPT_TRIAL_RADIANCES`] radiances and [`MOST_KEPT_FITTED`] renders, what the
+/// next images render is no longer kept.
 #[derive(Default)]
 struct ExponentRenders {
-    /// The radiance of the grid pixels a fit rendered, by the factor's bits, then the
-    /// pixel's index on the grid.
-    trials: Mutex<HashMap<u64, HashMap<usize, DVec3>>>,
+    trials: Mutex<KeptTrials>,
     /// The whole grid's 8-bit RGB at each factor fitted, by its bits.
     fitted: Mutex<HashMap<u64, Vec<u8>>>,
 }
+
+/// The radiance of the grid pixels the fits rendered.
+#[derive(Default)]
+struct KeptTrials {
+    /// By the factor's bits, then the pixel's index on the grid.
+    by_factor: HashMap<u64, HashMap<usize, DVec3>>,
+    /// How many radiances `by_factor` holds.
+    count: usize,
+}
+
+/// Most trial radiances an [`Oracle`] keeps, some 40 bytes each (the pixel's index, its
+/// radiance and the hash table's share): 40 MB at most. Thirty-six images of the reference
+/// scene at 800 x 600 (thirty of one mistake at other seeds, six others) leave 85 255, at
+/// 87 factors.
+const MOST_KEPT_TRIAL_RADIANCES: usize = 1 << 20;
+/// Most fitted renders of the grid an [`Oracle`] keeps, 3 bytes a grid pixel each: 7.7 MB
+/// at most on the default grid of at most 40 000 pixels.
+const MOST_KEPT_FITTED: usize = 64;
 
 /// What a diagnosis needs of the scene alone, rendered once for any number of images: the
 /// world, the grid and its edges, the oracle's render and the range of each pixel's
@@ -642,7 +660,7 @@ impl<'s> Oracle<'s> {
         let trials = &self.exponent_renders.trials;
         let mut known: Vec<Option<DVec3>> = {
             let trials = trials.lock().unwrap_or_else(PoisonError::into_inner);
-            let at_factor = trials.get(&factor.to_bits());
+            let at_factor = trials.by_factor.get(&factor.to_bits());
             indices
                 .iter()
                 .map(|i| at_factor.and_then(|m| m.get(i).copied()))
@@ -658,10 +676,14 @@ impl<'s> Oracle<'s> {
             let at: Vec<(u32, u32)> = missing.iter().map(|&i| self.pixels[i]).collect();
             let rendered = render_pixels_with(&self.world, exponent_scaled(factor), &at);
             let mut trials = trials.lock().unwrap_or_else(PoisonError::into_inner);
-            trials
-                .entry(factor.to_bits())
-                .or_default()
-                .extend(missing.iter().copied().zip(rendered.iter().copied()));
+            if trials.count + missing.len() <= MOST_KEPT_TRIAL_RADIANCES {
+                trials.count += missing.len();
+                trials
+                    .by_factor
+                    .entry(factor.to_bits())
+                    .or_default()
+                    .extend(missing.iter().copied().zip(rendered.iter().copied()));
+            }
             for (k, r) in known.iter_mut().filter(|k| k.is_none()).zip(rendered) {
                 *k = Some(r);
             }
@@ -684,10 +706,10 @@ impl<'s> Oracle<'s> {
             &render_pixels_with(&self.world, exponent_scaled(factor), &self.pixels),
             output_encoding(self.options.srgb),
         );
-        fitted
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner)
-            .insert(factor.to_bits(), rgb.clone());
+        let mut fitted = fitted.lock().unwrap_or_else(PoisonError::into_inner);
+        if fitted.len() < MOST_KEPT_FITTED {
+            fitted.insert(factor.to_bits(), rgb.clone());
+        }
         rgb
     }
 
@@ -826,6 +848,36 @@ impl<'s> Oracle<'s> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn kept_exponent_renders_are_the_renders() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/reference.toml");
+        let mut scene = crate::scene::load(&path).unwrap();
+        (scene.settings.width, scene.settings.height) = (32, 24);
+        scene.settings.samples_per_pixel = 1;
+        let oracle = Oracle::new(&scene, &Options::default());
+        let render_at = |factor: f64, indices: &[usize]| {
+            let at: Vec<(u32, u32)> = indices.iter().map(|&i| oracle.pixels[i]).collect();
+            render_pixels_with(&oracle.world, exponent_scaled(factor), &at)
+        };
+        // Pixels 5 and 9 kept by the first trial, 100 and 200 rendered among them.
+        let (first, second) = ([0, 5, 9], [5, 100, 9, 200]);
+        assert_eq!(oracle.trial_radiance(2.0, &first), render_at(2.0, &first));
+        assert_eq!(oracle.trial_radiance(2.0, &second), render_at(2.0, &second));
+        assert_eq!(oracle.trial_radiance(0.5, &first), render_at(0.5, &first));
+        {
+            let kept = oracle.exponent_renders.trials.lock().unwrap();
+            assert_eq!((kept.count, kept.by_factor.len()), (3 + 2 + 3, 2));
+            assert_eq!(kept.by_factor[&2f64.to_bits()].len(), 5);
+        }
+        // The whole grid at a fitted factor, rendered once, the same the second time.
+        let all: Vec<usize> = (0..32 * 24).collect();
+        let fitted = to_rgb8(&render_at(0.5, &all), linear);
+        assert_eq!(oracle.fitted_rgb(0.5), fitted);
+        assert_eq!(oracle.exponent_renders.fitted.lock().unwrap().len(), 1);
+        assert_eq!(oracle.fitted_rgb(0.5), fitted);
+        assert_eq!(oracle.exponent_renders.fitted.lock().unwrap().len(), 1);
+    }
 
     #[test]
     fn grid_keeps_within_its_budget() {
