@@ -5,7 +5,6 @@
 
 use crate::common::*;
 use lumiere::compare::load_rgb8;
-use lumiere::figures::provenance;
 use lumiere::film::encode_png;
 use std::fs;
 use std::path::Path;
@@ -153,55 +152,24 @@ fn no_pending_snapshots_and_missing_folder() {
 #[test]
 fn a_differing_contact_sheet_is_shown_on_the_review_page() {
     let dir = temp_dir("review-contact-sheet");
-    let (out, review) = (dir.join("figures"), dir.join("review"));
-    let generated = lumiere(&[
-        "figures",
-        "lighting",
-        "--scale",
-        "0.05",
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(
-        generated.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&generated.stderr)
-    );
+    generate_lighting(&dir);
     // Two pixels of the contact sheet changed, its provenance kept: (20, 5) by 7 levels of
     // red, (100, 60) by 3 levels of blue.
-    let path = out.join("lighting/contact-sheet.png");
-    let committed = fs::read(&path).unwrap();
-    let (w, h, fresh) = load_rgb8(&path).unwrap();
-    let mut edited = fresh.clone();
-    let at = |x: u32, y: u32| ((y * w + x) * 3) as usize;
-    let shift = |v: u8, by: u8| if v > 200 { v - by } else { v + by };
-    edited[at(20, 5)] = shift(fresh[at(20, 5)], 7);
-    edited[at(100, 60) + 2] = shift(fresh[at(100, 60) + 2], 3);
-    let texts = provenance::text_chunks(&committed).unwrap();
-    let texts: Vec<(&str, &str)> = texts.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
-    assert_eq!(
-        texts.iter().map(|(k, _)| *k).collect::<Vec<_>>(),
-        ["Software", "Command"]
-    );
-    let png = provenance::with_text(&encode_png(w, h, &edited).unwrap(), &texts).unwrap();
-    fs::write(&path, png).unwrap();
-
-    let o = lumiere(&[
-        "figures",
-        "lighting",
-        "--check",
-        "--out",
-        out.to_str().unwrap(),
-        "--review",
-        review.to_str().unwrap(),
-    ]);
+    let path = dir.join("figures/lighting/contact-sheet.png");
+    let at = |x: u32, y: u32, w: u32| ((y * w + x) * 3) as usize;
+    let shift = |v: &mut u8, by: u8| *v = if *v > 200 { *v - by } else { *v + by };
+    let (w, h, fresh, edited) = edit_png_keeping_provenance(&path, |rgb, w| {
+        shift(&mut rgb[at(20, 5, w)], 7);
+        shift(&mut rgb[at(100, 60, w) + 2], 3);
+    });
+    let at = |x: u32, y: u32| at(x, y, w);
+    let review = dir.join("review");
+    let (o, stdout) = check_lighting(&dir);
     assert_eq!(o.status.code(), Some(1));
     let d = dir.display();
     // The box spans both pixels: x 20..100, y 5..60.
     assert_eq!(
-        String::from_utf8_lossy(&o.stdout),
+        stdout,
         format!(
             "lighting/contact-sheet.png: 2 of {} pixels differ from a fresh render, in x 20..100, y 5..60, largest difference 7 levels; heat map {d}/review/figures/lighting/contact-sheet.heat.png\n\
              lighting     DIFFERS (at scale 0.05, as its manifest records)\n\
