@@ -17,7 +17,9 @@
 //! beyond the tolerance against the oracle (at most [`MAX_FIT_PIXELS`] of them:
 //! [`exponent::fit_factor`]), and the scene rendered with it on the grid is ranked with the
 //! other mistakes, before a rendered one only when clearly closer ([`best_first`]): a
-//! factor fitted to the image also fits some of what its sampling does.
+//! factor fitted to the image also fits some of what its sampling does. The renders a fit
+//! makes depend only on the scene, the factor and the pixels, and the [`Oracle`] keeps them
+//! for its next images (`ExponentRenders`).
 //!
 //! The image matches the oracle, "no mistake found", when at most `max_fraction` of the
 //! judged pixels are *beyond any sampling*: some channel lies more than the tolerance
