@@ -17,7 +17,9 @@
 //! beyond the tolerance against the oracle (at most [`MAX_FIT_PIXELS`] of them:
 //! [`exponent::fit_factor`]), and the scene rendered with it on the grid is ranked with the
 //! other mistakes, before a rendered one only when clearly closer ([`best_first`]): a
-//! factor fitted to the image also fits some of what its sampling does.
+//! factor fitted to the image also fits some of what its sampling does. The renders a fit
+//! makes depend only on the scene, the factor and the pixels, and the [`Oracle`] keeps them
+//! for its next images (`ExponentRenders`).
 //!
 //! The image matches the oracle, "no mistake found", when at most `max_fraction` of the
 //! judged pixels are *beyond any sampling*: some channel lies more than the tolerance
@@ -53,6 +55,8 @@ use glam::DVec3;
 use mistakes::{Change, Mistake, catalogue, convention_value, exponent_scaled, shown_exponents};
 use rayon::prelude::*;
 use serde::Serialize;
+use std::collections::HashMap;
+use std::sync::{Mutex, PoisonError};
 
 /// The rule and the budget of a diagnosis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -510,10 +514,43 @@ fn evenly_spread(items: Vec<usize>, most: usize) -> Vec<usize> {
     (0..most).map(|k| items[k * items.len() / most]).collect()
 }
 
+/// The renders of the scene with every specular exponent scaled that an [`Oracle`] keeps
+/// for the images after the first: a render depends only on the scene, the factor and the
+/// pixel, and the fits of images of one scene meet the same factors again. Every fit tries
+/// the same half-octave steps; fits whose best step is the same try the same first
+/// golden-section factors, on pixel sets that overlap where the images differ alike; and
+/// identical images find the same factor, whose render of the whole grid is then kept.
+/// Past [`MOST_KEPT_TRIAL_RADIANCES`] radiances and [`MOST_KEPT_FITTED`] renders, what the
+/// next images render is no longer kept.
+#[derive(Default)]
+struct ExponentRenders {
+    trials: Mutex<KeptTrials>,
+    /// The whole grid's 8-bit RGB at each factor fitted, by its bits.
+    fitted: Mutex<HashMap<u64, Vec<u8>>>,
+}
+
+/// The radiance of the grid pixels the fits rendered.
+#[derive(Default)]
+struct KeptTrials {
+    /// By the factor's bits, then the pixel's index on the grid.
+    by_factor: HashMap<u64, HashMap<usize, DVec3>>,
+    /// How many radiances `by_factor` holds.
+    count: usize,
+}
+
+/// Most trial radiances an [`Oracle`] keeps, some 40 bytes each (the pixel's index, its
+/// radiance and the hash table's share): 40 MB at most. Thirty-six images of the reference
+/// scene at 800 x 600 (thirty of one mistake at other seeds, six others) leave 85 255, at
+/// 87 factors.
+const MOST_KEPT_TRIAL_RADIANCES: usize = 1 << 20;
+/// Most fitted renders of the grid an [`Oracle`] keeps, 3 bytes a grid pixel each: 7.7 MB
+/// at most on the default grid of at most 40 000 pixels.
+const MOST_KEPT_FITTED: usize = 64;
+
 /// What a diagnosis needs of the scene alone, rendered once for any number of images: the
 /// world, the grid and its edges, the oracle's render and the range of each pixel's
 /// footprint, the oracle's layers, and the render of every mistake of the catalogue but the
-/// specular exponent, which is fitted to each image.
+/// specular exponent, which is fitted to each image (its renders kept for the next ones).
 pub struct Oracle<'s> {
     options: Options,
     world: World<'s>,
@@ -529,6 +566,7 @@ pub struct Oracle<'s> {
     exponents: Vec<f64>,
     /// Each mistake of the catalogue as prepared for every image.
     mistakes: Vec<(Mistake, Prepared)>,
+    exponent_renders: ExponentRenders,
 }
 
 /// A mistake of the catalogue as the oracle holds it before any image.
@@ -583,6 +621,7 @@ impl<'s> Oracle<'s> {
             layers,
             exponents,
             mistakes: list.into_iter().zip(prepared).collect(),
+            exponent_renders: ExponentRenders::default(),
         }
     }
 
@@ -604,21 +643,76 @@ impl<'s> Oracle<'s> {
         if differing.is_empty() {
             return None;
         }
-        let at: Vec<(u32, u32)> = differing.iter().map(|&i| self.pixels[i]).collect();
         let encode = output_encoding(self.options.srgb);
         let factor = exponent::fit_factor(|factor| {
-            let radiance = render_pixels_with(&self.world, exponent_scaled(factor), &at);
+            let radiance = self.trial_radiance(factor, &differing);
             radiance
                 .iter()
                 .zip(&differing)
                 .map(|(&r, &i)| squared_level_error(r, &image[3 * i..3 * i + 3], encode))
                 .sum()
         });
+        Some((self.fitted_rgb(factor), ExponentFit::new(factor, &self.exponents)))
+    }
+
+    /// The radiance of the grid pixels `indices` with every specular exponent multiplied by
+    /// `factor`: those an earlier fit rendered at this factor as they were, the others
+    /// rendered and kept.
+    fn trial_radiance(&self, factor: f64, indices: &[usize]) -> Vec<DVec3> {
+        let trials = &self.exponent_renders.trials;
+        let mut known: Vec<Option<DVec3>> = {
+            let trials = trials.lock().unwrap_or_else(PoisonError::into_inner);
+            let at_factor = trials.by_factor.get(&factor.to_bits());
+            indices
+                .iter()
+                .map(|i| at_factor.and_then(|m| m.get(i).copied()))
+                .collect()
+        };
+        let missing: Vec<usize> = indices
+            .iter()
+            .zip(&known)
+            .filter(|(_, k)| k.is_none())
+            .map(|(&i, _)| i)
+            .collect();
+        if !missing.is_empty() {
+            let at: Vec<(u32, u32)> = missing.iter().map(|&i| self.pixels[i]).collect();
+            let rendered = render_pixels_with(&self.world, exponent_scaled(factor), &at);
+            let mut trials = trials.lock().unwrap_or_else(PoisonError::into_inner);
+            if trials.count + missing.len() <= MOST_KEPT_TRIAL_RADIANCES {
+                trials.count += missing.len();
+                trials
+                    .by_factor
+                    .entry(factor.to_bits())
+                    .or_default()
+                    .extend(missing.iter().copied().zip(rendered.iter().copied()));
+            }
+            for (k, r) in known.iter_mut().filter(|k| k.is_none()).zip(rendered) {
+                *k = Some(r);
+            }
+        }
+        known.into_iter().flatten().collect()
+    }
+
+    /// The whole grid's 8-bit RGB with every specular exponent multiplied by `factor`,
+    /// rendered once for all the images fitted to it.
+    fn fitted_rgb(&self, factor: f64) -> Vec<u8> {
+        let fitted = &self.exponent_renders.fitted;
+        if let Some(rgb) = fitted
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .get(&factor.to_bits())
+        {
+            return rgb.clone();
+        }
         let rgb = to_rgb8(
             &render_pixels_with(&self.world, exponent_scaled(factor), &self.pixels),
-            encode,
+            output_encoding(self.options.srgb),
         );
-        Some((rgb, ExponentFit::new(factor, &self.exponents)))
+        let mut fitted = fitted.lock().unwrap_or_else(PoisonError::into_inner);
+        if fitted.len() < MOST_KEPT_FITTED {
+            fitted.insert(factor.to_bits(), rgb.clone());
+        }
+        rgb
     }
 
     /// Diagnoses `image` with the pixels `transparent` marks (one per image pixel, or none
@@ -756,6 +850,36 @@ impl<'s> Oracle<'s> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn kept_exponent_renders_are_the_renders() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/reference.toml");
+        let mut scene = crate::scene::load(&path).unwrap();
+        (scene.settings.width, scene.settings.height) = (32, 24);
+        scene.settings.samples_per_pixel = 1;
+        let oracle = Oracle::new(&scene, &Options::default());
+        let render_at = |factor: f64, indices: &[usize]| {
+            let at: Vec<(u32, u32)> = indices.iter().map(|&i| oracle.pixels[i]).collect();
+            render_pixels_with(&oracle.world, exponent_scaled(factor), &at)
+        };
+        // Pixels 5 and 9 kept by the first trial, 100 and 200 rendered among them.
+        let (first, second) = ([0, 5, 9], [5, 100, 9, 200]);
+        assert_eq!(oracle.trial_radiance(2.0, &first), render_at(2.0, &first));
+        assert_eq!(oracle.trial_radiance(2.0, &second), render_at(2.0, &second));
+        assert_eq!(oracle.trial_radiance(0.5, &first), render_at(0.5, &first));
+        {
+            let kept = oracle.exponent_renders.trials.lock().unwrap();
+            assert_eq!((kept.count, kept.by_factor.len()), (3 + 2 + 3, 2));
+            assert_eq!(kept.by_factor[&2f64.to_bits()].len(), 5);
+        }
+        // The whole grid at a fitted factor, rendered once, the same the second time.
+        let all: Vec<usize> = (0..32 * 24).collect();
+        let fitted = to_rgb8(&render_at(0.5, &all), linear);
+        assert_eq!(oracle.fitted_rgb(0.5), fitted);
+        assert_eq!(oracle.exponent_renders.fitted.lock().unwrap().len(), 1);
+        assert_eq!(oracle.fitted_rgb(0.5), fitted);
+        assert_eq!(oracle.exponent_renders.fitted.lock().unwrap().len(), 1);
+    }
 
     #[test]
     fn grid_keeps_within_its_budget() {

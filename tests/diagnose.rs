@@ -532,15 +532,25 @@ fn same_diagnosis_for_any_thread_count() {
 #[test]
 fn one_oracle_diagnoses_each_image_as_diagnose_does() {
     // The renders an oracle holds serve any number of images: each diagnosis is the one a
-    // fresh `diagnose` gives, field for field, whatever came before it.
+    // fresh `diagnose` gives, field for field (the fitted factor to the bit), whatever came
+    // before it. The specular exponent's renders kept from one image serve the next: the
+    // exponent doubled is fitted after Phong for Blinn, which tries the same half-octave
+    // steps, and again, which finds the same factor.
     let scene = centred("tests/fixtures/diagnose/spot.toml");
     let oracle = Oracle::new(&scene, &Options::default());
-    let black = catalogue()
-        .into_iter()
-        .find(|m| m.name == "transparent-black-shadows")
-        .unwrap();
-    let images = [render_mistake(&scene, &black).unwrap(), rendered(&scene)];
-    let verdicts: Vec<Verdict> = images
+    let mistake = |name: &str| {
+        let m = catalogue().into_iter().find(|m| m.name == name).unwrap();
+        render_mistake(&scene, &m).unwrap()
+    };
+    let exponent_doubled = mistake("specular-exponent");
+    let images = [
+        mistake("transparent-black-shadows"),
+        rendered(&scene),
+        mistake("phong-for-blinn"),
+        exponent_doubled.clone(),
+        exponent_doubled,
+    ];
+    let found: Vec<(Verdict, Option<&str>, Option<f64>)> = images
         .iter()
         .map(|image| {
             let held = oracle.diagnose(image);
@@ -553,10 +563,28 @@ fn one_oracle_diagnoses_each_image_as_diagnose_does() {
                 (&held.image_rgb, &held.oracle_rgb, &held.edge_mask),
                 (&fresh.image_rgb, &fresh.oracle_rgb, &fresh.edge_mask)
             );
-            held.verdict
+            let first = held.top(1).next();
+            (
+                held.verdict,
+                first.map(|c| c.name),
+                first.and_then(|c| c.fitted.as_ref()).map(|f| f.factor),
+            )
         })
         .collect();
-    assert_eq!(verdicts, [Verdict::MistakeFound, Verdict::NoMistakeFound]);
+    assert_eq!(
+        found[..3].iter().map(|f| (f.0, f.1)).collect::<Vec<_>>(),
+        [
+            (Verdict::MistakeFound, Some("transparent-black-shadows")),
+            (Verdict::NoMistakeFound, None),
+            (Verdict::MistakeFound, Some("phong-for-blinn")),
+        ]
+    );
+    // The exponent doubled, fitted within the search's 0.35 %, twice the same.
+    for f in &found[3..] {
+        assert_eq!((f.0, f.1), (Verdict::MistakeFound, Some("specular-exponent")));
+        assert!((f.2.unwrap() / 2.0 - 1.0).abs() < 0.0035, "{:?}", f.2);
+    }
+    assert_eq!(found[3].2, found[4].2);
 }
 
 #[test]

@@ -4,49 +4,15 @@
 //! regenerates the sets and which files and folders, no set's, are to be removed.
 
 use crate::common::*;
-use lumiere::figures::provenance;
-use lumiere::film::encode_png;
 use std::path::Path;
-use std::process::Output;
-
-/// Generates the lighting set at scale 0.05 (40 x 30) into `dir/figures`.
-fn generate(dir: &Path) {
-    let out = dir.join("figures");
-    let o = lumiere(&[
-        "figures",
-        "lighting",
-        "--scale",
-        "0.05",
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-}
-
-/// `lumiere figures lighting --check` on `dir/figures`, the review folder `dir/review`.
-fn check(dir: &Path) -> (Output, String) {
-    let (out, review) = (dir.join("figures"), dir.join("review"));
-    let o = lumiere(&[
-        "figures",
-        "lighting",
-        "--check",
-        "--out",
-        out.to_str().unwrap(),
-        "--review",
-        review.to_str().unwrap(),
-    ]);
-    let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
-    (o, stdout)
-}
 
 /// A freshly generated set, changed by `tamper`, then checked: exit code and stdout with
 /// the folder's path replaced by `D`.
 fn tampered(name: &str, tamper: impl Fn(&Path)) -> (i32, String) {
     let dir = temp_dir(name);
-    generate(&dir);
+    generate_lighting(&dir);
     tamper(&dir.join("figures/lighting"));
-    let (o, stdout) = check(&dir);
+    let (o, stdout) = check_lighting(&dir);
     assert!(
         String::from_utf8_lossy(&o.stderr).contains("problems: the figures on disk differ from their sets"),
         "{}",
@@ -61,8 +27,8 @@ fn tampered(name: &str, tamper: impl Fn(&Path)) -> (i32, String) {
 #[test]
 fn an_untouched_set_passes() {
     let dir = temp_dir("check-untouched");
-    generate(&dir);
-    let (o, stdout) = check(&dir);
+    generate_lighting(&dir);
+    let (o, stdout) = check_lighting(&dir);
     assert_eq!(
         o.status.code(),
         Some(0),
@@ -109,21 +75,15 @@ fn a_swapped_figure_fails() {
 #[test]
 fn an_edited_figure_fails_and_is_shown_on_the_review_page() {
     let dir = temp_dir("check-edited");
-    generate(&dir);
+    generate_lighting(&dir);
     // Pixel (3, 2) of the ambient figure gets 7 more levels of red; the provenance stays.
     let path = dir.join("figures/lighting/01-ambient.png");
     let png = std::fs::read(&path).unwrap();
-    let (w, h, mut rgb) = lumiere::compare::load_rgb8(&path).unwrap();
-    let at = ((2 * w + 3) * 3) as usize;
-    rgb[at] = if rgb[at] > 200 { rgb[at] - 7 } else { rgb[at] + 7 };
-    let texts = provenance::text_chunks(&png).unwrap();
-    let texts: Vec<(&str, &str)> = texts.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
-    std::fs::write(
-        &path,
-        provenance::with_text(&encode_png(w, h, &rgb).unwrap(), &texts).unwrap(),
-    )
-    .unwrap();
-    let (o, stdout) = check(&dir);
+    edit_png_keeping_provenance(&path, |rgb, w| {
+        let at = ((2 * w + 3) * 3) as usize;
+        rgb[at] = if rgb[at] > 200 { rgb[at] - 7 } else { rgb[at] + 7 };
+    });
+    let (o, stdout) = check_lighting(&dir);
     assert_eq!(o.status.code(), Some(1));
     let d = dir.display().to_string();
     let lines: Vec<&str> = stdout.lines().collect();
@@ -165,7 +125,7 @@ fn an_edited_figure_fails_and_is_shown_on_the_review_page() {
     ));
     // Put back, the next check passes and empties the page's list.
     std::fs::write(&path, &png).unwrap();
-    let (o, _) = check(&dir);
+    let (o, _) = check_lighting(&dir);
     assert_eq!(o.status.code(), Some(0));
     let page = std::fs::read_to_string(dir.join("review/index.html")).unwrap();
     assert!(page.contains("<h2>Figures that differ from a fresh render (0)</h2>"));
@@ -187,13 +147,13 @@ fn a_missing_figure_fails() {
 #[test]
 fn an_extra_figure_fails_and_regenerating_leaves_it_with_a_warning() {
     let dir = temp_dir("check-extra");
-    generate(&dir);
+    generate_lighting(&dir);
     let set = dir.join("figures/lighting");
     std::fs::copy(set.join("01-ambient.png"), set.join("04-extra.png")).unwrap();
     let extra_line =
         "lighting/04-extra.png: extra file: no figure of the set makes it; remove it (regenerating the set leaves it)";
     let d = dir.display().to_string();
-    let (o, stdout) = check(&dir);
+    let (o, stdout) = check_lighting(&dir);
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(
         stdout,
@@ -207,17 +167,7 @@ fn an_extra_figure_fails_and_regenerating_leaves_it_with_a_warning() {
         "lumiere: error: 1 problems: the figures on disk differ from their sets; 1 extra file(s) or folder(s) listed above, which regenerating leaves: remove them\n"
     );
     // Regenerating the set writes it whole, says the file is left, and the check still fails.
-    let out = dir.join("figures");
-    let o = lumiere(&[
-        "figures",
-        "lighting",
-        "--scale",
-        "0.05",
-        "--quiet",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(0));
+    let o = generate_lighting(&dir);
     assert_eq!(
         String::from_utf8_lossy(&o.stderr),
         format!(
@@ -225,12 +175,12 @@ fn an_extra_figure_fails_and_regenerating_leaves_it_with_a_warning() {
         )
     );
     assert!(set.join("04-extra.png").is_file());
-    let (o, stdout) = check(&dir);
+    let (o, stdout) = check_lighting(&dir);
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(stdout.lines().next(), Some(extra_line));
     // Removed, the set passes.
     std::fs::remove_file(set.join("04-extra.png")).unwrap();
-    assert_eq!(check(&dir).0.status.code(), Some(0));
+    assert_eq!(check_lighting(&dir).0.status.code(), Some(0));
 }
 
 #[test]
@@ -289,9 +239,9 @@ fn an_edited_manifest_sheet_or_gallery_fails() {
     });
     assert_eq!(code, 1);
     let lines: Vec<&str> = out.lines().collect();
-    assert_eq!(
-        lines[0],
-        "lighting/contact-sheet.png: differs from its regenerated self"
+    assert!(
+        lines[0].starts_with("lighting/contact-sheet.png: cannot be read: not a PNG image: "),
+        "{out}"
     );
     // The values that differ, by their paths in the manifest.
     assert_eq!(
@@ -314,16 +264,8 @@ fn nothing_to_check_is_refused_before_rendering() {
     let (missing, file, review) = (dir.join("none"), dir.join("a-file"), dir.join("review"));
     std::fs::write(&file, "a file").unwrap();
     let run = |out: &Path, review: &Path| {
-        let o = lumiere(&[
-            "figures",
-            "lighting",
-            "--check",
-            "--out",
-            out.to_str().unwrap(),
-            "--review",
-            review.to_str().unwrap(),
-        ]);
-        assert!(o.stdout.is_empty());
+        let (o, stdout) = check_lighting_in(out, review);
+        assert!(stdout.is_empty());
         (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
     };
     let (m, f) = (missing.display(), file.display());
@@ -340,7 +282,7 @@ fn nothing_to_check_is_refused_before_rendering() {
         run(&file, &review),
         (Some(2), format!("lumiere: error: --out: {f} is a file, not a folder\n"))
     );
-    generate(&dir);
+    generate_lighting(&dir);
     assert_eq!(
         run(&dir.join("figures"), &file),
         (
@@ -357,7 +299,7 @@ fn the_scale_of_a_set_on_disk_is_said() {
     // Full-size figures replaced by previews (`--scale` without `--out`) are said before the
     // run, and a check says the scale it held the previews to.
     let dir = temp_dir("check-scale");
-    generate(&dir);
+    generate_lighting(&dir);
     let out = dir.join("figures");
     let o = lumiere(&[
         "figures",
@@ -376,7 +318,7 @@ fn the_scale_of_a_set_on_disk_is_said() {
             out.display()
         )
     );
-    let (o, stdout) = check(&dir);
+    let (o, stdout) = check_lighting(&dir);
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(stdout, "lighting     ok (at scale 0.1, as its manifest records)\n");
     // At the same scale, no warning; a set with no manifest is checked at --scale.

@@ -1,6 +1,7 @@
 //! `lumiere review-snapshots` on a fake snapshot folder laid out as insta 1.49 lays out
 //! image snapshots: `NAME.snap` + `NAME.snap.png` accepted, `NAME.snap.new` +
-//! `NAME.snap.new.png` pending; labelled, enlarged sheets and the review page.
+//! `NAME.snap.new.png` pending; labelled, enlarged sheets and the review page. And the
+//! review page of `lumiere figures --check` for a set whose contact sheet differs.
 
 use crate::common::*;
 use lumiere::compare::load_rgb8;
@@ -146,4 +147,75 @@ fn no_pending_snapshots_and_missing_folder() {
     let o = lumiere(&["review-snapshots", "--dir", dir.join("nope").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("cannot read the folder"));
+}
+
+#[test]
+fn a_differing_contact_sheet_is_shown_on_the_review_page() {
+    let dir = temp_dir("review-contact-sheet");
+    generate_lighting(&dir);
+    // Two pixels of the contact sheet changed, its provenance kept: (20, 5) by 7 levels of
+    // red, (100, 60) by 3 levels of blue.
+    let path = dir.join("figures/lighting/contact-sheet.png");
+    let at = |x: u32, y: u32, w: u32| ((y * w + x) * 3) as usize;
+    let shift = |v: &mut u8, by: u8| *v = if *v > 200 { *v - by } else { *v + by };
+    let (w, h, fresh, edited) = edit_png_keeping_provenance(&path, |rgb, w| {
+        shift(&mut rgb[at(20, 5, w)], 7);
+        shift(&mut rgb[at(100, 60, w) + 2], 3);
+    });
+    let at = |x: u32, y: u32| at(x, y, w);
+    let review = dir.join("review");
+    let (o, stdout) = check_lighting(&dir);
+    assert_eq!(o.status.code(), Some(1));
+    let d = dir.display();
+    // The box spans both pixels: x 20..100, y 5..60.
+    assert_eq!(
+        stdout,
+        format!(
+            "lighting/contact-sheet.png: 2 of {} pixels differ from a fresh render, in x 20..100, y 5..60, largest difference 7 levels; heat map {d}/review/figures/lighting/contact-sheet.heat.png\n\
+             lighting     DIFFERS (at scale 0.05, as its manifest records)\n\
+             review page: {d}/review/index.html\n",
+            w * h
+        )
+    );
+
+    // The heat map: black where equal, blue to red to white at 16 levels; 7 levels is
+    // x = 7 / 16, red 2x and blue 1 - 2x: (64 + 0.875 x 191, 0, 64 + 0.125 x 191) =
+    // (231, 0, 88) rounded; 3 levels, x = 3 / 16: (64 + 0.375 x 191, 0, 64 + 0.625 x 191)
+    // = (136, 0, 183).
+    let (hw, hh, heat) = load_rgb8(&review.join("figures/lighting/contact-sheet.heat.png")).unwrap();
+    assert_eq!((hw, hh), (w, h));
+    assert_eq!(heat[at(20, 5)..at(20, 5) + 3], [231, 0, 88]);
+    assert_eq!(heat[at(100, 60)..at(100, 60) + 3], [136, 0, 183]);
+    assert_eq!(heat[at(21, 5)..at(21, 5) + 3], [0, 0, 0]);
+    // The sheet: on disk | fresh render | difference. The contact sheet of three 40 x 30
+    // thumbnails is 12 + 3 x (40 + 12) = 168 wide, enlarged twice to 336; pixel (x, y) of
+    // panel p covers the 2 x 2 square from (8 + 344 p + 2 x, 32 + 2 y).
+    assert_eq!(w, 168);
+    let (sw, sh, sheet) = load_rgb8(&review.join("figures/lighting/contact-sheet.png")).unwrap();
+    assert_eq!((sw, sh), (8 + 3 * (336 + 8), 8 + 24 + 2 * h + 8));
+    let panel = |p: u32, x: u32, y: u32| {
+        let i = (((32 + 2 * y) * sw + 8 + 344 * p + 2 * x) * 3) as usize;
+        sheet[i..i + 3].to_vec()
+    };
+    assert_eq!(panel(0, 20, 5), edited[at(20, 5)..at(20, 5) + 3]);
+    assert_eq!(panel(1, 20, 5), fresh[at(20, 5)..at(20, 5) + 3]);
+    assert_eq!(panel(2, 20, 5), [231, 0, 88]);
+    assert_eq!(panel(0, 100, 60), edited[at(100, 60)..at(100, 60) + 3]);
+    assert_eq!(panel(1, 100, 60), fresh[at(100, 60)..at(100, 60) + 3]);
+
+    // The page shows the sheet, and says where the pixels differ.
+    let page = fs::read_to_string(review.join("index.html")).unwrap();
+    assert!(
+        page.contains("<h2>Figures that differ from a fresh render (1)</h2>"),
+        "{page}"
+    );
+    assert!(page.contains("<h3>lighting/contact-sheet.png</h3>"), "{page}");
+    assert!(
+        page.contains("<img src=\"figures/lighting/contact-sheet.png\""),
+        "{page}"
+    );
+    assert!(page.contains(&format!(
+        "2 of {} pixels differ from a fresh render, in x 20..100, y 5..60",
+        w * h
+    )));
 }

@@ -40,10 +40,10 @@ pub struct FiguresArgs {
     /// List the sets (those named, else all) and their images, render nothing.
     #[arg(long, conflicts_with = "check")]
     pub list: bool,
-    /// Check the sets' files in the output directory: each PNG against its manifest's pixel
-    /// hash and a fresh render (at the manifest's scale), the contact sheets, manifests and
-    /// index.html against their regenerated selves, byte for byte; write nothing there;
-    /// exit 1 on any difference.
+    /// Check the sets' files in the output directory: each figure against its manifest's
+    /// pixel hash and a fresh render (at the manifest's scale), each contact sheet against a
+    /// fresh one, pixel by pixel, the manifests and index.html against their regenerated
+    /// selves; write nothing there; exit 1 on any difference.
     #[arg(long)]
     pub check: bool,
     /// With --check: the folder for the heat-maps, sheets and review page of the figures

@@ -1,12 +1,13 @@
 //! `figures --check`: the files of a set on disk held to the set rendered again in memory.
-//! Each figure's PNG is decoded and compared with its manifest's pixel hash and with the
-//! fresh render, pixel by pixel, and its provenance and bytes with a fresh encoding; the
-//! contact sheet and manifest are compared byte for byte with their regenerated selves,
-//! and any file of the set's folder that the set does not make is reported. Differing
-//! figures get a heat-map and a labelled sheet (on disk, fresh render, difference) in the
-//! review folder, listed on its page ([`crate::review`]).
+//! Each image (a figure's PNG, the contact sheet) is decoded and compared with the fresh
+//! render, pixel by pixel, and its provenance and bytes with a fresh encoding, a figure's
+//! pixels also with its manifest's pixel hash; the manifest is compared with its
+//! regenerated self value by value, and any file of the set's folder that the set does not
+//! make is reported. Differing images get a heat-map and a labelled sheet (on disk, fresh
+//! render, difference) in the review folder, and every differing file a place on its page
+//! ([`crate::review`]).
 
-use super::{BuiltSet, FigureSet, FiguresError, Reuse, Run, build_set, provenance};
+use super::{BuiltSet, CONTACT_SHEET, FigureSet, FiguresError, Reuse, Run, build_set, provenance};
 use crate::compare::{DifferingBox, compare_rgb8, differing_box, heat_map};
 use crate::film::pixel_hash;
 use crate::review::{self, HEAT_SCALE, PageItem, ReviewError, Rgb8};
@@ -286,8 +287,11 @@ fn manifest_hashes(out: &Path, set: &str) -> Vec<(String, String)> {
         .unwrap_or_default()
 }
 
-/// Checks set `set` in `run.out` (rendered at `run.scale`: see [`recorded_scale`]); heat
-/// maps and sheets of differing figures go into `review_dir/figures/<set>/`.
+/// Checks set `set` in `run.out` (rendered at `run.scale`: see [`recorded_scale`]). Each
+/// image of the set (its figures and its contact sheet) that differs gets a sheet in
+/// `review_dir/figures/<set>/` under its own name: on disk | fresh render | difference
+/// (with the heat map beside it, `<stem>.heat.png`), on disk | fresh render when the sizes
+/// differ, the fresh render alone when the file is missing or not a PNG image.
 pub fn check_set(set: &FigureSet, run: &Run, reuse: &mut Reuse, review_dir: &Path) -> Result<SetCheck, CheckError> {
     let built = build_set(set, run, &AtomicBool::new(false), reuse)?.expect("never cancelled");
     let dir = run.out.join(&set.name);
@@ -296,114 +300,71 @@ pub fn check_set(set: &FigureSet, run: &Run, reuse: &mut Reuse, review_dir: &Pat
     let mut review_items = Vec::new();
     let BuiltSet {
         rendered,
+        contact_sheet,
         files,
         manifest,
     } = built;
+    let sheets_folder = review_dir.join(review::FIGURES).join(&set.name);
     for (name, fresh) in &files {
         let file = format!("{}/{name}", set.name);
-        let found = match std::fs::read(dir.join(name)) {
-            Ok(bytes) => bytes,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+        let figure = rendered.iter().find(|r| format!("{}.png", r.figure.stem) == *name);
+        let fresh_image = match figure {
+            Some(r) => Some(&r.image),
+            None if name == CONTACT_SHEET => Some(&contact_sheet),
+            None => None,
+        };
+        let sheet_path = sheets_folder.join(name);
+        let before = problems.len();
+        match (std::fs::read(dir.join(name)), fresh_image) {
+            (Err(e), _) => {
+                let what = if e.kind() == std::io::ErrorKind::NotFound {
+                    What::Missing
+                } else {
+                    What::Unreadable(e.to_string())
+                };
                 problems.push(Problem {
                     file: file.clone(),
-                    what: What::Missing,
+                    what,
                 });
-                if let Some(r) = rendered.iter().find(|r| format!("{}.png", r.figure.stem) == *name) {
-                    let fresh_img = rgb8(&r.image);
-                    let sheet = review_dir.join(review::FIGURES).join(&set.name).join(name);
-                    review::write_png(&sheet, &review::sheet(&[("fresh render", &fresh_img)]))?;
-                    review_items.push(PageItem {
-                        name: file.clone(),
-                        summary: format!("{file}: missing"),
-                        sheet: Some(format!("{}/{}/{name}", review::FIGURES, set.name)),
-                    });
+                if let Some(fresh_image) = fresh_image {
+                    review::write_png(&sheet_path, &review::sheet(&[("fresh render", &rgb8(fresh_image))]))?;
                 }
-                continue;
             }
-            Err(e) => {
-                problems.push(Problem {
-                    file,
-                    what: What::Unreadable(e.to_string()),
-                });
-                continue;
-            }
-        };
-        let Some(r) = rendered.iter().find(|r| format!("{}.png", r.figure.stem) == *name) else {
-            if let Some(p) = compare_file(file.clone(), &found, fresh) {
-                review_items.push(PageItem {
-                    name: file,
-                    summary: p.to_string(),
-                    sheet: None,
-                });
-                problems.push(p);
-            }
-            continue;
-        };
-        let before = problems.len();
-        let decoded = match image::load_from_memory(&found) {
-            Ok(img) => img.to_rgb8(),
-            Err(e) => {
-                problems.push(Problem {
-                    file,
-                    what: What::Unreadable(format!("not a PNG image: {e}")),
-                });
-                continue;
-            }
-        };
-        let found_hash = format!("fnv1a64:{:016x}", pixel_hash(decoded.as_raw()));
-        let recorded = hashes.iter().find(|(f, _)| f == name).map(|(_, h)| h.clone());
-        if recorded.as_ref() != Some(&found_hash) {
-            problems.push(Problem {
-                file: file.clone(),
-                what: What::ManifestHash {
-                    found: found_hash,
-                    manifest: recorded,
-                },
-            });
-        }
-        let fresh_img = rgb8(&r.image);
-        let disk_img = rgb8(&decoded);
-        if decoded.dimensions() != r.image.dimensions() {
-            problems.push(Problem {
-                file: file.clone(),
-                what: What::Size {
-                    found: decoded.dimensions(),
-                    fresh: r.image.dimensions(),
-                },
-            });
-        } else if decoded.as_raw() != r.image.as_raw() {
-            let c = compare_rgb8(&disk_img.data, &fresh_img.data, disk_img.width, disk_img.height, 0);
-            let heat = Rgb8 {
-                width: disk_img.width,
-                height: disk_img.height,
-                data: heat_map(&disk_img.data, &fresh_img.data, HEAT_SCALE),
-            };
-            let folder = review_dir.join(review::FIGURES).join(&set.name);
-            let heat_path = folder.join(format!("{}.heat.png", r.figure.stem));
-            review::write_png(&heat_path, &heat)?;
-            let sheet = review::sheet(&[
-                ("on disk", &disk_img),
-                ("fresh render", &fresh_img),
-                ("difference", &heat),
-            ]);
-            review::write_png(&folder.join(name), &sheet)?;
-            problems.push(Problem {
-                file: file.clone(),
-                what: What::Pixels {
-                    differing: c.differing_pixels,
-                    total: c.width as u64 * c.height as u64,
-                    within: differing_box(&disk_img.data, &fresh_img.data, disk_img.width, 0),
-                    largest: c.max_diff,
-                    heat_map: Some(heat_path),
-                },
-            });
-        }
-        problems.extend(provenance_problems(&file, &found, fresh));
-        if problems.len() == before && found != *fresh {
-            problems.push(Problem {
-                file: file.clone(),
-                what: What::Encoding,
-            });
+            (Ok(found), None) => problems.extend(compare_file(file.clone(), &found, fresh)),
+            (Ok(found), Some(fresh_image)) => match image::load_from_memory(&found) {
+                Err(e) => {
+                    problems.push(Problem {
+                        file: file.clone(),
+                        what: What::Unreadable(format!("not a PNG image: {e}")),
+                    });
+                    review::write_png(&sheet_path, &review::sheet(&[("fresh render", &rgb8(fresh_image))]))?;
+                }
+                Ok(decoded) => {
+                    let decoded = decoded.to_rgb8();
+                    // Only the figures have their pixel hash in the manifest.
+                    if figure.is_some() {
+                        let found_hash = format!("fnv1a64:{:016x}", pixel_hash(decoded.as_raw()));
+                        let recorded = hashes.iter().find(|(f, _)| f == name).map(|(_, h)| h.clone());
+                        if recorded.as_ref() != Some(&found_hash) {
+                            problems.push(Problem {
+                                file: file.clone(),
+                                what: What::ManifestHash {
+                                    found: found_hash,
+                                    manifest: recorded,
+                                },
+                            });
+                        }
+                    }
+                    problems.extend(compare_pixels(&file, &decoded, fresh_image, &sheet_path)?);
+                    problems.extend(provenance_problems(&file, &found, fresh));
+                    if problems.len() == before && found != *fresh {
+                        problems.push(Problem {
+                            file: file.clone(),
+                            what: What::Encoding,
+                        });
+                    }
+                }
+            },
         }
         if problems.len() > before {
             let summary = problems[before..]
@@ -412,11 +373,10 @@ pub fn check_set(set: &FigureSet, run: &Run, reuse: &mut Reuse, review_dir: &Pat
                 .collect::<Vec<_>>()
                 .join("; ");
             let sheet = format!("{}/{}/{name}", review::FIGURES, set.name);
-            let has_sheet = review_dir.join(&sheet).is_file();
             review_items.push(PageItem {
                 name: file,
                 summary,
-                sheet: has_sheet.then_some(sheet),
+                sheet: sheet_path.is_file().then_some(sheet),
             });
         }
     }
@@ -437,6 +397,58 @@ pub fn check_set(set: &FigureSet, run: &Run, reuse: &mut Reuse, review_dir: &Pat
         review: review_items,
         manifest,
     })
+}
+
+/// The pixels of image `found` (file `file`, decoded from disk) against its fresh render:
+/// a size or pixel problem, if any, with the sheet written to `sheet_path` and, for
+/// differing pixels, the heat map beside it.
+fn compare_pixels(
+    file: &str,
+    found: &image::RgbImage,
+    fresh: &image::RgbImage,
+    sheet_path: &Path,
+) -> Result<Option<Problem>, ReviewError> {
+    let (disk_img, fresh_img) = (rgb8(found), rgb8(fresh));
+    if found.dimensions() != fresh.dimensions() {
+        review::write_png(
+            sheet_path,
+            &review::sheet(&[("on disk", &disk_img), ("fresh render", &fresh_img)]),
+        )?;
+        return Ok(Some(Problem {
+            file: file.to_string(),
+            what: What::Size {
+                found: found.dimensions(),
+                fresh: fresh.dimensions(),
+            },
+        }));
+    }
+    if found.as_raw() == fresh.as_raw() {
+        return Ok(None);
+    }
+    let c = compare_rgb8(&disk_img.data, &fresh_img.data, disk_img.width, disk_img.height, 0);
+    let heat = Rgb8 {
+        width: disk_img.width,
+        height: disk_img.height,
+        data: heat_map(&disk_img.data, &fresh_img.data, HEAT_SCALE),
+    };
+    let heat_path = sheet_path.with_extension("heat.png");
+    review::write_png(&heat_path, &heat)?;
+    let sheet = review::sheet(&[
+        ("on disk", &disk_img),
+        ("fresh render", &fresh_img),
+        ("difference", &heat),
+    ]);
+    review::write_png(sheet_path, &sheet)?;
+    Ok(Some(Problem {
+        file: file.to_string(),
+        what: What::Pixels {
+            differing: c.differing_pixels,
+            total: c.width as u64 * c.height as u64,
+            within: differing_box(&disk_img.data, &fresh_img.data, disk_img.width, 0),
+            largest: c.max_diff,
+            heat_map: Some(heat_path),
+        },
+    }))
 }
 
 fn rgb8(img: &image::RgbImage) -> Rgb8 {

@@ -3,7 +3,7 @@
 //! with its caption, a link to its scene file, its key parameters and its measured facts.
 //! Made from the manifests alone, so it changes only when they do.
 
-use super::FigureSet;
+use super::{CONTACT_SHEET, FigureSet};
 use serde_json::Value;
 use std::path::{Component, Path, PathBuf};
 
@@ -124,7 +124,7 @@ pub fn index_html(out: &Path, sets: &[FigureSet], in_memory: &[(String, Value)])
         let name = html_escape(&set.name);
         let definition = manifest["definition"].as_str().unwrap_or_default();
         html += &format!(
-            "<h2 id=\"{name}\">{} <small>(<a href=\"{name}/manifest.json\">manifest</a>, <a href=\"{name}/contact-sheet.png\">contact sheet</a>, <a href=\"{}\">set.toml</a>)</small></h2>\n",
+            "<h2 id=\"{name}\">{} <small>(<a href=\"{name}/manifest.json\">manifest</a>, <a href=\"{name}/{CONTACT_SHEET}\">contact sheet</a>, <a href=\"{}\">set.toml</a>)</small></h2>\n",
             html_escape(manifest["title"].as_str().unwrap_or_default()),
             html_escape(&link(&prefix, definition)),
         );

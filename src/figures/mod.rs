@@ -451,11 +451,16 @@ pub enum FiguresError {
 /// compares with the files on disk.
 pub struct BuiltSet {
     pub rendered: Vec<RenderedFigure>,
+    /// The contact sheet's pixels, as [`CONTACT_SHEET`] of `files` encodes them.
+    pub contact_sheet: image::RgbImage,
     /// Each file of the set's folder by name, with its bytes: the figures in order, the
     /// contact sheet, the manifest last.
     pub files: Vec<(String, Vec<u8>)>,
     pub manifest: Value,
 }
+
+/// The name of a set's contact sheet in its folder.
+pub const CONTACT_SHEET: &str = "contact-sheet.png";
 
 /// The provenance of figure `figure` of `set`, as its PNG's `tEXt` chunks carry it.
 pub fn provenance_texts(set: &str, figure: &Figure, run: &Run) -> Vec<(&'static str, String)> {
@@ -567,11 +572,12 @@ pub fn build_set(
                 ("Software", format!("lumiere {}", crate::VERSION)),
                 ("Command", run.command(&set.name)),
             ];
-            png_bytes(&img, &texts)
+            png_bytes(&img, &texts).map(|bytes| (img, bytes))
         },
     );
     let mut files = pngs.map_err(FiguresError::Encode)?;
-    files.push(("contact-sheet.png".to_string(), sheet.map_err(FiguresError::Encode)?));
+    let (contact_sheet, sheet_bytes) = sheet.map_err(FiguresError::Encode)?;
+    files.push((CONTACT_SHEET.to_string(), sheet_bytes));
     let manifest = json!({
         "set": set.name,
         "title": set.title,
@@ -591,6 +597,7 @@ pub fn build_set(
     files.push(("manifest.json".to_string(), text.into_bytes()));
     Ok(Some(BuiltSet {
         rendered,
+        contact_sheet,
         files,
         manifest,
     }))

@@ -3,7 +3,9 @@
 
 pub mod mutate;
 
-use lumiere::film::Film;
+use lumiere::compare::load_rgb8;
+use lumiere::figures::provenance;
+use lumiere::film::{Film, encode_png};
 use lumiere::render::render;
 use lumiere::scene::{self, Scene};
 use lumiere::world::World;
@@ -42,6 +44,62 @@ pub fn lumiere(args: &[&str]) -> Output {
         .args(args)
         .output()
         .expect("lumiere runs")
+}
+
+/// Generates the lighting set at scale 0.05 (40 x 30) into `dir/figures`: the output,
+/// which succeeded.
+pub fn generate_lighting(dir: &Path) -> Output {
+    let out = dir.join("figures");
+    let o = lumiere(&[
+        "figures",
+        "lighting",
+        "--scale",
+        "0.05",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    o
+}
+
+/// `lumiere figures lighting --check` on `dir/figures`, the review folder `dir/review`:
+/// the output, and its stdout as text.
+pub fn check_lighting(dir: &Path) -> (Output, String) {
+    check_lighting_in(&dir.join("figures"), &dir.join("review"))
+}
+
+/// `lumiere figures lighting --check` on `out`, the review folder `review`: the output, and
+/// its stdout as text.
+pub fn check_lighting_in(out: &Path, review: &Path) -> (Output, String) {
+    let o = lumiere(&[
+        "figures",
+        "lighting",
+        "--check",
+        "--out",
+        out.to_str().unwrap(),
+        "--review",
+        review.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+    (o, stdout)
+}
+
+/// Rewrites the PNG `path` with its pixels (RGB8, rows of its width) changed by `edit`,
+/// its provenance texts kept: its width, height, and pixels before and after.
+pub fn edit_png_keeping_provenance(path: &Path, edit: impl FnOnce(&mut [u8], u32)) -> (u32, u32, Vec<u8>, Vec<u8>) {
+    let png = std::fs::read(path).unwrap();
+    let (w, h, before) = load_rgb8(path).unwrap();
+    let mut after = before.clone();
+    edit(&mut after, w);
+    let texts = provenance::text_chunks(&png).unwrap();
+    let texts: Vec<(&str, &str)> = texts.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
+    std::fs::write(
+        path,
+        provenance::with_text(&encode_png(w, h, &after).unwrap(), &texts).unwrap(),
+    )
+    .unwrap();
+    (w, h, before, after)
 }
 
 /// A fresh empty directory for one test (`lumiere-test-<name>-<pid>` in the system's
