@@ -14,6 +14,7 @@ use crate::light::Light;
 use crate::math::Ray;
 use crate::render::{render_pixel_recorded, render_sample};
 use crate::scene::Scene;
+use crate::shape::{NormalInterpolation, Shape};
 use crate::trace::{LightShare, RayCounts, RayKind, Recorder, Tracer};
 use crate::world::World;
 use glam::DVec3;
@@ -125,10 +126,22 @@ pub struct Hit {
     pub normal: [f64; 3],
     /// Whether the ray enters the object (comes from the side the normal points to).
     pub entering: bool,
+    /// On a smooth triangle, how its normal was interpolated from the vertices'.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vertex_normals: Option<VertexNormals>,
     /// The material's reflection and transmission coefficients and index.
     pub kr: f64,
     pub kt: f64,
     pub ior: f64,
+}
+
+/// A smooth triangle's normal at a hit: the vertices' weighted by the barycentric
+/// coordinates, of `length`, then made unit or kept by its rule (`normalized`, or
+/// SIMRenderer's `linear`).
+#[derive(Clone, Debug, Serialize)]
+pub struct VertexNormals {
+    pub interpolation: &'static str,
+    pub length: f64,
 }
 
 /// One light at one hit.
@@ -294,6 +307,13 @@ impl Recorder for TreeRecorder<'_> {
             point: v3(point),
             normal: v3(normal),
             entering,
+            vertex_normals: match &o.shape {
+                Shape::SmoothTriangle(s) => Some(VertexNormals {
+                    interpolation: s.interpolation.name(),
+                    length: s.normal_at_point(point, NormalInterpolation::Linear).length(),
+                }),
+                _ => None,
+            },
             kr: m.kr,
             kt: m.kt,
             ior: m.ior,
@@ -585,6 +605,19 @@ fn write_ray(o: &mut String, r: &RayNode, depth: usize) {
                 if h.entering { "entering" } else { "leaving" }
             );
             let _ = writeln!(o, "{pad}    point {}, normal {}", vec(&h.point), vec(&h.normal));
+            if let Some(v) = &h.vertex_normals {
+                let kept = match v.interpolation {
+                    "linear" => "kept, as SIMRenderer's btriangle keeps it",
+                    _ => "made 1",
+                };
+                // `length L, kept ...` or `length L, made 1`.
+                let _ = writeln!(
+                    o,
+                    "{pad}    normal interpolated from the vertices' ({}): length {}, {kept}",
+                    v.interpolation,
+                    num(v.length)
+                );
+            }
             let _ = writeln!(o, "{pad}    k_r {}, k_t {}, n {}", num(h.kr), num(h.kt), num(h.ior));
         }
     }

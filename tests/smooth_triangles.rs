@@ -79,6 +79,22 @@ fn the_interpolated_normal_shades_the_centroid() {
     assert_eq!(middle(&dir, &linear), [205; 3]);
     // SIMRenderer's pixel corner, at an odd width, is the image's middle: the same ray.
     assert_eq!(middle(&dir, &lab), [205; 3]);
+    // probe says how the normal was made: |N| = sqrt(1/18 + 1/18 + (1 + sqrt 2)^2 / 9)
+    // = 0.871042, and N.L its z, 0.804738.
+    let text = run(&["probe", &linear, "--pixel", "10,10"]);
+    assert!(
+        text.contains(
+            "      point (0.000000, 0.000000, 0.000000), normal (0.235702, 0.235702, 0.804738)\n      normal interpolated from the vertices' (linear): length 0.871042, kept, as SIMRenderer's btriangle keeps it\n"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("N.L 0.804738,"), "{text}");
+    let json: serde_json::Value =
+        serde_json::from_str(&run(&["probe", &normalized, "--pixel", "10,10", "--json"])).unwrap();
+    let hit = &json["samples"][0]["ray"]["hit"];
+    assert_eq!(hit["vertex_normals"]["interpolation"], "normalized");
+    let length = hit["vertex_normals"]["length"].as_f64().unwrap();
+    assert!((length - 0.8710419765842512).abs() < 1e-12, "{length}");
     let s = scene::load(Path::new(&lab)).unwrap();
     let Shape::SmoothTriangle(t) = &s.objects[0].shape else {
         panic!("a btriangle reads as a smooth triangle: {:?}", s.objects[0].shape);
