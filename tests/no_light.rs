@@ -2,7 +2,7 @@
 //! shows its diffuse colour `k_d S`, no light shades it and no shadow ray is cast, and
 //! reflected rays are traced as usual.
 
-use crate::common::{lumiere, temp_dir};
+use crate::common::{lumiere, temp_dir, write_in};
 use glam::DVec3;
 use lumiere::render::{render, render_reference};
 use lumiere::scene::{self, ShadingModel};
@@ -64,16 +64,10 @@ position = [2, -4, 6]
 color = [1, 1, 1]
 "#;
 
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_str().unwrap().to_string()
-}
-
 #[test]
 fn every_hit_shows_its_diffuse_colour_and_its_reflections() {
     let dir = temp_dir("no-light");
-    let scene = scene::load(Path::new(&write(&dir, "flat.toml", SCENE))).unwrap();
+    let scene = scene::load(Path::new(&write_in(&dir, "flat.toml", SCENE))).unwrap();
     assert_eq!(scene.settings.shading, ShadingModel::NO_LIGHT);
     let world = World::new(&scene);
     let (film, stats) = render(&world, &|| {});
@@ -107,7 +101,7 @@ fn simrenderer_no_light_reads_writes_and_renders() {
                 material\nname orange\ncolor 1 0.5 0.25\nkd 0.8\nend\n\
                 primitive\nmaterial_name orange\nsphere\nposition 0 0 1\nray 1\nend\nend\n\
                 point_light\nposition 2 -4 6\nend\n";
-    let lab = write(&dir, "lab.txt", text);
+    let lab = write_in(&dir, "lab.txt", text);
     let scene = scene::load(Path::new(&lab)).unwrap();
     assert_eq!(scene.settings.shading, ShadingModel::NO_LIGHT);
     // The middle of the sphere shows k_d S: (0.8, 0.4, 0.2) quantised, 204 102 51.
@@ -133,7 +127,7 @@ fn simrenderer_no_light_reads_writes_and_renders() {
 #[test]
 fn probe_names_the_diffuse_colour() {
     let dir = temp_dir("no-light-probe");
-    let path = write(&dir, "flat.toml", SCENE);
+    let path = write_in(&dir, "flat.toml", SCENE);
     let o = lumiere(&["probe", &path, "--pixel", "20,12"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = String::from_utf8_lossy(&o.stdout);
@@ -149,7 +143,7 @@ fn probe_names_the_diffuse_colour() {
 fn no_light_with_a_local_term_on_is_refused() {
     let dir = temp_dir("no-light-refused");
     let text = SCENE.replace("diffuse = false\n", "");
-    let path = write(&dir, "both.toml", &text);
+    let path = write_in(&dir, "both.toml", &text);
     let e = scene::load(Path::new(&path)).unwrap_err().to_string();
     assert!(
         e.ends_with(

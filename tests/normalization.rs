@@ -2,7 +2,7 @@
 //! exceeds 1 is divided by it before quantisation, in every 8-bit image a render writes
 //! (whole, merged from shards), in `probe`'s lines, and read and written in both formats.
 
-use crate::common::{lumiere, temp_dir};
+use crate::common::{lumiere, lumiere_ok, temp_dir, write_in};
 use lumiere::film::Normalization;
 use lumiere::scene;
 use std::path::Path;
@@ -20,18 +20,6 @@ fn scene_text(normalization: &str) -> String {
     )
 }
 
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_str().unwrap().to_string()
-}
-
-fn run(args: &[&str]) -> String {
-    let o = lumiere(args);
-    assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
 fn middle(png: &Path) -> [u8; 3] {
     image::open(png).unwrap().to_rgb8().get_pixel(10, 8).0
 }
@@ -39,23 +27,23 @@ fn middle(png: &Path) -> [u8; 3] {
 #[test]
 fn division_factor_keeps_the_hue_where_clamping_does_not() {
     let dir = temp_dir("normalization");
-    let divided = write(&dir, "divided.toml", &scene_text("division_factor"));
-    let clamped = write(&dir, "clamped.toml", &scene_text("clamp_channel"));
+    let divided = write_in(&dir, "divided.toml", &scene_text("division_factor"));
+    let clamped = write_in(&dir, "clamped.toml", &scene_text("clamp_channel"));
     assert_eq!(
         scene::load(Path::new(&divided)).unwrap().settings.color_normalization,
         Normalization::DivisionFactor
     );
     // (2, 1, 0.5) / 2 = (1, 0.5, 0.25): 255, 128, 64; clamped: 255, 255, 128.
     let (a, b) = (dir.join("divided.png"), dir.join("clamped.png"));
-    run(&["render", &divided, "-o", a.to_str().unwrap(), "-q"]);
-    run(&["render", &clamped, "-o", b.to_str().unwrap(), "-q"]);
+    lumiere_ok(&["render", &divided, "-o", a.to_str().unwrap(), "-q"]);
+    lumiere_ok(&["render", &clamped, "-o", b.to_str().unwrap(), "-q"]);
     assert_eq!(middle(&a), [255, 128, 64]);
     assert_eq!(middle(&b), [255, 255, 128]);
     // Two shards merged: the same bytes as the whole render.
     let (s0, s1, merged) = (dir.join("0.shard"), dir.join("1.shard"), dir.join("merged.png"));
-    run(&["render", &divided, "-o", s0.to_str().unwrap(), "--shard", "0/2", "-q"]);
-    run(&["render", &divided, "-o", s1.to_str().unwrap(), "--shard", "1/2", "-q"]);
-    run(&[
+    lumiere_ok(&["render", &divided, "-o", s0.to_str().unwrap(), "--shard", "0/2", "-q"]);
+    lumiere_ok(&["render", &divided, "-o", s1.to_str().unwrap(), "--shard", "1/2", "-q"]);
+    lumiere_ok(&[
         "merge",
         s0.to_str().unwrap(),
         s1.to_str().unwrap(),
@@ -65,7 +53,7 @@ fn division_factor_keeps_the_hue_where_clamping_does_not() {
     ]);
     assert_eq!(std::fs::read(&merged).unwrap(), std::fs::read(&a).unwrap());
     // probe says the division.
-    let text = run(&["probe", &divided, "--pixel", "10,8"]);
+    let text = lumiere_ok(&["probe", &divided, "--pixel", "10,8"]);
     assert!(
         text.contains(
             "  divided by its largest channel above 1 (division_factor) (1.000000, 0.500000, 0.250000)\n  clamped to [0, 1] (1.000000, 0.500000, 0.250000)\n  8-bit (255, 128, 64)\n"
@@ -86,7 +74,7 @@ fn division_factor_keeps_the_hue_where_clamping_does_not() {
 #[test]
 fn simrenderer_division_factor_reads_and_converts() {
     let dir = temp_dir("normalization-simrenderer");
-    let lab = write(
+    let lab = write_in(
         &dir,
         "lab.txt",
         "raytracer\ncolor_normalization division_factor\nend\n\
@@ -95,20 +83,20 @@ fn simrenderer_division_factor_reads_and_converts() {
     let s = scene::load(Path::new(&lab)).unwrap();
     assert_eq!(s.settings.color_normalization, Normalization::DivisionFactor);
     let toml = dir.join("lab.toml");
-    run(&["convert", &lab, "-o", toml.to_str().unwrap()]);
+    lumiere_ok(&["convert", &lab, "-o", toml.to_str().unwrap()]);
     let written = std::fs::read_to_string(&toml).unwrap();
     assert!(
         written.contains("color_normalization = \"division_factor\"\n"),
         "{written}"
     );
     let back = dir.join("back.txt");
-    run(&["convert", toml.to_str().unwrap(), "-o", back.to_str().unwrap()]);
+    lumiere_ok(&["convert", toml.to_str().unwrap(), "-o", back.to_str().unwrap()]);
     let back = std::fs::read_to_string(&back).unwrap();
     assert!(back.contains("color_normalization division_factor\n"), "{back}");
     // A scene without it writes neither line.
-    let plain = write(&dir, "plain.txt", "primitive\nsphere\nend\nend\n");
+    let plain = write_in(&dir, "plain.txt", "primitive\nsphere\nend\nend\n");
     let plain_toml = dir.join("plain.toml");
-    run(&["convert", &plain, "-o", plain_toml.to_str().unwrap()]);
+    lumiere_ok(&["convert", &plain, "-o", plain_toml.to_str().unwrap()]);
     assert!(
         !std::fs::read_to_string(&plain_toml)
             .unwrap()
@@ -119,7 +107,7 @@ fn simrenderer_division_factor_reads_and_converts() {
 #[test]
 fn an_unknown_normalization_is_named() {
     let dir = temp_dir("normalization-bad");
-    let path = write(&dir, "bad.toml", &scene_text("divide"));
+    let path = write_in(&dir, "bad.toml", &scene_text("divide"));
     let e = scene::load(Path::new(&path)).unwrap_err().to_string();
     assert!(
         e.ends_with("render.color_normalization: must be \"clamp_channel\" or \"division_factor\", got \"divide\""),

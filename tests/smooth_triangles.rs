@@ -10,7 +10,7 @@
 //! `(1 + sqrt 2) / 3 = 0.80474`, 205 in 8 bits, under `linear`; `|N| = 0.87104` and
 //! `N . L / |N| = 0.92388`, 236, under `normalized`; the flat triangle's is 1, 255.
 
-use crate::common::{lumiere, temp_dir};
+use crate::common::{lumiere, lumiere_ok, temp_dir, write_in};
 use lumiere::scene;
 use lumiere::shape::{NormalInterpolation, Shape};
 use std::path::Path;
@@ -41,39 +41,27 @@ fn toml(extra: &str) -> String {
 
 const NORMALS: &str = "normals = [[0, 0, 1], [1, 0, 1], [0, 1, 1]]\n";
 
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_str().unwrap().to_string()
-}
-
-fn run(args: &[&str]) -> String {
-    let o = lumiere(args);
-    assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
 /// The middle pixel of `scene`'s render.
 fn middle(dir: &Path, scene: &str) -> [u8; 3] {
     let png = dir.join(format!(
         "{}.png",
         Path::new(scene).file_stem().unwrap().to_str().unwrap()
     ));
-    run(&["render", scene, "-o", png.to_str().unwrap(), "-q"]);
+    lumiere_ok(&["render", scene, "-o", png.to_str().unwrap(), "-q"]);
     image::open(&png).unwrap().to_rgb8().get_pixel(10, 10).0
 }
 
 #[test]
 fn the_interpolated_normal_shades_the_centroid() {
     let dir = temp_dir("smooth-triangles");
-    let flat = write(&dir, "flat.toml", &toml(""));
-    let normalized = write(&dir, "normalized.toml", &toml(NORMALS));
-    let linear = write(
+    let flat = write_in(&dir, "flat.toml", &toml(""));
+    let normalized = write_in(&dir, "normalized.toml", &toml(NORMALS));
+    let linear = write_in(
         &dir,
         "linear.toml",
         &toml(&format!("{NORMALS}normal_interpolation = \"linear\"\n")),
     );
-    let lab = write(&dir, "lab.txt", SIMRENDERER);
+    let lab = write_in(&dir, "lab.txt", SIMRENDERER);
     assert_eq!(middle(&dir, &flat), [255; 3]);
     assert_eq!(middle(&dir, &normalized), [236; 3]);
     assert_eq!(middle(&dir, &linear), [205; 3]);
@@ -81,7 +69,7 @@ fn the_interpolated_normal_shades_the_centroid() {
     assert_eq!(middle(&dir, &lab), [205; 3]);
     // probe says how the normal was made: |N| = sqrt(1/18 + 1/18 + (1 + sqrt 2)^2 / 9)
     // = 0.871042, and N.L its z, 0.804738.
-    let text = run(&["probe", &linear, "--pixel", "10,10"]);
+    let text = lumiere_ok(&["probe", &linear, "--pixel", "10,10"]);
     assert!(
         text.contains(
             "      point (0.000000, 0.000000, 0.000000), normal (0.235702, 0.235702, 0.804738)\n      normal interpolated from the vertices' (linear): length 0.871042, kept, as SIMRenderer's btriangle keeps it\n"
@@ -90,7 +78,7 @@ fn the_interpolated_normal_shades_the_centroid() {
     );
     assert!(text.contains("N.L 0.804738,"), "{text}");
     let json: serde_json::Value =
-        serde_json::from_str(&run(&["probe", &normalized, "--pixel", "10,10", "--json"])).unwrap();
+        serde_json::from_str(&lumiere_ok(&["probe", &normalized, "--pixel", "10,10", "--json"])).unwrap();
     let hit = &json["samples"][0]["ray"]["hit"];
     assert_eq!(hit["vertex_normals"]["interpolation"], "normalized");
     let length = hit["vertex_normals"]["length"].as_f64().unwrap();
@@ -111,9 +99,9 @@ fn the_interpolated_normal_shades_the_centroid() {
 #[test]
 fn convert_carries_the_vertex_data_both_ways() {
     let dir = temp_dir("smooth-triangles-convert");
-    let lab = write(&dir, "lab.txt", SIMRENDERER);
+    let lab = write_in(&dir, "lab.txt", SIMRENDERER);
     let toml_path = dir.join("lab.toml");
-    run(&["convert", &lab, "-o", toml_path.to_str().unwrap()]);
+    lumiere_ok(&["convert", &lab, "-o", toml_path.to_str().unwrap()]);
     let written = std::fs::read_to_string(&toml_path).unwrap();
     assert!(
         written.contains("normals = [[0, 0, 1], [1, 0, 1], [0, 1, 1]]\n"),
@@ -124,7 +112,7 @@ fn convert_carries_the_vertex_data_both_ways() {
     assert!(!written.contains("uvs"), "{written}");
     assert_eq!(middle(&dir, toml_path.to_str().unwrap()), [205; 3]);
     let back = dir.join("back.txt");
-    run(&["convert", toml_path.to_str().unwrap(), "-o", back.to_str().unwrap()]);
+    lumiere_ok(&["convert", toml_path.to_str().unwrap(), "-o", back.to_str().unwrap()]);
     let back_text = std::fs::read_to_string(&back).unwrap();
     assert!(
         back_text.contains("btriangle\npoint  -1 -1 0\npoint  2 -1 0\npoint  -1 2 0\nnormal 0 0 1\nnormal 1 0 1\nnormal 0 1 1\nuv     0 0\nuv     1 0\nuv     0 1\nend\n"),
@@ -135,7 +123,7 @@ fn convert_carries_the_vertex_data_both_ways() {
         scene::load(Path::new(&lab)).unwrap().objects
     );
     // A normalized smooth triangle has no SIMRenderer form.
-    let normalized = write(&dir, "normalized.toml", &toml(NORMALS));
+    let normalized = write_in(&dir, "normalized.toml", &toml(NORMALS));
     let o = lumiere(&["convert", &normalized, "-o", dir.join("n.txt").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(
@@ -163,13 +151,13 @@ fn bad_vertex_data_is_refused_where_it_is() {
         ),
     ];
     for (i, (extra, message)) in cases.iter().enumerate() {
-        let path = write(&dir, &format!("bad{i}.toml"), &toml(extra));
+        let path = write_in(&dir, &format!("bad{i}.toml"), &toml(extra));
         let e = scene::load(Path::new(&path)).unwrap_err().to_string();
         assert!(e.ends_with(message), "{e}");
     }
     // SIMRenderer: a fourth normal, and a btriangle inside a geometry wrapper.
     let four = SIMRENDERER.replace("normal 0 1 1\n", "normal 0 1 1\nnormal 1 1 1\n");
-    let path = write(&dir, "four.txt", &four);
+    let path = write_in(&dir, "four.txt", &four);
     let o = lumiere(&["render", &path, "-o", dir.join("four.png").to_str().unwrap()]);
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(
@@ -179,7 +167,7 @@ fn bad_vertex_data_is_refused_where_it_is() {
     let wrapped = SIMRENDERER
         .replace("btriangle\n", "geometry\nbtriangle\n")
         .replace("end\nend\n", "end\nend\nend\n");
-    let path = write(&dir, "wrapped.txt", &wrapped);
+    let path = write_in(&dir, "wrapped.txt", &wrapped);
     let o = lumiere(&["render", &path, "-o", dir.join("wrapped.png").to_str().unwrap()]);
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(e.contains("SIMRenderer does not transform a btriangle"), "{e}");
@@ -230,7 +218,7 @@ fn both_tracers_agree_on_smooth_triangles() {
                 n(c)
             );
         }
-        let path = write(&dir, &format!("{rule}-{specular}.toml"), &text);
+        let path = write_in(&dir, &format!("{rule}-{specular}.toml"), &text);
         let scene = scene::load(Path::new(&path)).unwrap();
         let world = World::new(&scene);
         let (fast, stats) = render(&world, &|| {});
@@ -270,7 +258,7 @@ fn a_model_with_vertex_normals_is_smooth() {
                vn 0 0 1\nvn 1 0 1\nvn 0 1 1\n\
                vt 0 0\nvt 1 0\nvt 0 1\n\
                f 1/1/1 2/2/2 3/3/3\nf 2 4 3\n";
-    write(&dir, "two.obj", obj);
+    write_in(&dir, "two.obj", obj);
     let lab = |extra: &str| {
         SIMRENDERER.replace(
             "primitive\nmaterial_name white\nbtriangle\n\
@@ -283,18 +271,18 @@ fn a_model_with_vertex_normals_is_smooth() {
     };
     // The model's triangles take the material named "none": SIMRenderer's default grey
     // (diffuse 0.6), so the centroid's diffuse term is 0.6 (1 + sqrt 2) / 3 = 0.48284, 123.
-    let plain = write(&dir, "model.txt", &lab(""));
+    let plain = write_in(&dir, "model.txt", &lab(""));
     let s = scene::load(Path::new(&plain)).unwrap();
     assert!(matches!(s.objects[0].shape, Shape::SmoothTriangle(_)));
     assert!(matches!(s.objects[1].shape, Shape::Triangle(_)));
     assert_eq!(middle(&dir, &plain), [123; 3]);
     // Scaled by 2 along z: the plane z = 0 stays, the normals (0, 0, 1), (2, 0, 1) / sqrt 5
     // and (0, 2, 1) / sqrt 5 give 0.6 (1 + 2 / sqrt 5) / 3 = 0.37889, 97.
-    let scaled = write(&dir, "scaled.txt", &lab("scale 1 1 2\n"));
+    let scaled = write_in(&dir, "scaled.txt", &lab("scale 1 1 2\n"));
     assert_eq!(middle(&dir, &scaled), [97; 3]);
     // A face that gives some of its vertices a normal is refused on its line.
-    write(&dir, "mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2 3\n");
-    let mixed = write(&dir, "mixed.txt", &lab("").replace("two.obj", "mixed.obj"));
+    write_in(&dir, "mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2 3\n");
+    let mixed = write_in(&dir, "mixed.txt", &lab("").replace("two.obj", "mixed.obj"));
     let e = scene::load(Path::new(&mixed)).unwrap_err().to_string();
     assert!(
         e.contains("mixed.obj:5: 1 of the face's 3 vertices have a normal: give it to all of them or none"),

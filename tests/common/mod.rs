@@ -46,6 +46,20 @@ pub fn lumiere(args: &[&str]) -> Output {
         .expect("lumiere runs")
 }
 
+/// `lumiere args` that must succeed: its standard output (its error in the panic otherwise).
+pub fn lumiere_ok(args: &[&str]) -> String {
+    let o = lumiere(args);
+    assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Writes `text` to `dir/name`; its path as a string, for a command line.
+pub fn write_in(dir: &Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
 /// Generates the lighting set at scale 0.05 (40 x 30) into `dir/figures`: the output,
 /// which succeeded.
 pub fn generate_lighting(dir: &Path) -> Output {
