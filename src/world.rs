@@ -201,8 +201,14 @@ impl<'s> World<'s> {
         let photons = s.caustics.as_ref().map(|c| caustics::build(scene, &accel, c));
         let photon_seconds = start.elapsed().as_secs_f64();
         let caustic_bound = photons.as_ref().map(PhotonMap::irradiance_bound);
-        // A flat shape's own test is as cheap as a ball's.
-        let ball = |o: &Object| o.shape.bounding_sphere().filter(|_| !o.shape.is_flat());
+        // A plane's, rectangle's, disk's or triangle's own test is as cheap as a ball's.
+        let ball = |o: &Object| {
+            let flat = matches!(
+                o.shape,
+                Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Triangle(_) | Shape::SmoothTriangle(_)
+            );
+            o.shape.bounding_sphere().filter(|_| !flat)
+        };
         let linear = matches!(accel, Accel::Linear(_));
         let eye_cones = match linear {
             true => scene

@@ -267,16 +267,6 @@ impl Shape {
         }
     }
 
-    /// Whether the shape is flat: a plane, rectangle, disk or triangle (smooth ones too:
-    /// their normals vary, their surface does not). It bounds no solid, and its own test is
-    /// as cheap as a ball's.
-    pub fn is_flat(&self) -> bool {
-        matches!(
-            self,
-            Shape::Plane(_) | Shape::Rectangle(_) | Shape::Disk(_) | Shape::Triangle(_) | Shape::SmoothTriangle(_)
-        )
-    }
-
     /// Whether the shape bounds a solid (sphere, box, capped cylinder and cone, torus, lens,
     /// and any of them transformed): it has an inside, which a refracted ray can enter.
     /// Planes, rectangles, disks, triangles, tubes and spherical caps are open surfaces (as
