@@ -250,7 +250,8 @@ fn both_tracers_agree_on_smooth_triangles() {
 
 /// A SIMRenderer model whose faces give vertex normals and texture coordinates is made of
 /// smooth triangles, as SIMRenderer's model reader builds `SBTriangleGeometry` for them; a
-/// face without them stays flat; the model's transform turns the normals by `A^-T`.
+/// face without them stays flat; the model's transform turns the normals by `A^-T`. A TOML
+/// mesh does so with `normal_interpolation`.
 #[test]
 fn a_model_with_vertex_normals_is_smooth() {
     let dir = temp_dir("smooth-triangles-model");
@@ -280,6 +281,28 @@ fn a_model_with_vertex_normals_is_smooth() {
     // and (0, 2, 1) / sqrt 5 give 0.6 (1 + 2 / sqrt 5) / 3 = 0.37889, 97.
     let scaled = write_in(&dir, "scaled.txt", &lab("scale 1 1 2\n"));
     assert_eq!(middle(&dir, &scaled), [97; 3]);
+    // A TOML mesh uses the normals only when asked, under the rule it names.
+    let mesh = |extra: &str| {
+        toml("").replace(
+            "[[shapes]]\ntype = \"triangle\"\np0 = [-1, -1, 0]\np1 = [2, -1, 0]\np2 = [-1, 2, 0]\nmaterial = \"white\"\n",
+            &format!("[[shapes]]\ntype = \"mesh\"\nfile = \"two.obj\"\nmaterial = \"white\"\n{extra}"),
+        )
+    };
+    for (name, extra, value) in [
+        ("flat", "", 255),
+        ("normalized", "normal_interpolation = \"normalized\"\n", 236),
+        ("linear", "normal_interpolation = \"linear\"\n", 205),
+    ] {
+        let path = write_in(&dir, &format!("mesh-{name}.toml"), &mesh(extra));
+        assert!(scene::load(Path::new(&path)).unwrap().objects.len() == 2);
+        assert_eq!(middle(&dir, &path), [value; 3], "{name}");
+    }
+    let bad = write_in(&dir, "mesh-bad.toml", &mesh("normal_interpolation = \"phong\"\n"));
+    let e = scene::load(Path::new(&bad)).unwrap_err().to_string();
+    assert!(
+        e.ends_with("shapes[0].normal_interpolation: must be \"normalized\" or \"linear\", got \"phong\""),
+        "{e}"
+    );
     // A face that gives some of its vertices a normal is refused on its line.
     write_in(&dir, "mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2 3\n");
     let mixed = write_in(&dir, "mixed.txt", &lab("").replace("two.obj", "mixed.obj"));

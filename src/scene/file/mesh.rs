@@ -4,6 +4,7 @@
 use super::Listed;
 use super::check::{Check, fail};
 use super::material::resolve_material;
+use super::shapes::normal_interpolation;
 use super::transform::{FileTransform, transform_of};
 use crate::scene::locate::{FieldError, FieldPath};
 use crate::shape::Shape;
@@ -11,11 +12,14 @@ use crate::shape::mesh::Mesh;
 use serde::Deserialize;
 use std::path::Path;
 
-/// The triangles of a `.obj` file (path relative to the scene file).
+/// The triangles of a `.obj` file (path relative to the scene file); with
+/// `normal_interpolation`, a face that gives its vertices normals or texture coordinates
+/// makes smooth triangles under that rule (as SIMRenderer's models do, under `"linear"`).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct FileMesh {
     file: String,
+    normal_interpolation: Option<String>,
     material: Option<String>,
     name: Option<String>,
     transform: Option<FileTransform>,
@@ -41,6 +45,10 @@ impl FileMesh {
             got: None,
         })?;
         let material = resolve_material(path, self.material, material_names)?;
+        let interpolation = match &self.normal_interpolation {
+            Some(name) => Some(normal_interpolation(&path.key("normal_interpolation"), name)?),
+            None => None,
+        };
         let transform = transform_of(&path.key("transform"), self.transform)?;
         if let Some(t) = &transform
             && let Err(m) = mesh.transform(t, &shown)
@@ -51,13 +59,16 @@ impl FileMesh {
             return fail(&field, m);
         }
         let base = self.name.unwrap_or_else(|| format!("mesh#{index}"));
-        Ok(mesh
-            .triangles()
+        let shapes = match interpolation {
+            Some(rule) => mesh.smooth_shapes(rule),
+            None => mesh.triangles().into_iter().map(Shape::Triangle).collect(),
+        };
+        Ok(shapes
             .into_iter()
             .enumerate()
-            .map(|(k, t)| Listed {
+            .map(|(k, shape)| Listed {
                 name: compact_str::format_compact!("{base}/{k}"),
-                shape: Shape::Triangle(t),
+                shape,
                 material,
             })
             .collect())
@@ -74,6 +85,7 @@ mod tests {
     fn a_mesh_gets_the_room_the_scene_leaves() {
         let mesh = || FileMesh {
             file: "scenes/icosahedron.obj".to_string(),
+            normal_interpolation: None,
             material: None,
             name: None,
             transform: None,

@@ -221,6 +221,17 @@ fn minus_y() -> Xyz {
     Xyz([0.0, -1.0, 0.0])
 }
 
+/// The rule named `name` at `path` (a triangle's or a mesh's `normal_interpolation`).
+pub(super) fn normal_interpolation(path: &FieldPath, name: &str) -> Check<NormalInterpolation> {
+    NormalInterpolation::from_name(name).map_or_else(
+        || {
+            let names: Vec<String> = NormalInterpolation::NAMES.iter().map(|n| format!("{n:?}")).collect();
+            fail(path, format!("must be {}, got {name:?}", names.join(" or ")))
+        },
+        Ok,
+    )
+}
+
 /// The smooth triangle over `flat` of the triangle entry at `path` (see [`FileTriangle`]).
 fn smooth_triangle(
     path: &FieldPath,
@@ -231,16 +242,7 @@ fn smooth_triangle(
 ) -> Check<SmoothTriangle> {
     let interpolation = match interpolation {
         None => NormalInterpolation::default(),
-        Some(name) => match NormalInterpolation::from_name(&name) {
-            Some(rule) => rule,
-            None => {
-                let names: Vec<String> = NormalInterpolation::NAMES.iter().map(|n| format!("{n:?}")).collect();
-                return fail(
-                    &path.key("normal_interpolation"),
-                    format!("must be {}, got {name:?}", names.join(" or ")),
-                );
-            }
-        },
+        Some(name) => normal_interpolation(&path.key("normal_interpolation"), &name)?,
     };
     let normals = match normals {
         None => [flat.normal(); 3],
