@@ -521,7 +521,7 @@ fn evenly_spread(items: Vec<usize>, most: usize) -> Vec<usize> {
 /// golden-section factors, on pixel sets that overlap where the images differ alike; and
 /// identical images find the same factor, whose render of the whole grid is then kept.
 /// Past [`MOST_KEPT_TRIAL_RADIANCES`] radiances and [`MOST_KEPT_FITTED`] renders, what the
-/// next images render is no longer kept.
+/// next images render is not kept.
 #[derive(Default)]
 struct ExponentRenders {
     trials: Mutex<KeptTrials>,
