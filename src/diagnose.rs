@@ -41,7 +41,7 @@ pub mod mistakes;
 pub mod report;
 
 use crate::edges::{footprint, is_edge};
-use crate::film::{clamp_unit, quantize};
+use crate::film::{Normalization, clamp_unit, quantize};
 use crate::layers::{PixelLayers, pixel_layers};
 use crate::limits::MAX_DEPTH;
 use crate::output::{srgb_decode, srgb_encode};
@@ -290,31 +290,53 @@ fn clearly_closer(score: &Score, than: &Score, allowance: usize) -> bool {
 }
 
 /// The squared differences, in 8-bit levels, between the channels of `radiance` as the film
-/// writes them before rounding (encoded, clamped to [0, 1]) and `levels`: a cost that moves
-/// with the radiance where the rounded levels move by steps.
-fn squared_level_error(radiance: DVec3, levels: &[u8], encode: fn(f64) -> f64) -> f64 {
-    [radiance.x, radiance.y, radiance.z]
+/// writes them before rounding (normalized, encoded, clamped to [0, 1]) and `levels`: a cost
+/// that moves with the radiance where the rounded levels move by steps.
+fn squared_level_error(radiance: DVec3, levels: &[u8], output: Output) -> f64 {
+    output
+        .normalization
+        .apply(radiance)
+        .to_array()
         .into_iter()
         .zip(levels)
-        .map(|(c, &level)| (clamp_unit(encode(c)) * 255.0 - level as f64).powi(2))
+        .map(|(c, &level)| (clamp_unit((output.encode)(c)) * 255.0 - level as f64).powi(2))
         .sum()
 }
 
-/// 8-bit RGB of radiances, clamped and quantised as the film does.
-fn to_rgb8(radiance: &[DVec3], encode: fn(f64) -> f64) -> Vec<u8> {
-    radiance
-        .iter()
-        .flat_map(|p| [p.x, p.y, p.z].map(|c| quantize(encode(c))))
-        .collect()
+/// 8-bit RGB of radiances, as the film writes them ([`Output::rgb8`]).
+fn to_rgb8(radiance: &[DVec3], output: Output) -> Vec<u8> {
+    radiance.iter().flat_map(|&p| output.rgb8(p)).collect()
 }
 
 fn linear(c: f64) -> f64 {
     c
 }
 
-/// The transfer the oracle's 8-bit values go through: none, or sRGB's.
-fn output_encoding(srgb: bool) -> fn(f64) -> f64 {
-    if srgb { srgb_encode } else { linear }
+/// How the oracle writes a radiance in 8 bits, as the film does: the scene's colour
+/// normalization ([`Normalization::apply`]: SIMRenderer's `division_factor` divides a colour
+/// by its largest channel above 1), then a transfer on each channel (none, or sRGB's), then
+/// clamping and rounding ([`quantize`]).
+#[derive(Clone, Copy)]
+struct Output {
+    normalization: Normalization,
+    encode: fn(f64) -> f64,
+}
+
+impl Output {
+    /// The oracle's: the scene's normalization, and the sRGB transfer with `srgb`.
+    fn of(scene: &Scene, srgb: bool) -> Output {
+        Output {
+            normalization: scene.settings.color_normalization,
+            encode: if srgb { srgb_encode } else { linear },
+        }
+    }
+
+    fn rgb8(self, c: DVec3) -> [u8; 3] {
+        self.normalization
+            .apply(c)
+            .to_array()
+            .map(|v| quantize((self.encode)(v)))
+    }
 }
 
 /// The largest channel difference of pixel `i`.
@@ -324,7 +346,7 @@ fn pixel_diff(a: &[u8], b: &[u8], i: usize) -> u8 {
 
 /// Per pixel of `pixels`, the oracle's 8-bit values over its footprint: the lowest and the
 /// highest of each channel, one camera sample at each point ([`footprint`]).
-fn footprint_ranges(world: &World, pixels: &[(u32, u32)], encode: fn(f64) -> f64) -> Vec<[[u8; 3]; 2]> {
+fn footprint_ranges(world: &World, pixels: &[(u32, u32)], output: Output) -> Vec<[[u8; 3]; 2]> {
     let width = world.scene.settings.width as u64;
     pixels
         .par_iter()
@@ -338,7 +360,7 @@ fn footprint_ranges(world: &World, pixels: &[(u32, u32)], encode: fn(f64) -> f64
                 };
                 footprint(world, x, y).fold([[u8::MAX; 3], [0; 3]], |[lo, hi], position| {
                     let c = tracer.camera(&camera_ray(world, position), key);
-                    let q = [c.x, c.y, c.z].map(|v| quantize(encode(v)));
+                    let q = output.rgb8(c);
                     [
                         std::array::from_fn(|i| lo[i].min(q[i])),
                         std::array::from_fn(|i| hi[i].max(q[i])),
@@ -383,8 +405,8 @@ fn score(a: &[u8], b: &[u8], judged: &[bool], tolerance: u8) -> Score {
     }
 }
 
-/// Radiances and the output encoding (identity or sRGB) their 8-bit values go through.
-type Encoded = (Vec<DVec3>, fn(f64) -> f64);
+/// Radiances and the [`Output`] their 8-bit values go through.
+type Encoded = (Vec<DVec3>, Output);
 
 /// The radiance of the grid's pixels as the scene renders with `change` (`None`: the
 /// oracle's, given as `oracle`); `None` when the change does not apply to this scene.
@@ -396,11 +418,17 @@ fn render_change(
     change: Change,
     srgb: bool,
 ) -> Option<Encoded> {
-    let output = output_encoding(srgb);
+    let output = Output::of(scene, srgb);
     match change {
         Change::Formulas(f) => Some((render_pixels_with(world, f, pixels), output)),
         // An image the oracle writes sRGB-encoded already has its gamma.
-        Change::Gamma => (!srgb).then(|| (oracle.to_vec(), srgb_encode as fn(f64) -> f64)),
+        Change::Gamma => (!srgb).then(|| {
+            let gamma = Output {
+                encode: srgb_encode,
+                ..output
+            };
+            (oracle.to_vec(), gamma)
+        }),
         Change::FlipVertical | Change::FlipHorizontal => {
             let (w, h) = (scene.settings.width, scene.settings.height);
             let flipped: Vec<(u32, u32)> = pixels.iter().map(|&p| change.source_pixel(p, w, h)).collect();
@@ -449,7 +477,7 @@ pub fn render_mistake(scene: &Scene, mistake: &Mistake) -> Option<Vec<u8>> {
         Change::Gamma | Change::SwapRedBlue => render_pixels_with(&world, Formulas::CHAPTER, &pixels),
         _ => Vec::new(),
     };
-    render_change(scene, &world, &pixels, &oracle, mistake.change, false).map(|(r, encode)| to_rgb8(&r, encode))
+    render_change(scene, &world, &pixels, &oracle, mistake.change, false).map(|(r, output)| to_rgb8(&r, output))
 }
 
 /// The judged pixels beyond the tolerance against the oracle and within it against the
@@ -564,6 +592,9 @@ pub struct Oracle<'s> {
     layers: Vec<PixelLayers>,
     /// The specular exponents the scene's highlights show ([`shown_exponents`]).
     exponents: Vec<f64>,
+    /// Per grid pixel, whether the scene's colour normalization divides the oracle's colour
+    /// (`division_factor`, a channel above 1): left out of the gains' fit.
+    divided: Vec<bool>,
     /// Each mistake of the catalogue as prepared for every image.
     mistakes: Vec<(Mistake, Prepared)>,
     exponent_renders: ExponentRenders,
@@ -589,8 +620,16 @@ impl<'s> Oracle<'s> {
         let world = World::new(scene);
         let edge_mask: Vec<bool> = pixels.par_iter().map(|&(x, y)| is_edge(&world, x, y)).collect();
         let oracle = render_pixels_with(&world, Formulas::CHAPTER, &pixels);
-        let oracle_rgb = to_rgb8(&oracle, output_encoding(options.srgb));
-        let ranges = footprint_ranges(&world, &pixels, output_encoding(options.srgb));
+        let output = Output::of(scene, options.srgb);
+        let oracle_rgb = to_rgb8(&oracle, output);
+        let ranges = footprint_ranges(&world, &pixels, output);
+        // Where the normalization divides the oracle's colour, the image is no sum of the
+        // terms: the gains are fitted on the other pixels.
+        let divides = !output.normalization.is_clamp_channel();
+        let divided: Vec<bool> = oracle
+            .iter()
+            .map(|&c| divides && output.normalization.apply(c) != c)
+            .collect();
         let layers: Vec<PixelLayers> = pixels
             .par_iter()
             .with_min_len(64)
@@ -603,8 +642,8 @@ impl<'s> Oracle<'s> {
             .map(|m| match m.change {
                 Change::SpecularExponent(_) if !exponents.is_empty() => Prepared::Fitted,
                 change => render_change(scene, &world, &pixels, &oracle, change, options.srgb)
-                    .map_or(Prepared::NotApplicable, |(r, encode)| {
-                        Prepared::Rendered(to_rgb8(&r, encode))
+                    .map_or(Prepared::NotApplicable, |(r, output)| {
+                        Prepared::Rendered(to_rgb8(&r, output))
                     }),
             })
             .collect();
@@ -620,6 +659,7 @@ impl<'s> Oracle<'s> {
             ranges,
             layers,
             exponents,
+            divided,
             mistakes: list.into_iter().zip(prepared).collect(),
             exponent_renders: ExponentRenders::default(),
         }
@@ -643,13 +683,13 @@ impl<'s> Oracle<'s> {
         if differing.is_empty() {
             return None;
         }
-        let encode = output_encoding(self.options.srgb);
+        let output = Output::of(self.world.scene, self.options.srgb);
         let factor = exponent::fit_factor(|factor| {
             let radiance = self.trial_radiance(factor, &differing);
             radiance
                 .iter()
                 .zip(&differing)
-                .map(|(&r, &i)| squared_level_error(r, &image[3 * i..3 * i + 3], encode))
+                .map(|(&r, &i)| squared_level_error(r, &image[3 * i..3 * i + 3], output))
                 .sum()
         });
         Some((self.fitted_rgb(factor), ExponentFit::new(factor, &self.exponents)))
@@ -706,7 +746,7 @@ impl<'s> Oracle<'s> {
         }
         let rgb = to_rgb8(
             &render_pixels_with(&self.world, exponent_scaled(factor), &self.pixels),
-            output_encoding(self.options.srgb),
+            Output::of(self.world.scene, self.options.srgb),
         );
         let mut fitted = fitted.lock().unwrap_or_else(PoisonError::into_inner);
         if fitted.len() < MOST_KEPT_FITTED {
@@ -756,7 +796,7 @@ impl<'s> Oracle<'s> {
             .layers
             .iter()
             .enumerate()
-            .filter(|(i, _)| judged[*i])
+            .filter(|(i, _)| judged[*i] && !self.divided[*i])
             .map(|(i, l)| {
                 let rgb = &image_rgb[3 * i..3 * i + 3];
                 let decode = |level: u8| {
@@ -874,7 +914,7 @@ mod tests {
         }
         // The whole grid at a fitted factor, rendered once, the same the second time.
         let all: Vec<usize> = (0..32 * 24).collect();
-        let fitted = to_rgb8(&render_at(0.5, &all), linear);
+        let fitted = to_rgb8(&render_at(0.5, &all), Output::of(&scene, false));
         assert_eq!(oracle.fitted_rgb(0.5), fitted);
         assert_eq!(oracle.exponent_renders.fitted.lock().unwrap().len(), 1);
         assert_eq!(oracle.fitted_rgb(0.5), fitted);

@@ -1,8 +1,9 @@
 //! SIMRenderer's `color_normalization division_factor`: a pixel whose largest channel
 //! exceeds 1 is divided by it before quantisation, in every 8-bit image a render writes
-//! (whole, merged from shards), in `probe`'s lines, and read and written in both formats.
+//! (whole, merged from shards), in `probe`'s lines and in `diagnose`'s renders, and read
+//! and written in both formats.
 
-use crate::common::{lumiere, lumiere_ok, temp_dir, write_in};
+use crate::common::{lumiere_ok, temp_dir, write_in};
 use lumiere::film::Normalization;
 use lumiere::scene;
 use std::path::Path;
@@ -60,14 +61,26 @@ fn division_factor_keeps_the_hue_where_clamping_does_not() {
         ),
         "{text}"
     );
-    // diagnose compares clamped channels: it refuses the scene and says what to do.
-    let o = lumiere(&["diagnose", &divided, a.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(2));
-    assert_eq!(
-        String::from_utf8_lossy(&o.stderr),
-        format!(
-            "lumiere: error: {divided}: color_normalization division_factor: diagnose compares images clamped channel by channel; render the scene (`lumiere render`) and compare your image with it (`lumiere compare`)\n"
-        )
+    // diagnose writes the oracle and every mistake through the division: the scene's own
+    // render is no mistake, and the gamma mistake's image, (1, 0.5, 0.25) divided then
+    // sRGB-encoded, (1, 0.7354, 0.5371): 255 188 137 (clamped it would be 255 255 188), is
+    // named first.
+    let text = lumiere_ok(&["diagnose", &divided, a.to_str().unwrap()]);
+    assert!(text.contains("verdict            no mistake found\n"), "{text}");
+    let gamma = dir.join("gamma.png");
+    lumiere_ok(&[
+        "render",
+        &divided,
+        "--mistake",
+        "gamma-applied",
+        "-o",
+        gamma.to_str().unwrap(),
+    ]);
+    assert_eq!(middle(&gamma), [255, 188, 137]);
+    let text = lumiere_ok(&["diagnose", &divided, gamma.to_str().unwrap()]);
+    assert!(
+        text.contains("verdict            mistake found\n1. gamma-applied:"),
+        "{text}"
     );
 }
 

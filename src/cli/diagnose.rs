@@ -186,13 +186,6 @@ fn load_at_size(
         ..overrides.clone()
     };
     let mut scene = load_scene(path, &at_own_size)?;
-    if !scene.settings.color_normalization.is_clamp_channel() {
-        // The catalogue's renders and the gains are compared channel by channel, clamped.
-        return Err(CliError::BadInput(format!(
-            "{}: color_normalization division_factor: diagnose compares images clamped channel by channel; render the scene (`lumiere render`) and compare your image with it (`lumiere compare`)",
-            path.display()
-        )));
-    }
     let own_size = (scene.settings.width, scene.settings.height);
     let image_size = scene::Overrides {
         width: Some(width),
