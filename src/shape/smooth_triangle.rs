@@ -92,19 +92,20 @@ impl SmoothTriangle {
 
     /// The normal at barycentric coordinates `b` (the module doc's `N`, by the rule).
     pub fn normal_at(&self, b: [f64; 3]) -> DVec3 {
-        let n = Self::weighted(b, self.normals);
-        match self.interpolation {
-            NormalInterpolation::Normalized => n.normalize(),
-            NormalInterpolation::Linear => n,
-        }
+        self.by_rule(Self::weighted(b, self.normals), self.interpolation)
     }
 
     /// The normal at `p`, a point of the triangle, by `rule` (whatever the triangle's own).
     pub fn normal_at_point(&self, p: DVec3, rule: NormalInterpolation) -> DVec3 {
         let (b1, b2) = self.triangle.barycentric(p);
-        let n = Self::weighted([1.0 - b1 - b2, b1, b2], self.normals);
+        self.by_rule(Self::weighted([1.0 - b1 - b2, b1, b2], self.normals), rule)
+    }
+
+    /// The interpolated `n` by `rule`. Made unit, a sum of opposite vertex normals that
+    /// cancels has no direction: the face's normal is taken there.
+    fn by_rule(&self, n: DVec3, rule: NormalInterpolation) -> DVec3 {
         match rule {
-            NormalInterpolation::Normalized => n.normalize(),
+            NormalInterpolation::Normalized => n.try_normalize().unwrap_or_else(|| self.triangle.normal()),
             NormalInterpolation::Linear => n,
         }
     }
@@ -231,6 +232,25 @@ mod tests {
         }
         assert_eq!(s.normal_at([0.0, 1.0, 0.0]), n);
         assert_eq!(s.uv(DVec3::new(0.25, 0.5, 0.0)), (0.25, 0.5));
+    }
+
+    /// Opposite vertex normals cancel on a line of the face: there the normalized rule takes
+    /// the face's normal (no NaN), and the linear rule keeps the zero vector SIMRenderer
+    /// shades with (no light).
+    #[test]
+    fn normals_that_cancel() {
+        let t = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
+        let normals = [DVec3::Z, -DVec3::Z, DVec3::Z];
+        let b = [0.25, 0.5, 0.25];
+        let unit = SmoothTriangle::new(
+            t.clone(),
+            normals,
+            SmoothTriangle::FLAT_UVS,
+            NormalInterpolation::Normalized,
+        );
+        assert_eq!(unit.unwrap().normal_at(b), DVec3::Z);
+        let linear = SmoothTriangle::new(t, normals, SmoothTriangle::FLAT_UVS, NormalInterpolation::Linear);
+        assert_eq!(linear.unwrap().normal_at(b), DVec3::ZERO);
     }
 
     #[test]
