@@ -12,7 +12,8 @@
 //! triangle's [`NormalInterpolation`]: made unit (the usual interpolated shading normal),
 //! or kept as it is, as SIMRenderer keeps it: its `SBTriangleGeometry.intersection`
 //! returns the weighted sum, and its shading takes that as the normal, so the diffuse term
-//! is `|N|` times the unit normal's and a Blinn highlight `|N|^n` times. Which side the ray
+//! is `|N|` times the unit normal's and a Blinn highlight `|N|^n` times (where opposite
+//! vertex normals cancel, `N = 0`, made unit it is the face's normal). Which side the ray
 //! comes from is the sign of `N . v`, as SIMRenderer's `SRay.getShadingNormal` decides it.
 //!
 //! The triangle stays flat: its plane, bounds and rounding-error bound are the flat
