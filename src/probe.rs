@@ -606,9 +606,10 @@ fn write_ray(o: &mut String, r: &RayNode, depth: usize) {
             );
             let _ = writeln!(o, "{pad}    point {}, normal {}", vec(&h.point), vec(&h.normal));
             if let Some(v) = &h.vertex_normals {
-                let kept = match v.interpolation {
-                    "linear" => "kept, as SIMRenderer's btriangle keeps it",
-                    _ => "made 1",
+                let kept = if v.interpolation == NormalInterpolation::Linear.name() {
+                    "kept, as SIMRenderer's btriangle keeps it"
+                } else {
+                    "made 1"
                 };
                 // `length L, kept ...` or `length L, made 1`.
                 let _ = writeln!(

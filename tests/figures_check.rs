@@ -301,15 +301,18 @@ fn the_scale_of_a_set_on_disk_is_said() {
     let dir = temp_dir("check-scale");
     generate_lighting(&dir);
     let out = dir.join("figures");
-    let o = lumiere(&[
-        "figures",
-        "lighting",
-        "--scale",
-        "0.1",
-        "-q",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let at_a_tenth = || {
+        lumiere(&[
+            "figures",
+            "lighting",
+            "--scale",
+            "0.1",
+            "-q",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    let o = at_a_tenth();
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(
         String::from_utf8_lossy(&o.stderr),
@@ -322,15 +325,7 @@ fn the_scale_of_a_set_on_disk_is_said() {
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(stdout, "lighting     ok (at scale 0.1, as its manifest records)\n");
     // At the same scale, no warning; a set with no manifest is checked at --scale.
-    let o = lumiere(&[
-        "figures",
-        "lighting",
-        "--scale",
-        "0.1",
-        "-q",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = at_a_tenth();
     assert!(o.stderr.is_empty());
     std::fs::remove_dir_all(out.join("lighting")).unwrap();
     let o = lumiere(&[

@@ -69,15 +69,16 @@ impl SmoothTriangle {
     /// The texture coordinates the flat triangle has without vertex data: `(b1, b2)`.
     pub const FLAT_UVS: [[f64; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
 
-    /// The triangle with vertex `normals` (made unit here; `None` when one has no
-    /// direction) and texture coordinates `uvs`.
+    /// The triangle with vertex `normals` (made unit here, each divided by its length as
+    /// both scene readers make a written direction unit and SIMRenderer's `normalize` does;
+    /// `None` when one has no direction) and texture coordinates `uvs`.
     pub fn new(
         triangle: Triangle,
         normals: [DVec3; 3],
         uvs: [[f64; 2]; 3],
         interpolation: NormalInterpolation,
     ) -> Option<SmoothTriangle> {
-        let normals = normals.map(DVec3::normalize);
+        let normals = normals.map(|n| n / n.length());
         normals.iter().all(|n| n.is_finite()).then_some(SmoothTriangle {
             triangle,
             normals,

@@ -14,7 +14,7 @@ use crate::interference::Aperture;
 use crate::light::{Attenuation, Light};
 use crate::material::Material;
 use crate::scene::{Scene, Specular};
-use crate::shape::{NormalInterpolation, Shape, SmoothTriangle, Transform};
+use crate::shape::{NormalInterpolation, Shape, SmoothTriangle, Transform, Triangle};
 use glam::DVec3;
 
 fn num(x: f64) -> String {
@@ -23,6 +23,16 @@ fn num(x: f64) -> String {
 
 fn vec3(v: DVec3) -> String {
     format!("[{}, {}, {}]", num(v.x), num(v.y), num(v.z))
+}
+
+/// A triangle's `p0`, `p1` and `p2` lines.
+fn triangle_points(t: &Triangle) -> Vec<String> {
+    let [a, b, c] = t.points();
+    vec![
+        format!("p0 = {}", vec3(a)),
+        format!("p1 = {}", vec3(b)),
+        format!("p2 = {}", vec3(c)),
+    ]
 }
 
 /// A TOML basic string.
@@ -275,21 +285,9 @@ impl Writer<Toml> {
                 format!("major_radius = {}", num(t.major)),
                 format!("minor_radius = {}", num(t.minor)),
             ],
-            Shape::Triangle(t) => {
-                let [a, b, c] = t.points();
-                vec![
-                    format!("p0 = {}", vec3(a)),
-                    format!("p1 = {}", vec3(b)),
-                    format!("p2 = {}", vec3(c)),
-                ]
-            }
+            Shape::Triangle(t) => triangle_points(t),
             Shape::SmoothTriangle(t) => {
-                let [a, b, c] = t.triangle.points();
-                let mut lines = vec![
-                    format!("p0 = {}", vec3(a)),
-                    format!("p1 = {}", vec3(b)),
-                    format!("p2 = {}", vec3(c)),
-                ];
+                let mut lines = triangle_points(&t.triangle);
                 let normals: Vec<String> = (0..3)
                     .map(|i| self.direction(|| format!("{label}: normal {i}"), t.normals[i], unit_once))
                     .collect();
