@@ -32,6 +32,14 @@ pub struct Material {
     /// out of the serialised material.
     #[serde(skip_serializing_if = "Option::is_none", serialize_with = "maps")]
     pub texture: Option<SharedMaps>,
+    /// The ambient term's colour `C_a` where it is not `S`: SIMRenderer's OpenGL material
+    /// (a model's `.mtl` `Ka`), whose terms each have their own colour.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ambient_color: Option<DVec3>,
+    /// The specular term's colour `C_s` where it is not `m S + (1 - m)`: the OpenGL
+    /// material's `Ks`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub specular_color: Option<DVec3>,
 }
 
 fn maps<S: serde::Serializer>(m: &Option<SharedMaps>, s: S) -> Result<S::Ok, S::Error> {
@@ -74,6 +82,8 @@ impl Default for Material {
             kt: 0.0,
             ior: 1.0,
             texture: None,
+            ambient_color: None,
+            specular_color: None,
         }
     }
 }
@@ -81,7 +91,9 @@ impl Default for Material {
 impl Material {
     /// The coefficients and colours of the shading terms at a point whose texture
     /// coordinates `uv` gives (asked only of a textured material). Without a texture:
-    /// `k_a S`, `k_d S` and `k_s [m S + (1 - m)]` (slides). With one, SIMRenderer's texture
+    /// `k_a S`, `k_d S` and `k_s [m S + (1 - m)]` (slides), the ambient and specular colours
+    /// replaced by [`Material::ambient_color`] and [`Material::specular_color`] where they are
+    /// given. With one, SIMRenderer's texture
     /// material (`SBlinnTextureMaterial`): each term that has an image takes the texel's
     /// colour as its whole colour, the coefficient not applied (white times the texel), and
     /// a term without an image keeps the material's own.
@@ -98,11 +110,13 @@ impl Material {
     fn plain_reflectance(&self) -> Reflectance {
         Reflectance {
             ka: self.ka,
-            ambient: self.color,
+            ambient: self.ambient_color.unwrap_or(self.color),
             kd: self.kd,
             diffuse: self.color,
             ks: self.ks,
-            tint: specular_tint(self.metal, self.color),
+            tint: self
+                .specular_color
+                .unwrap_or_else(|| specular_tint(self.metal, self.color)),
         }
     }
 

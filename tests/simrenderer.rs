@@ -107,10 +107,20 @@ fn every_keyword_reads_to_the_value_written() {
     );
     // Materials: the built-in default first, then by name; "none" and "unknown" are
     // SIMRenderer's grey default, a material without p takes the highlight of the
-    // conventions (SIMRenderer's: metal, m = 1).
+    // conventions (SIMRenderer's: metal, m = 1). The model's file names no library: its
+    // faces take SIMRenderer's library default, named after the model.
     assert_eq!(
         s.material_names,
-        ["default", "blue tile", "glass", "leaf", "none", "red", "unknown"]
+        [
+            "default",
+            "blue tile",
+            "glass",
+            "leaf",
+            "model#12/default",
+            "none",
+            "red",
+            "unknown"
+        ]
     );
     let metal = |color: [f64; 3]| Material {
         color: DVec3::from(color),
@@ -128,6 +138,21 @@ fn every_keyword_reads_to_the_value_written() {
         kt: 0.8,
         ior: 1.5,
         texture: None,
+        ambient_color: None,
+        specular_color: None,
+    };
+    // SIMRenderer's `SMaterialOBJ` default as 32-bit floats: each term its colour, k = 1.
+    let f32_grey = |x: f32| DVec3::splat(x.into());
+    let library_default = Material {
+        color: DVec3::new(0.3f32.into(), 0.7f32.into(), 0.3f32.into()),
+        ka: 1.0,
+        kd: 1.0,
+        ks: 1.0,
+        shininess: 5.0,
+        metal: 1.0,
+        ambient_color: Some(f32_grey(0.2)),
+        specular_color: Some(f32_grey(0.2)),
+        ..Material::default()
     };
     let grey = Material {
         color: DVec3::ONE,
@@ -140,6 +165,8 @@ fn every_keyword_reads_to_the_value_written() {
         kt: 0.0,
         ior: 1.0,
         texture: None,
+        ambient_color: None,
+        specular_color: None,
     };
     assert_eq!(
         s.materials,
@@ -148,14 +175,15 @@ fn every_keyword_reads_to_the_value_written() {
             metal([0.0, 0.0, 1.0]),
             glass,
             metal([0.0, 1.0, 0.0]),
+            library_default,
             grey.clone(),
             metal([1.0, 0.0, 0.0]),
             grey
         ]
     );
-    assert_eq!(s.metal_given, [false, false, true, false, true, false, true]);
+    assert_eq!(s.metal_given, [false, false, true, false, false, true, false, true]);
     // Objects: one per primitive, named <kind>#<index>; the model's 4 triangles.
-    let (glass, red, blue, none, unknown) = (2, 5, 1, 4, 6);
+    let (glass, red, blue, model, none, unknown) = (2, 6, 1, 4, 5, 7);
     let v = DVec3::new;
     let expected = [
         ("sphere#0", Shape::Sphere(Sphere::new(v(1.0, -2.0, 1.0), 1.0)), glass),
@@ -222,7 +250,7 @@ fn every_keyword_reads_to_the_value_written() {
         let o = &s.objects[12 + k];
         assert_eq!(
             (s.name_of(o).to_string(), o.material()),
-            (format!("model#12/{k}"), none)
+            (format!("model#12/{k}"), model)
         );
         let Shape::Triangle(t) = &o.shape else { panic!("{o:?}") };
         for (p, i) in t.points().iter().zip(face) {
@@ -234,9 +262,6 @@ fn every_keyword_reads_to_the_value_written() {
     assert_eq!(
         warnings(&parsed),
         [
-            format!(
-                "{shown}:192:1: scene.model: the model's triangles take the material of a primitive without material_name (\"none\"): lumiere does not read .mtl materials yet"
-            ),
             format!(
                 "{shown}:180:1: primitive.material_name: no material is named \"unknown\"; it gets SIMRenderer's grey default material (ambient 0.2, diffuse 0.6, specular 0.7)"
             ),
@@ -252,7 +277,7 @@ fn every_french_alias_reads_as_its_keyword() {
     let english = read("keywords.txt").scene;
     let french = read("aliases.txt");
     assert_eq!(french.scene, english);
-    assert_eq!(french.warnings.len(), 3);
+    assert_eq!(french.warnings.len(), 2);
 }
 
 #[test]

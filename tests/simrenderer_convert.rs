@@ -193,8 +193,19 @@ fn simrenderer_files_come_back_through_toml_and_simrenderer() {
         let path = repo("tests/fixtures/simrenderer").join(name);
         let original = simrenderer::load(&path, &Options::default()).unwrap().scene;
         assert_eq!(through_toml(&original), original, "{name}");
-        let (back, notes) = through_simrenderer(&original).unwrap();
-        assert_eq!((back, notes), (original, vec![]), "{name}");
+        if name == "reference.txt" {
+            let (back, notes) = through_simrenderer(&original).unwrap();
+            assert_eq!((back, notes), (original, vec![]), "{name}");
+        } else {
+            // The model's faces have an OpenGL material (its own ambient and specular
+            // colours), which only a model's .mtl can give in SIMRenderer: a model is
+            // written as its triangles, so the writer refuses it by name.
+            assert_eq!(
+                through_simrenderer(&original).unwrap_err(),
+                "cannot be written as SIMRenderer: materials[4] \"model#12/default\": its own ambient_color or specular_color (SIMRenderer gives terms their own colours only in a model's .mtl materials)",
+                "{name}"
+            );
+        }
     }
 }
 

@@ -270,17 +270,18 @@ fn a_model_with_vertex_normals_is_smooth() {
             &format!("model\nfile two.obj\n{extra}end\n"),
         )
     };
-    // The model's triangles take the material named "none": SIMRenderer's default grey
-    // (diffuse 0.6), so the centroid's diffuse term is 0.6 (1 + sqrt 2) / 3 = 0.48284, 123.
+    // The model's file names no material library: its triangles take SIMRenderer's library
+    // default, diffuse (0.3, 0.7, 0.3) as 32-bit floats, so the centroid's diffuse term is
+    // (0.3, 0.7, 0.3) (1 + sqrt 2) / 3 = (0.24142, 0.56332, 0.24142): 62 144 62.
     let plain = write_in(&dir, "model.txt", &lab(""));
     let s = scene::load(Path::new(&plain)).unwrap();
     assert!(matches!(s.objects[0].shape, Shape::SmoothTriangle(_)));
     assert!(matches!(s.objects[1].shape, Shape::Triangle(_)));
-    assert_eq!(middle(&dir, &plain), [123; 3]);
+    assert_eq!(middle(&dir, &plain), [62, 144, 62]);
     // Scaled by 2 along z: the plane z = 0 stays, the normals (0, 0, 1), (2, 0, 1) / sqrt 5
-    // and (0, 2, 1) / sqrt 5 give 0.6 (1 + 2 / sqrt 5) / 3 = 0.37889, 97.
+    // and (0, 2, 1) / sqrt 5 give (0.3, 0.7, 0.3) (1 + 2 / sqrt 5) / 3: 48 113 48.
     let scaled = write_in(&dir, "scaled.txt", &lab("scale 1 1 2\n"));
-    assert_eq!(middle(&dir, &scaled), [97; 3]);
+    assert_eq!(middle(&dir, &scaled), [48, 113, 48]);
     // A TOML mesh uses the normals only when asked, under the rule it names.
     let mesh = |extra: &str| {
         toml("").replace(

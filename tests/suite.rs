@@ -26,6 +26,7 @@ mod layers;
 mod lenses;
 mod located_errors;
 mod lock;
+mod model_materials;
 mod no_light;
 mod normalization;
 mod output;

@@ -9,8 +9,10 @@
 //! finds vertex `k`'s at place `k`), faces of fewer than 3 vertices, a face's
 //! vertex that is not `v`, `v/vt`, `v//vn` or `v/vt/vn` in whole numbers, line elements
 //! (`l`), indices out of range, and more triangles than allowed. `tobj`'s own errors are
-//! placed on the line it stopped at. Material libraries
-//! (`mtllib`) are not read: the scene file gives the material. A face gives normals or
+//! placed on the line it stopped at. The material libraries (`mtllib`) and each face's
+//! material name (`usemtl`, `default` before the first) are recorded, not read: a TOML mesh
+//! takes the scene file's material, SIMRenderer's model reader reads them
+//! (`scene::simrenderer::read::mtl`). A face gives normals or
 //! texture coordinates to all its vertices or to none; they are kept for each triangle
 //! ([`Mesh::smooth_shapes`], SIMRenderer's models), and a TOML mesh shades with the face
 //! normal ([`Mesh::triangles`]).
@@ -37,6 +39,20 @@ pub struct Mesh {
     pub normals: Vec<Option<[DVec3; 3]>>,
     /// Each triangle's corner texture coordinates, if its face has them.
     pub uvs: Vec<Option<[[f64; 2]; 3]>>,
+    /// The material names the faces use (`usemtl`), `default` first: the name of the faces
+    /// before any `usemtl`.
+    pub material_names: Vec<String>,
+    /// Each triangle's material: its face's index into `material_names`.
+    pub materials: Vec<u32>,
+    /// The material libraries the file names (`mtllib`), in order, as written.
+    pub libraries: Vec<Library>,
+}
+
+/// A material library named by an `mtllib` line: the rest of the line, as one file name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Library {
+    pub line: usize,
+    pub file: String,
 }
 
 /// What a face of the file gives: its line, its number of vertices, and whether every
@@ -47,6 +63,8 @@ struct FaceLine {
     corners: usize,
     normals: bool,
     uvs: bool,
+    /// Index into the mesh's material names.
+    material: u32,
 }
 
 /// Why a mesh file was refused: the message, and the line it concerns when there is one.
@@ -127,7 +145,11 @@ impl Mesh {
 
     /// Checks and parses `.obj` text.
     pub fn parse(text: &str, max_triangles: usize) -> Result<Mesh, ObjError> {
-        let faces = check(text, max_triangles)?;
+        let Checked {
+            faces,
+            material_names,
+            libraries,
+        } = check(text, max_triangles)?;
         let mut reader = LineCounter {
             text: text.as_bytes(),
             pos: 0,
@@ -201,6 +223,9 @@ impl Mesh {
             lines: per_triangle.iter().map(|f| f.line).collect(),
             normals,
             uvs,
+            material_names,
+            materials: per_triangle.iter().map(|f| f.material).collect(),
+            libraries,
         })
     }
 
@@ -286,8 +311,21 @@ impl Mesh {
     }
 }
 
-/// The checks of the module doc; returns what every face gives ([`FaceLine`]).
-fn check(text: &str, max_triangles: usize) -> Result<Vec<FaceLine>, ObjError> {
+/// What [`check`] finds: what every face gives, the material names and the libraries.
+struct Checked {
+    faces: Vec<FaceLine>,
+    material_names: Vec<String>,
+    libraries: Vec<Library>,
+}
+
+/// The rest of `line` after its first word `keyword`, without the blanks around it.
+fn rest_after<'a>(line: &'a str, keyword: &str) -> &'a str {
+    line.trim_start()[keyword.len()..].trim()
+}
+
+/// The checks of the module doc; returns what every face gives ([`FaceLine`]), with the
+/// material names and libraries.
+fn check(text: &str, max_triangles: usize) -> Result<Checked, ObjError> {
     // Counts of vertices, texture coordinates and normals in the whole file: `tobj`
     // resolves positive indices against them (relative ones against those read so far).
     let (mut v_total, mut vt_total, mut vn_total) = (0, 0, 0);
@@ -303,6 +341,9 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<FaceLine>, ObjError> {
     let mut first_coloured = None;
     let mut faces = Vec::new();
     let mut triangles = 0usize;
+    let mut material_names = vec!["default".to_string()];
+    let mut material = 0u32;
+    let mut libraries = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let number = i + 1;
         let mut words = line.split_whitespace();
@@ -338,6 +379,20 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<FaceLine>, ObjError> {
                 numbers(&words.collect::<Vec<_>>(), 3, &format!("normal {vn}"), "written x y z")
                     .map_err(|m| at(number, m))?;
             }
+            Some(keyword @ "usemtl") => {
+                let name = rest_after(line, keyword);
+                material = match material_names.iter().position(|n| n == name) {
+                    Some(k) => k as u32,
+                    None => {
+                        material_names.push(name.to_string());
+                        (material_names.len() - 1) as u32
+                    }
+                };
+            }
+            Some(keyword @ "mtllib") => libraries.push(Library {
+                line: number,
+                file: rest_after(line, keyword).to_string(),
+            }),
             Some("l") => {
                 return Err(at(
                     number,
@@ -405,6 +460,7 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<FaceLine>, ObjError> {
                     corners: corners.len(),
                     normals: with_normal > 0,
                     uvs: with_uv > 0,
+                    material,
                 });
             }
             _ => {}
@@ -413,7 +469,11 @@ fn check(text: &str, max_triangles: usize) -> Result<Vec<FaceLine>, ObjError> {
     if faces.is_empty() {
         return Err(whole("the file has no faces (f)".to_string()));
     }
-    Ok(faces)
+    Ok(Checked {
+        faces,
+        material_names,
+        libraries,
+    })
 }
 
 /// The first `n` of `words` as numbers (as tobj reads them), or why not: `what` (`vertex 3`)

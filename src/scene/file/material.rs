@@ -21,6 +21,10 @@ pub(super) struct FileMaterial {
     pub(super) kr: Option<f64>,
     pub(super) kt: Option<f64>,
     pub(super) n: Option<f64>,
+    /// The ambient and specular terms' own colours, in place of `S` and `m S + (1 - m)`
+    /// (SIMRenderer's OpenGL material, a model's `.mtl`).
+    pub(super) ambient_color: Option<Xyz>,
+    pub(super) specular_color: Option<Xyz>,
     /// SIMRenderer's texture material: image files (relative to the scene file) for the
     /// ambient, diffuse and specular colours, and where their coordinates' origin is.
     texture_ka: Option<String>,

@@ -455,7 +455,21 @@ impl FileScene {
                 kt: unit("kt", m.kt, d.kt)?,
                 ior: positive(&p.key("n"), m.n.unwrap_or(d.ior), limits::MAX_IOR)?,
                 texture: m.textures(&p, dir)?,
+                ambient_color: m
+                    .ambient_color
+                    .map(|c| color(&p.key("ambient_color"), c, 1.0))
+                    .transpose()?,
+                specular_color: m
+                    .specular_color
+                    .map(|c| color(&p.key("specular_color"), c, 1.0))
+                    .transpose()?,
             };
+            if m.m.is_some() && mat.specular_color.is_some() {
+                return fail(
+                    &p.key("m"),
+                    "shapes the specular colour m S + (1 - m), which specular_color gives: give one of them",
+                );
+            }
             if mat.kr + mat.kt > 1.0 {
                 return fail(
                     &p.key("kt"),

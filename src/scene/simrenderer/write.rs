@@ -305,6 +305,11 @@ impl Writer<SimRenderer> {
                     .push(format!("materials[{i}] {name:?}: SIMRenderer cannot read {why}"));
                 continue;
             }
+            if m.ambient_color.is_some() || m.specular_color.is_some() {
+                self.refused.push(format!(
+                    "materials[{i}] {name:?}: its own ambient_color or specular_color (SIMRenderer gives terms their own colours only in a model's .mtl materials)"
+                ));
+            }
             if m.shininess > 200.0 {
                 self.refused.push(format!(
                     "materials[{i}] {name:?}: shininess {} (SIMRenderer's is in [0, 200])",

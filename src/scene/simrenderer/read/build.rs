@@ -73,11 +73,10 @@ impl<'a> Reader<'a> {
             defined.insert(entry.name, (material, entry.metal_given));
         }
         let mut named = defined.clone();
-        for s in &raw.shapes {
+        for s in raw.shapes.iter().filter(|s| s.model.is_none()) {
             if !named.contains_key(&s.material) {
                 let hint = match defined.keys().find(|n| n.trim() == s.material.trim()) {
                     Some(close) => format!(" (note the blanks: a material is named {close:?})"),
-                    None if s.model => String::new(),
                     None if s.material == "none" => {
                         " (a primitive without material_name takes the material named \"none\")".to_string()
                     }
@@ -92,6 +91,38 @@ impl<'a> Reader<'a> {
                 );
                 named.insert(s.material.clone(), (grey_default(), true));
             }
+        }
+        // Each model's materials, named after it: `MODEL/NAME` (`#2`, `#3`... after a name
+        // already taken). Their metal factor shapes no term: they take the conventions'.
+        let model_base =
+            |i: usize, s: &super::shapes::ShapeEntry| s.name.clone().unwrap_or_else(|| format!("model#{i}"));
+        let mut model_names: Vec<Vec<String>> = Vec::new();
+        for (i, s) in raw.shapes.iter().enumerate() {
+            let Some(own) = &s.model else {
+                continue;
+            };
+            let base = model_base(i, s);
+            let mut taken = Vec::new();
+            for (name, material) in &own.materials {
+                let wanted = format!("{base}/{name}");
+                let unique = (1..)
+                    .map(|k| {
+                        if k == 1 {
+                            wanted.clone()
+                        } else {
+                            format!("{wanted}#{k}")
+                        }
+                    })
+                    .find(|n| !named.contains_key(n))
+                    .unwrap_or(wanted);
+                let material = Material {
+                    metal: highlight,
+                    ..material.clone()
+                };
+                named.insert(unique.clone(), (material, false));
+                taken.push(unique);
+            }
+            model_names.push(taken);
         }
         let mut materials = vec![Material {
             metal: highlight,
@@ -109,23 +140,37 @@ impl<'a> Reader<'a> {
                 metal_given.push(given);
             }
         }
+        let index_of = |name: &str| material_names.iter().position(|n| n == name).unwrap_or(0) as u32;
         let mut objects = Vec::new();
         let mut names = ObjectNames::default();
+        let mut model_names = model_names.into_iter();
         for (i, s) in raw.shapes.into_iter().enumerate() {
-            let material = material_names.iter().position(|n| *n == s.material).unwrap_or(0) as u32;
             if objects.len() + s.shapes.len() > limits::MAX_OBJECTS {
                 let m = format!("the scene would hold more than {} objects", limits::MAX_OBJECTS);
                 self.problem(&s.at, m, "the rest is dropped")?;
                 break;
             }
-            if s.model {
-                let base = s.name.unwrap_or_else(|| format!("model#{i}"));
-                objects.extend(s.shapes.into_iter().enumerate().map(|(k, shape)| Object {
-                    name: names.add(compact_str::format_compact!("{base}/{k}")),
-                    shape,
-                    material,
-                }));
+            let base = model_base(i, &s);
+            if let Some(own) = s.model {
+                let indices: Vec<u32> = model_names
+                    .next()
+                    .unwrap_or_default()
+                    .iter()
+                    .map(|n| index_of(n))
+                    .collect();
+                objects.extend(
+                    s.shapes
+                        .into_iter()
+                        .zip(own.of_shape)
+                        .enumerate()
+                        .map(|(k, (shape, m))| Object {
+                            name: names.add(compact_str::format_compact!("{base}/{k}")),
+                            shape,
+                            material: indices.get(m as usize).copied().unwrap_or(0),
+                        }),
+                );
             } else {
+                let material = index_of(&s.material);
                 for shape in s.shapes {
                     objects.push(Object {
                         name: names.add(

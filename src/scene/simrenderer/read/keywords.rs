@@ -277,6 +277,9 @@ pub const REFLEXION_ALGORITHMS: [&str; 8] = [
     "phong",
     "blinn",
 ];
+/// A model's `uv_format` values, in SIMRenderer's order (`STexture.UV_FORMAT`).
+pub const UV_FORMATS: [&str; 3] = ["default", "origin_uv_top_left", "origin_uv_bottom_left"];
+
 /// `pixel_coordinate`'s values.
 pub const PIXEL_COORDINATES: [&str; 6] = [
     "top_left",

@@ -21,6 +21,7 @@ mod camera;
 mod keywords;
 mod lights;
 mod materials;
+mod mtl;
 mod shapes;
 mod values;
 

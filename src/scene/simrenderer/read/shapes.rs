@@ -2,10 +2,12 @@
 //! defaults, a `geometry` wrapper's transform): an object's shapes, refused with the reason
 //! when degenerate, beyond the coordinates' range or not supported.
 
-use super::keywords::{GEOMETRIES, MODEL, WRAPPER, canonical};
+use super::keywords::{GEOMETRIES, MODEL, UV_FORMATS, WRAPPER, canonical};
+use super::mtl;
 use super::values::{angles, direction, number_in, point, positive, scale_factors, unit, uv};
 use super::{At, Reader, at, at_value};
 use crate::limits;
+use crate::material::Material;
 use crate::scene::SceneError;
 use crate::scene::simrenderer::lex::{self, Item, Line};
 use crate::shape::mesh::Mesh;
@@ -13,10 +15,13 @@ use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Lens, NormalInterpolation, Plane, Shape, SmoothTriangle, Sphere, SphericalCap, Torus,
     Transform, Triangle,
 };
+use crate::texture::UvFormat;
 use glam::DVec3;
 use std::collections::BTreeMap;
+use std::path::Path;
 
-/// A primitive (one shape) or a model (its triangles), with the material name it binds.
+/// A primitive (one shape) with the material name it binds, or a model (its triangles)
+/// with its own materials.
 pub(super) struct ShapeEntry {
     pub(super) at: At,
     /// The name of a `# lumiere: name` note.
@@ -24,7 +29,14 @@ pub(super) struct ShapeEntry {
     pub(super) material: String,
     pub(super) material_at: At,
     pub(super) shapes: Vec<Shape>,
-    pub(super) model: bool,
+    pub(super) model: Option<ModelMaterials>,
+}
+
+/// A model's materials ([`super::mtl`]): each under its name in the model's libraries,
+/// and each shape's index among them.
+pub(super) struct ModelMaterials {
+    pub(super) materials: Vec<(String, Material)>,
+    pub(super) of_shape: Vec<u32>,
 }
 
 impl<'a> Reader<'a> {
@@ -70,7 +82,7 @@ impl<'a> Reader<'a> {
             material: material.0,
             material_at: material.1,
             shapes: vec![shape],
-            model: false,
+            model: None,
         }))
     }
 
@@ -310,6 +322,7 @@ impl<'a> Reader<'a> {
         let mut file: Option<(String, At)> = None;
         let mut name = None;
         let (mut scale, mut rotation, mut translation) = (DVec3::ONE, DVec3::ZERO, DVec3::ZERO);
+        let mut uv_format = UvFormat::default();
         while let Some((k, l)) = self.next_key(&block, MODEL, Some(&mut name))? {
             match k {
                 "file" => {
@@ -320,8 +333,15 @@ impl<'a> Reader<'a> {
                 "scale" => self.set(&block, &l, scale_factors(&l), &mut scale)?,
                 "rotation" => self.set(&block, &l, angles(&l), &mut rotation)?,
                 "translation" => self.set(&block, &l, point(&l), &mut translation)?,
-                // Texture coordinates: lumiere draws no texture.
-                _ => {}
+                _ => {
+                    // SIMRenderer's `default` (0) keeps the images' own format: the top-left
+                    // origin.
+                    let read = lex::enumeration(l.value, l.value_column, &UV_FORMATS).map(|i| match i {
+                        2 => UvFormat::OriginUvBottomLeft,
+                        _ => UvFormat::OriginUvTopLeft,
+                    });
+                    self.set(&block, &l, read, &mut uv_format)?;
+                }
             }
         }
         let dropped = "the model is dropped";
@@ -349,20 +369,92 @@ impl<'a> Reader<'a> {
             self.problem(&file_at, m, dropped)?;
             return Ok(None);
         }
-        self.warn(
-            &place,
-            "the model's triangles take the material of a primitive without material_name (\"none\"): lumiere does not read .mtl materials yet".to_string(),
-        );
+        let folder = path.parent().unwrap_or(Path::new(""));
+        let materials = self.model_materials(&mesh, folder, &shown, &file_at, uv_format)?;
         let shapes = mesh.smooth_shapes(NormalInterpolation::Linear);
         self.objects += shapes.len();
         Ok(Some(ShapeEntry {
             at: place.clone(),
             name,
-            material: "none".to_string(),
+            material: String::new(),
             material_at: place,
             shapes,
-            model: true,
+            model: Some(materials),
         }))
+    }
+
+    /// The materials of `mesh`'s faces ([`super::mtl`]): its libraries read from `folder`
+    /// (the `.obj` file's, named `shown`), each line in error a problem at `file_at`.
+    fn model_materials(
+        &mut self,
+        mesh: &Mesh,
+        folder: &Path,
+        shown: &str,
+        file_at: &At,
+        uv_format: UvFormat,
+    ) -> Result<ModelMaterials, SceneError> {
+        let mut read: Vec<(mtl::LibraryMaterial, std::path::PathBuf)> = Vec::new();
+        for library in &mesh.libraries {
+            let path = folder.join(&library.file);
+            let named = format!("{shown}:{}: mtllib {:?}", library.line, library.file);
+            let skipped = "the library is skipped";
+            if !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("mtl")) {
+                let m = format!("{named}: a material library is a .mtl file");
+                self.problem(file_at, m, skipped)?;
+                continue;
+            }
+            let library_shown = path.display().to_string();
+            let text = match limits::read_file(&path) {
+                Ok(bytes) => String::from_utf8_lossy(&bytes).into_owned(),
+                Err(e) => {
+                    self.problem(file_at, format!("{named}: cannot read it: {e}"), skipped)?;
+                    continue;
+                }
+            };
+            let (materials, errors) = mtl::parse_library(&text);
+            for e in errors {
+                self.problem(file_at, e.in_file(&library_shown), "the value before it is kept")?;
+            }
+            let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
+            read.extend(materials.into_iter().map(|m| (m, dir.clone())));
+        }
+        if read.is_empty() {
+            read.push((mtl::LibraryMaterial::default(), folder.to_path_buf()));
+        }
+        // Each name the faces use, in the order of first use, with the material it gets.
+        let mut used: Vec<Option<u32>> = vec![None; mesh.material_names.len()];
+        let mut materials = Vec::new();
+        let mut of_shape = Vec::with_capacity(mesh.materials.len());
+        for &k in &mesh.materials {
+            let slot = &mut used[k as usize];
+            if slot.is_none() {
+                let name = &mesh.material_names[k as usize];
+                // The first material of a name, over the libraries in order.
+                let material = match read.iter().find(|(m, _)| m.name == *name) {
+                    Some((m, dir)) => {
+                        let (material, errors) = mtl::library_material(m, dir, uv_format);
+                        for (line, message) in errors {
+                            let m = format!("map on line {line} of material {name:?}: {message}");
+                            self.problem(file_at, m, "the term keeps its colour")?;
+                        }
+                        material
+                    }
+                    None => {
+                        self.warn(
+                            file_at,
+                            format!(
+                                "{shown}: no material library of the model has the material {name:?}; its faces get SIMRenderer's default OpenGL material (ambient 0.1, diffuse (0.3, 0.7, 0.3), specular 0.05, shininess 5)"
+                            ),
+                        );
+                        mtl::missing_material()
+                    }
+                };
+                *slot = Some(materials.len() as u32);
+                materials.push((name.clone(), material));
+            }
+            of_shape.push(slot.unwrap_or(0));
+        }
+        Ok(ModelMaterials { materials, of_shape })
     }
 }
 

@@ -1,0 +1,215 @@
+//! A SIMRenderer model's materials: its `.mtl` libraries, read as SIMRenderer reads them
+//! (docs/simrenderer.md, "model"). Each face's term has its own colour and no coefficient
+//! (SIMRenderer's OpenGL material), so at a point lit straight down and seen straight down
+//! (`N.L = N.H = 1`) under a white ambient and a white directional light, the pixel is
+//! `Ka + Kd + Ks` under `blinn`.
+//!
+//! The model: three unit-wide squares side by side in z = 0, x in [-3, -1], [-1, 1] and
+//! [1, 3]; the first before any `usemtl`, the second `usemtl red`, the third `usemtl absent`.
+
+use crate::common::{lumiere, lumiere_ok, temp_dir, write_in};
+use std::path::Path;
+
+const OBJ: &str = "mtllib parts.mtl\n\
+v -3 -1 0\nv -1 -1 0\nv -1 1 0\nv -3 1 0\nv 1 -1 0\nv 1 1 0\nv 3 -1 0\nv 3 1 0\n\
+f 1 2 3 4\nusemtl red\nf 2 5 6 3\nusemtl absent\nf 5 7 8 6\n";
+
+/// The lines before the first `newmtl` change the library's `default` material (the faces
+/// before any `usemtl`); of two materials named `red`, the first is kept.
+const MTL: &str = "# parts\nKd 0 0 1\n\
+newmtl red\nKa 0.25 0 0\nKd 0.5 0.25 0\nKs 0.125 0.125 0\nNs 10\nillum 2\n\
+newmtl red\nKd 0 1 0\n";
+
+/// The scene file, the camera straight above `x` on the axis y = 0.
+fn lab(x: f64, extra: &str) -> String {
+    format!(
+        "camera\nposition {x} 0 5\nlook_at {x} 0 0\nup 0 1 0\nend\n\
+         viewport\nwidth 21\nheight 21\nend\n\
+         raytracer\nreflexion_algorithm blinn\nend\n\
+         ambient_light\ncolor 1 1 1\nend\n\
+         directional_light\ncolor 1 1 1\norientation 0 0 -1\nend\n\
+         model\nfile parts.obj\n{extra}end\n"
+    )
+}
+
+/// The middle pixel of the render of the scene file `scene` (written in `dir`).
+fn middle(dir: &Path, scene: &str, args: &[&str]) -> [u8; 3] {
+    let png = dir.join(format!(
+        "{}.png",
+        Path::new(scene).file_stem().unwrap().to_str().unwrap()
+    ));
+    let mut all = vec!["render", scene, "-o", png.to_str().unwrap(), "-q"];
+    all.extend_from_slice(args);
+    lumiere_ok(&all);
+    image::open(&png).unwrap().to_rgb8().get_pixel(10, 10).0
+}
+
+#[test]
+fn each_face_takes_its_usemtl_material() {
+    let dir = temp_dir("model-materials");
+    write_in(&dir, "parts.obj", OBJ);
+    write_in(&dir, "parts.mtl", MTL);
+    // The library's default: Ka 0.2, Kd (0, 0, 1), Ks 0.2 (0.2 as a 32-bit float,
+    // 0.20000000298): (0.4, 0.4, 1.4) clamped, 102 102 255.
+    let default = write_in(&dir, "default.txt", &lab(-2.0, ""));
+    assert_eq!(middle(&dir, &default, &[]), [102, 102, 255]);
+    // red (the first of the name): (0.25 + 0.5 + 0.125, 0.25 + 0.125, 0) = (0.875, 0.375, 0):
+    // 223.1, 95.6, 0.
+    let red = write_in(&dir, "red.txt", &lab(0.0, ""));
+    assert_eq!(middle(&dir, &red, &[]), [223, 96, 0]);
+    // A name no library has: SIMRenderer's default OpenGL material, Ka 0.1, Kd (0.3, 0.7,
+    // 0.3), Ks 0.05: (0.45, 0.85, 0.45), 114.75 and 216.75; a warning names it.
+    let absent = write_in(&dir, "absent.txt", &lab(2.0, ""));
+    assert_eq!(middle(&dir, &absent, &[]), [115, 217, 115]);
+    let out = lumiere(&["render", &absent, "-o", dir.join("w.png").to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(
+            "parts.obj: no material library of the model has the material \"absent\"; its faces get SIMRenderer's default OpenGL material (ambient 0.1, diffuse (0.3, 0.7, 0.3), specular 0.05, shininess 5)"
+        ),
+        "{stderr}"
+    );
+    // `convert` writes the model's materials into TOML (ka = kd = ks = 1, the colours its
+    // own): the TOML scene renders the same bytes, every pixel, off the highlight's centre
+    // too (red's exponent Ns 10).
+    for scene in [&default, &red, &absent] {
+        let toml = dir.join(format!(
+            "{}.toml",
+            Path::new(scene).file_stem().unwrap().to_str().unwrap()
+        ));
+        lumiere_ok(&["convert", scene, "-o", toml.to_str().unwrap(), "-q"]);
+        let text = std::fs::read_to_string(&toml).unwrap();
+        let from_lab = dir.join("lab.png");
+        let from_toml = dir.join("toml.png");
+        lumiere_ok(&["render", scene, "-o", from_lab.to_str().unwrap(), "-q"]);
+        lumiere_ok(&[
+            "render",
+            toml.to_str().unwrap(),
+            "-o",
+            from_toml.to_str().unwrap(),
+            "-q",
+        ]);
+        assert_eq!(
+            std::fs::read(&from_lab).unwrap(),
+            std::fs::read(&from_toml).unwrap(),
+            "{text}"
+        );
+    }
+    let red_toml = std::fs::read_to_string(dir.join("red.toml")).unwrap();
+    assert!(
+        red_toml.contains(
+            "[materials.\"model#0/red\"]\ncolor = [0.5, 0.25, 0]\nka = 1\nkd = 1\nks = 1\nshininess = 10\nkr = 0\nkt = 0\nn = 1\nambient_color = [0.25, 0, 0]\nspecular_color = [0.125, 0.125, 0]\n"
+        ),
+        "{red_toml}"
+    );
+}
+
+#[test]
+fn a_model_without_library_takes_the_library_default() {
+    let dir = temp_dir("model-materials-none");
+    write_in(&dir, "parts.obj", &OBJ.replace("mtllib parts.mtl\n", ""));
+    // Every face: Ka 0.2, Kd (0.3, 0.7, 0.3), Ks 0.2 as 32-bit floats: (0.7, 1.1, 0.7),
+    // 178.5 + (a hair: 0.3 and 0.2 round up as floats) and 255. The absent name gets the
+    // OpenGL default as before.
+    let default = write_in(&dir, "default.txt", &lab(-2.0, ""));
+    assert_eq!(middle(&dir, &default, &[]), [179, 255, 179]);
+    let red = write_in(&dir, "red.txt", &lab(0.0, ""));
+    assert_eq!(middle(&dir, &red, &[]), [115, 217, 115]);
+}
+
+#[test]
+fn a_diffuse_image_gives_the_term_its_texel() {
+    let dir = temp_dir("model-materials-image");
+    // A 3 x 3 image: its top row red, green, blue, the rest white.
+    let mut img = image::RgbImage::from_pixel(3, 3, image::Rgb([255, 255, 255]));
+    for (x, c) in [[255, 0, 0], [0, 255, 0], [0, 0, 255]].into_iter().enumerate() {
+        img.put_pixel(x as u32, 0, image::Rgb(c));
+    }
+    img.save(dir.join("grid.png")).unwrap();
+    write_in(
+        &dir,
+        "square.obj",
+        "mtllib looks.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n\
+         vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl tiled\nf 1/1 2/2 3/3 4/4\n",
+    );
+    write_in(&dir, "looks.mtl", "newmtl tiled\nKa 0 0 0\nKs 0 0 0\nmap_Kd grid.png\n");
+    // Seen at (0.5, -0.5): texture coordinates (0.75, 0.25), the texel of column
+    // floor(0.75 x 2) = 1 and row floor(0.25 x 2) = 0 from the top (green), or of row
+    // floor((1 - 0.25) x 2) = 1 (white) with the origin at the bottom left.
+    let scene = |format: &str| {
+        lab(0.5, format)
+            .replace(
+                "position 0.5 0 5\nlook_at 0.5 0 0",
+                "position 0.5 -0.5 5\nlook_at 0.5 -0.5 0",
+            )
+            .replace("parts.obj", "square.obj")
+    };
+    let top = write_in(&dir, "top.txt", &scene(""));
+    assert_eq!(middle(&dir, &top, &[]), [0, 255, 0]);
+    let bottom = write_in(&dir, "bottom.txt", &scene("uv_format origin_uv_bottom_left\n"));
+    assert_eq!(middle(&dir, &bottom, &[]), [255, 255, 255]);
+}
+
+#[test]
+fn a_library_line_in_error_is_located() {
+    let dir = temp_dir("model-materials-errors");
+    write_in(&dir, "parts.obj", OBJ);
+    write_in(&dir, "parts.mtl", &MTL.replace("Kd 0.5 0.25 0", "Kd 2 0.25 0"));
+    let red = write_in(&dir, "red.txt", &lab(0.0, ""));
+    let png = dir.join("red.png");
+    let out = lumiere(&["render", &red, "-o", png.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let library = dir.join("parts.mtl").display().to_string();
+    assert!(
+        stderr.contains(&format!(
+            "red.txt:21:6: model.file: {library}:5:4: Kd: each channel must be in [0, 1], got 2 0.25 0"
+        )),
+        "{stderr}"
+    );
+    assert!(!png.exists());
+    // Under --lenient, SIMRenderer's way: the line is skipped, the value before it kept
+    // (the library default's diffuse (0.3, 0.7, 0.3)): (0.25 + 0.3 + 0.125, 0.7 + 0.125,
+    // 0.3) = (0.675, 0.825, 0.3), 172.1, 210.4, 76.5 (0.3 a hair above as a float: 77).
+    assert_eq!(middle(&dir, &red, &["--lenient"]), [172, 210, 77]);
+    // A library that does not read, or is not a .mtl file.
+    for (line, said) in [
+        ("mtllib gone.mtl", "mtllib \"gone.mtl\": cannot read it"),
+        (
+            "mtllib parts.obj",
+            "mtllib \"parts.obj\": a material library is a .mtl file",
+        ),
+    ] {
+        write_in(&dir, "parts.obj", &OBJ.replace("mtllib parts.mtl", line));
+        let out = lumiere(&["render", &red, "-o", png.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2));
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains(&format!("parts.obj:1: {said}")), "{stderr}");
+        // Skipped under --lenient: no library, every face the library default.
+        assert_eq!(middle(&dir, &red, &["--lenient"]), [115, 217, 115]);
+    }
+}
+
+#[test]
+fn the_toml_colours_are_checked() {
+    let dir = temp_dir("model-materials-toml");
+    let scene = |extra: &str| {
+        format!(
+            "[image]\nwidth = 8\nheight = 6\n[camera]\nposition = [0, -5, 1]\nlook_at = [0, 0, 0]\n\
+             [materials.lamp]\n{extra}\n[[shapes]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"lamp\"\n"
+        )
+    };
+    for (extra, said) in [
+        ("ambient_color = [0, 1.5, 0]", "materials.lamp.ambient_color"),
+        (
+            "specular_color = [0.5, 0.5, 0.5]\nm = 1",
+            "materials.lamp.m: shapes the specular colour m S + (1 - m), which specular_color gives: give one of them",
+        ),
+    ] {
+        let path = write_in(&dir, "lamp.toml", &scene(extra));
+        let out = lumiere(&["render", &path, "-o", dir.join("x.png").to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2));
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains(said), "{stderr}");
+    }
+}
