@@ -2,8 +2,9 @@
 //! built (see `scene::file`); this type only holds valid values.
 
 use crate::shading::specular_tint;
-use crate::texture::SharedMaps;
+use crate::texture::{Texture, TextureMaps};
 use glam::DVec3;
+use std::sync::Arc;
 
 /// The course's material parameters (slides IFT3355 and chapter 7.4b).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -27,23 +28,43 @@ pub struct Material {
     pub kt: f64,
     /// Index of refraction of the object's interior (the outside is air, n = 1).
     pub ior: f64,
-    /// SIMRenderer's texture material: images that give the ambient, diffuse and specular
-    /// colours at each point ([`Material::reflectance`]). Absent, the `texture` key is left
-    /// out of the serialised material.
-    #[serde(skip_serializing_if = "Option::is_none", serialize_with = "maps")]
-    pub texture: Option<SharedMaps>,
-    /// The ambient term's colour `C_a` where it is not `S`: SIMRenderer's OpenGL material
-    /// (a model's `.mtl` `Ka`), whose terms each have their own colour.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub ambient_color: Option<DVec3>,
-    /// The specular term's colour `C_s` where it is not `m S + (1 - m)`: the OpenGL
-    /// material's `Ks`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub specular_color: Option<DVec3>,
+    /// The terms' colours where they are not the slides' ([`TermColors`]). Absent, the
+    /// `term_colors` key is left out of the serialised material.
+    #[serde(skip_serializing_if = "Option::is_none", serialize_with = "shared")]
+    pub term_colors: Option<Arc<TermColors>>,
 }
 
-fn maps<S: serde::Serializer>(m: &Option<SharedMaps>, s: S) -> Result<S::Ok, S::Error> {
-    serde::Serialize::serialize(&m.as_deref(), s)
+fn shared<S: serde::Serializer>(c: &Option<Arc<TermColors>>, s: S) -> Result<S::Ok, S::Error> {
+    serde::Serialize::serialize(&c.as_deref(), s)
+}
+
+/// A material's term colours other than the slides' `S` and `m S + (1 - m)`: the ambient and
+/// specular colours of its own (SIMRenderer's OpenGL material, whose terms each have their
+/// colour: a model's `.mtl`), and images that give a term's whole colour at each point
+/// (SIMRenderer's texture materials). Shared between the materials that use the same
+/// (cheap to clone).
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct TermColors {
+    /// The ambient term's colour `C_a` in place of `S` (the OpenGL material's `Ka`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ambient: Option<DVec3>,
+    /// The specular term's colour `C_s` in place of `m S + (1 - m)` (its `Ks`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub specular: Option<DVec3>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub images: Option<TextureMaps>,
+}
+
+impl TermColors {
+    /// The term colours of these parts, `None` when they give none.
+    pub fn of(ambient: Option<DVec3>, specular: Option<DVec3>, images: Option<TextureMaps>) -> Option<Arc<TermColors>> {
+        let c = TermColors {
+            ambient,
+            specular,
+            images,
+        };
+        (c != TermColors::default()).then(|| Arc::new(c))
+    }
 }
 
 /// What a surface point reflects: each term's coefficient and colour, as the shading
@@ -81,59 +102,79 @@ impl Default for Material {
             kr: 0.0,
             kt: 0.0,
             ior: 1.0,
-            texture: None,
-            ambient_color: None,
-            specular_color: None,
+            term_colors: None,
         }
     }
 }
 
 impl Material {
     /// The coefficients and colours of the shading terms at a point whose texture
-    /// coordinates `uv` gives (asked only of a textured material). Without a texture:
-    /// `k_a S`, `k_d S` and `k_s [m S + (1 - m)]` (slides), the ambient and specular colours
-    /// replaced by [`Material::ambient_color`] and [`Material::specular_color`] where they are
-    /// given. With one, SIMRenderer's texture
-    /// material (`SBlinnTextureMaterial`): each term that has an image takes the texel's
-    /// colour as its whole colour, the coefficient not applied (white times the texel), and
-    /// a term without an image keeps the material's own.
+    /// coordinates `uv` gives (asked only of a material with images). Without
+    /// [`Material::term_colors`]: `k_a S`, `k_d S` and `k_s [m S + (1 - m)]` (slides). With
+    /// them, the ambient and specular colours the material's own where it gives them, and
+    /// SIMRenderer's texture material (`SBlinnTextureMaterial`): each term that has an image
+    /// takes the texel's colour as its whole colour, the coefficient not applied (white
+    /// times the texel), and a term without an image keeps the material's own.
     #[inline]
     pub fn reflectance(&self, uv: impl FnOnce() -> (f64, f64)) -> Reflectance {
-        match &self.texture {
+        match &self.term_colors {
             None => self.plain_reflectance(),
-            Some(maps) => self.textured_reflectance(maps, uv()),
+            Some(colors) => self.colored_reflectance(colors, uv),
         }
     }
 
-    /// [`Material::reflectance`] without images: the material's own colours.
+    /// [`Material::reflectance`] without term colours: the slides'.
     #[inline]
     fn plain_reflectance(&self) -> Reflectance {
         Reflectance {
             ka: self.ka,
-            ambient: self.ambient_color.unwrap_or(self.color),
+            ambient: self.color,
             kd: self.kd,
             diffuse: self.color,
             ks: self.ks,
-            tint: self
-                .specular_color
-                .unwrap_or_else(|| specular_tint(self.metal, self.color)),
+            tint: specular_tint(self.metal, self.color),
         }
     }
 
-    /// [`Material::reflectance`] with the images `maps`, at texture coordinates `uv`.
+    /// [`Material::reflectance`] with the term colours `colors`, the images' at texture
+    /// coordinates `uv`.
     #[inline(never)]
-    fn textured_reflectance(&self, maps: &crate::texture::TextureMaps, uv: (f64, f64)) -> Reflectance {
+    fn colored_reflectance(&self, colors: &TermColors, uv: impl FnOnce() -> (f64, f64)) -> Reflectance {
         let plain = self.plain_reflectance();
-        let texel = |t: &Option<crate::texture::Texture>| t.as_ref().map(|t| t.color(uv, maps.uv_format));
+        let own = Reflectance {
+            ambient: colors.ambient.unwrap_or(plain.ambient),
+            tint: colors.specular.unwrap_or(plain.tint),
+            ..plain
+        };
+        let Some(maps) = &colors.images else {
+            return own;
+        };
+        let uv = uv();
+        let texel = |t: &Option<Texture>| t.as_ref().map(|t| t.color(uv, maps.uv_format));
         let (a, d, s) = (texel(&maps.ambient), texel(&maps.diffuse), texel(&maps.specular));
         Reflectance {
-            ka: if a.is_some() { 1.0 } else { plain.ka },
-            ambient: a.unwrap_or(plain.ambient),
-            kd: if d.is_some() { 1.0 } else { plain.kd },
-            diffuse: d.unwrap_or(plain.diffuse),
-            ks: if s.is_some() { 1.0 } else { plain.ks },
-            tint: s.unwrap_or(plain.tint),
+            ka: if a.is_some() { 1.0 } else { own.ka },
+            ambient: a.unwrap_or(own.ambient),
+            kd: if d.is_some() { 1.0 } else { own.kd },
+            diffuse: d.unwrap_or(own.diffuse),
+            ks: if s.is_some() { 1.0 } else { own.ks },
+            tint: s.unwrap_or(own.tint),
         }
+    }
+
+    /// The images of the terms' colours, if the material has any.
+    pub fn images(&self) -> Option<&TextureMaps> {
+        self.term_colors.as_ref()?.images.as_ref()
+    }
+
+    /// The ambient term's own colour `C_a`, if the material gives one.
+    pub fn ambient_color(&self) -> Option<DVec3> {
+        self.term_colors.as_ref()?.ambient
+    }
+
+    /// The specular term's own colour `C_s`, if the material gives one.
+    pub fn specular_color(&self) -> Option<DVec3> {
+        self.term_colors.as_ref()?.specular
     }
 
     /// Transparent for shadow rays: the chapter's "géométrie strictement transparente".

@@ -16,7 +16,6 @@
 
 use glam::DVec3;
 use std::path::Path;
-use std::sync::Arc;
 
 /// The most texels an image may hold (a 8192 x 8192 image): larger is refused.
 pub const MAX_TEXELS: u64 = 1 << 26;
@@ -192,9 +191,6 @@ pub struct TextureMaps {
     pub specular: Option<Texture>,
     pub uv_format: UvFormat,
 }
-
-/// Shared between the materials that use the same maps (cheap to clone).
-pub type SharedMaps = Arc<TextureMaps>;
 
 #[cfg(test)]
 mod tests {

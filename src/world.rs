@@ -193,7 +193,7 @@ impl<'s> World<'s> {
             })
             .collect();
         let has_area_light = scene.lights.iter().any(|l| matches!(l, Light::Area(_)));
-        let has_textures = scene.materials.iter().any(|m| m.texture.is_some());
+        let has_textures = scene.materials.iter().any(|m| m.images().is_some());
         let start = std::time::Instant::now();
         let accel = Accel::build_with(&scene.objects, choice);
         let accel_seconds = start.elapsed().as_secs_f64();
@@ -639,7 +639,7 @@ fn remaining_bounds(scene: &Scene, ambient: DVec3, caustic_bound: Option<f64>) -
     let local = if scene.settings.shading.no_light {
         // The diffuse colour `k_d S` alone; a diffuse image's texel (at most 1) takes `k_d = 1`.
         max_of(&|m| {
-            let textured = m.texture.as_ref().is_some_and(|t| t.diffuse.is_some());
+            let textured = m.images().is_some_and(|t| t.diffuse.is_some());
             if textured { 1.0 } else { m.kd * m.color.max_element() }
         })
     } else {

@@ -120,10 +120,12 @@ fn textured_scenes_and_lenses_are_the_reference_images() {
     // the fast tracer shades in lanes, and a point light.
     let mut all = textured.clone();
     for m in &mut all.materials {
-        if let Some(maps) = &m.texture {
-            let mut maps = (**maps).clone();
-            maps.specular = maps.diffuse.clone();
-            m.texture = Some(Arc::new(maps));
+        if let Some(colors) = &m.term_colors {
+            let mut colors = (**colors).clone();
+            if let Some(maps) = &mut colors.images {
+                maps.specular = maps.diffuse.clone();
+            }
+            m.term_colors = Some(Arc::new(colors));
         }
     }
     all.lights.push(Light::Area(AreaLight {

@@ -7,7 +7,7 @@ use crate::common::*;
 use glam::DVec3;
 use lumiere::conventions::{Conventions, SamplePosition};
 use lumiere::light::{Attenuation, Light, PointLight};
-use lumiere::material::Material;
+use lumiere::material::{Material, TermColors};
 use lumiere::scene::simrenderer::{self, Options, Parsed};
 use lumiere::scene::{self, Format, LoadOptions, ShadingModel, Specular};
 use lumiere::shape::{Cone, Cuboid, Cylinder, Disk, Plane, Shape, Sphere, Torus, Transform, Triangle};
@@ -137,9 +137,7 @@ fn every_keyword_reads_to_the_value_written() {
         kr: 0.1,
         kt: 0.8,
         ior: 1.5,
-        texture: None,
-        ambient_color: None,
-        specular_color: None,
+        term_colors: None,
     };
     // SIMRenderer's `SMaterialOBJ` default as 32-bit floats: each term its colour, k = 1.
     let f32_grey = |x: f32| DVec3::splat(x.into());
@@ -150,8 +148,7 @@ fn every_keyword_reads_to_the_value_written() {
         ks: 1.0,
         shininess: 5.0,
         metal: 1.0,
-        ambient_color: Some(f32_grey(0.2)),
-        specular_color: Some(f32_grey(0.2)),
+        term_colors: TermColors::of(Some(f32_grey(0.2)), Some(f32_grey(0.2)), None),
         ..Material::default()
     };
     let grey = Material {
@@ -164,9 +161,7 @@ fn every_keyword_reads_to_the_value_written() {
         kr: 0.0,
         kt: 0.0,
         ior: 1.0,
-        texture: None,
-        ambient_color: None,
-        specular_color: None,
+        term_colors: None,
     };
     assert_eq!(
         s.materials,
@@ -828,7 +823,7 @@ fn the_grey_default_material_gives_simrenderers_greys() {
     assert_eq!(m.color * m.kd, DVec3::splat(0.6));
     // Shininess 20, opaque and matte, with no texture.
     assert_eq!((m.shininess, m.kr, m.kt, m.metal), (20.0, 0.0, 0.0, 0.0));
-    assert!(m.texture.is_none());
+    assert!(m.term_colors.is_none());
     for metal in [0.0, 0.5, 1.0] {
         let tint = lumiere::shading::specular_tint(metal, m.color);
         assert_eq!(tint * m.ks, DVec3::splat(0.7));

@@ -125,7 +125,7 @@ fn simrenderer_texture_materials_read_and_convert() {
     std::fs::write(&file, text).unwrap();
     let s = scene::load(&file).unwrap();
     let m = &s.materials[s.objects[0].material()];
-    let maps = m.texture.as_ref().expect("a texture material");
+    let maps = m.images().expect("a texture material");
     assert!(maps.ambient.is_some() && maps.diffuse.is_some() && maps.specular.is_none());
     assert_eq!(maps.diffuse.as_ref().unwrap().file, "quad.png");
     // To TOML beside it, and back: the same scene.

@@ -249,7 +249,7 @@ impl Surface {
         let entering = ray.dir.dot(hit.normal) < 0.0;
         // A family's members share the scene's textures (their keys hold them), so the
         // world's material says whether the point needs coordinates.
-        let uv = if world.has_textures && world.material_of(object).texture.is_some() {
+        let uv = if world.has_textures && world.material_of(object).images().is_some() {
             world.objects()[object].shape.uv(point)
         } else {
             (0.0, 0.0)

@@ -36,7 +36,7 @@ pub(super) struct FileMaterial {
 impl FileMaterial {
     /// The texture maps of a texture material, `None` when it names no image (a
     /// `uv_format` alone is refused: it would say nothing).
-    pub(super) fn textures(&self, path: &FieldPath, dir: &Path) -> Check<Option<crate::texture::SharedMaps>> {
+    pub(super) fn textures(&self, path: &FieldPath, dir: &Path) -> Check<Option<crate::texture::TextureMaps>> {
         use crate::texture::{Texture, TextureMaps, UvFormat};
         let load = |key: &str, file: &Option<String>| -> Check<Option<Texture>> {
             file.as_ref()
@@ -69,7 +69,7 @@ impl FileMaterial {
             }
             return Ok(None);
         }
-        Ok(Some(std::sync::Arc::new(maps)))
+        Ok(Some(maps))
     }
 }
 

@@ -28,7 +28,7 @@ use crate::conventions::Highlight;
 use crate::film::Normalization;
 use crate::light::Light;
 use crate::limits;
-use crate::material::Material;
+use crate::material::{Material, TermColors};
 use crate::shape::Shape;
 use check::{Check, color, direction, fail, in_range, placed, positive, running_total, vec3};
 use compact_str::CompactString;
@@ -454,17 +454,17 @@ impl FileScene {
                 kr: unit("kr", m.kr, d.kr)?,
                 kt: unit("kt", m.kt, d.kt)?,
                 ior: positive(&p.key("n"), m.n.unwrap_or(d.ior), limits::MAX_IOR)?,
-                texture: m.textures(&p, dir)?,
-                ambient_color: m
-                    .ambient_color
-                    .map(|c| color(&p.key("ambient_color"), c, 1.0))
-                    .transpose()?,
-                specular_color: m
-                    .specular_color
-                    .map(|c| color(&p.key("specular_color"), c, 1.0))
-                    .transpose()?,
+                term_colors: TermColors::of(
+                    m.ambient_color
+                        .map(|c| color(&p.key("ambient_color"), c, 1.0))
+                        .transpose()?,
+                    m.specular_color
+                        .map(|c| color(&p.key("specular_color"), c, 1.0))
+                        .transpose()?,
+                    m.textures(&p, dir)?,
+                ),
             };
-            if m.m.is_some() && mat.specular_color.is_some() {
+            if m.m.is_some() && mat.specular_color().is_some() {
                 return fail(
                     &p.key("m"),
                     "shapes the specular colour m S + (1 - m), which specular_color gives: give one of them",

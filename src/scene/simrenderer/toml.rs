@@ -172,12 +172,15 @@ impl Writer<Toml> {
             self.line(format!("kr = {}", num(m.kr)));
             self.line(format!("kt = {}", num(m.kt)));
             self.line(format!("n = {}", num(m.ior)));
-            for (key, c) in [("ambient_color", m.ambient_color), ("specular_color", m.specular_color)] {
+            for (key, c) in [
+                ("ambient_color", m.ambient_color()),
+                ("specular_color", m.specular_color()),
+            ] {
                 if let Some(c) = c {
                     self.line(format!("{key} = {}", vec3(c)));
                 }
             }
-            if let Some(maps) = &m.texture {
+            if let Some(maps) = m.images() {
                 for (key, t) in [
                     ("texture_ka", &maps.ambient),
                     ("texture_kd", &maps.diffuse),

@@ -305,7 +305,7 @@ impl Writer<SimRenderer> {
                     .push(format!("materials[{i}] {name:?}: SIMRenderer cannot read {why}"));
                 continue;
             }
-            if m.ambient_color.is_some() || m.specular_color.is_some() {
+            if m.ambient_color().is_some() || m.specular_color().is_some() {
                 self.refused.push(format!(
                     "materials[{i}] {name:?}: its own ambient_color or specular_color (SIMRenderer gives terms their own colours only in a model's .mtl materials)"
                 ));
@@ -316,7 +316,7 @@ impl Writer<SimRenderer> {
                     m.shininess
                 ));
             }
-            self.line(if m.texture.is_some() {
+            self.line(if m.images().is_some() {
                 "texture_material"
             } else {
                 "material"
@@ -341,7 +341,7 @@ impl Writer<SimRenderer> {
             self.line(format!("kr        {}", num(m.kr)));
             self.line(format!("kt        {}", num(m.kt)));
             self.line(format!("n         {}", num(m.ior)));
-            if let Some(maps) = &m.texture {
+            if let Some(maps) = m.images() {
                 if maps.uv_format != crate::texture::UvFormat::OriginUvTopLeft {
                     self.refused.push(format!(
                         "materials[{i}] {name:?}: uv_format {} (SIMRenderer's texture materials read their images from the top-left corner; only a model sets another format)",

@@ -125,7 +125,7 @@ impl<'a> Reader<'a> {
             m.metal = 1.0 - p;
         }
         if maps.ambient.is_some() || maps.diffuse.is_some() || maps.specular.is_some() {
-            m.texture = Some(std::sync::Arc::new(maps));
+            m.term_colors = crate::material::TermColors::of(None, None, Some(maps));
         }
         let (name, at) = name.unwrap_or_else(|| ("none".to_string(), at(open, "scene")));
         Ok(Some(MaterialEntry {

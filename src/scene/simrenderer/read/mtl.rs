@@ -17,11 +17,11 @@
 //!
 //! Such a material (`SOpenGLMaterial`) gives each term its colour, with no coefficient:
 //! in lumiere's terms `k_a = k_d = k_s = 1`, `S` the diffuse colour and the ambient and
-//! specular colours their own ([`Material::ambient_color`], [`Material::specular_color`]).
+//! specular colours their own ([`TermColors`]).
 //! An image takes its term's whole colour (`STextureOpenGLMaterial`), as a texture
 //! material's does.
 
-use crate::material::Material;
+use crate::material::{Material, TermColors};
 use crate::texture::{Texture, TextureMaps, UvFormat};
 use glam::DVec3;
 use std::path::Path;
@@ -167,8 +167,7 @@ pub(super) fn open_gl(ka: DVec3, kd: DVec3, ks: DVec3, ns: f64) -> Material {
         kd: 1.0,
         ks: 1.0,
         shininess: ns,
-        ambient_color: Some(ka),
-        specular_color: Some(ks),
+        term_colors: TermColors::of(Some(ka), Some(ks), None),
         ..Material::default()
     }
 }
@@ -187,7 +186,7 @@ pub(super) fn library_material(
     dir: &Path,
     uv_format: UvFormat,
 ) -> (Material, Vec<(usize, String)>) {
-    let mut material = open_gl(m.ka, m.kd, m.ks, m.ns);
+    let material = open_gl(m.ka, m.kd, m.ks, m.ns);
     let mut errors = Vec::new();
     let mut images: [Option<Texture>; 3] = [None, None, None];
     for (slot, map) in images.iter_mut().zip(&m.maps) {
@@ -198,16 +197,24 @@ pub(super) fn library_material(
             }
         }
     }
-    if images.iter().any(Option::is_some) {
-        let [ambient, diffuse, specular] = images;
-        material.texture = Some(std::sync::Arc::new(TextureMaps {
-            ambient,
-            diffuse,
-            specular,
-            uv_format,
-        }));
+    if !images.iter().any(Option::is_some) {
+        return (material, errors);
     }
-    (material, errors)
+    let [ambient, diffuse, specular] = images;
+    let maps = TextureMaps {
+        ambient,
+        diffuse,
+        specular,
+        uv_format,
+    };
+    let term_colors = TermColors::of(material.ambient_color(), material.specular_color(), Some(maps));
+    (
+        Material {
+            term_colors,
+            ..material
+        },
+        errors,
+    )
 }
 
 #[cfg(test)]
