@@ -8,6 +8,7 @@
 //! [1, 3]; the first before any `usemtl`, the second `usemtl red`, the third `usemtl absent`.
 
 use crate::common::{lumiere, lumiere_ok, temp_dir, write_in};
+use lumiere::shape::Shape;
 use std::path::Path;
 
 const OBJ: &str = "mtllib parts.mtl\n\
@@ -212,4 +213,26 @@ fn the_toml_colours_are_checked() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(stderr.contains(said), "{stderr}");
     }
+}
+
+/// SIMRenderer's model reader holds a file's numbers as 32-bit floats (`SVertex`): the
+/// vertices, normals and texture coordinates are those floats.
+#[test]
+fn a_models_numbers_are_32_bit_floats() {
+    let dir = temp_dir("model-materials-floats");
+    write_in(
+        &dir,
+        "parts.obj",
+        "v 0.1 0 0\nv 1 0.3 0\nv 0 1 0.7\nvt 0.1 0.2\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n",
+    );
+    let red = write_in(&dir, "red.txt", &lab(0.0, ""));
+    let scene = lumiere::scene::load(Path::new(&red)).unwrap();
+    let Shape::SmoothTriangle(t) = &scene.objects[0].shape else {
+        panic!("{:?}", scene.objects[0].shape)
+    };
+    let points = t.triangle.points();
+    assert_eq!(points[0].x, 0.10000000149011612);
+    assert_eq!(points[1].y, 0.30000001192092896);
+    assert_eq!(points[2].z, 0.699999988079071);
+    assert_eq!(t.uvs[0], [0.10000000149011612, 0.20000000298023224]);
 }

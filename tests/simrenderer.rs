@@ -428,10 +428,11 @@ fn errors_name_the_line_column_keyword_and_range() {
         ),
         ("model\nend", "lab.txt:1:1: scene.model: a model needs a file (fichier)"),
         (
-            // The icosahedron's second vertex, x = 0.5257..., is the first moved past 1e9.
+            // The icosahedron's second vertex, x = 0.5257..., is the first moved past 1e9; its
+            // y 0.85065080835204 is the 32-bit float SIMRenderer reads, 0.8506507873535156.
             "model\nfile scenes/icosahedron.obj\ntranslation 1000000000 0 0\nend",
             "lab.txt:1:1: scene.model: the transform moves a vertex of scenes/icosahedron.obj to \
-             [1000000000.5257311, 0.85065080835204, 0.0], beyond the coordinates' range [-1e9, 1e9]",
+             [1000000000.5257311, 0.8506507873535156, 0.0], beyond the coordinates' range [-1e9, 1e9]",
         ),
         // lumiere's notes.
         (

@@ -229,6 +229,21 @@ impl Mesh {
         })
     }
 
+    /// Every coordinate, normal and texture coordinate rounded to the nearest 32-bit float
+    /// (SIMRenderer's model reader holds them as `float`s, `SVertex`), as 64-bit values.
+    pub fn round_to_f32(&mut self) {
+        let round = |x: f64| f64::from(x as f32);
+        for v in &mut self.vertices {
+            *v = v.to_array().map(round).into();
+        }
+        for n in self.normals.iter_mut().flatten() {
+            *n = n.map(|n| n.to_array().map(round).into());
+        }
+        for uv in self.uvs.iter_mut().flatten() {
+            *uv = uv.map(|c| c.map(round));
+        }
+    }
+
     /// Moves every vertex by `t`; where `t` mirrors, swaps each face's winding back so the
     /// normals stay outward. `Err` names the first vertex it moves beyond the coordinates'
     /// range, in words that follow "the transform" as both scene readers say it, with the

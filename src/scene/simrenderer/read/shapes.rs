@@ -359,6 +359,7 @@ impl<'a> Reader<'a> {
                 return Ok(None);
             }
         };
+        mesh.round_to_f32();
         let t = Transform::from_parts(scale, rotation, translation);
         let moved = !t.is_identity();
         if moved && let Err(m) = mesh.transform(&t, &shown) {
