@@ -126,14 +126,21 @@ fn a_diffuse_image_gives_the_term_its_texel() {
     for (x, c) in [[255, 0, 0], [0, 255, 0], [0, 0, 255]].into_iter().enumerate() {
         img.put_pixel(x as u32, 0, image::Rgb(c));
     }
-    img.save(dir.join("grid.png")).unwrap();
+    // The model, its library and image in a folder of their own beside the scene.
+    let models = dir.join("models");
+    std::fs::create_dir(&models).unwrap();
+    img.save(models.join("grid.png")).unwrap();
     write_in(
-        &dir,
+        &models,
         "square.obj",
         "mtllib looks.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n\
          vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl tiled\nf 1/1 2/2 3/3 4/4\n",
     );
-    write_in(&dir, "looks.mtl", "newmtl tiled\nKa 0 0 0\nKs 0 0 0\nmap_Kd grid.png\n");
+    write_in(
+        &models,
+        "looks.mtl",
+        "newmtl tiled\nKa 0 0 0\nKs 0 0 0\nmap_Kd grid.png\n",
+    );
     // Seen at (0.5, -0.5): texture coordinates (0.75, 0.25), the texel of column
     // floor(0.75 x 2) = 1 and row floor(0.25 x 2) = 0 from the top (green), or of row
     // floor((1 - 0.25) x 2) = 1 (white) with the origin at the bottom left.
@@ -143,12 +150,21 @@ fn a_diffuse_image_gives_the_term_its_texel() {
                 "position 0.5 0 5\nlook_at 0.5 0 0",
                 "position 0.5 -0.5 5\nlook_at 0.5 -0.5 0",
             )
-            .replace("parts.obj", "square.obj")
+            .replace("parts.obj", "models/square.obj")
     };
     let top = write_in(&dir, "top.txt", &scene(""));
     assert_eq!(middle(&dir, &top, &[]), [0, 255, 0]);
     let bottom = write_in(&dir, "bottom.txt", &scene("uv_format origin_uv_bottom_left\n"));
     assert_eq!(middle(&dir, &bottom, &[]), [255, 255, 255]);
+    // In TOML, the image is named from the scene's folder, and the render is the same.
+    let toml = dir.join("bottom.toml");
+    lumiere_ok(&["convert", &bottom, "-o", toml.to_str().unwrap(), "-q"]);
+    let text = std::fs::read_to_string(&toml).unwrap();
+    assert!(
+        text.contains("texture_kd = \"models/grid.png\"\nuv_format = \"origin_uv_bottom_left\"\n"),
+        "{text}"
+    );
+    assert_eq!(middle(&dir, toml.to_str().unwrap(), &[]), [255, 255, 255]);
 }
 
 #[test]
@@ -173,6 +189,17 @@ fn a_library_line_in_error_is_located() {
     // (the library default's diffuse (0.3, 0.7, 0.3)): (0.25 + 0.3 + 0.125, 0.7 + 0.125,
     // 0.3) = (0.675, 0.825, 0.3), 172.1, 210.4, 76.5 (0.3 a hair above as a float: 77).
     assert_eq!(middle(&dir, &red, &["--lenient"]), [172, 210, 77]);
+    // A uv_format SIMRenderer does not have.
+    let sideways = write_in(&dir, "sideways.txt", &lab(0.0, "uv_format sideways\n"));
+    let out = lumiere(&["render", &sideways, "-o", png.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(
+            "sideways.txt:22:11: model.uv_format: must be one of default (0), origin_uv_top_left (1), origin_uv_bottom_left (2), got \"sideways\""
+        ),
+        "{stderr}"
+    );
     // A library that does not read, or is not a .mtl file.
     for (line, said) in [
         ("mtllib gone.mtl", "mtllib \"gone.mtl\": cannot read it"),

@@ -178,12 +178,14 @@ pub(super) fn missing_material() -> Material {
     open_gl(DVec3::splat(0.1), DVec3::new(0.3, 0.7, 0.3), DVec3::splat(0.05), 5.0)
 }
 
-/// The material a library material gives, its images read from `dir` and placed by
-/// `uv_format`; an image that does not read is `Err` with its line and message (the term
-/// then keeps its colour).
+/// The material a library material gives, its images read from `dir` (the library's
+/// folder, `scene_dir` the scene file's: an image is named by its path from there, as a
+/// texture material's image is) and placed by `uv_format`; an image that does not read is
+/// `Err` with its line and message (the term then keeps its colour).
 pub(super) fn library_material(
     m: &LibraryMaterial,
     dir: &Path,
+    scene_dir: &Path,
     uv_format: UvFormat,
 ) -> (Material, Vec<(usize, String)>) {
     let material = open_gl(m.ka, m.kd, m.ks, m.ns);
@@ -191,7 +193,9 @@ pub(super) fn library_material(
     let mut images: [Option<Texture>; 3] = [None, None, None];
     for (slot, map) in images.iter_mut().zip(&m.maps) {
         if let Some((file, line)) = map {
-            match Texture::load(&dir.join(file), file) {
+            let path = dir.join(file);
+            let name = path.strip_prefix(scene_dir).unwrap_or(&path).display().to_string();
+            match Texture::load(&path, &name) {
                 Ok(t) => *slot = Some(t),
                 Err(message) => errors.push((*line, message)),
             }

@@ -433,7 +433,7 @@ impl<'a> Reader<'a> {
                 // The first material of a name, over the libraries in order.
                 let material = match read.iter().find(|(m, _)| m.name == *name) {
                     Some((m, dir)) => {
-                        let (material, errors) = mtl::library_material(m, dir, uv_format);
+                        let (material, errors) = mtl::library_material(m, dir, self.dir, uv_format);
                         for (line, message) in errors {
                             let m = format!("map on line {line} of material {name:?}: {message}");
                             self.problem(file_at, m, "the term keeps its colour")?;
