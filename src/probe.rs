@@ -133,6 +133,21 @@ pub struct Hit {
     pub kr: f64,
     pub kt: f64,
     pub ior: f64,
+    /// The ambient and specular colours of the material's own (SIMRenderer's OpenGL
+    /// material: a model's `.mtl`), with its name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub own_colors: Option<OwnColors>,
+}
+
+/// A material's own ambient and specular colours `C_a`, `C_s` (in place of `S` and
+/// `m S + (1 - m)`), and the material's name.
+#[derive(Clone, Debug, Serialize)]
+pub struct OwnColors {
+    pub material: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ambient: Option<[f64; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub specular: Option<[f64; 3]>,
 }
 
 /// A smooth triangle's normal at a hit: the vertices' weighted by the barycentric
@@ -317,6 +332,11 @@ impl Recorder for TreeRecorder<'_> {
             kr: m.kr,
             kt: m.kt,
             ior: m.ior,
+            own_colors: (m.ambient_color().is_some() || m.specular_color().is_some()).then(|| OwnColors {
+                material: scene.material_names[o.material()].clone(),
+                ambient: m.ambient_color().map(v3),
+                specular: m.specular_color().map(v3),
+            }),
         });
     }
 
@@ -620,6 +640,18 @@ fn write_ray(o: &mut String, r: &RayNode, depth: usize) {
                 );
             }
             let _ = writeln!(o, "{pad}    k_r {}, k_t {}, n {}", num(h.kr), num(h.kt), num(h.ior));
+            if let Some(c) = &h.own_colors {
+                let part = |what: &str, symbol: &str, v: &Option<[f64; 3]>| {
+                    v.as_ref().map(|v| format!(", {what} colour {symbol} {}", vec(v)))
+                };
+                let _ = writeln!(
+                    o,
+                    "{pad}    material \"{}\" has its own colours (SIMRenderer's OpenGL material){}{}",
+                    c.material,
+                    part("ambient", "C_a", &c.ambient).unwrap_or_default(),
+                    part("specular", "C_s", &c.specular).unwrap_or_default()
+                );
+            }
         }
     }
     if let Some(a) = &r.ambient {

@@ -96,6 +96,20 @@ fn each_face_takes_its_usemtl_material() {
             "{text}"
         );
     }
+    // probe names the face's material and its own colours.
+    let probed = lumiere_ok(&["probe", &red, "--pixel", "10,10"]);
+    assert!(
+        probed.contains(
+            "      material \"model#0/red\" has its own colours (SIMRenderer's OpenGL material), ambient colour C_a (0.250000, 0.000000, 0.000000), specular colour C_s (0.125000, 0.125000, 0.000000)\n"
+        ),
+        "{probed}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&lumiere_ok(&["probe", &red, "--pixel", "10,10", "--json"])).unwrap();
+    let own = &json["samples"][0]["ray"]["hit"]["own_colors"];
+    assert_eq!(own["material"], "model#0/red", "{json}");
+    assert_eq!(own["ambient"], serde_json::json!([0.25, 0.0, 0.0]));
+    assert_eq!(own["specular"], serde_json::json!([0.125, 0.125, 0.0]));
     let red_toml = std::fs::read_to_string(dir.join("red.toml")).unwrap();
     assert!(
         red_toml.contains(
