@@ -277,3 +277,37 @@ fn a_models_numbers_are_32_bit_floats() {
     assert_eq!(points[2].z, 0.699999988079071);
     assert_eq!(t.uvs[0], [0.10000000149011612, 0.20000000298023224]);
 }
+
+/// A face that makes no triangle (collinear corners) is an error; under --lenient it is
+/// skipped and the model's other triangles kept, as SIMRenderer's model reader skips it.
+#[test]
+fn a_flat_face_is_skipped_under_lenient() {
+    let dir = temp_dir("model-materials-flat");
+    write_in(
+        &dir,
+        "parts.obj",
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n",
+    );
+    let red = write_in(&dir, "red.txt", &lab(0.0, ""));
+    let out = lumiere(&["render", &red, "-o", dir.join("x.png").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("parts.obj:5: the face makes no triangle"), "{stderr}");
+    let options = lumiere::scene::simrenderer::Options {
+        lenient: true,
+        ..Default::default()
+    };
+    let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options).unwrap();
+    assert_eq!(parsed.scene.objects.len(), 1);
+    let Shape::Triangle(t) = &parsed.scene.objects[0].shape else {
+        panic!("{:?}", parsed.scene.objects[0].shape)
+    };
+    assert_eq!(t.points()[2], glam::DVec3::Y);
+    assert!(
+        parsed.warnings[0]
+            .message
+            .ends_with("; the 1 triangle(s) that make none are skipped, as SIMRenderer skips them"),
+        "{:?}",
+        parsed.warnings
+    );
+}

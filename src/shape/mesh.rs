@@ -285,6 +285,29 @@ impl Mesh {
         })
     }
 
+    /// Removes the triangles that make none ([`Triangle::degenerate`]) with what the mesh
+    /// keeps of each, as SIMRenderer's model reader skips them; returns how many.
+    pub fn drop_degenerate(&mut self) -> usize {
+        let keep: Vec<bool> = self
+            .faces
+            .iter()
+            .map(|f| {
+                let [a, b, c] = f.map(|i| self.vertices[i as usize]);
+                Triangle::degenerate(a, b, c).is_none()
+            })
+            .collect();
+        fn retain<T>(v: &mut Vec<T>, keep: &[bool]) {
+            let mut k = keep.iter();
+            v.retain(|_| *k.next().unwrap_or(&true));
+        }
+        retain(&mut self.faces, &keep);
+        retain(&mut self.lines, &keep);
+        retain(&mut self.normals, &keep);
+        retain(&mut self.uvs, &keep);
+        retain(&mut self.materials, &keep);
+        keep.iter().filter(|k| !**k).count()
+    }
+
     /// [`Mesh::degenerate_face`] said as both scene readers say it, naming `file` (and that
     /// the face was flattened by the transform, when `moved`).
     pub fn flat_face_message(&self, file: &impl std::fmt::Display, moved: bool) -> Option<String> {

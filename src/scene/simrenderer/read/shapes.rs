@@ -367,8 +367,13 @@ impl<'a> Reader<'a> {
             return Ok(None);
         }
         if let Some(m) = mesh.flat_face_message(&shown, moved) {
-            self.problem(&file_at, m, dropped)?;
-            return Ok(None);
+            // SIMRenderer skips such a triangle and builds the others.
+            let n = mesh.drop_degenerate();
+            self.problem(
+                &file_at,
+                m,
+                &format!("the {n} triangle(s) that make none are skipped, as SIMRenderer skips them"),
+            )?;
         }
         let folder = path.parent().unwrap_or(Path::new(""));
         let materials = self.model_materials(&mesh, folder, &shown, &file_at, uv_format)?;
