@@ -203,6 +203,16 @@ fn a_library_line_in_error_is_located() {
     // (the library default's diffuse (0.3, 0.7, 0.3)): (0.25 + 0.3 + 0.125, 0.7 + 0.125,
     // 0.3) = (0.675, 0.825, 0.3), 172.1, 210.4, 76.5 (0.3 a hair above as a float: 77).
     assert_eq!(middle(&dir, &red, &["--lenient"]), [172, 210, 77]);
+    // An image that does not read: the term keeps its colour under --lenient.
+    write_in(&dir, "parts.mtl", &MTL.replace("Ns 10", "Ns 10\nmap_Kd gone.png"));
+    let out = lumiere(&["render", &red, "-o", png.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(&format!("{library}:8: map_Kd: ")) && stderr.contains("gone.png: cannot read the texture"),
+        "{stderr}"
+    );
+    assert_eq!(middle(&dir, &red, &["--lenient"]), [223, 96, 0]);
     // A uv_format SIMRenderer does not have.
     let sideways = write_in(&dir, "sideways.txt", &lab(0.0, "uv_format sideways\n"));
     let out = lumiere(&["render", &sideways, "-o", png.to_str().unwrap()]);

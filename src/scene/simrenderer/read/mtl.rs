@@ -32,6 +32,9 @@ const LIBRARY_DIFFUSE: [f32; 3] = [0.3, 0.7, 0.3];
 const LIBRARY_SPECULAR: [f32; 3] = [0.2, 0.2, 0.2];
 const LIBRARY_SHININESS: f32 = 5.0;
 
+/// The images' keywords, in the order of [`LibraryMaterial::maps`].
+const MAP_KEYWORDS: [&str; 3] = ["map_Ka", "map_Kd", "map_Ks"];
+
 /// One material of a library, as read.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct LibraryMaterial {
@@ -120,10 +123,7 @@ pub(super) fn parse_library(text: &str) -> (Vec<LibraryMaterial>, Vec<LineError>
                 None => errors.push(fail(format!("expects a number, got {rest:?}"))),
             },
             "map_Ka" | "map_Kd" | "map_Ks" if !rest.is_empty() => {
-                let k = ["map_Ka", "map_Kd", "map_Ks"]
-                    .iter()
-                    .position(|k| *k == keyword)
-                    .unwrap_or(0);
+                let k = MAP_KEYWORDS.iter().position(|k| *k == keyword).unwrap_or(0);
                 current.maps[k] = Some((rest.to_string(), i + 1));
             }
             _ => {}
@@ -180,24 +180,25 @@ pub(super) fn missing_material() -> Material {
 
 /// The material a library material gives, its images read from `dir` (the library's
 /// folder, `scene_dir` the scene file's: an image is named by its path from there, as a
-/// texture material's image is) and placed by `uv_format`; an image that does not read is
-/// `Err` with its line and message (the term then keeps its colour).
+/// texture material's image is) and placed by `uv_format`; with the images that do not
+/// read, each as its line in the library, its keyword and why (the term then keeps its
+/// colour).
 pub(super) fn library_material(
     m: &LibraryMaterial,
     dir: &Path,
     scene_dir: &Path,
     uv_format: UvFormat,
-) -> (Material, Vec<(usize, String)>) {
+) -> (Material, Vec<(usize, &'static str, String)>) {
     let material = open_gl(m.ka, m.kd, m.ks, m.ns);
     let mut errors = Vec::new();
     let mut images: [Option<Texture>; 3] = [None, None, None];
-    for (slot, map) in images.iter_mut().zip(&m.maps) {
+    for ((slot, map), keyword) in images.iter_mut().zip(&m.maps).zip(MAP_KEYWORDS) {
         if let Some((file, line)) = map {
             let path = dir.join(file);
             let name = path.strip_prefix(scene_dir).unwrap_or(&path).display().to_string();
             match Texture::load(&path, &name) {
                 Ok(t) => *slot = Some(t),
-                Err(message) => errors.push((*line, message)),
+                Err(message) => errors.push((*line, keyword, message)),
             }
         }
     }

@@ -399,7 +399,8 @@ impl<'a> Reader<'a> {
         file_at: &At,
         uv_format: UvFormat,
     ) -> Result<ModelMaterials, SceneError> {
-        let mut read: Vec<(mtl::LibraryMaterial, std::path::PathBuf)> = Vec::new();
+        // Each material read, with its library's folder and name as shown.
+        let mut read: Vec<(mtl::LibraryMaterial, std::path::PathBuf, String)> = Vec::new();
         for library in &mesh.libraries {
             let path = folder.join(&library.file);
             let named = format!("{shown}:{}: mtllib {:?}", library.line, library.file);
@@ -422,10 +423,10 @@ impl<'a> Reader<'a> {
                 self.problem(file_at, e.in_file(&library_shown), "the value before it is kept")?;
             }
             let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
-            read.extend(materials.into_iter().map(|m| (m, dir.clone())));
+            read.extend(materials.into_iter().map(|m| (m, dir.clone(), library_shown.clone())));
         }
         if read.is_empty() {
-            read.push((mtl::LibraryMaterial::default(), folder.to_path_buf()));
+            read.push((mtl::LibraryMaterial::default(), folder.to_path_buf(), String::new()));
         }
         // Each name the faces use, in the order of first use, with the material it gets.
         let mut used: Vec<Option<u32>> = vec![None; mesh.material_names.len()];
@@ -436,11 +437,11 @@ impl<'a> Reader<'a> {
             if slot.is_none() {
                 let name = &mesh.material_names[k as usize];
                 // The first material of a name, over the libraries in order.
-                let material = match read.iter().find(|(m, _)| m.name == *name) {
-                    Some((m, dir)) => {
+                let material = match read.iter().find(|(m, _, _)| m.name == *name) {
+                    Some((m, dir, library)) => {
                         let (material, errors) = mtl::library_material(m, dir, self.dir, uv_format);
-                        for (line, message) in errors {
-                            let m = format!("map on line {line} of material {name:?}: {message}");
+                        for (line, keyword, message) in errors {
+                            let m = format!("{library}:{line}: {keyword}: {message}");
                             self.problem(file_at, m, "the term keeps its colour")?;
                         }
                         material
