@@ -619,6 +619,33 @@ mod tests {
         o pair\nf 1/1 2/1 3/1\nf -4 -2 -1\nvt 0 0\n";
 
     #[test]
+    fn each_triangle_keeps_its_faces_material_in_file_order() {
+        // Materials that come back (a, b, a) and a group between: tobj starts a new model
+        // at each change, and the triangles stay in the file's order with their materials.
+        let text = "mtllib one.mtl\nmtllib two words.mtl\n\
+            v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n\
+            f 1 2 3\nusemtl a\nf 2 4 3\nusemtl b\nf 1 2 4\ng side\nusemtl  a \nf 1 4 3\n";
+        let m = Mesh::parse(text, 100).unwrap();
+        assert_eq!(m.material_names, ["default", "a", "b"]);
+        assert_eq!(m.materials, [0, 1, 2, 1]);
+        assert_eq!(m.lines, [7, 9, 11, 14]);
+        assert_eq!(
+            m.faces
+                .iter()
+                .map(|f| f.map(|i| m.vertices[i as usize]))
+                .collect::<Vec<_>>(),
+            {
+                let v = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)];
+                [[0, 1, 2], [1, 3, 2], [0, 1, 3], [0, 3, 2]]
+                    .map(|f| f.map(|i| v[i]))
+                    .to_vec()
+            }
+        );
+        let libraries: Vec<(usize, &str)> = m.libraries.iter().map(|l| (l.line, l.file.as_str())).collect();
+        assert_eq!(libraries, [(1, "one.mtl"), (2, "two words.mtl")]);
+    }
+
+    #[test]
     fn faces_become_triangles_with_their_lines() {
         let m = Mesh::parse(SQUARE, 100).unwrap();
         // The quad fans into (1 2 3) (1 3 4); the pair's second face is (1 3 4) by relative
