@@ -1129,3 +1129,53 @@ fn command_line_renders_a_doubled_exponent_that_diagnose_names() {
         d.not_applicable
     );
 }
+
+#[test]
+fn within_sampling_names_only_what_explains_most_of_the_image() {
+    // The reference scene at 160 x 120, as `lumiere render` draws it: with gamma applied, in
+    // grey, or saved as a JPEG, the image differs from the oracle by no sampling; a mistake
+    // within sampling of the oracle leaves a few of its pixels fewer beyond the tolerance by
+    // chance (gamma: sample-position leaves 17344 where the oracle leaves 17348), which says
+    // nothing of how the image was sampled, and is not named.
+    let mut scene = scene::load(&repo("scenes/reference.toml")).unwrap();
+    scene.settings.width = 160;
+    scene.settings.height = 120;
+    let oracle = Oracle::new(&scene, &Options::default());
+    let image = rendered(&scene);
+    let gamma = catalogue().into_iter().find(|m| m.name == "gamma-applied").unwrap();
+    let grey: Vec<u8> = image
+        .chunks(3)
+        .flat_map(|p| [((p[0] as u32 + p[1] as u32 + p[2] as u32) / 3) as u8; 3])
+        .collect();
+    let mut jpeg = Vec::new();
+    image::codecs::jpeg::JpegEncoder::new_with_quality(&mut jpeg, 90)
+        .encode(&image, 160, 120, image::ExtendedColorType::Rgb8)
+        .unwrap();
+    let jpeg = image::load_from_memory(&jpeg).unwrap().to_rgb8().into_raw();
+    for (what, student) in [
+        ("gamma", render_mistake(&scene, &gamma).unwrap()),
+        ("grey", grey),
+        ("jpeg", jpeg),
+    ] {
+        let d = oracle.diagnose(&student);
+        assert_ne!(d.verdict, Verdict::NoMistakeFound, "{what}");
+        let within: Vec<_> = d
+            .within_sampling
+            .iter()
+            .map(|c| (c.name, c.score.beyond, d.oracle.beyond))
+            .collect();
+        assert!(within.is_empty(), "{what}: {within:?}");
+    }
+    // Sampled at each pixel's corner, the image is named so: sample-position explains every
+    // pixel the oracle leaves beyond.
+    let mut corner = scene.clone();
+    let mut c = corner.settings.conventions;
+    c.set("sample_position", "corner").unwrap();
+    corner.set_conventions(c);
+    let d = oracle.diagnose(&rendered(&corner));
+    assert_eq!(d.verdict, Verdict::NoMistakeFound);
+    assert!(d.oracle.beyond > 0);
+    let first = &d.within_sampling[0];
+    assert_eq!((first.name, first.score.beyond), ("sample-position", 0));
+    assert_eq!(first.fixes.as_ref().unwrap().pixels, d.oracle.beyond);
+}
