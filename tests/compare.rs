@@ -914,3 +914,33 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_scene_given_as_an_image_or_an_image_as_the_scene_is_named_so() {
+    // A student's first try: the scene file where the oracle's image goes, and an image
+    // given to --scene. Each is named for what it is, with the order the command takes.
+    let oracle = repo("tests/fixtures/compare/oracle.png");
+    for scene in [
+        repo("scenes/reference.toml"),
+        repo("tests/fixtures/simrenderer/reference.txt"),
+    ] {
+        let (code, out, err) = compare(&[s(&oracle), s(&scene)]);
+        assert_eq!((code, out.as_str()), (2, ""));
+        assert_eq!(
+            err,
+            format!(
+                "lumiere: error: {0}: is a scene file, not an image: compare takes two images, yours then the oracle's (`lumiere compare YOURS ORACLE`); `lumiere render {0} -o oracle.png --width W --height H` renders the oracle's at your image's size\n",
+                scene.display()
+            )
+        );
+    }
+    let (code, out, err) = compare(&[s(&oracle), s(&oracle), "--scene", s(&oracle)]);
+    assert_eq!((code, out.as_str()), (2, ""));
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: error: {}: is a PNG image, not a scene file (TOML or SIMRenderer's format): --scene names the scene the images render (`lumiere compare YOURS ORACLE --scene SCENE`)\n",
+            oracle.display()
+        )
+    );
+}

@@ -1179,3 +1179,30 @@ fn within_sampling_names_only_what_explains_most_of_the_image() {
     assert_eq!((first.name, first.score.beyond), ("sample-position", 0));
     assert_eq!(first.fixes.as_ref().unwrap().pixels, d.oracle.beyond);
 }
+
+#[test]
+fn a_scene_and_an_image_the_wrong_way_round_are_named_so() {
+    // `lumiere diagnose IMAGE SCENE`: whichever is read first is named for what it is, with
+    // the order the command takes; nothing is rendered.
+    let image = repo("tests/fixtures/diagnose/phong-for-blinn.png");
+    let scene = repo("scenes/reference.toml");
+    let order = "the scene goes first, then the images (`lumiere diagnose SCENE IMAGE...`)";
+    let o = lumiere(&["diagnose", image.to_str().unwrap(), scene.to_str().unwrap()]);
+    assert_eq!((o.status.code(), o.stdout.len()), (Some(2), 0));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr),
+        format!(
+            "lumiere: error: {}: is a scene file, not an image: {order}\n",
+            scene.display()
+        )
+    );
+    let o = lumiere(&["diagnose", image.to_str().unwrap(), image.to_str().unwrap()]);
+    assert_eq!((o.status.code(), o.stdout.len()), (Some(2), 0));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr),
+        format!(
+            "lumiere: error: {}: is a PNG image, not a scene file (TOML or SIMRenderer's format): {order}\n",
+            image.display()
+        )
+    );
+}

@@ -6,7 +6,7 @@
 use super::{CliError, Overrides, check_output_path, load_scene, resolved};
 use clap::Args;
 use lumiere::compare::flip::flip_heat_map;
-use lumiere::compare::read::{Image, read_image};
+use lumiere::compare::read::{self, Image, read_image};
 use lumiere::compare::{Judged, Masks, Report, Rule, Stats, compare, heat_map, undrawn_from_oracle};
 use lumiere::edges::edge_mask;
 use lumiere::figures::provenance::text_chunks;
@@ -102,9 +102,43 @@ struct JsonWorst<'a> {
     probe: String,
 }
 
-/// Reads an image; errors are bad input.
+/// Reads an image; errors are bad input, and a scene file given as an image is named so.
 fn read(path: &Path) -> Result<Image, CliError> {
-    read_image(path).map_err(CliError::BadInput)
+    read_image(path).map_err(|e| {
+        if looks_like_scene(path) {
+            CliError::BadInput(format!(
+                "{}: is a scene file, not an image: compare takes two images, yours then the oracle's (`lumiere compare YOURS ORACLE`); `lumiere render {} -o oracle.png --width W --height H` renders the oracle's at your image's size",
+                path.display(),
+                path.display()
+            ))
+        } else {
+            CliError::BadInput(e)
+        }
+    })
+}
+
+/// Whether a file that is not an image is a scene file: a file of some bytes (an empty one
+/// reads as a SIMRenderer scene of defaults) named `.toml`, or read as a scene (a
+/// SIMRenderer scene's `.txt` names text of any kind).
+pub(super) fn looks_like_scene(path: &Path) -> bool {
+    let toml = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    let written = std::fs::metadata(path).is_ok_and(|m| m.is_file() && m.len() > 0);
+    written && (toml || lumiere::scene::load(path).is_ok())
+}
+
+/// The error of a scene that does not load, `error`, or when the file is an image (its first
+/// bytes say so), that it is one, with `order`: how the command takes its arguments.
+pub(super) fn scene_error(path: &Path, error: CliError, order: &str) -> CliError {
+    match (&error, read::image_signature(path)) {
+        (CliError::BadInput(_), Some(format)) => CliError::BadInput(format!(
+            "{}: is a {format} image, not a scene file (TOML or SIMRenderer's format): {order}",
+            path.display()
+        )),
+        _ => error,
+    }
 }
 
 /// The pixels fully transparent in either image (never drawn), left out of the comparison;
@@ -267,7 +301,13 @@ fn edges_of(args: &CompareArgs, scene: &Path, width: u32, height: u32) -> Result
         height: Some(height),
         ..args.overrides.clone()
     };
-    let scene = load_scene(scene, &overrides)?;
+    let scene = load_scene(scene, &overrides).map_err(|e| {
+        scene_error(
+            scene,
+            e,
+            "--scene names the scene the images render (`lumiere compare YOURS ORACLE --scene SCENE`)",
+        )
+    })?;
     let world = World::with_accel(&scene, args.overrides.accel);
     Ok(edge_mask(&world))
 }

@@ -74,6 +74,9 @@ pub struct DiagnoseArgs {
     pub overrides: Overrides,
 }
 
+/// How `diagnose` takes its arguments, for a scene and an image given the wrong way round.
+const ORDER: &str = "the scene goes first, then the images (`lumiere diagnose SCENE IMAGE...`)";
+
 pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
     if args.list {
         print!("{}", catalogue_listing(args.json)?);
@@ -127,7 +130,8 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
             )));
         }
     }
-    let (scene, scene_size) = load_at_size(scene_path, &args.overrides, (width, height))?;
+    let (scene, scene_size) = load_at_size(scene_path, &args.overrides, (width, height))
+        .map_err(|e| super::compare::scene_error(scene_path, e, ORDER))?;
     let options = Options {
         tolerance: args.tolerance,
         max_fraction: args.max_fraction,
@@ -250,7 +254,13 @@ fn catalogue_listing(json: bool) -> Result<String, CliError> {
 fn read_images(paths: &[PathBuf]) -> Result<Vec<Image>, CliError> {
     let mut images: Vec<Image> = Vec::with_capacity(paths.len());
     for path in paths {
-        let image = read_image(path).map_err(CliError::BadInput)?;
+        let image = read_image(path).map_err(|e| {
+            if super::compare::looks_like_scene(path) {
+                CliError::BadInput(format!("{}: is a scene file, not an image: {ORDER}", path.display()))
+            } else {
+                CliError::BadInput(e)
+            }
+        })?;
         for note in &image.notes {
             eprintln!("lumiere: {}: {note}", path.display());
         }

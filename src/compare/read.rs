@@ -167,6 +167,19 @@ pub fn format_name(format: ImageFormat) -> Option<&'static str> {
     }
 }
 
+/// The image format a file's first bytes name (PFM, or one [`format_name`] names), for a
+/// file given where a scene is expected; `None` when they name none, or the file cannot be
+/// read. TGA, which has no signature, is not told.
+pub fn image_signature(path: &Path) -> Option<&'static str> {
+    use std::io::Read;
+    let mut head = Vec::with_capacity(64);
+    std::fs::File::open(path).ok()?.take(64).read_to_end(&mut head).ok()?;
+    if looks_like_pfm(&head) {
+        return Some("PFM");
+    }
+    image::guess_format(&head).ok().and_then(format_name)
+}
+
 /// Why a file that no format's signature starts is not read: its extension names a
 /// format compare reads and its bytes are not that format's, or neither names one.
 fn unrecognised(extension: &str) -> String {
