@@ -210,10 +210,26 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
     assert_eq!(
         err,
         format!(
-            "lumiere: error: the images differ in size: {} is 2 x 1, {} is 1 x 2\n",
+            "lumiere: error: the images differ in size: {} is 2 x 1, {} is 1 x 2; render the oracle's image at your image's size: `lumiere render SCENE -o oracle.png --width 2 --height 1`\n",
             a.display(),
             b.display()
         )
+    );
+    // The scene named: --scene's, else the one a course figure's provenance names.
+    let figure = repo("figures/lighting/03-ambient-directional.png");
+    let (code, _, err) = compare(&[s(&a), s(&figure)]);
+    assert_eq!(code, 2);
+    assert!(
+        err.ends_with(
+            "is 800 x 600; render the oracle's image at your image's size: `lumiere render scenes/figures/lighting/03-ambient-directional.toml -o oracle.png --width 2 --height 1`\n"
+        ),
+        "{err}"
+    );
+    let (code, _, err) = compare(&[s(&a), s(&b), "--scene", "scenes/reference.toml"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.ends_with("`lumiere render scenes/reference.toml -o oracle.png --width 2 --height 1`\n"),
+        "{err}"
     );
     let text = dir.join("notes.txt");
     fs::write(&text, "not an image").unwrap();

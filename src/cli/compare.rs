@@ -339,14 +339,21 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let b = read(&args.b)?;
     warn_if_swapped(args);
     if (a.width, a.height) != (b.width, b.height) {
+        let scene = match &args.scene {
+            Some(scene) => Some(scene.display().to_string()),
+            None => figure_scene(&args.b),
+        };
         return Err(CliError::BadInput(format!(
-            "the images differ in size: {} is {} x {}, {} is {} x {}",
+            "the images differ in size: {} is {} x {}, {} is {} x {}; render the oracle's image at your image's size: `lumiere render {} -o oracle.png --width {} --height {}`",
             args.a.display(),
             a.width,
             a.height,
             args.b.display(),
             b.width,
-            b.height
+            b.height,
+            scene.as_deref().unwrap_or("SCENE"),
+            a.width,
+            a.height
         )));
     }
     let (w, h) = (a.width, a.height);
