@@ -160,6 +160,33 @@ fn every_format_reads_as_the_png_it_stands_for() {
 }
 
 #[test]
+fn a_jpeg_of_the_oracle_is_said_to_differ_by_tens_of_levels() {
+    // The oracle's own image saved as a JPEG at quality 90 (what a lab's ImageIO.write
+    // does by default is near): the compression alone moves pixels by tens of levels along
+    // the outlines, and the note says so.
+    let dir = temp_dir("compare-jpeg");
+    let oracle = repo("tests/fixtures/compare/oracle.png");
+    let rgb = image::open(&oracle).unwrap().to_rgb8();
+    let jpeg = dir.join("mine.jpg");
+    let mut bytes = Vec::new();
+    image::codecs::jpeg::JpegEncoder::new_with_quality(&mut bytes, 90)
+        .encode(rgb.as_raw(), rgb.width(), rgb.height(), image::ExtendedColorType::Rgb8)
+        .unwrap();
+    fs::write(&jpeg, bytes).unwrap();
+    let (code, json) = compare_json(&[s(&jpeg), s(&oracle)]);
+    assert_eq!(code, 1);
+    let max = json["metrics"]["max"].as_u64().unwrap();
+    assert!(max >= 20, "{json}");
+    assert_eq!(
+        json["notes"][0],
+        format!(
+            "{}: JPEG is lossy: its compression alone changes pixels, by tens of levels along outlines and where colours change; write a PNG to compare level by level",
+            jpeg.display()
+        )
+    );
+}
+
+#[test]
 fn grey_translucent_and_scaled_inputs_say_how_they_were_read() {
     let dir = temp_dir("compare-notes");
     let pgm = dir.join("grey.pgm");

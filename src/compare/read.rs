@@ -23,6 +23,12 @@ use std::path::Path;
 /// What `compare` reads, for messages.
 pub const ALLOWED: &str = "PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA";
 
+/// The note on a JPEG image. Its compression stores colour at half resolution and rounds
+/// each 8 x 8 block's frequencies: the oracle's image of the reference scene at 160 x 120
+/// saved at quality 90 differs from it by up to 80 levels (p99 43 at quality 75, 35 at 95),
+/// along outlines and where colours change.
+pub const JPEG_NOTE: &str = "JPEG is lossy: its compression alone changes pixels, by tens of levels along outlines and where colours change; write a PNG to compare level by level";
+
 /// An image read for comparison.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
@@ -260,7 +266,7 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
     })?;
     let mut notes = Vec::new();
     if format == ImageFormat::Jpeg {
-        notes.push("JPEG is lossy: its compression alone changes pixels by a few levels".into());
+        notes.push(JPEG_NOTE.into());
     }
     let (width, height) = (img.width(), img.height());
     let transparent = fully_transparent(&img);
