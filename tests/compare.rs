@@ -692,10 +692,43 @@ fn text_output_and_heat_maps() {
         out.contains("lumiere probe SCENE.toml --pixel 0,1 --width 2 --height 2"),
         "{out}"
     );
+    // A failed comparison says what to run next.
+    let next = format!(
+        "next               `lumiere diagnose SCENE.toml {a}` names what is most likely wrong; each probe line below prints the oracle's ray tree at a pixel, to hold against your code's"
+    );
+    assert!(out.lines().any(|l| l == next), "{out}");
     assert_eq!(
         err,
         "lumiere: error: 3 of 4 pixels (75.0000 %) differ by more than 0 levels; allowed: 0 % (--max-fraction 0)\n"
     );
+    // With --scene and the oracle's settings, the diagnose line takes them; without worst
+    // pixels listed, it stands alone.
+    let scene = repo("scenes/reference.toml");
+    let srgb = repo("tests/fixtures/compare/srgb.png");
+    let oracle = repo("tests/fixtures/compare/oracle.png");
+    let (code, out, _) = compare(&[
+        s(&srgb),
+        s(&oracle),
+        "--scene",
+        s(&scene),
+        "--spp",
+        "1",
+        "--seed",
+        "7",
+        "--worst",
+        "0",
+    ]);
+    assert_eq!(code, 1);
+    let next = format!(
+        "next               `lumiere diagnose {} {} --spp 1 --seed 7` names what is most likely wrong",
+        scene.display(),
+        srgb.display()
+    );
+    assert!(out.lines().any(|l| l == next), "{out}");
+    // A comparison that passes has no next step.
+    let (code, out, _) = compare(&[&a, &a]);
+    assert_eq!(code, 0);
+    assert!(!out.contains("next "), "{out}");
     // Heat-maps: black where equal; FLIP's magma black at 0 too.
     let heat = image::open(&heat).unwrap().to_rgb8();
     assert_eq!(heat.get_pixel(0, 0).0, [0, 0, 0]);

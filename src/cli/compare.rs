@@ -262,7 +262,21 @@ fn warn_if_swapped(args: &CompareArgs) {
 
 /// The `lumiere probe` command line of pixel `(x, y)` of `scene` with the settings given.
 fn probe_line(args: &CompareArgs, scene: &str, width: u32, height: u32, x: u32, y: u32) -> String {
-    let mut line = format!("lumiere probe {scene} --pixel {x},{y} --width {width} --height {height}");
+    format!(
+        "lumiere probe {scene} --pixel {x},{y} --width {width} --height {height}{}",
+        settings(args)
+    )
+}
+
+/// The `lumiere diagnose` command line of the first image against `scene` with the
+/// settings given: what a failed comparison runs next.
+fn diagnose_line(args: &CompareArgs, scene: &str) -> String {
+    format!("lumiere diagnose {scene} {}{}", args.a.display(), settings(args))
+}
+
+/// The scene settings given (but the size, the images'), as options: ` --spp 1 --seed 7`.
+fn settings(args: &CompareArgs) -> String {
+    let mut line = String::new();
     let o = &args.overrides;
     let mut add = |name: &str, value: Option<String>| {
         if let Some(v) = value {
@@ -529,6 +543,17 @@ fn print_text(args: &CompareArgs, scene: &str, a: &Image, b: &Image, r: &Report,
         r.rule.tolerance
     );
     println!("verdict            {}", if r.pass { "pass" } else { "fail" });
+    if !r.pass {
+        let probes = if r.worst.is_empty() {
+            ""
+        } else {
+            "; each probe line below prints the oracle's ray tree at a pixel, to hold against your code's"
+        };
+        println!(
+            "next               `{}` names what is most likely wrong{probes}",
+            diagnose_line(args, scene)
+        );
+    }
     if !r.worst.is_empty() {
         let which = if r.judged == Judged::OffEdges { " off edges" } else { "" };
         println!("worst pixels{which} (yours, oracle, largest channel difference, FLIP):");
