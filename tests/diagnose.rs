@@ -1206,3 +1206,49 @@ fn a_scene_and_an_image_the_wrong_way_round_are_named_so() {
         )
     );
 }
+
+#[test]
+fn command_line_says_what_to_run_when_the_catalogue_does_not_explain_the_image() {
+    // A grey image (the closest mistakes explain less than half of it) and a black one: the
+    // text ends with the render and compare lines that list the worst pixels with their
+    // probe lines, with the settings given. A mistake found needs no such line.
+    let dir = temp_dir("diagnose-next");
+    let scene = centred("scenes/reference.toml");
+    let image = rendered(&scene);
+    let grey: Vec<u8> = image
+        .chunks(3)
+        .flat_map(|p| [((p[0] as u32 + p[1] as u32 + p[2] as u32) / 3) as u8; 3])
+        .collect();
+    let reference = repo("scenes/reference.toml");
+    for (name, rgb) in [("grey.png", grey), ("black.png", vec![0; image.len()])] {
+        let png = dir.join(name);
+        std::fs::write(&png, lumiere::film::encode_png(W, H, &rgb).unwrap()).unwrap();
+        let args = diagnose_reference_centred(&png);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = lumiere(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = String::from_utf8(o.stdout).unwrap();
+        assert!(
+            text.contains("verdict            the image differs; the closest mistakes of the catalogue explain less than half of it\n"),
+            "{text}"
+        );
+        let next = format!(
+            "next               `lumiere render {0} -o oracle.png --width 96 --height 72 --spp 1 --convention sample_position=center`, then `lumiere compare {1} oracle.png --scene {0} --spp 1 --convention sample_position=center` lists the worst pixels off edges, each with the probe line of the oracle's ray tree there\n",
+            reference.display(),
+            png.display()
+        );
+        assert!(text.ends_with(&next), "{text}");
+    }
+    let phong = catalogue().into_iter().find(|m| m.name == "phong-for-blinn").unwrap();
+    let png = dir.join("phong.png");
+    std::fs::write(
+        &png,
+        lumiere::film::encode_png(W, H, &render_mistake(&scene, &phong).unwrap()).unwrap(),
+    )
+    .unwrap();
+    let args = diagnose_reference_centred(&png);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let text = String::from_utf8(lumiere(&args).stdout).unwrap();
+    assert!(text.contains("verdict            mistake found\n"), "{text}");
+    assert!(!text.contains("\nnext "), "{text}");
+}

@@ -264,20 +264,23 @@ fn warn_if_swapped(args: &CompareArgs) {
 fn probe_line(args: &CompareArgs, scene: &str, width: u32, height: u32, x: u32, y: u32) -> String {
     format!(
         "lumiere probe {scene} --pixel {x},{y} --width {width} --height {height}{}",
-        settings(args)
+        settings(&args.overrides)
     )
 }
 
 /// The `lumiere diagnose` command line of the first image against `scene` with the
 /// settings given: what a failed comparison runs next.
 fn diagnose_line(args: &CompareArgs, scene: &str) -> String {
-    format!("lumiere diagnose {scene} {}{}", args.a.display(), settings(args))
+    format!(
+        "lumiere diagnose {scene} {}{}",
+        args.a.display(),
+        settings(&args.overrides)
+    )
 }
 
-/// The scene settings given (but the size, the images'), as options: ` --spp 1 --seed 7`.
-fn settings(args: &CompareArgs) -> String {
+/// The scene settings given (but the size), as options: ` --spp 1 --seed 7`.
+pub(super) fn settings(o: &Overrides) -> String {
     let mut line = String::new();
-    let o = &args.overrides;
     let mut add = |name: &str, value: Option<String>| {
         if let Some(v) = value {
             line.push_str(&format!(" --{name} {v}"));
