@@ -1020,3 +1020,53 @@ fn a_scene_given_as_an_image_or_an_image_as_the_scene_is_named_so() {
         )
     );
 }
+
+#[test]
+fn a_file_cut_short_is_named_so() {
+    // The oracle's image written by a program that stopped half-way: each format that
+    // reports the missing bytes is refused as cut short, naming its size; a JPEG, whose
+    // decoder draws the missing rows grey without an error, is compared with a note saying
+    // the file lacks its end marker.
+    let dir = temp_dir("compare-cut");
+    let oracle = repo("tests/fixtures/compare/oracle.png");
+    let image = image::open(&oracle).unwrap();
+    for (format, extension) in [
+        (image::ImageFormat::Png, "png"),
+        (image::ImageFormat::Bmp, "bmp"),
+        (image::ImageFormat::Tga, "tga"),
+        (image::ImageFormat::Pnm, "ppm"),
+    ] {
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image.write_to(&mut bytes, format).unwrap();
+        let bytes = bytes.into_inner();
+        let cut = dir.join(format!("cut.{extension}"));
+        fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
+        let (code, out, err) = compare(&[s(&cut), s(&oracle)]);
+        assert_eq!((code, out.as_str()), (2, ""), "{extension}");
+        assert_eq!(
+            err,
+            format!(
+                "lumiere: error: {}: cannot decode the {} image: the file ends before its 96 x 72 pixels do, after {} bytes: it was cut short, as by a write that stopped or a copy not finished; write it again\n",
+                cut.display(),
+                if extension == "ppm" {
+                    "PPM".to_string()
+                } else {
+                    extension.to_uppercase()
+                },
+                bytes.len() / 2
+            )
+        );
+    }
+    let mut jpeg = Vec::new();
+    image::codecs::jpeg::JpegEncoder::new_with_quality(&mut jpeg, 95)
+        .encode(image.to_rgb8().as_raw(), 96, 72, image::ExtendedColorType::Rgb8)
+        .unwrap();
+    let (whole, cut) = (dir.join("whole.jpg"), dir.join("cut.jpg"));
+    fs::write(&whole, &jpeg).unwrap();
+    fs::write(&cut, &jpeg[..jpeg.len() / 2]).unwrap();
+    let marker = "the file does not end with JPEG's end-of-image marker (FF D9): it looks cut short, as by a write that stopped, and the rows it lacks are decoded grey; write it again";
+    let (_, json) = compare_json(&[s(&cut), s(&oracle)]);
+    assert_eq!(json["notes"][1], format!("{}: {marker}", cut.display()), "{json}");
+    let (_, json) = compare_json(&[s(&whole), s(&oracle)]);
+    assert_eq!(json["notes"].as_array().unwrap().len(), 1, "{json}");
+}

@@ -29,6 +29,18 @@ pub const ALLOWED: &str = "PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPE
 /// along outlines and where colours change.
 pub const JPEG_NOTE: &str = "JPEG is lossy: its compression alone changes pixels, by tens of levels along outlines and where colours change; write a PNG to compare level by level";
 
+/// The note on a JPEG file that does not end with the end-of-image marker: its decoder
+/// draws the missing part of the image in grey without an error.
+pub const JPEG_CUT_NOTE: &str = "the file does not end with JPEG's end-of-image marker (FF D9): it looks cut short, as by a write that stopped, and the rows it lacks are decoded grey; write it again";
+
+/// The refusal of an image whose file ends before its pixels do: a write that stopped.
+fn cut_short(format: &str, size: Option<(u64, u64)>, bytes: usize) -> String {
+    let size = size.map_or(String::new(), |(w, h)| format!(" {w} x {h}"));
+    format!(
+        "cannot decode the {format} image: the file ends before its{size} pixels do, after {bytes} bytes: it was cut short, as by a write that stopped or a copy not finished; write it again"
+    )
+}
+
 /// An image read for comparison.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
@@ -260,13 +272,19 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
     if let Some(refusal) = size.and_then(|(w, h)| too_many_pixels(name, w, h)) {
         return Err(refusal);
     }
-    let img = image::load_from_memory_with_format(bytes, format).map_err(|e| match size {
-        Some((w, h)) if w == 0 || h == 0 => no_pixels(name, w, h),
-        _ => format!("cannot decode the {name} image: {e}"),
+    let img = image::load_from_memory_with_format(bytes, format).map_err(|e| match (size, e) {
+        (Some((w, h)), _) if w == 0 || h == 0 => no_pixels(name, w, h),
+        (size, image::ImageError::IoError(e)) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
+            cut_short(name, size, bytes.len())
+        }
+        (_, e) => format!("cannot decode the {name} image: {e}"),
     })?;
     let mut notes = Vec::new();
     if format == ImageFormat::Jpeg {
         notes.push(JPEG_NOTE.into());
+        if !bytes.ends_with(&[0xFF, 0xD9]) {
+            notes.push(JPEG_CUT_NOTE.into());
+        }
     }
     let (width, height) = (img.width(), img.height());
     let transparent = fully_transparent(&img);
