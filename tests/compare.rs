@@ -1070,3 +1070,63 @@ fn a_file_cut_short_is_named_so() {
     let (_, json) = compare_json(&[s(&whole), s(&oracle)]);
     assert_eq!(json["notes"].as_array().unwrap().len(), 1, "{json}");
 }
+
+/// A PNG of `width` x 1 pixels of indexed colour (8 bits a pixel) with `palette` (RGB
+/// triples) and the pixels' `indices`, written chunk by chunk (its pixels in a stored,
+/// uncompressed deflate block).
+fn indexed_png(palette: &[[u8; 3]], indices: &[u8]) -> Vec<u8> {
+    let chunk = |kind: &[u8], data: &[u8]| {
+        let mut c = (data.len() as u32).to_be_bytes().to_vec();
+        let body = [kind, data].concat();
+        c.extend(&body);
+        c.extend(crc32fast::hash(&body).to_be_bytes());
+        c
+    };
+    let mut ihdr = (indices.len() as u32).to_be_bytes().to_vec();
+    ihdr.extend(1u32.to_be_bytes());
+    ihdr.extend([8, 3, 0, 0, 0]);
+    let row = [&[0u8][..], indices].concat();
+    let (mut a, mut b) = (1u32, 0u32);
+    for &x in &row {
+        a = (a + x as u32) % 65521;
+        b = (b + a) % 65521;
+    }
+    let len = row.len() as u16;
+    let mut zlib = vec![0x78, 0x01, 0x01];
+    zlib.extend(len.to_le_bytes());
+    zlib.extend((!len).to_le_bytes());
+    zlib.extend(&row);
+    zlib.extend(((b << 16) | a).to_be_bytes());
+    [
+        b"\x89PNG\r\n\x1a\n".to_vec(),
+        chunk(b"IHDR", &ihdr),
+        chunk(b"PLTE", palette.concat().as_slice()),
+        chunk(b"IDAT", &zlib),
+        chunk(b"IEND", &[]),
+    ]
+    .concat()
+}
+
+#[test]
+fn an_indexed_png_is_read_as_its_palette_and_noted() {
+    // An image saved with a palette (GIMP's "indexed", a converter's 256 colours): read
+    // as its palette's colours, with a note, as every conversion is.
+    let dir = temp_dir("compare-indexed");
+    let indexed = dir.join("indexed.png");
+    fs::write(&indexed, indexed_png(&[[10, 20, 30], [200, 100, 0]], &[1, 0, 1])).unwrap();
+    let rgb = dir.join("rgb.png");
+    fs::write(&rgb, encode_png(3, 1, &[200, 100, 0, 10, 20, 30, 200, 100, 0]).unwrap()).unwrap();
+    let (code, json) = compare_json(&[s(&indexed), s(&rgb)]);
+    assert_eq!(code, 0, "{json}");
+    assert_eq!(json["metrics"]["max"], 0);
+    assert_eq!(
+        json["notes"],
+        serde_json::json!([format!(
+            "{}: indexed colour (a palette of at most 256 colours): each pixel read as its palette entry's colour; an image saved so has lost the shades its palette lacks, write it as RGB",
+            indexed.display()
+        )])
+    );
+    // An RGB PNG has no such note.
+    let (_, json) = compare_json(&[s(&rgb), s(&rgb)]);
+    assert_eq!(json["notes"], serde_json::json!([]));
+}

@@ -2,7 +2,8 @@
 //!
 //! The format is told by the file's first bytes (the extension only for TGA, which has no
 //! signature). What each converts:
-//! - PNG, PPM / PGM / PBM (ASCII or binary), BMP, TGA, JPEG at 8 bits: as stored;
+//! - PNG, PPM / PGM / PBM (ASCII or binary), BMP, TGA, JPEG at 8 bits: as stored; a PNG of
+//!   indexed colour as its palette's colours, noted;
 //! - 16-bit PNG or PPM / PGM: each value `v` to `round(255 v / 65535)`;
 //! - grey (PGM, grey PNG, ...): the grey level in R, G and B;
 //! - alpha: dropped, the colour compared as stored (not composited); the fully transparent
@@ -28,6 +29,9 @@ pub const ALLOWED: &str = "PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPE
 /// saved at quality 90 differs from it by up to 80 levels (p99 43 at quality 75, 35 at 95),
 /// along outlines and where colours change.
 pub const JPEG_NOTE: &str = "JPEG is lossy: its compression alone changes pixels, by tens of levels along outlines and where colours change; write a PNG to compare level by level";
+
+/// The note on a PNG of indexed colour.
+pub const PALETTE_NOTE: &str = "indexed colour (a palette of at most 256 colours): each pixel read as its palette entry's colour; an image saved so has lost the shades its palette lacks, write it as RGB";
 
 /// The note on a JPEG file that does not end with the end-of-image marker: its decoder
 /// draws the missing part of the image in grey without an error.
@@ -280,6 +284,11 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
         (_, e) => format!("cannot decode the {name} image: {e}"),
     })?;
     let mut notes = Vec::new();
+    // IHDR's colour type, the 26th byte of a PNG file: 3 is indexed colour, which the
+    // decoder expands to its palette's colours.
+    if format == ImageFormat::Png && bytes.get(25) == Some(&3) {
+        notes.push(PALETTE_NOTE.into());
+    }
     if format == ImageFormat::Jpeg {
         notes.push(JPEG_NOTE.into());
         if !bytes.ends_with(&[0xFF, 0xD9]) {
