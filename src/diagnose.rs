@@ -27,9 +27,9 @@
 //! [`crate::edges`] looks at), so an image sampled at other points of each pixel (another
 //! seed, sample count or sample position) matches. A mistake makes no visible difference
 //! on a scene when its own render matches the oracle so; when its render still leaves fewer
-//! pixels beyond the tolerance than the oracle's (an image sampled at each pixel's corner
-//! against a centre-sampled oracle), it is named apart, as what the image follows within
-//! sampling.
+//! pixels beyond the tolerance than the oracle's and explains at least half of them (an
+//! image sampled at each pixel's corner against a centre-sampled oracle), it is named
+//! apart, as what the image follows within sampling.
 //!
 //! On a large image the pixels judged are a regular grid of every `stride`-th pixel of
 //! every `stride`-th row, at most [`Options::max_pixels`] of them: a mistake shows on a
@@ -221,8 +221,10 @@ pub struct Diagnosis {
     /// image no closer: nothing tells them from a correct image here.
     pub not_visible: Vec<&'static str>,
     /// The mistakes within sampling of the oracle whose render leaves fewer pixels beyond
-    /// the tolerance than the oracle's, best first: what the image follows within
-    /// sampling, such as SIMRenderer's sample position.
+    /// the tolerance than the oracle's and explains at least half of the oracle's (an
+    /// image with gamma applied, a grey or a JPEG image is a few pixels nearer some of
+    /// them, by chance), best first: what the image follows within sampling, such as
+    /// SIMRenderer's sample position.
     pub within_sampling: Vec<Candidate>,
     /// The mistakes that do not apply (a convention the oracle already follows).
     pub not_applicable: Vec<&'static str>,
@@ -504,6 +506,12 @@ fn fixed_region(
         }
     }
     region
+}
+
+/// Whether a mistake fixing `fixes` explains at least half of the `beyond` judged pixels
+/// the image leaves beyond the tolerance against the oracle.
+fn explains_half(fixes: Option<&Region>, beyond: usize) -> bool {
+    2 * fixes.map_or(0, |r| r.pixels) >= beyond
 }
 
 /// The sentences the gains say: each term off its oracle's value, and a shadow filter
@@ -837,7 +845,9 @@ impl<'s> Oracle<'s> {
             };
             if visible {
                 ranking.push(candidate);
-            } else if candidate.score.beyond < oracle_score.beyond {
+            } else if candidate.score.beyond < oracle_score.beyond
+                && explains_half(candidate.fixes.as_ref(), oracle_score.beyond)
+            {
                 within_sampling.push(candidate);
             } else {
                 not_visible.push(m.name);
@@ -871,8 +881,7 @@ impl<'s> Oracle<'s> {
         diagnosis.verdict = if within_sampling_of_oracle {
             Verdict::NoMistakeFound
         } else if let Some(best) = diagnosis.top(1).next() {
-            let explained = best.fixes.as_ref().map_or(0, |r| r.pixels);
-            if 2 * explained >= diagnosis.oracle.beyond {
+            if explains_half(best.fixes.as_ref(), diagnosis.oracle.beyond) {
                 Verdict::MistakeFound
             } else {
                 Verdict::PartlyExplained

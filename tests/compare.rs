@@ -160,6 +160,33 @@ fn every_format_reads_as_the_png_it_stands_for() {
 }
 
 #[test]
+fn a_jpeg_of_the_oracle_is_said_to_differ_by_tens_of_levels() {
+    // The oracle's own image saved as a JPEG at quality 90 (what a lab's ImageIO.write
+    // does by default is near): the compression alone moves pixels by tens of levels along
+    // the outlines, and the note says so.
+    let dir = temp_dir("compare-jpeg");
+    let oracle = repo("tests/fixtures/compare/oracle.png");
+    let rgb = image::open(&oracle).unwrap().to_rgb8();
+    let jpeg = dir.join("mine.jpg");
+    let mut bytes = Vec::new();
+    image::codecs::jpeg::JpegEncoder::new_with_quality(&mut bytes, 90)
+        .encode(rgb.as_raw(), rgb.width(), rgb.height(), image::ExtendedColorType::Rgb8)
+        .unwrap();
+    fs::write(&jpeg, bytes).unwrap();
+    let (code, json) = compare_json(&[s(&jpeg), s(&oracle)]);
+    assert_eq!(code, 1);
+    let max = json["metrics"]["max"].as_u64().unwrap();
+    assert!(max >= 20, "{json}");
+    assert_eq!(
+        json["notes"][0],
+        format!(
+            "{}: JPEG is lossy: its compression alone changes pixels, by tens of levels along outlines and where colours change; write a PNG to compare level by level",
+            jpeg.display()
+        )
+    );
+}
+
+#[test]
 fn grey_translucent_and_scaled_inputs_say_how_they_were_read() {
     let dir = temp_dir("compare-notes");
     let pgm = dir.join("grey.pgm");
@@ -210,10 +237,26 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
     assert_eq!(
         err,
         format!(
-            "lumiere: error: the images differ in size: {} is 2 x 1, {} is 1 x 2\n",
+            "lumiere: error: the images differ in size: {} is 2 x 1, {} is 1 x 2; render the oracle's image at your image's size: `lumiere render SCENE -o oracle.png --width 2 --height 1`\n",
             a.display(),
             b.display()
         )
+    );
+    // The scene named: --scene's, else the one a course figure's provenance names.
+    let figure = repo("figures/lighting/03-ambient-directional.png");
+    let (code, _, err) = compare(&[s(&a), s(&figure)]);
+    assert_eq!(code, 2);
+    assert!(
+        err.ends_with(
+            "is 800 x 600; render the oracle's image at your image's size: `lumiere render scenes/figures/lighting/03-ambient-directional.toml -o oracle.png --width 2 --height 1`\n"
+        ),
+        "{err}"
+    );
+    let (code, _, err) = compare(&[s(&a), s(&b), "--scene", "scenes/reference.toml"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.ends_with("`lumiere render scenes/reference.toml -o oracle.png --width 2 --height 1`\n"),
+        "{err}"
     );
     let text = dir.join("notes.txt");
     fs::write(&text, "not an image").unwrap();
@@ -649,10 +692,43 @@ fn text_output_and_heat_maps() {
         out.contains("lumiere probe SCENE.toml --pixel 0,1 --width 2 --height 2"),
         "{out}"
     );
+    // A failed comparison says what to run next.
+    let next = format!(
+        "next               `lumiere diagnose SCENE.toml {a}` names what is most likely wrong; each probe line below prints the oracle's ray tree at a pixel, to hold against your code's"
+    );
+    assert!(out.lines().any(|l| l == next), "{out}");
     assert_eq!(
         err,
         "lumiere: error: 3 of 4 pixels (75.0000 %) differ by more than 0 levels; allowed: 0 % (--max-fraction 0)\n"
     );
+    // With --scene and the oracle's settings, the diagnose line takes them; without worst
+    // pixels listed, it stands alone.
+    let scene = repo("scenes/reference.toml");
+    let srgb = repo("tests/fixtures/compare/srgb.png");
+    let oracle = repo("tests/fixtures/compare/oracle.png");
+    let (code, out, _) = compare(&[
+        s(&srgb),
+        s(&oracle),
+        "--scene",
+        s(&scene),
+        "--spp",
+        "1",
+        "--seed",
+        "7",
+        "--worst",
+        "0",
+    ]);
+    assert_eq!(code, 1);
+    let next = format!(
+        "next               `lumiere diagnose {} {} --spp 1 --seed 7` names what is most likely wrong",
+        scene.display(),
+        srgb.display()
+    );
+    assert!(out.lines().any(|l| l == next), "{out}");
+    // A comparison that passes has no next step.
+    let (code, out, _) = compare(&[&a, &a]);
+    assert_eq!(code, 0);
+    assert!(!out.contains("next "), "{out}");
     // Heat-maps: black where equal; FLIP's magma black at 0 too.
     let heat = image::open(&heat).unwrap().to_rgb8();
     assert_eq!(heat.get_pixel(0, 0).0, [0, 0, 0]);
@@ -913,4 +989,144 @@ proptest! {
             prop_assert_eq!(p.rgb.len(), 3 * p.width as usize * p.height as usize);
         }
     }
+}
+
+#[test]
+fn a_scene_given_as_an_image_or_an_image_as_the_scene_is_named_so() {
+    // A student's first try: the scene file where the oracle's image goes, and an image
+    // given to --scene. Each is named for what it is, with the order the command takes.
+    let oracle = repo("tests/fixtures/compare/oracle.png");
+    for scene in [
+        repo("scenes/reference.toml"),
+        repo("tests/fixtures/simrenderer/reference.txt"),
+    ] {
+        let (code, out, err) = compare(&[s(&oracle), s(&scene)]);
+        assert_eq!((code, out.as_str()), (2, ""));
+        assert_eq!(
+            err,
+            format!(
+                "lumiere: error: {0}: is a scene file, not an image: compare takes two images, yours then the oracle's (`lumiere compare YOURS ORACLE`); `lumiere render {0} -o oracle.png --width W --height H` renders the oracle's at your image's size\n",
+                scene.display()
+            )
+        );
+    }
+    let (code, out, err) = compare(&[s(&oracle), s(&oracle), "--scene", s(&oracle)]);
+    assert_eq!((code, out.as_str()), (2, ""));
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: error: {}: is a PNG image, not a scene file (TOML or SIMRenderer's format): --scene names the scene the images render (`lumiere compare YOURS ORACLE --scene SCENE`)\n",
+            oracle.display()
+        )
+    );
+}
+
+#[test]
+fn a_file_cut_short_is_named_so() {
+    // The oracle's image written by a program that stopped half-way: each format that
+    // reports the missing bytes is refused as cut short, naming its size; a JPEG, whose
+    // decoder draws the missing rows grey without an error, is compared with a note saying
+    // the file lacks its end marker.
+    let dir = temp_dir("compare-cut");
+    let oracle = repo("tests/fixtures/compare/oracle.png");
+    let image = image::open(&oracle).unwrap();
+    for (format, extension) in [
+        (image::ImageFormat::Png, "png"),
+        (image::ImageFormat::Bmp, "bmp"),
+        (image::ImageFormat::Tga, "tga"),
+        (image::ImageFormat::Pnm, "ppm"),
+    ] {
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image.write_to(&mut bytes, format).unwrap();
+        let bytes = bytes.into_inner();
+        let cut = dir.join(format!("cut.{extension}"));
+        fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
+        let (code, out, err) = compare(&[s(&cut), s(&oracle)]);
+        assert_eq!((code, out.as_str()), (2, ""), "{extension}");
+        assert_eq!(
+            err,
+            format!(
+                "lumiere: error: {}: cannot decode the {} image: the file ends before its 96 x 72 pixels do, after {} bytes: it was cut short, as by a write that stopped or a copy not finished; write it again\n",
+                cut.display(),
+                if extension == "ppm" {
+                    "PPM".to_string()
+                } else {
+                    extension.to_uppercase()
+                },
+                bytes.len() / 2
+            )
+        );
+    }
+    let mut jpeg = Vec::new();
+    image::codecs::jpeg::JpegEncoder::new_with_quality(&mut jpeg, 95)
+        .encode(image.to_rgb8().as_raw(), 96, 72, image::ExtendedColorType::Rgb8)
+        .unwrap();
+    let (whole, cut) = (dir.join("whole.jpg"), dir.join("cut.jpg"));
+    fs::write(&whole, &jpeg).unwrap();
+    fs::write(&cut, &jpeg[..jpeg.len() / 2]).unwrap();
+    let marker = "the file does not end with JPEG's end-of-image marker (FF D9): it looks cut short, as by a write that stopped, and the rows it lacks are decoded grey; write it again";
+    let (_, json) = compare_json(&[s(&cut), s(&oracle)]);
+    assert_eq!(json["notes"][1], format!("{}: {marker}", cut.display()), "{json}");
+    let (_, json) = compare_json(&[s(&whole), s(&oracle)]);
+    assert_eq!(json["notes"].as_array().unwrap().len(), 1, "{json}");
+}
+
+/// A PNG of `width` x 1 pixels of indexed colour (8 bits a pixel) with `palette` (RGB
+/// triples) and the pixels' `indices`, written chunk by chunk (its pixels in a stored,
+/// uncompressed deflate block).
+fn indexed_png(palette: &[[u8; 3]], indices: &[u8]) -> Vec<u8> {
+    let chunk = |kind: &[u8], data: &[u8]| {
+        let mut c = (data.len() as u32).to_be_bytes().to_vec();
+        let body = [kind, data].concat();
+        c.extend(&body);
+        c.extend(crc32fast::hash(&body).to_be_bytes());
+        c
+    };
+    let mut ihdr = (indices.len() as u32).to_be_bytes().to_vec();
+    ihdr.extend(1u32.to_be_bytes());
+    ihdr.extend([8, 3, 0, 0, 0]);
+    let row = [&[0u8][..], indices].concat();
+    let (mut a, mut b) = (1u32, 0u32);
+    for &x in &row {
+        a = (a + x as u32) % 65521;
+        b = (b + a) % 65521;
+    }
+    let len = row.len() as u16;
+    let mut zlib = vec![0x78, 0x01, 0x01];
+    zlib.extend(len.to_le_bytes());
+    zlib.extend((!len).to_le_bytes());
+    zlib.extend(&row);
+    zlib.extend(((b << 16) | a).to_be_bytes());
+    [
+        b"\x89PNG\r\n\x1a\n".to_vec(),
+        chunk(b"IHDR", &ihdr),
+        chunk(b"PLTE", palette.concat().as_slice()),
+        chunk(b"IDAT", &zlib),
+        chunk(b"IEND", &[]),
+    ]
+    .concat()
+}
+
+#[test]
+fn an_indexed_png_is_read_as_its_palette_and_noted() {
+    // An image saved with a palette (GIMP's "indexed", a converter's 256 colours): read
+    // as its palette's colours, with a note, as every conversion is.
+    let dir = temp_dir("compare-indexed");
+    let indexed = dir.join("indexed.png");
+    fs::write(&indexed, indexed_png(&[[10, 20, 30], [200, 100, 0]], &[1, 0, 1])).unwrap();
+    let rgb = dir.join("rgb.png");
+    fs::write(&rgb, encode_png(3, 1, &[200, 100, 0, 10, 20, 30, 200, 100, 0]).unwrap()).unwrap();
+    let (code, json) = compare_json(&[s(&indexed), s(&rgb)]);
+    assert_eq!(code, 0, "{json}");
+    assert_eq!(json["metrics"]["max"], 0);
+    assert_eq!(
+        json["notes"],
+        serde_json::json!([format!(
+            "{}: indexed colour (a palette of at most 256 colours): each pixel read as its palette entry's colour; an image saved so has lost the shades its palette lacks, write it as RGB",
+            indexed.display()
+        )])
+    );
+    // An RGB PNG has no such note.
+    let (_, json) = compare_json(&[s(&rgb), s(&rgb)]);
+    assert_eq!(json["notes"], serde_json::json!([]));
 }

@@ -6,7 +6,7 @@
 use super::{CliError, Overrides, check_output_path, load_scene, resolved};
 use clap::Args;
 use lumiere::compare::flip::flip_heat_map;
-use lumiere::compare::read::{Image, read_image};
+use lumiere::compare::read::{self, Image, read_image};
 use lumiere::compare::{Judged, Masks, Report, Rule, Stats, compare, heat_map, undrawn_from_oracle};
 use lumiere::edges::edge_mask;
 use lumiere::figures::provenance::text_chunks;
@@ -102,9 +102,43 @@ struct JsonWorst<'a> {
     probe: String,
 }
 
-/// Reads an image; errors are bad input.
+/// Reads an image; errors are bad input, and a scene file given as an image is named so.
 fn read(path: &Path) -> Result<Image, CliError> {
-    read_image(path).map_err(CliError::BadInput)
+    read_image(path).map_err(|e| {
+        if looks_like_scene(path) {
+            CliError::BadInput(format!(
+                "{}: is a scene file, not an image: compare takes two images, yours then the oracle's (`lumiere compare YOURS ORACLE`); `lumiere render {} -o oracle.png --width W --height H` renders the oracle's at your image's size",
+                path.display(),
+                path.display()
+            ))
+        } else {
+            CliError::BadInput(e)
+        }
+    })
+}
+
+/// Whether a file that is not an image is a scene file: a file of some bytes (an empty one
+/// reads as a SIMRenderer scene of defaults) named `.toml`, or read as a scene (a
+/// SIMRenderer scene's `.txt` names text of any kind).
+pub(super) fn looks_like_scene(path: &Path) -> bool {
+    let toml = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    let written = std::fs::metadata(path).is_ok_and(|m| m.is_file() && m.len() > 0);
+    written && (toml || lumiere::scene::load(path).is_ok())
+}
+
+/// The error of a scene that does not load, `error`, or when the file is an image (its first
+/// bytes say so), that it is one, with `order`: how the command takes its arguments.
+pub(super) fn scene_error(path: &Path, error: CliError, order: &str) -> CliError {
+    match (&error, read::image_signature(path)) {
+        (CliError::BadInput(_), Some(format)) => CliError::BadInput(format!(
+            "{}: is a {format} image, not a scene file (TOML or SIMRenderer's format): {order}",
+            path.display()
+        )),
+        _ => error,
+    }
 }
 
 /// The pixels fully transparent in either image (never drawn), left out of the comparison;
@@ -228,8 +262,25 @@ fn warn_if_swapped(args: &CompareArgs) {
 
 /// The `lumiere probe` command line of pixel `(x, y)` of `scene` with the settings given.
 fn probe_line(args: &CompareArgs, scene: &str, width: u32, height: u32, x: u32, y: u32) -> String {
-    let mut line = format!("lumiere probe {scene} --pixel {x},{y} --width {width} --height {height}");
-    let o = &args.overrides;
+    format!(
+        "lumiere probe {scene} --pixel {x},{y} --width {width} --height {height}{}",
+        settings(&args.overrides)
+    )
+}
+
+/// The `lumiere diagnose` command line of the first image against `scene` with the
+/// settings given: what a failed comparison runs next.
+fn diagnose_line(args: &CompareArgs, scene: &str) -> String {
+    format!(
+        "lumiere diagnose {scene} {}{}",
+        args.a.display(),
+        settings(&args.overrides)
+    )
+}
+
+/// The scene settings given (but the size), as options: ` --spp 1 --seed 7`.
+pub(super) fn settings(o: &Overrides) -> String {
+    let mut line = String::new();
     let mut add = |name: &str, value: Option<String>| {
         if let Some(v) = value {
             line.push_str(&format!(" --{name} {v}"));
@@ -267,7 +318,13 @@ fn edges_of(args: &CompareArgs, scene: &Path, width: u32, height: u32) -> Result
         height: Some(height),
         ..args.overrides.clone()
     };
-    let scene = load_scene(scene, &overrides)?;
+    let scene = load_scene(scene, &overrides).map_err(|e| {
+        scene_error(
+            scene,
+            e,
+            "--scene names the scene the images render (`lumiere compare YOURS ORACLE --scene SCENE`)",
+        )
+    })?;
     let world = World::with_accel(&scene, args.overrides.accel);
     Ok(edge_mask(&world))
 }
@@ -299,14 +356,21 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let b = read(&args.b)?;
     warn_if_swapped(args);
     if (a.width, a.height) != (b.width, b.height) {
+        let scene = match &args.scene {
+            Some(scene) => Some(scene.display().to_string()),
+            None => figure_scene(&args.b),
+        };
         return Err(CliError::BadInput(format!(
-            "the images differ in size: {} is {} x {}, {} is {} x {}",
+            "the images differ in size: {} is {} x {}, {} is {} x {}; render the oracle's image at your image's size: `lumiere render {} -o oracle.png --width {} --height {}`",
             args.a.display(),
             a.width,
             a.height,
             args.b.display(),
             b.width,
-            b.height
+            b.height,
+            scene.as_deref().unwrap_or("SCENE"),
+            a.width,
+            a.height
         )));
     }
     let (w, h) = (a.width, a.height);
@@ -482,6 +546,17 @@ fn print_text(args: &CompareArgs, scene: &str, a: &Image, b: &Image, r: &Report,
         r.rule.tolerance
     );
     println!("verdict            {}", if r.pass { "pass" } else { "fail" });
+    if !r.pass {
+        let probes = if r.worst.is_empty() {
+            ""
+        } else {
+            "; each probe line below prints the oracle's ray tree at a pixel, to hold against your code's"
+        };
+        println!(
+            "next               `{}` names what is most likely wrong{probes}",
+            diagnose_line(args, scene)
+        );
+    }
     if !r.worst.is_empty() {
         let which = if r.judged == Judged::OffEdges { " off edges" } else { "" };
         println!("worst pixels{which} (yours, oracle, largest channel difference, FLIP):");

@@ -8,7 +8,7 @@ use super::{CliError, Overrides, load_scene};
 use clap::Args;
 use lumiere::compare::read::{Image, read_image};
 use lumiere::diagnose::mistakes::{Change, catalogue};
-use lumiere::diagnose::{Diagnosis, Options, Oracle, Score, report};
+use lumiere::diagnose::{Diagnosis, Options, Oracle, Score, Verdict, report};
 use lumiere::film::WriteError;
 use lumiere::limits::MAX_THREADS;
 use lumiere::scene::{self, Scene};
@@ -74,6 +74,9 @@ pub struct DiagnoseArgs {
     pub overrides: Overrides,
 }
 
+/// How `diagnose` takes its arguments, for a scene and an image given the wrong way round.
+const ORDER: &str = "the scene goes first, then the images (`lumiere diagnose SCENE IMAGE...`)";
+
 pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
     if args.list {
         print!("{}", catalogue_listing(args.json)?);
@@ -127,7 +130,8 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
             )));
         }
     }
-    let (scene, scene_size) = load_at_size(scene_path, &args.overrides, (width, height))?;
+    let (scene, scene_size) = load_at_size(scene_path, &args.overrides, (width, height))
+        .map_err(|e| super::compare::scene_error(scene_path, e, ORDER))?;
     let options = Options {
         tolerance: args.tolerance,
         max_fraction: args.max_fraction,
@@ -168,6 +172,9 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
                 println!("note: {note}");
             }
             print!("{}", text(d, &scene_name, &image_name, args.top));
+            if let Some(next) = next_step(d, args, &scene_name, &image_name) {
+                println!("next               {next}");
+            }
         }
     }
     Ok(())
@@ -250,7 +257,13 @@ fn catalogue_listing(json: bool) -> Result<String, CliError> {
 fn read_images(paths: &[PathBuf]) -> Result<Vec<Image>, CliError> {
     let mut images: Vec<Image> = Vec::with_capacity(paths.len());
     for path in paths {
-        let image = read_image(path).map_err(CliError::BadInput)?;
+        let image = read_image(path).map_err(|e| {
+            if super::compare::looks_like_scene(path) {
+                CliError::BadInput(format!("{}: is a scene file, not an image: {ORDER}", path.display()))
+            } else {
+                CliError::BadInput(e)
+            }
+        })?;
         for note in &image.notes {
             eprintln!("lumiere: {}: {note}", path.display());
         }
@@ -344,6 +357,21 @@ fn check_reports_spare_inputs(
         }
     }
     Ok(())
+}
+
+/// What to run next when the catalogue does not explain the image (no mistake of it, or
+/// one explaining less than half): render the oracle's image and compare, whose worst
+/// pixels off edges come with their probe lines. `None` for the other verdicts.
+fn next_step(d: &Diagnosis, args: &DiagnoseArgs, scene: &str, image: &str) -> Option<String> {
+    if !matches!(d.verdict, Verdict::Unexplained | Verdict::PartlyExplained) {
+        return None;
+    }
+    let settings = super::compare::settings(&args.overrides);
+    let srgb = if args.srgb { " --srgb" } else { "" };
+    Some(format!(
+        "`lumiere render {scene} -o oracle.png --width {} --height {}{settings}{srgb}`, then `lumiere compare {image} oracle.png --scene {scene}{settings}` lists the worst pixels off edges, each with the probe line of the oracle's ray tree there",
+        d.width, d.height
+    ))
 }
 
 /// `B of J pixels beyond T levels (F %), RMS R`.

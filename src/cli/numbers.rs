@@ -72,9 +72,15 @@ pub fn figure_scale(text: &str) -> Result<f64, String> {
     real(text, |x| rules::positive(x, limits::MAX_FIGURE_SCALE))
 }
 
-/// A fraction in [0, 1].
+/// A fraction in [0, 1]. A percentage (`0.5%`) is refused with the fraction it stands for.
 pub fn fraction(text: &str) -> Result<f64, String> {
-    real(text, |x| rules::number_in(x, 0.0, 1.0))
+    real(text, |x| rules::number_in(x, 0.0, 1.0)).map_err(|m| {
+        let percent = text.trim().strip_suffix('%').and_then(|p| p.trim().parse::<f64>().ok());
+        match percent {
+            Some(p) if p.is_finite() => format!("{m}: a fraction, not a percentage ({p} % is {})", p / 100.0),
+            _ => m,
+        }
+    })
 }
 
 #[cfg(test)]
@@ -128,6 +134,16 @@ mod tests {
                 Err(format!("must be a finite number in [0, 1], got {bad}"))
             );
         }
+        // A percentage, as the text prints fractions, is named with its fraction.
+        assert_eq!(
+            fraction("0.5%"),
+            Err("must be a finite number in [0, 1], got 0.5%: a fraction, not a percentage (0.5 % is 0.005)".into())
+        );
+        assert_eq!(
+            fraction(" 1 %"),
+            Err("must be a finite number in [0, 1], got  1 %: a fraction, not a percentage (1 % is 0.01)".into())
+        );
+        assert_eq!(fraction("%"), Err("must be a finite number in [0, 1], got %".into()));
     }
 
     /// A range a help states: its bounds as written and whether the low one is excluded

@@ -2,7 +2,8 @@
 //!
 //! The format is told by the file's first bytes (the extension only for TGA, which has no
 //! signature). What each converts:
-//! - PNG, PPM / PGM / PBM (ASCII or binary), BMP, TGA, JPEG at 8 bits: as stored;
+//! - PNG, PPM / PGM / PBM (ASCII or binary), BMP, TGA, JPEG at 8 bits: as stored; a PNG of
+//!   indexed colour as its palette's colours, noted;
 //! - 16-bit PNG or PPM / PGM: each value `v` to `round(255 v / 65535)`;
 //! - grey (PGM, grey PNG, ...): the grey level in R, G and B;
 //! - alpha: dropped, the colour compared as stored (not composited); the fully transparent
@@ -22,6 +23,27 @@ use std::path::Path;
 
 /// What `compare` reads, for messages.
 pub const ALLOWED: &str = "PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA";
+
+/// The note on a JPEG image. Its compression stores colour at half resolution and rounds
+/// each 8 x 8 block's frequencies: the oracle's image of the reference scene at 160 x 120
+/// saved at quality 90 differs from it by up to 80 levels (p99 43 at quality 75, 35 at 95),
+/// along outlines and where colours change.
+pub const JPEG_NOTE: &str = "JPEG is lossy: its compression alone changes pixels, by tens of levels along outlines and where colours change; write a PNG to compare level by level";
+
+/// The note on a PNG of indexed colour.
+pub const PALETTE_NOTE: &str = "indexed colour (a palette of at most 256 colours): each pixel read as its palette entry's colour; an image saved so has lost the shades its palette lacks, write it as RGB";
+
+/// The note on a JPEG file that does not end with the end-of-image marker: its decoder
+/// draws the missing part of the image in grey without an error.
+pub const JPEG_CUT_NOTE: &str = "the file does not end with JPEG's end-of-image marker (FF D9): it looks cut short, as by a write that stopped, and the rows it lacks are decoded grey; write it again";
+
+/// The refusal of an image whose file ends before its pixels do: a write that stopped.
+fn cut_short(format: &str, size: Option<(u64, u64)>, bytes: usize) -> String {
+    let size = size.map_or(String::new(), |(w, h)| format!(" {w} x {h}"));
+    format!(
+        "cannot decode the {format} image: the file ends before its{size} pixels do, after {bytes} bytes: it was cut short, as by a write that stopped or a copy not finished; write it again"
+    )
+}
 
 /// An image read for comparison.
 #[derive(Clone, Debug, PartialEq)]
@@ -167,6 +189,19 @@ pub fn format_name(format: ImageFormat) -> Option<&'static str> {
     }
 }
 
+/// The image format a file's first bytes name (PFM, or one [`format_name`] names), for a
+/// file given where a scene is expected; `None` when they name none, or the file cannot be
+/// read. TGA, which has no signature, is not told.
+pub fn image_signature(path: &Path) -> Option<&'static str> {
+    use std::io::Read;
+    let mut head = Vec::with_capacity(64);
+    std::fs::File::open(path).ok()?.take(64).read_to_end(&mut head).ok()?;
+    if looks_like_pfm(&head) {
+        return Some("PFM");
+    }
+    image::guess_format(&head).ok().and_then(format_name)
+}
+
 /// Why a file that no format's signature starts is not read: its extension names a
 /// format compare reads and its bytes are not that format's, or neither names one.
 fn unrecognised(extension: &str) -> String {
@@ -241,13 +276,24 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
     if let Some(refusal) = size.and_then(|(w, h)| too_many_pixels(name, w, h)) {
         return Err(refusal);
     }
-    let img = image::load_from_memory_with_format(bytes, format).map_err(|e| match size {
-        Some((w, h)) if w == 0 || h == 0 => no_pixels(name, w, h),
-        _ => format!("cannot decode the {name} image: {e}"),
+    let img = image::load_from_memory_with_format(bytes, format).map_err(|e| match (size, e) {
+        (Some((w, h)), _) if w == 0 || h == 0 => no_pixels(name, w, h),
+        (size, image::ImageError::IoError(e)) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
+            cut_short(name, size, bytes.len())
+        }
+        (_, e) => format!("cannot decode the {name} image: {e}"),
     })?;
     let mut notes = Vec::new();
+    // IHDR's colour type, the 26th byte of a PNG file: 3 is indexed colour, which the
+    // decoder expands to its palette's colours.
+    if format == ImageFormat::Png && bytes.get(25) == Some(&3) {
+        notes.push(PALETTE_NOTE.into());
+    }
     if format == ImageFormat::Jpeg {
-        notes.push("JPEG is lossy: its compression alone changes pixels by a few levels".into());
+        notes.push(JPEG_NOTE.into());
+        if !bytes.ends_with(&[0xFF, 0xD9]) {
+            notes.push(JPEG_CUT_NOTE.into());
+        }
     }
     let (width, height) = (img.width(), img.height());
     let transparent = fully_transparent(&img);
