@@ -555,8 +555,14 @@ fn what_simrenderer_accepts_is_read_as_it_reads_it() {
         ]
     );
     // Nothing but defaults: SIMRenderer's camera at the origin looking along +z with y up,
-    // 500 x 500, one sample, depth 1, Blinn.
-    let s = parse("").unwrap().scene;
+    // 500 x 500, one sample, depth 1, Blinn. An empty file (or one of comments) is such a
+    // scene, and warned: a wrong or unsaved file renders black.
+    let p = parse("").unwrap();
+    let empty = "lab.txt:1:1: scene: the file holds no block (camera, viewport, raytracer, material, primitive, model or light): an empty scene, which SIMRenderer renders black, 500 x 500";
+    assert_eq!(warnings(&p), [empty]);
+    assert_eq!(warnings(&parse("# my scene\n\n").unwrap()), [empty]);
+    assert_eq!(warnings(&parse("raytracer\nend").unwrap()), Vec::<String>::new());
+    let s = p.scene;
     assert_eq!(
         (s.camera.position, s.camera.look_at, s.camera.up, s.camera.vfov_deg),
         (DVec3::ZERO, DVec3::Z, DVec3::Y, 60.0)
@@ -589,7 +595,8 @@ fn what_simrenderer_accepts_is_read_as_it_reads_it() {
     assert_eq!(
         warnings(&p),
         [
-            "lab.txt:1:1: scene./*: this block comment is never closed, so lines 2 to 5 are read as a comment, as SIMRenderer reads them: only a line whose first word is */ closes it, not the */ later on this line"
+            "lab.txt:1:1: scene./*: this block comment is never closed, so lines 2 to 5 are read as a comment, as SIMRenderer reads them: only a line whose first word is */ closes it, not the */ later on this line",
+            empty,
         ]
     );
     let p = parse("camera\nend\n  /*\nprimitive\n").unwrap();

@@ -328,10 +328,12 @@ fn assert_placed(message: &str, text: &str) -> Result<(), TestCaseError> {
         return Err(TestCaseError::fail(message.to_string()));
     };
     let lines = lex::split_lines(text);
+    // An empty text's line 1 is empty.
     let shown = line
         .checked_sub(1)
         .and_then(|i| lines.get(i))
-        .map(|l| l.chars().count());
+        .map(|l| l.chars().count())
+        .or((line == 1 && lines.is_empty()).then_some(0));
     prop_assert!(shown.is_some_and(|n| column >= 1 && column <= n + 1), "{}", message);
     let rest = parts.next().unwrap_or_default();
     prop_assert!(

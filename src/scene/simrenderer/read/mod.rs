@@ -79,6 +79,15 @@ pub fn parse(text: &str, file: &str, options: &Options) -> Result<Parsed, SceneE
         objects: 0,
     };
     let raw = reader.scene_body()?;
+    if raw.is_empty() {
+        let start = At {
+            line: 1,
+            column: 1,
+            field: "scene".to_string(),
+        };
+        let m = "the file holds no block (camera, viewport, raytracer, material, primitive, model or light): an empty scene, which SIMRenderer renders black, 500 x 500".to_string();
+        reader.warn(&start, m);
+    }
     reader.build(raw, options.conventions)
 }
 
@@ -99,6 +108,18 @@ struct Raw {
     materials: Vec<MaterialEntry>,
     shapes: Vec<ShapeEntry>,
     lights: Vec<(At, Light)>,
+}
+
+impl Raw {
+    /// No block at all: an empty file, or one of comments and blank lines.
+    fn is_empty(&self) -> bool {
+        self.camera.is_none()
+            && self.viewport.is_none()
+            && self.raytracer.is_none()
+            && self.materials.is_empty()
+            && self.shapes.is_empty()
+            && self.lights.is_empty()
+    }
 }
 
 /// One entry of a block: a keyword of the block (canonical) with its line, or a note.
