@@ -1252,3 +1252,60 @@ fn command_line_says_what_to_run_when_the_catalogue_does_not_explain_the_image()
     assert!(text.contains("verdict            mistake found\n"), "{text}");
     assert!(!text.contains("\nnext "), "{text}");
 }
+
+/// The files of `dir`, sorted by name.
+fn file_list(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn a_reused_report_folder_holds_only_what_the_report_references() {
+    // A report of three mistakes, then one of none in the same folder: the three mistakes'
+    // images go, the files the report does not write stay.
+    let dir = temp_dir("diagnose-reused-report");
+    let scene = centred("scenes/reference.toml");
+    let phong = catalogue().into_iter().find(|m| m.name == "phong-for-blinn").unwrap();
+    let (mistaken, correct) = (dir.join("phong.png"), dir.join("correct.png"));
+    std::fs::write(
+        &mistaken,
+        lumiere::film::encode_png(W, H, &render_mistake(&scene, &phong).unwrap()).unwrap(),
+    )
+    .unwrap();
+    std::fs::write(&correct, lumiere::film::encode_png(W, H, &rendered(&scene)).unwrap()).unwrap();
+    let report = dir.join("report");
+    std::fs::create_dir_all(&report).unwrap();
+    let kept = ["mistake-01.png", "mistake-9.txt", "notes.txt"];
+    for name in kept {
+        std::fs::write(report.join(name), "mine").unwrap();
+    }
+    let fixed = ["edges.png", "heat-oracle.png", "image.png", "index.html", "oracle.png"];
+    for (image, top, mistakes) in [
+        (
+            &mistaken,
+            "3",
+            &[
+                "heat-1.png",
+                "heat-2.png",
+                "heat-3.png",
+                "mistake-1.png",
+                "mistake-2.png",
+                "mistake-3.png",
+            ][..],
+        ),
+        (&mistaken, "1", &["heat-1.png", "mistake-1.png"][..]),
+        (&correct, "3", &[][..]),
+    ] {
+        let args = diagnose_reference_centred(image);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = lumiere(&[&args[..], &["--top", top, "--report", report.to_str().unwrap()]].concat());
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        let mut expected: Vec<&str> = [&fixed[..], mistakes, &kept[..]].concat();
+        expected.sort();
+        assert_eq!(file_list(&report), expected, "{} --top {top}", image.display());
+    }
+}

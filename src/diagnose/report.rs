@@ -3,7 +3,9 @@
 //! (`image.png`), the oracle (`oracle.png`), their difference (`heat-oracle.png`), the edge
 //! mask (`edges.png`) and for each of the top mistakes its render (`mistake-N.png`) and the
 //! image's difference from it (`heat-N.png`). Heat-maps are black where equal, white at
-//! 16 levels or more ([`crate::compare::heat_map`]).
+//! 16 levels or more ([`crate::compare::heat_map`]). A folder written before holds only
+//! what the last report references: the mistakes' images past its top are removed
+//! ([`is_mistake_image`]); no other file is touched.
 
 use super::{Candidate, Diagnosis};
 use crate::compare::heat_map;
@@ -28,8 +30,35 @@ pub fn file_names(top: usize) -> Vec<String> {
     names
 }
 
-/// Writes the report into `dir` (which must exist); returns the files written, each named
-/// in [`file_names`].
+/// Whether `name` is one of the per-mistake images a report writes, for some N:
+/// `mistake-N.png` or `heat-N.png`, N a positive integer written without leading zeros.
+pub fn is_mistake_image(name: &str) -> bool {
+    ["mistake-", "heat-"].iter().any(|prefix| {
+        name.strip_prefix(prefix)
+            .and_then(|rest| rest.strip_suffix(".png"))
+            .is_some_and(|n| !n.is_empty() && !n.starts_with('0') && n.bytes().all(|b| b.is_ascii_digit()))
+    })
+}
+
+/// Removes from `dir` the per-mistake images ([`is_mistake_image`]) that are not in
+/// `written`: those of an earlier report with more mistakes shown.
+fn remove_stale(dir: &Path, written: &[PathBuf]) -> std::io::Result<()> {
+    for entry in std::fs::read_dir(dir)? {
+        let entry = entry?;
+        let name = entry.file_name();
+        let stale = name.to_str().is_some_and(is_mistake_image)
+            && entry.file_type()?.is_file()
+            && !written.iter().any(|w| w.file_name() == Some(name.as_os_str()));
+        if stale {
+            std::fs::remove_file(entry.path())?;
+        }
+    }
+    Ok(())
+}
+
+/// Writes the report into `dir` (which must exist) and removes the per-mistake images an
+/// earlier report left there that this one does not reference; returns the files written,
+/// each named in [`file_names`].
 pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) -> std::io::Result<Vec<PathBuf>> {
     let (w, h) = (d.grid.width, d.grid.height);
     let mut written = Vec::new();
@@ -152,6 +181,7 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
     let path = dir.join("index.html");
     write_atomic(&path, html.as_bytes())?;
     written.push(path);
+    remove_stale(dir, &written)?;
     Ok(written)
 }
 
@@ -160,5 +190,29 @@ fn what_it_does(c: &Candidate) -> String {
     match &c.fitted {
         Some(fit) => format!("{}; fitted: {}", c.description, fit.words),
         None => c.description.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mistake_images_are_named_as_written() {
+        for name in ["mistake-1.png", "heat-3.png", "mistake-12.png"] {
+            assert!(is_mistake_image(name), "{name}");
+        }
+        for name in [
+            "heat-oracle.png",
+            "mistake-0.png",
+            "mistake-01.png",
+            "mistake-.png",
+            "mistake-1.jpg",
+            "mistake-1.png.bak",
+            "my-mistake-1.png",
+            "image.png",
+        ] {
+            assert!(!is_mistake_image(name), "{name}");
+        }
     }
 }
