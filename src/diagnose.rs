@@ -138,6 +138,9 @@ pub struct Region {
 pub struct Candidate {
     pub name: &'static str,
     pub description: &'static str,
+    /// What kind of change the mistake makes ([`Change::kind`]): `post-process` for one
+    /// applied to the finished image (gamma, a flip, red and blue exchanged).
+    pub kind: &'static str,
     /// For the mistake fitted to the image, the specular exponent, what the fit found.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fitted: Option<ExponentFit>,
@@ -212,6 +215,11 @@ pub struct Diagnosis {
     /// Sentences read from the gains; none when the image matches the oracle within
     /// sampling (a gain fitted to sampling differences alone says nothing of the shading).
     pub findings: Vec<String>,
+    /// Whether the text and the report print the findings: not when the first mistake
+    /// named is a post-process (`kind` `post-process`), since the gains fit the image as
+    /// written, before that post-process is undone (a flipped image's lit pixels face the
+    /// oracle's unlit ones).
+    pub findings_shown: bool,
     /// The visible mistakes, best first (fewest pixels beyond, then smallest RMS; ties in
     /// catalogue order), the fitted specular exponent before the first rendered mistake it is
     /// clearly closer than: fewer pixels beyond by more than sampling may leave, or at most
@@ -507,6 +515,9 @@ fn fixed_region(
     }
     region
 }
+
+/// The kind of the mistakes applied to the finished image ([`Change::kind`]).
+pub const POST_PROCESS: &str = "post-process";
 
 /// Whether a mistake fixing `fixes` explains at least half of the `beyond` judged pixels
 /// the image leaves beyond the tolerance against the oracle.
@@ -837,6 +848,7 @@ impl<'s> Oracle<'s> {
             let candidate = Candidate {
                 name: m.name,
                 description: m.description,
+                kind: m.change.kind(),
                 fitted,
                 score: score(&image_rgb, &rgb, judged, tol),
                 fixes: fixed_region(&image_rgb, &self.oracle_rgb, &rgb, judged, pixels, tol),
@@ -869,6 +881,7 @@ impl<'s> Oracle<'s> {
             beyond_sampling,
             verdict: Verdict::Unexplained,
             findings: Vec::new(),
+            findings_shown: true,
             gains,
             ranking,
             not_visible,
@@ -892,6 +905,8 @@ impl<'s> Oracle<'s> {
         if diagnosis.verdict != Verdict::NoMistakeFound {
             diagnosis.findings = findings(&diagnosis.gains);
         }
+        diagnosis.findings_shown =
+            !(diagnosis.verdict.names_mistakes() && diagnosis.top(1).next().is_some_and(|c| c.kind == POST_PROCESS));
         diagnosis
     }
 }
@@ -945,6 +960,7 @@ mod tests {
         Candidate {
             name,
             description: "",
+            kind: if fitted { "fitted" } else { "formula" },
             fitted: fitted.then(|| ExponentFit::new(2.0, &[20.0])),
             score: Score {
                 beyond,

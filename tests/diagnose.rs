@@ -332,6 +332,8 @@ fn command_line_text_json_report_and_errors() {
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(json["verdict"], "mistake_found");
     assert_eq!(json["top"][0], "phong-for-blinn");
+    assert_eq!(json["ranking"][0]["kind"], "formula");
+    assert_eq!(json["findings_shown"], true);
     assert_eq!(json["width"], W);
     assert!(json["ranking"][0]["fixes"]["pixels"].as_u64().unwrap() > 0);
 
@@ -648,6 +650,10 @@ fn flipped_and_channel_swapped_images_are_named() {
         assert_eq!(best.fixes.as_ref().unwrap().pixels, d.oracle.beyond, "{name}");
         // The post-process's render is the image itself on every pixel.
         assert_eq!(&best.rgb, student, "{name}");
+        // The gains fit the image as written: their findings are read, not shown.
+        assert_eq!(best.kind, "post-process", "{name}");
+        assert!(!d.findings.is_empty(), "{name}");
+        assert!(!d.findings_shown, "{name}");
     }
 
     // The command line says it so of a mirrored PNG.
@@ -664,6 +670,17 @@ fn flipped_and_channel_swapped_images_are_named() {
         text.contains("\n1. image-flipped-horizontally: the image mirrored left-right (column 0 at the right)"),
         "{text}"
     );
+    // No finding line between the gains and the verdict; JSON keeps the findings and says
+    // they are not shown.
+    let lines: Vec<&str> = text.lines().collect();
+    let gains = lines.iter().position(|l| l.starts_with("gains ")).unwrap();
+    assert_eq!(lines[gains + 1], "verdict            mistake found", "{text}");
+    assert!(!text.contains("\nfinding "), "{text}");
+    let o = lumiere(&[&args[..], &["--json"]].concat());
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(json["findings_shown"], false);
+    assert_eq!(json["ranking"][0]["kind"], "post-process");
+    assert!(!json["findings"].as_array().unwrap().is_empty());
 }
 
 /// Pixels of two 8-bit RGB images some channel of which differs by more than `tolerance`.

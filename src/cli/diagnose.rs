@@ -7,7 +7,7 @@
 use super::{CliError, Overrides, load_scene};
 use clap::Args;
 use lumiere::compare::read::{Image, read_image};
-use lumiere::diagnose::mistakes::{Change, catalogue};
+use lumiere::diagnose::mistakes::catalogue;
 use lumiere::diagnose::{Diagnosis, Options, Oracle, Score, Verdict, report};
 use lumiere::film::WriteError;
 use lumiere::limits::MAX_THREADS;
@@ -215,17 +215,6 @@ fn size_note(image: &str, (width, height): (u32, u32), (scene_width, scene_heigh
     })
 }
 
-/// What kind of change a mistake makes to the oracle's render, as `--list` names it.
-fn change_kind(change: &Change) -> &'static str {
-    match change {
-        Change::Formulas(_) => "formula",
-        Change::Convention(_) => "convention",
-        Change::Depth(_) => "recursion",
-        Change::SpecularExponent(_) => "fitted",
-        Change::Gamma | Change::FlipVertical | Change::FlipHorizontal | Change::SwapRedBlue => "post-process",
-    }
-}
-
 /// The catalogue as `--list` prints it: a line a mistake (name, kind, description), or one
 /// JSON array of `{name, kind, description}`.
 fn catalogue_listing(json: bool) -> Result<String, CliError> {
@@ -233,7 +222,7 @@ fn catalogue_listing(json: bool) -> Result<String, CliError> {
     if json {
         let entries: Vec<_> = list
             .iter()
-            .map(|m| serde_json::json!({"name": m.name, "kind": change_kind(&m.change), "description": m.description}))
+            .map(|m| serde_json::json!({"name": m.name, "kind": m.change.kind(), "description": m.description}))
             .collect();
         let text = serde_json::to_string(&entries).map_err(|e| CliError::Failed(e.to_string()))?;
         return Ok(text + "\n");
@@ -241,14 +230,7 @@ fn catalogue_listing(json: bool) -> Result<String, CliError> {
     let width = list.iter().map(|m| m.name.len()).max().unwrap_or(0);
     Ok(list
         .iter()
-        .map(|m| {
-            format!(
-                "{:<width$}  {:<12}  {}\n",
-                m.name,
-                change_kind(&m.change),
-                m.description
-            )
-        })
+        .map(|m| format!("{:<width$}  {:<12}  {}\n", m.name, m.change.kind(), m.description))
         .collect())
 }
 
@@ -416,8 +398,10 @@ fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
     );
     let gains: Vec<String> = d.gains.iter().map(|g| format!("{} {}", g.term, g.label())).collect();
     let _ = writeln!(out, "gains              {}", gains.join(", "));
-    for f in &d.findings {
-        let _ = writeln!(out, "finding            {f}");
+    if d.findings_shown {
+        for f in &d.findings {
+            let _ = writeln!(out, "finding            {f}");
+        }
     }
     let _ = writeln!(out, "verdict            {}", d.verdict.words());
     if d.verdict.names_mistakes() {

@@ -47,6 +47,18 @@ pub enum Change {
 }
 
 impl Change {
+    /// What kind of change it makes to the oracle's render, as `diagnose --list` names it:
+    /// `formula`, `convention`, `recursion`, `fitted` or `post-process`.
+    pub fn kind(self) -> &'static str {
+        match self {
+            Change::Formulas(_) => "formula",
+            Change::Convention(_) => "convention",
+            Change::Depth(_) => "recursion",
+            Change::SpecularExponent(_) => "fitted",
+            Change::Gamma | Change::FlipVertical | Change::FlipHorizontal | Change::SwapRedBlue => super::POST_PROCESS,
+        }
+    }
+
     /// The pixel of the oracle's `width x height` image that an image with this change
     /// shows at `(x, y)`: mirrored by a flip, the same pixel otherwise.
     pub fn source_pixel(self, (x, y): (u32, u32), width: u32, height: u32) -> (u32, u32) {

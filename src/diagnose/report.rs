@@ -117,8 +117,10 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
         let _ = writeln!(html, "<tr><td>{}</td><td>{}</td></tr>", escape(g.term), g.label());
     }
     html += "</table>\n";
-    for f in &d.findings {
-        let _ = writeln!(html, "<p>{}</p>", escape(f));
+    if d.findings_shown {
+        for f in &d.findings {
+            let _ = writeln!(html, "<p>{}</p>", escape(f));
+        }
     }
     html += "<h2>Images</h2>\n";
     for (file, caption) in [
