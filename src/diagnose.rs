@@ -207,6 +207,10 @@ pub struct Diagnosis {
     pub undrawn: usize,
     /// The image against the oracle.
     pub oracle: Score,
+    /// Whether the image is black, every drawn pixel 0 in every channel, where some drawn
+    /// pixel of the oracle's (on the grid) is not: the ranking then only says which mistake
+    /// draws the darkest image.
+    pub black: bool,
     /// Judged pixels of the image beyond any sampling of the oracle (see the module's
     /// documentation): what the verdict counts.
     pub beyond_sampling: usize,
@@ -803,6 +807,16 @@ impl<'s> Oracle<'s> {
                 [image[i], image[i + 1], image[i + 2]]
             })
             .collect();
+        let drawn_black = image
+            .chunks(3)
+            .enumerate()
+            .all(|(i, p)| p == [0, 0, 0] || (!transparent.is_empty() && transparent[i]));
+        let black = drawn_black
+            && self
+                .oracle_rgb
+                .chunks(3)
+                .zip(&undrawn)
+                .any(|(p, &u)| !u && p != [0, 0, 0]);
         let tol = options.tolerance;
         let oracle_score = score(&image_rgb, &self.oracle_rgb, judged, tol);
         let judged_count = judged.iter().filter(|j| **j).count().max(1) as f64;
@@ -878,6 +892,7 @@ impl<'s> Oracle<'s> {
             edges: self.edge_mask.iter().filter(|e| **e).count(),
             undrawn: undrawn.iter().filter(|u| **u).count(),
             oracle: oracle_score,
+            black,
             beyond_sampling,
             verdict: Verdict::Unexplained,
             findings: Vec::new(),

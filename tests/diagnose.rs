@@ -1255,6 +1255,19 @@ fn command_line_says_what_to_run_when_the_catalogue_does_not_explain_the_image()
             png.display()
         );
         assert!(text.ends_with(&next), "{text}");
+        // The black image is said to be black before the ranking; the grey one is not.
+        let lines: Vec<&str> = text.lines().collect();
+        let black_line = "black              the image is black (every pixel 0) where the oracle's is not";
+        if name == "black.png" {
+            assert!(lines[1].starts_with("oracle "), "{text}");
+            assert_eq!(lines[2], black_line, "{text}");
+        } else {
+            assert!(!lines.contains(&black_line), "{text}");
+        }
+        let json: serde_json::Value =
+            serde_json::from_slice(&lumiere(&[&args[..], &["--json"]].concat()).stdout).unwrap();
+        assert_eq!(json["black"], name == "black.png", "{name}");
+        assert_eq!(json["verdict"], "partly_explained", "{name}");
     }
     let phong = catalogue().into_iter().find(|m| m.name == "phong-for-blinn").unwrap();
     let png = dir.join("phong.png");
@@ -1268,6 +1281,7 @@ fn command_line_says_what_to_run_when_the_catalogue_does_not_explain_the_image()
     let text = String::from_utf8(lumiere(&args).stdout).unwrap();
     assert!(text.contains("verdict            mistake found\n"), "{text}");
     assert!(!text.contains("\nnext "), "{text}");
+    assert!(!text.contains("\nblack "), "{text}");
 }
 
 /// The files of `dir`, sorted by name.

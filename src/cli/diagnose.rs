@@ -396,6 +396,12 @@ fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
         score_line(&d.oracle, d.tolerance),
         d.beyond_sampling
     );
+    if d.black {
+        let _ = writeln!(
+            out,
+            "black              the image is black (every pixel 0) where the oracle's is not"
+        );
+    }
     let gains: Vec<String> = d.gains.iter().map(|g| format!("{} {}", g.term, g.label())).collect();
     let _ = writeln!(out, "gains              {}", gains.join(", "));
     if d.findings_shown {

@@ -112,6 +112,9 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
         d.oracle.rms,
         d.beyond_sampling
     );
+    if d.black {
+        html += "<p><b>The image is black (every pixel 0) where the oracle's is not.</b></p>\n";
+    }
     html += "<h2>Gains per term</h2>\n<table><tr><th>term</th><th>gain</th></tr>\n";
     for g in &d.gains {
         let _ = writeln!(html, "<tr><td>{}</td><td>{}</td></tr>", escape(g.term), g.label());
