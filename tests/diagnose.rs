@@ -1340,3 +1340,56 @@ fn a_reused_report_folder_holds_only_what_the_report_references() {
         assert_eq!(file_list(&report), expected, "{} --top {top}", image.display());
     }
 }
+
+#[test]
+fn two_mistakes_at_once_are_said_to_leave_something_else() {
+    // The reference scene at 160 x 120 with gamma applied, then turned upside down:
+    // gamma-applied ranks first and leaves 43 % of the pixels beyond, so the verdict says
+    // something else differs too. The image only upside down leaves nothing after its flip.
+    let dir = temp_dir("diagnose-two-mistakes");
+    let reference = repo("scenes/reference.toml");
+    let size = ["--width", "160", "--height", "120"];
+    let (gamma, plain) = (dir.join("gamma.png"), dir.join("plain.png"));
+    for (out, extra) in [(&gamma, &["--mistake", "gamma-applied"][..]), (&plain, &[][..])] {
+        let o = lumiere(
+            &[
+                &["render", reference.to_str().unwrap(), "-o", out.to_str().unwrap()][..],
+                &size,
+                extra,
+            ]
+            .concat(),
+        );
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let expected = [
+        (
+            &gamma,
+            "verdict            mistake found, and something else differs too: 7595 of 17673 pixels (42.9752 %) stay beyond 8 levels after gamma-applied; fix it, render again and diagnose again",
+            "gamma-applied",
+            true,
+        ),
+        (
+            &plain,
+            "verdict            mistake found",
+            "image-flipped-vertically",
+            false,
+        ),
+    ];
+    for (image, verdict, first, also) in expected {
+        let flipped = dir.join(format!("flipped-{}", image.file_name().unwrap().to_str().unwrap()));
+        image::imageops::flip_vertical(&image::open(image).unwrap().to_rgb8())
+            .save(&flipped)
+            .unwrap();
+        let args = ["diagnose", reference.to_str().unwrap(), flipped.to_str().unwrap()];
+        let o = lumiere(&[&args[..], &size].concat());
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = String::from_utf8(o.stdout).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines.contains(&verdict), "{text}");
+        assert!(text.contains(&format!("\n1. {first}: ")), "{text}");
+        let json: serde_json::Value =
+            serde_json::from_slice(&lumiere(&[&args[..], &size, &["--json"]].concat()).stdout).unwrap();
+        assert_eq!(json["verdict"], "mistake_found");
+        assert_eq!(json["also_differs"], also);
+    }
+}

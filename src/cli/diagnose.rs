@@ -367,6 +367,23 @@ fn score_line(s: &Score, tolerance: u8) -> String {
     )
 }
 
+/// The verdict in words; with a mistake found and something else differing too, what is
+/// left after the first mistake and what to do.
+fn verdict_words(d: &Diagnosis) -> String {
+    match d.top(1).next() {
+        Some(first) if d.also_differs => format!(
+            "{}, and something else differs too: {} of {} pixels ({:.4} %) stay beyond {} levels after {}; fix it, render again and diagnose again",
+            d.verdict.words(),
+            first.score.beyond,
+            first.score.judged,
+            100.0 * first.score.fraction,
+            d.tolerance,
+            first.name
+        ),
+        _ => d.verdict.words().to_string(),
+    }
+}
+
 /// The diagnosis as text.
 fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
     let mut out = String::new();
@@ -409,7 +426,7 @@ fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
             let _ = writeln!(out, "finding            {f}");
         }
     }
-    let _ = writeln!(out, "verdict            {}", d.verdict.words());
+    let _ = writeln!(out, "verdict            {}", verdict_words(d));
     if d.verdict.names_mistakes() {
         for (k, c) in d.top(top).enumerate() {
             let _ = writeln!(out, "{}. {}: {}", k + 1, c.name, c.description);

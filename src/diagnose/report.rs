@@ -112,6 +112,15 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
         d.oracle.rms,
         d.beyond_sampling
     );
+    if d.also_differs
+        && let Some(first) = d.top(1).next()
+    {
+        let _ = writeln!(
+            html,
+            "<p><b>Something else differs too</b>: {} of {} pixels stay beyond the tolerance after {}; fix it, render again and diagnose again.</p>",
+            first.score.beyond, first.score.judged, first.name
+        );
+    }
     if d.black {
         html += "<p><b>The image is black (every pixel 0) where the oracle's is not.</b></p>\n";
     }
