@@ -407,11 +407,9 @@ fn command_line_text_json_report_and_errors() {
     assert_eq!(std::fs::read_dir(&beside).unwrap().count(), 1);
 }
 
-#[test]
-fn command_line_diagnoses_several_images_against_one_oracle() {
-    // A mistake's image and a correct one: each text, JSON line and report is the one the
-    // image alone gets.
-    let dir = temp_dir("diagnose-several");
+/// The centred reference scene's images, written in `dir`: with Phong's term for Blinn's
+/// (`phong.png`) and correct (`correct.png`).
+fn phong_and_correct(dir: &std::path::Path) -> (std::path::PathBuf, std::path::PathBuf) {
     let scene = centred("scenes/reference.toml");
     let phong = catalogue().into_iter().find(|m| m.name == "phong-for-blinn").unwrap();
     let (mistaken, correct) = (dir.join("phong.png"), dir.join("correct.png"));
@@ -421,6 +419,15 @@ fn command_line_diagnoses_several_images_against_one_oracle() {
     )
     .unwrap();
     std::fs::write(&correct, lumiere::film::encode_png(W, H, &rendered(&scene)).unwrap()).unwrap();
+    (mistaken, correct)
+}
+
+#[test]
+fn command_line_diagnoses_several_images_against_one_oracle() {
+    // A mistake's image and a correct one: each text, JSON line and report is the one the
+    // image alone gets.
+    let dir = temp_dir("diagnose-several");
+    let (mistaken, correct) = phong_and_correct(&dir);
     let alone = |image: &std::path::Path, extra: &[&str]| {
         let args = diagnose_reference_centred(image);
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -1299,15 +1306,7 @@ fn a_reused_report_folder_holds_only_what_the_report_references() {
     // A report of three mistakes, then one of none in the same folder: the three mistakes'
     // images go, the files the report does not write stay.
     let dir = temp_dir("diagnose-reused-report");
-    let scene = centred("scenes/reference.toml");
-    let phong = catalogue().into_iter().find(|m| m.name == "phong-for-blinn").unwrap();
-    let (mistaken, correct) = (dir.join("phong.png"), dir.join("correct.png"));
-    std::fs::write(
-        &mistaken,
-        lumiere::film::encode_png(W, H, &render_mistake(&scene, &phong).unwrap()).unwrap(),
-    )
-    .unwrap();
-    std::fs::write(&correct, lumiere::film::encode_png(W, H, &rendered(&scene)).unwrap()).unwrap();
+    let (mistaken, correct) = phong_and_correct(&dir);
     let report = dir.join("report");
     std::fs::create_dir_all(&report).unwrap();
     let kept = ["mistake-01.png", "mistake-9.txt", "notes.txt"];
