@@ -279,23 +279,22 @@ impl Mesh {
     /// The first face that makes no triangle: its line in the file and why
     /// ([`Triangle::degenerate`]).
     pub fn degenerate_face(&self) -> Option<(usize, &'static str)> {
-        self.faces.iter().zip(&self.lines).find_map(|(f, &line)| {
-            let [a, b, c] = f.map(|i| self.vertices[i as usize]);
-            Triangle::degenerate(a, b, c).map(|why| (line, why))
-        })
+        self.faces
+            .iter()
+            .zip(&self.lines)
+            .find_map(|(f, &line)| self.why_flat(f).map(|why| (line, why)))
+    }
+
+    /// Why the triangle of corners `face` makes none ([`Triangle::degenerate`]), if it does not.
+    fn why_flat(&self, face: &[u32; 3]) -> Option<&'static str> {
+        let [a, b, c] = face.map(|i| self.vertices[i as usize]);
+        Triangle::degenerate(a, b, c)
     }
 
     /// Removes the triangles that make none ([`Triangle::degenerate`]) with what the mesh
     /// keeps of each, as SIMRenderer's model reader skips them; returns how many.
     pub fn drop_degenerate(&mut self) -> usize {
-        let keep: Vec<bool> = self
-            .faces
-            .iter()
-            .map(|f| {
-                let [a, b, c] = f.map(|i| self.vertices[i as usize]);
-                Triangle::degenerate(a, b, c).is_none()
-            })
-            .collect();
+        let keep: Vec<bool> = self.faces.iter().map(|f| self.why_flat(f).is_none()).collect();
         fn retain<T>(v: &mut Vec<T>, keep: &[bool]) {
             let mut k = keep.iter();
             v.retain(|_| *k.next().unwrap_or(&true));

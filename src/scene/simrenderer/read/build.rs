@@ -94,14 +94,13 @@ impl<'a> Reader<'a> {
         }
         // Each model's materials, named after it: `MODEL/NAME` (`#2`, `#3`... after a name
         // already taken). Their metal factor shapes no term: they take the conventions'.
-        let model_base =
-            |i: usize, s: &super::shapes::ShapeEntry| s.name.clone().unwrap_or_else(|| format!("model#{i}"));
-        let mut model_names: Vec<Vec<String>> = Vec::new();
+        // Each model's name (the base of its objects' names) and its materials' names.
+        let mut model_names: Vec<(String, Vec<String>)> = Vec::new();
         for (i, s) in raw.shapes.iter().enumerate() {
             let Some(own) = &s.model else {
                 continue;
             };
-            let base = model_base(i, s);
+            let base = s.name.clone().unwrap_or_else(|| format!("model#{i}"));
             let mut taken = Vec::new();
             for (name, material) in &own.materials {
                 let wanted = format!("{base}/{name}");
@@ -122,7 +121,7 @@ impl<'a> Reader<'a> {
                 named.insert(unique.clone(), (material, false));
                 taken.push(unique);
             }
-            model_names.push(taken);
+            model_names.push((base, taken));
         }
         let mut materials = vec![Material {
             metal: highlight,
@@ -150,14 +149,9 @@ impl<'a> Reader<'a> {
                 self.problem(&s.at, m, "the rest is dropped")?;
                 break;
             }
-            let base = model_base(i, &s);
             if let Some(own) = s.model {
-                let indices: Vec<u32> = model_names
-                    .next()
-                    .unwrap_or_default()
-                    .iter()
-                    .map(|n| index_of(n))
-                    .collect();
+                let (base, taken) = model_names.next().unwrap_or_default();
+                let indices: Vec<u32> = taken.iter().map(|n| index_of(n)).collect();
                 objects.extend(
                     s.shapes
                         .into_iter()

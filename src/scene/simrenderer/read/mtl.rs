@@ -157,17 +157,17 @@ fn color(rest: &str) -> Result<DVec3, String> {
     Ok(DVec3::from_array(c))
 }
 
-/// SIMRenderer's OpenGL material of colours `ka`, `kd`, `ks` and shininess `ns`, the
-/// material's other factors at their defaults (its metal factor shapes no term: the
+/// SIMRenderer's OpenGL material of colours `ka`, `kd`, `ks`, shininess `ns` and `images`,
+/// the material's other factors at their defaults (its metal factor shapes no term: the
 /// specular colour is given).
-pub(super) fn open_gl(ka: DVec3, kd: DVec3, ks: DVec3, ns: f64) -> Material {
+pub(super) fn open_gl(ka: DVec3, kd: DVec3, ks: DVec3, ns: f64, images: Option<TextureMaps>) -> Material {
     Material {
         color: kd,
         ka: 1.0,
         kd: 1.0,
         ks: 1.0,
         shininess: ns,
-        term_colors: TermColors::of(Some(ka), Some(ks), None),
+        term_colors: TermColors::of(Some(ka), Some(ks), images),
         ..Material::default()
     }
 }
@@ -175,7 +175,13 @@ pub(super) fn open_gl(ka: DVec3, kd: DVec3, ks: DVec3, ns: f64) -> Material {
 /// SIMRenderer's material for a face whose `usemtl` names no material of the libraries
 /// (`SOpenGLMaterial`'s defaults).
 pub(super) fn missing_material() -> Material {
-    open_gl(DVec3::splat(0.1), DVec3::new(0.3, 0.7, 0.3), DVec3::splat(0.05), 5.0)
+    open_gl(
+        DVec3::splat(0.1),
+        DVec3::new(0.3, 0.7, 0.3),
+        DVec3::splat(0.05),
+        5.0,
+        None,
+    )
 }
 
 /// The material a library material gives, its images read from `dir` (the library's
@@ -189,7 +195,6 @@ pub(super) fn library_material(
     scene_dir: &Path,
     uv_format: UvFormat,
 ) -> (Material, Vec<(usize, &'static str, String)>) {
-    let material = open_gl(m.ka, m.kd, m.ks, m.ns);
     let mut errors = Vec::new();
     let mut images: [Option<Texture>; 3] = [None, None, None];
     for ((slot, map), keyword) in images.iter_mut().zip(&m.maps).zip(MAP_KEYWORDS) {
@@ -202,24 +207,16 @@ pub(super) fn library_material(
             }
         }
     }
-    if !images.iter().any(Option::is_some) {
-        return (material, errors);
-    }
-    let [ambient, diffuse, specular] = images;
-    let maps = TextureMaps {
-        ambient,
-        diffuse,
-        specular,
-        uv_format,
-    };
-    let term_colors = TermColors::of(material.ambient_color(), material.specular_color(), Some(maps));
-    (
-        Material {
-            term_colors,
-            ..material
-        },
-        errors,
-    )
+    let maps = images.iter().any(Option::is_some).then(|| {
+        let [ambient, diffuse, specular] = images;
+        TextureMaps {
+            ambient,
+            diffuse,
+            specular,
+            uv_format,
+        }
+    });
+    (open_gl(m.ka, m.kd, m.ks, m.ns, maps), errors)
 }
 
 #[cfg(test)]
@@ -273,7 +270,13 @@ mod tests {
 
     #[test]
     fn an_open_gl_material_gives_each_term_its_colour() {
-        let m = open_gl(DVec3::splat(0.1), DVec3::new(0.3, 0.7, 0.3), DVec3::splat(0.05), 5.0);
+        let m = open_gl(
+            DVec3::splat(0.1),
+            DVec3::new(0.3, 0.7, 0.3),
+            DVec3::splat(0.05),
+            5.0,
+            None,
+        );
         let r = m.reflectance(|| (0.0, 0.0));
         assert_eq!((r.ka, r.kd, r.ks), (1.0, 1.0, 1.0));
         assert_eq!(r.ambient, DVec3::splat(0.1));
