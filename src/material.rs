@@ -162,6 +162,27 @@ impl Material {
         }
     }
 
+    /// The largest coefficient each term can take at any point, `[k_a, k_d, k_s]`: the
+    /// material's own, or 1 for a term an image gives its whole colour
+    /// ([`Material::reflectance`]; a texel's channels are at most 1).
+    pub fn largest_coefficients(&self) -> [f64; 3] {
+        let own = [self.ka, self.kd, self.ks];
+        let Some(maps) = self.images() else {
+            return own;
+        };
+        let imaged = [&maps.ambient, &maps.diffuse, &maps.specular].map(Option::is_some);
+        std::array::from_fn(|t| if imaged[t] { 1.0 } else { own[t] })
+    }
+
+    /// The largest channel of the diffuse colour `k_d S` at any point: 1 under a diffuse
+    /// image (its texel taken whole), else `k_d max(S)`.
+    pub fn largest_diffuse(&self) -> f64 {
+        match self.images().is_some_and(|maps| maps.diffuse.is_some()) {
+            true => 1.0,
+            false => self.kd * self.color.max_element(),
+        }
+    }
+
     /// The images of the terms' colours, if the material has any.
     pub fn images(&self) -> Option<&TextureMaps> {
         self.term_colors.as_ref()?.images.as_ref()
@@ -180,6 +201,12 @@ impl Material {
     /// Transparent for shadow rays: the chapter's "géométrie strictement transparente".
     pub fn is_transparent(&self) -> bool {
         self.kt > 0.0
+    }
+
+    /// Where a caustic photon lands and stays: a surface with a diffuse term (`k_d > 0`, or
+    /// a diffuse image) that does not bend light itself (its light is what it lets through).
+    pub fn receives_photons(&self) -> bool {
+        self.largest_coefficients()[1] > 0.0 && !self.bends_light()
     }
 
     /// Transparent with an index other than the air's: it bends the light it lets through

@@ -625,7 +625,8 @@ fn lets_shadows_through(scene: &Scene, m: &Material) -> bool {
 
 /// Upper bound of what a ray at each level (1-based, index 0 unused) can return: a local
 /// bound `B = max(L_a) max(k_a) + sum_i max(L_i) max(k_d + k_s)` (or the background if
-/// larger) plus `K = max(k_r + k_t)` times the bound one level deeper.
+/// larger), each `k` the largest its term takes ([`Material::largest_coefficients`]: 1 under
+/// an image), plus `K = max(k_r + k_t)` times the bound one level deeper.
 /// With caustics, `caustic_bound` bounds the irradiance of the photon map's estimates.
 fn remaining_bounds(scene: &Scene, ambient: DVec3, caustic_bound: Option<f64>) -> Vec<f64> {
     let mats = &scene.materials;
@@ -637,13 +638,12 @@ fn remaining_bounds(scene: &Scene, ambient: DVec3, caustic_bound: Option<f64>) -
         .map(Light::max_intensity)
         .sum();
     let local = if scene.settings.shading.no_light {
-        // The diffuse colour `k_d S` alone; a diffuse image's texel (at most 1) takes `k_d = 1`.
-        max_of(&|m| {
-            let textured = m.images().is_some_and(|t| t.diffuse.is_some());
-            if textured { 1.0 } else { m.kd * m.color.max_element() }
-        })
+        // The diffuse colour `k_d S` alone.
+        max_of(&Material::largest_diffuse)
     } else {
-        ambient.max_element() * max_of(&|m| m.ka) + direct * max_of(&|m| m.kd + m.ks)
+        // Each term's colour is at most 1, its coefficient the largest it takes.
+        ambient.max_element() * max_of(&|m| m.largest_coefficients()[0])
+            + direct * max_of(&|m| m.largest_coefficients()[1..].iter().sum())
     }
     .max(scene.settings.background.max_element());
     let k = max_of(&|m| m.kr + m.kt);
@@ -652,7 +652,7 @@ fn remaining_bounds(scene: &Scene, ambient: DVec3, caustic_bound: Option<f64>) -
         (None, _) => local,
         // The caustic share `E k_d S` is at most the map's bound on `E` times the largest
         // `k_d S`.
-        (Some(_), Some(e)) => local + e * max_of(&|m| m.kd * m.color.max_element()),
+        (Some(_), Some(e)) => local + e * max_of(&Material::largest_diffuse),
         // Not known before the photons are traced: adaptive depth control cuts no ray.
         (Some(_), None) => f64::INFINITY,
     };

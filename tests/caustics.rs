@@ -32,7 +32,12 @@ fn paraxial_focus() -> f64 {
 /// white directional light straight down its axis, above the diffuse floor `floor` at
 /// height `-depth`, with extra text appended (shapes, a `[caustics]` table).
 fn ball_scene(kr: f64, kt: f64, depth: f64, extra: &str) -> Scene {
-    let text = format!(
+    scene::parse(&ball_scene_text(kr, kt, depth, extra), "ball.toml").expect("the ball scene parses")
+}
+
+/// The text of [`ball_scene`].
+fn ball_scene_text(kr: f64, kt: f64, depth: f64, extra: &str) -> String {
+    format!(
         r#"
 [image]
 width = 48
@@ -76,8 +81,7 @@ color = [1, 1, 1]
 {extra}
 "#,
         floor = -depth
-    );
-    scene::parse(&text, "ball.toml").expect("the ball scene parses")
+    )
 }
 
 fn caustics_table(photons: u64, radius: f64, filter: &str) -> String {
@@ -588,4 +592,44 @@ fn photon_streams_are_keyed_by_seed_and_index() {
     let pos = |m: &caustics::PhotonMap| m.photons().iter().map(|p| p.position.to_array()).collect::<Vec<_>>();
     assert_eq!(pos(&a), pos(&b));
     assert_ne!(pos(&a), pos(&c));
+}
+
+#[test]
+fn a_diffuse_image_colours_the_caustic_as_it_colours_the_diffuse_term() {
+    // The ball lens over a floor whose diffuse colour is an image of one red texel, with
+    // `kd = 0`: the image takes the diffuse term whole (texel 255 / 255 = 1 exactly, `k_d`
+    // not applied), so the floor reflects as a plain red floor of `kd = 1` does, and the
+    // caustic on it, `E k_d S`, is `E (1, 0, 0)` in both. A floor whose `kd` alone decided
+    // would receive no photon and show no caustic.
+    let dir = temp_dir("caustic-texture");
+    image::save_buffer(
+        dir.join("red.png"),
+        &[255u8, 0, 0],
+        1,
+        1,
+        image::ExtendedColorType::Rgb8,
+    )
+    .unwrap();
+    let scene_with = |floor_material: &str| {
+        let text = ball_scene_text(0.0, 1.0, 1.2, &caustics_table(20_000, 0.05, "cone"))
+            .replace("[materials.floor]\ncolor = [1, 1, 1]\n", floor_material);
+        let file = dir.join("ball.toml");
+        std::fs::write(&file, text).unwrap();
+        scene::load(&file).unwrap()
+    };
+    let textured = scene_with("[materials.floor]\nka = 0\nkd = 0\nks = 0\ntexture_kd = \"red.png\"\n");
+    let red = scene_with("[materials.floor]\ncolor = [1, 0, 0]\nka = 0\nkd = 1\nks = 0\n");
+    let image = |s: &Scene| radiance_bits(&render(&World::new(s), &|| {}).0.pixels);
+    let differing = |a: &[u64], b: &[u64]| a.iter().zip(b).filter(|(x, y)| x != y).count();
+    assert_eq!(differing(&image(&textured), &image(&red)), 0);
+    let mut dark = red.clone();
+    dark.settings.caustics = None;
+    assert!(
+        differing(&image(&red), &image(&dark)) > 0,
+        "the caustic shows on the floor"
+    );
+    // The photons land on the textured floor as on the red one.
+    let landed = |s: &Scene| World::new(s).photons.as_ref().unwrap().photons().len();
+    assert!(landed(&textured) > 1000);
+    assert_eq!(landed(&textured), landed(&red));
 }

@@ -173,3 +173,47 @@ fn textured_renders_are_the_same_bytes_for_any_thread_count() {
     // The image shows the texture: the blue cap's texel (40, 70, 200) lit, bluer than red.
     assert!(one.pixels.iter().any(|p| p.z > 2.0 * p.x && p.z > 0.2));
 }
+
+#[test]
+fn adaptive_depth_control_counts_an_image_whole_in_its_bound() {
+    // A mirror ball (k_r = 0.01) reflects a plane behind the camera whose diffuse colour is
+    // a white image over `kd = 0.001`: the image takes the diffuse term whole, so the
+    // reflected ray brings 0.01 x 1 x N.L, 1.8 levels at N.L = 1 / sqrt 2. Bounded by the plane's `kd`
+    // (0.001), the ray would weigh 0.01 x 0.001, below the default threshold of 0.25 levels,
+    // and be cut; bounded by the image's 1, it is traced, and the image is the one traced
+    // with adaptive depth control off, to the bit. The built-in default material (kd 0.8),
+    // in the bound's maximum over materials, is replaced by a black one.
+    let dir = temp_dir("texture-adaptive");
+    image::save_buffer(dir.join("white.png"), &[255u8; 3], 1, 1, image::ExtendedColorType::Rgb8).unwrap();
+    let text = "[image]\nwidth = 32\nheight = 32\nsamples_per_pixel = 1\n\
+         [camera]\nposition = [0, -5, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, 1]\nvfov = 30\n\
+         [render]\ndepth = 2\n\
+         [materials.mirror]\nka = 0\nkd = 0\nks = 0\nkr = 0.01\n\
+         [materials.default]\nka = 0\nkd = 0\nks = 0\n\
+         [materials.wall]\nka = 0\nkd = 0.001\nks = 0\ntexture_kd = \"white.png\"\n\
+         [[shapes]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"mirror\"\n\
+         [[shapes]]\ntype = \"plane\"\npoint = [0, -10, 0]\nnormal = [0, 1, 0]\nmaterial = \"wall\"\n\
+         [[lights]]\ntype = \"directional\"\ndirection = [0, -1, -1]\ncolor = [1, 1, 1]\n";
+    let file = dir.join("mirror.toml");
+    std::fs::write(&file, text).unwrap();
+    let adaptive = scene::load(&file).unwrap();
+    assert_eq!(adaptive.settings.adaptive_threshold, 0.25);
+    let mut exact = adaptive.clone();
+    exact.settings.adaptive_threshold = 0.0;
+    let (a, e) = (
+        render_small(&adaptive, 32, 32, 1, 2),
+        render_small(&exact, 32, 32, 1, 2),
+    );
+    // The ball's centre reflects the wall head-on, lit at 45 degrees past the ball:
+    // 0.01 of the white texel times N.L = 1 / sqrt 2.
+    let centre = e.pixels[16 * 32 + 16];
+    assert!(
+        (centre - DVec3::splat(0.01 * std::f64::consts::FRAC_1_SQRT_2))
+            .abs()
+            .max_element()
+            < 1e-15,
+        "{centre}"
+    );
+    let differing = a.pixels.iter().zip(&e.pixels).filter(|(x, y)| x != y).count();
+    assert_eq!(differing, 0);
+}

@@ -47,7 +47,7 @@ pub fn trace(scene: &Scene, accel: &Accel, start: Start, bounces: u32, rng: &mut
         travelled += hit.t;
         let entering = ray.dir.dot(hit.normal) < 0.0;
         let n = if entering { hit.normal } else { -hit.normal };
-        if turned && mat.kd > 0.0 && !mat.bends_light() {
+        if turned && mat.receives_photons() {
             out.push(Photon::new(point, ray.dir, flux * start.spread.factor(travelled)));
         }
         if bounce == bounces {

@@ -87,10 +87,11 @@ pub(crate) fn point_light_terms_with(
 }
 
 /// The caustic share at a hit of a camera path, `E k_d S` ([`caustic`]) for the irradiance
-/// `E` of the photon map's estimate there, with the estimate; `None` when the scene has no
-/// caustics, the model no diffuse term, or the surface no `k_d` or bends light (no photon is
-/// stored on it: [`crate::caustics::path`]). Both tracers add it to the
-/// local illumination, after every light's share.
+/// `E` of the photon map's estimate there, `k_d S` the diffuse term's colour at the point
+/// (the texel under a diffuse image), with the estimate; `None` when the scene has no
+/// caustics, the model no diffuse term, or the surface receives no photon
+/// ([`Material::receives_photons`]). Both tracers add it to the local illumination, after
+/// every light's share.
 pub(crate) fn caustic_share(
     world: &World,
     model: ShadingModel,
@@ -98,11 +99,12 @@ pub(crate) fn caustic_share(
     at: &Surface,
 ) -> Option<(DVec3, Estimate)> {
     let map = world.photons.as_ref()?;
-    if !model.diffuse || mat.kd <= 0.0 || mat.bends_light() {
+    if !model.diffuse || !mat.receives_photons() {
         return None;
     }
     let estimate = map.estimate(at.point, at.n);
-    Some((caustic(estimate.irradiance, mat.kd, mat.color), estimate))
+    let r = at.reflectance(mat);
+    Some((caustic(estimate.irradiance, r.kd, r.diffuse), estimate))
 }
 
 /// Which pixel sample a ray belongs to: the pixel's index (row-major) and the sample's.
