@@ -8,7 +8,7 @@ use super::shapes::normal_interpolation;
 use super::transform::{FileTransform, transform_of};
 use crate::scene::locate::{FieldError, FieldPath};
 use crate::shape::Shape;
-use crate::shape::mesh::Mesh;
+use crate::shape::mesh::{Mesh, Skips};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -39,7 +39,7 @@ impl FileMesh {
         let field = path.key("file");
         let file = dir.join(&self.file);
         let shown = file.display();
-        let mut mesh = Mesh::read_into_scene(&file, room).map_err(|e| FieldError {
+        let mut mesh = Mesh::read_into_scene(&file, room, Skips::NONE).map_err(|e| FieldError {
             path: field.clone(),
             message: e.in_file(&shown),
             got: None,

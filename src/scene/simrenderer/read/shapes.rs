@@ -10,7 +10,7 @@ use crate::limits;
 use crate::material::Material;
 use crate::scene::SceneError;
 use crate::scene::simrenderer::lex::{self, Item, Line};
-use crate::shape::mesh::Mesh;
+use crate::shape::mesh::{Mesh, Skips, Statement};
 use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Lens, NormalInterpolation, Plane, Shape, SmoothTriangle, Sphere, SphericalCap, Torus,
     Transform, Triangle,
@@ -352,13 +352,20 @@ impl<'a> Reader<'a> {
         let path = self.dir.join(&file);
         let shown = path.display().to_string();
         let room = limits::MAX_OBJECTS.saturating_sub(self.objects);
-        let mut mesh = match Mesh::read_into_scene(&path, room) {
+        // SIMRenderer's model reader skips a line element without a word (its keyword table
+        // has no `l`), and a face of fewer than 3 vertices with a message.
+        let skips = Skips {
+            line_elements: true,
+            short_faces: self.lenient,
+        };
+        let mut mesh = match Mesh::read_into_scene(&path, room, skips) {
             Ok(mesh) => mesh,
             Err(e) => {
-                self.problem(&file_at, e.in_file(&shown), dropped)?;
+                self.problem(&file_at, e.located_in(&shown), dropped)?;
                 return Ok(None);
             }
         };
+        self.report_skipped(&mesh, &shown, &file_at)?;
         mesh.round_to_f32();
         let t = Transform::from_parts(scale, rotation, translation);
         let moved = !t.is_identity();
@@ -387,6 +394,38 @@ impl<'a> Reader<'a> {
             shapes,
             model: Some(materials),
         }))
+    }
+
+    /// The statements of `mesh`'s file that make no triangle and were skipped, the first of
+    /// each kind located: line elements a warning, short faces a problem (skipped under
+    /// `lenient` only).
+    fn report_skipped(&mut self, mesh: &Mesh, shown: &str, file_at: &At) -> Result<(), SceneError> {
+        let lines: Vec<_> = mesh
+            .skipped
+            .iter()
+            .filter(|s| s.statement == Statement::LineElement)
+            .collect();
+        if let Some(first) = lines.first() {
+            let m = format!(
+                "{}; the file's {} line element(s) are skipped, as SIMRenderer's model reader skips them",
+                first.in_file(&shown),
+                lines.len()
+            );
+            self.warn(file_at, m);
+        }
+        let faces: Vec<_> = mesh
+            .skipped
+            .iter()
+            .filter(|s| matches!(s.statement, Statement::ShortFace(_)))
+            .collect();
+        if let Some(first) = faces.first() {
+            let then = format!(
+                "the file's {} face(s) of fewer than 3 vertices are skipped and its others kept, as SIMRenderer's model reader skips them",
+                faces.len()
+            );
+            self.problem(file_at, first.in_file(&shown), &then)?;
+        }
+        Ok(())
     }
 
     /// The materials of `mesh`'s faces ([`super::mtl`]): its libraries read from `folder`
