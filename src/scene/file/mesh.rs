@@ -7,6 +7,7 @@ use super::material::resolve_material;
 use super::shapes::normal_interpolation;
 use super::transform::{FileTransform, transform_of};
 use crate::scene::locate::{FieldError, FieldPath};
+use crate::scene::rules::Syntax;
 use crate::shape::Shape;
 use crate::shape::mesh::{Mesh, Skips};
 use serde::Deserialize;
@@ -51,7 +52,7 @@ impl FileMesh {
         };
         let transform = transform_of(&path.key("transform"), self.transform)?;
         if let Some(t) = &transform
-            && let Err(m) = mesh.transform(t, &shown)
+            && let Err(m) = mesh.transform(t, &shown, Syntax::Toml)
         {
             return fail(&path.key("transform"), m);
         }

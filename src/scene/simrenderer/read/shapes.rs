@@ -9,6 +9,7 @@ use super::{At, Reader, at, at_value};
 use crate::limits;
 use crate::material::Material;
 use crate::scene::SceneError;
+use crate::scene::rules::Syntax::SimRenderer;
 use crate::scene::simrenderer::lex::{self, Item, Line};
 use crate::shape::mesh::{Mesh, Skips, Statement};
 use crate::shape::{
@@ -225,10 +226,10 @@ impl<'a> Reader<'a> {
                 let p: Vec<DVec3> = (0..3).map(|i| points.get(i).map_or(defaults[i], |(p, _)| *p)).collect();
                 if let Some(why) = Triangle::degenerate(p[0], p[1], p[2]) {
                     let m = format!(
-                        "the points {:?}, {:?} and {:?} make no triangle: {why}",
-                        p[0].to_array(),
-                        p[1].to_array(),
-                        p[2].to_array()
+                        "the points {}, {} and {} make no triangle: {why}",
+                        SimRenderer.vector(&p[0].to_array()),
+                        SimRenderer.vector(&p[1].to_array()),
+                        SimRenderer.vector(&p[2].to_array())
                     );
                     let here = points.last().map_or(place.clone(), |(_, a)| a.clone());
                     self.problem(&here, m, dropped)?;
@@ -266,9 +267,9 @@ impl<'a> Reader<'a> {
                 // it underflows.
                 if !axis.is_finite() {
                     let m = format!(
-                        "the two points {:?} and {:?} must differ (a {kind} needs a length)",
-                        from.to_array(),
-                        to.to_array()
+                        "the two points {} and {} must differ (a {kind} needs a length)",
+                        SimRenderer.vector(&from.to_array()),
+                        SimRenderer.vector(&to.to_array())
                     );
                     let here = points.last().map_or(place.clone(), |(_, a)| a.clone());
                     self.problem(&here, m, dropped)?;
@@ -369,7 +370,7 @@ impl<'a> Reader<'a> {
         mesh.round_to_f32();
         let t = Transform::from_parts(scale, rotation, translation);
         let moved = !t.is_identity();
-        if moved && let Err(m) = mesh.transform(&t, &shown) {
+        if moved && let Err(m) = mesh.transform(&t, &shown, SimRenderer) {
             self.problem(&place, format!("the transform {m}"), dropped)?;
             return Ok(None);
         }
