@@ -438,7 +438,7 @@ fn simrenderer_values_out_of_range_are_placed_on_their_line() {
         ),
         (
             "linear_aperture_light\nposition 1 1 1\nposition 1 1 1\nend\n",
-            "lab.txt:3:1: linear_aperture_light.position: the second end must differ from the first, [1.0, 1.0, 1.0]",
+            "lab.txt:3:1: linear_aperture_light.position: the second end must differ from the first, 1 1 1",
         ),
         (
             "rectangular_aperture_light\nfront 0 1 0\nup 0 2 0\nend\n",

@@ -321,3 +321,57 @@ fn a_flat_face_is_skipped_under_lenient() {
         parsed.warnings
     );
 }
+
+/// SIMRenderer's model reader skips a line element (`l`) without a word, and a face of
+/// fewer than 3 vertices with a message: lumiere warns at the first line element in both
+/// modes, refuses a short face on its line and column, and under --lenient skips it and
+/// keeps the model's other faces.
+#[test]
+fn line_elements_and_short_faces_are_skipped_as_simrenderer_skips_them() {
+    let dir = temp_dir("model-materials-skips");
+    write_in(&dir, "parts.mtl", MTL);
+    let obj = dir.join("parts.obj").display().to_string();
+    // The three squares, the last red too (no warning of a missing material), with a line
+    // element on line 11 and a second on line 13.
+    let with_lines = OBJ
+        .replace("usemtl absent\n", "")
+        .replace("usemtl red\n", "l 1 2 3\nusemtl red\n  l 2 5\n");
+    let red = write_in(&dir, "red.txt", &lab(0.0, ""));
+    let options = |lenient| lumiere::scene::simrenderer::Options {
+        lenient,
+        ..Default::default()
+    };
+    let line_warning = format!(
+        "{red}:21:6: model.file: {obj}:11:1: l: a line element (l) is no surface; only faces (f) are read; \
+         the file's 2 line element(s) are skipped, as SIMRenderer's model reader skips them"
+    );
+    // Line elements: the model's 3 squares (6 triangles), one warning, in strict mode.
+    write_in(&dir, "parts.obj", &with_lines);
+    let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options(false)).unwrap();
+    assert_eq!(parsed.scene.objects.len(), 6);
+    let warnings: Vec<String> = parsed.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(warnings, std::slice::from_ref(&line_warning));
+    // A 2-vertex face on line 14: refused in strict mode on its line and column, naming the form.
+    write_in(&dir, "parts.obj", &with_lines.replace("  l 2 5\n", "  l 2 5\nf 2 5\n"));
+    let e = lumiere::scene::simrenderer::load(Path::new(&red), &options(false)).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        format!("{red}:21:6: model.file: {obj}:14:1: f: a face needs at least 3 vertices (f v1 v2 v3 ...), got 2")
+    );
+    // Under --lenient: skipped, the other faces kept; the red square renders as without it.
+    let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options(true)).unwrap();
+    assert_eq!(parsed.scene.objects.len(), 6);
+    let warnings: Vec<String> = parsed.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(
+        warnings,
+        [
+            line_warning,
+            format!(
+                "{red}:21:6: model.file: {obj}:14:1: f: a face needs at least 3 vertices (f v1 v2 v3 ...), got 2; \
+                 the file's 1 face(s) of fewer than 3 vertices are skipped and its others kept, as SIMRenderer's \
+                 model reader skips them"
+            )
+        ]
+    );
+    assert_eq!(middle(&dir, &red, &["--lenient"]), [223, 96, 0]);
+}

@@ -350,11 +350,11 @@ fn errors_name_the_line_column_keyword_and_range() {
         ),
         (
             "point_light\ncolor 1 -1 1\nend",
-            "lab.txt:2:7: point_light.color: each channel must be a finite number in [0, 1e6], got [1.0, -1.0, 1.0]",
+            "lab.txt:2:7: point_light.color: each channel must be a finite number in [0, 1e6], got 1 -1 1",
         ),
         (
             "material\ncolor 1.2 1 1\nend",
-            "lab.txt:2:7: material.color: each channel must be a finite number in [0, 1], got [1.2, 1.0, 1.0]",
+            "lab.txt:2:7: material.color: each channel must be a finite number in [0, 1], got 1.2 1 1",
         ),
         (
             "raytracer\nrecursive_level 65\nend",
@@ -379,11 +379,11 @@ fn errors_name_the_line_column_keyword_and_range() {
         ),
         (
             "primitive\ntriangle\npoint 0 0 0\npoint 1 1 1\npoint 2 2 2\nend\nend",
-            "lab.txt:5:1: triangle.point: the points [0.0, 0.0, 0.0], [1.0, 1.0, 1.0] and [2.0, 2.0, 2.0] make no triangle: its points are on one line",
+            "lab.txt:5:1: triangle.point: the points 0 0 0, 1 1 1 and 2 2 2 make no triangle: its points are on one line",
         ),
         (
             "primitive\ncylinder\npoint 1 1 1\npoint 1 1 1\nend\nend",
-            "lab.txt:4:1: cylinder.point: the two points [1.0, 1.0, 1.0] and [1.0, 1.0, 1.0] must differ (a cylinder needs a length)",
+            "lab.txt:4:1: cylinder.point: the two points 1 1 1 and 1 1 1 must differ (a cylinder needs a length)",
         ),
         (
             "primitive\ntube\npoint 0 0 0\npoint 0 0 1\npoint 0 0 2\nend\nend",
@@ -403,7 +403,7 @@ fn errors_name_the_line_column_keyword_and_range() {
         ),
         (
             "primitive\ngeometry\nscale 0 1 1\nsphere\nend\nend\nend",
-            "lab.txt:3:7: geometry.scale: each factor must be finite, of magnitude in [1e-6, 1e6] (negative mirrors), got [0.0, 1.0, 1.0]",
+            "lab.txt:3:7: geometry.scale: each factor must be finite, of magnitude in [1e-6, 1e6] (negative mirrors), got 0 1 1",
         ),
         (
             // The centre at z = 9.99e8 is inside, the sphere's top at 1.001e9 is not.
@@ -432,7 +432,7 @@ fn errors_name_the_line_column_keyword_and_range() {
             // y 0.85065080835204 is the 32-bit float SIMRenderer reads, 0.8506507873535156.
             "model\nfile scenes/icosahedron.obj\ntranslation 1000000000 0 0\nend",
             "lab.txt:1:1: scene.model: the transform moves a vertex of scenes/icosahedron.obj to \
-             [1000000000.5257311, 0.8506507873535156, 0.0], beyond the coordinates' range [-1e9, 1e9]",
+             1000000000.5257311 0.8506507873535156 0, beyond the coordinates' range [-1e9, 1e9]",
         ),
         // lumiere's notes.
         (
@@ -527,7 +527,7 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
     assert_eq!(p.scene.objects.len(), 1);
     assert_eq!(
         warnings(&p)[0],
-        "lab.txt:4:1: triangle.point: the points [1.0, 1.0, 1.0], [1.0, 1.0, 1.0] and [1.0, 1.0, 0.0] make no triangle: two of its points are equal; the geometry is dropped"
+        "lab.txt:4:1: triangle.point: the points 1 1 1, 1 1 1 and 1 1 0 make no triangle: two of its points are equal; the geometry is dropped"
     );
 }
 
@@ -890,4 +890,21 @@ fn every_pixel_coordinate_is_a_sample_position() {
         let parsed = parse(&text).unwrap_or_else(|e| panic!("{value}: {e}"));
         assert_eq!(parsed.scene.settings.conventions.sample_position, expected, "{value}");
     }
+}
+
+/// A message shows a vector as the file at fault writes one: SIMRenderer's numbers between
+/// blanks (each the shortest that reads back), TOML's array.
+#[test]
+fn a_vector_in_a_message_is_written_as_its_file_writes_it() {
+    assert_eq!(
+        error("primitive\nsphere\nposition 0.5 -1e-9 2e9\nend\nend"),
+        "lab.txt:3:10: sphere.position: components must be finite numbers in [-1e9, 1e9], got 0.5 -1e-9 2000000000"
+    );
+    let toml = "[image]\nwidth = 4\nheight = 3\n\
+        [camera]\nposition = [0, -5, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, 1]\n\
+        [[shapes]]\ntype = \"sphere\"\ncenter = [0.5, -1e-9, 2e9]\nradius = 1\n";
+    assert_eq!(
+        scene::parse(toml, "scene.toml").unwrap_err().to_string(),
+        "scene.toml:10:10: shapes[0].center: components must be finite numbers in [-1e9, 1e9], got [0.5, -1e-9, 2000000000.0]"
+    );
 }

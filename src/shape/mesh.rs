@@ -9,8 +9,13 @@
 //! finds vertex `k`'s at place `k`), faces of fewer than 3 vertices, a face's
 //! vertex that is not `v`, `v/vt`, `v//vn` or `v/vt/vn` in whole numbers, line elements
 //! (`l`), indices out of range, and more triangles than allowed. `tobj`'s own errors are
-//! placed on the line it stopped at. The material libraries (`mtllib`) and each face's
-//! material name (`usemtl`, `default` before the first) are recorded, not read: a TOML mesh
+//! placed on the line it stopped at. A reader may skip the statements that make no
+//! triangle (a line element, a face of fewer than 3 vertices) instead of refusing them
+//! ([`Skips`]): they are recorded ([`Mesh::skipped`]) and left out of what `tobj` reads.
+//! Every other statement that draws nothing (`o`, `g`, `s`, `vp`, `p`, ...) is left to
+//! `tobj`, which groups by `o` and `g` and ignores the rest. The material libraries
+//! (`mtllib`) and each face's material name (`usemtl`, `default` before the first) are
+//! recorded, not read: a TOML mesh
 //! takes the scene file's material, SIMRenderer's model reader reads them
 //! (`scene::simrenderer::read::mtl`). A face gives normals or
 //! texture coordinates to all its vertices or to none; they are kept for each triangle
@@ -19,6 +24,7 @@
 
 use super::{NormalInterpolation, Shape, SmoothTriangle, Transform, Triangle};
 use crate::limits;
+use crate::scene::rules::Syntax;
 use glam::DVec3;
 use std::io::{BufRead, Read};
 use std::path::Path;
@@ -46,6 +52,78 @@ pub struct Mesh {
     pub materials: Vec<u32>,
     /// The material libraries the file names (`mtllib`), in order, as written.
     pub libraries: Vec<Library>,
+    /// The statements skipped under the reader's [`Skips`], in file order.
+    pub skipped: Vec<StatementAt>,
+}
+
+/// Which statements that make no triangle a reader skips (recording them in
+/// [`Mesh::skipped`]) rather than refuses on their line.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Skips {
+    /// Line elements (`l`).
+    pub line_elements: bool,
+    /// Faces of fewer than 3 vertices.
+    pub short_faces: bool,
+}
+
+impl Skips {
+    /// Both refused.
+    pub const NONE: Skips = Skips {
+        line_elements: false,
+        short_faces: false,
+    };
+}
+
+/// A statement that makes no triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Statement {
+    /// A line element (`l`).
+    LineElement,
+    /// A face (`f`) of this many vertices, fewer than 3.
+    ShortFace(usize),
+}
+
+impl Statement {
+    /// The keyword that opens it.
+    pub fn keyword(self) -> &'static str {
+        match self {
+            Statement::LineElement => "l",
+            Statement::ShortFace(_) => "f",
+        }
+    }
+
+    /// Why it makes no triangle, with the statement's allowed form when `form`.
+    fn why(self, form: bool) -> String {
+        match self {
+            Statement::LineElement => "a line element (l) is no surface; only faces (f) are read".to_string(),
+            Statement::ShortFace(n) => {
+                let written = if form { " (f v1 v2 v3 ...)" } else { "" };
+                format!("a face needs at least 3 vertices{written}, got {n}")
+            }
+        }
+    }
+}
+
+/// A statement that makes no triangle, skipped under [`Skips`] or refused: its line and the
+/// column of its keyword (1-based, in characters).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StatementAt {
+    pub line: usize,
+    pub column: usize,
+    pub statement: Statement,
+}
+
+impl StatementAt {
+    /// `FILE:LINE:COLUMN: KEYWORD: MESSAGE`, the message naming the statement's allowed form.
+    pub fn in_file(&self, file: &impl std::fmt::Display) -> String {
+        format!(
+            "{file}:{}:{}: {}: {}",
+            self.line,
+            self.column,
+            self.statement.keyword(),
+            self.statement.why(true)
+        )
+    }
 }
 
 /// A material library named by an `mtllib` line: the rest of the line, as one file name.
@@ -72,6 +150,8 @@ struct FaceLine {
 pub struct ObjError {
     pub line: Option<usize>,
     pub message: String,
+    /// The statement refused, when it is one that makes no triangle.
+    pub statement: Option<StatementAt>,
     /// Whether the file has more triangles than it was allowed.
     pub over_limit: bool,
 }
@@ -83,6 +163,15 @@ impl ObjError {
         match self.line {
             Some(line) => format!("{file}:{line}: {}", self.message),
             None => format!("{file}: {}", self.message),
+        }
+    }
+
+    /// As [`ObjError::in_file`], but a statement that makes no triangle placed on its column
+    /// and named with its allowed form ([`StatementAt::in_file`]).
+    pub fn located_in(&self, file: &impl std::fmt::Display) -> String {
+        match &self.statement {
+            Some(s) => s.in_file(file),
+            None => self.in_file(file),
         }
     }
 }
@@ -100,6 +189,7 @@ fn at(line: usize, message: String) -> ObjError {
     ObjError {
         line: Some(line),
         message,
+        statement: None,
         over_limit: false,
     }
 }
@@ -109,14 +199,16 @@ fn whole(message: String) -> ObjError {
     ObjError {
         line: None,
         message,
+        statement: None,
         over_limit: false,
     }
 }
 
 impl Mesh {
     /// Reads and checks the file (see the module doc), refusing files larger than
-    /// [`limits::MAX_FILE_BYTES`] and meshes of more than `max_triangles`.
-    pub fn read(path: &Path, max_triangles: usize) -> Result<Mesh, ObjError> {
+    /// [`limits::MAX_FILE_BYTES`] and meshes of more than `max_triangles`, and skipping
+    /// what `skips` says.
+    pub fn read(path: &Path, max_triangles: usize, skips: Skips) -> Result<Mesh, ObjError> {
         let cannot = |e: std::io::Error| whole(format!("cannot read the mesh file: {e}"));
         let meta = std::fs::metadata(path).map_err(cannot)?;
         // Not a directory, a device or a pipe, whose length says nothing of what they give.
@@ -124,15 +216,15 @@ impl Mesh {
             return Err(whole("not a regular file".to_string()));
         }
         let bytes = limits::read_file(path).map_err(cannot)?;
-        Mesh::parse(&String::from_utf8_lossy(&bytes), max_triangles)
+        Mesh::parse(&String::from_utf8_lossy(&bytes), max_triangles, skips)
     }
 
     /// Reads the mesh of a scene that has room for `room` more objects: at most
     /// [`limits::MAX_MESH_TRIANGLES`] triangles, fewer when the room is smaller, and then an
     /// error for too many triangles says that the scene's other objects leave too little.
-    pub fn read_into_scene(path: &Path, room: usize) -> Result<Mesh, ObjError> {
+    pub fn read_into_scene(path: &Path, room: usize, skips: Skips) -> Result<Mesh, ObjError> {
         let most = limits::MAX_MESH_TRIANGLES.min(room);
-        Mesh::read(path, most).map_err(|mut e| {
+        Mesh::read(path, most, skips).map_err(|mut e| {
             if e.over_limit && most < limits::MAX_MESH_TRIANGLES {
                 e.message += &format!(
                     " (the scene's other objects leave room for {most} of the {} objects it may hold)",
@@ -143,13 +235,33 @@ impl Mesh {
         })
     }
 
-    /// Checks and parses `.obj` text.
-    pub fn parse(text: &str, max_triangles: usize) -> Result<Mesh, ObjError> {
+    /// Checks and parses `.obj` text, skipping what `skips` says.
+    pub fn parse(text: &str, max_triangles: usize, skips: Skips) -> Result<Mesh, ObjError> {
         let Checked {
             faces,
             material_names,
             libraries,
-        } = check(text, max_triangles)?;
+            skipped,
+        } = check(text, max_triangles, skips)?;
+        // The skipped lines left empty, so that the others keep their numbers.
+        let kept: String;
+        let text = if skipped.is_empty() {
+            text
+        } else {
+            let mut gone = skipped.iter().map(|s| s.line).peekable();
+            kept = text
+                .split_inclusive('\n')
+                .enumerate()
+                .map(|(i, line)| {
+                    if gone.next_if_eq(&(i + 1)).is_some() {
+                        "\n"
+                    } else {
+                        line
+                    }
+                })
+                .collect();
+            &kept
+        };
         let mut reader = LineCounter {
             text: text.as_bytes(),
             pos: 0,
@@ -226,6 +338,7 @@ impl Mesh {
             material_names,
             materials: per_triangle.iter().map(|f| f.material).collect(),
             libraries,
+            skipped,
         })
     }
 
@@ -247,16 +360,17 @@ impl Mesh {
     /// Moves every vertex by `t`; where `t` mirrors, swaps each face's winding back so the
     /// normals stay outward. `Err` names the first vertex it moves beyond the coordinates'
     /// range, in words that follow "the transform" as both scene readers say it, with the
-    /// mesh's `file` (the mesh is then only partly moved, and not to be used).
-    pub fn transform(&mut self, t: &Transform, file: &impl std::fmt::Display) -> Result<(), String> {
+    /// mesh's `file` and the vertex in the scene file's `syntax` (the mesh is then only
+    /// partly moved, and not to be used).
+    pub fn transform(&mut self, t: &Transform, file: &impl std::fmt::Display, syntax: Syntax) -> Result<(), String> {
         for v in &mut self.vertices {
             *v = t.point(*v);
         }
         if let Some(v) = self.vertices.iter().find(|v| !limits::within_coordinates(**v)) {
             let m = limits::MAX_COORDINATE;
             return Err(format!(
-                "moves a vertex of {file} to {:?}, beyond the coordinates' range [-{m:e}, {m:e}]",
-                v.to_array()
+                "moves a vertex of {file} to {}, beyond the coordinates' range [-{m:e}, {m:e}]",
+                syntax.vector(&v.to_array())
             ));
         }
         for n in self.normals.iter_mut().flatten() {
@@ -348,11 +462,13 @@ impl Mesh {
     }
 }
 
-/// What [`check`] finds: what every face gives, the material names and the libraries.
+/// What [`check`] finds: what every face gives, the material names, the libraries and the
+/// statements skipped.
 struct Checked {
     faces: Vec<FaceLine>,
     material_names: Vec<String>,
     libraries: Vec<Library>,
+    skipped: Vec<StatementAt>,
 }
 
 /// The rest of `line` after its first word `keyword`, without the blanks around it.
@@ -361,8 +477,8 @@ fn rest_after<'a>(line: &'a str, keyword: &str) -> &'a str {
 }
 
 /// The checks of the module doc; returns what every face gives ([`FaceLine`]), with the
-/// material names and libraries.
-fn check(text: &str, max_triangles: usize) -> Result<Checked, ObjError> {
+/// material names, the libraries and the statements `skips` skips.
+fn check(text: &str, max_triangles: usize, skips: Skips) -> Result<Checked, ObjError> {
     // Counts of vertices, texture coordinates and normals in the whole file: `tobj`
     // resolves positive indices against them (relative ones against those read so far).
     let (mut v_total, mut vt_total, mut vn_total) = (0, 0, 0);
@@ -381,9 +497,27 @@ fn check(text: &str, max_triangles: usize) -> Result<Checked, ObjError> {
     let mut material_names = vec!["default".to_string()];
     let mut material = 0u32;
     let mut libraries = Vec::new();
+    let mut skipped = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let number = i + 1;
         let mut words = line.split_whitespace();
+        // A statement that makes no triangle: skipped or refused, as `skips` says.
+        let mut no_triangle = |statement: Statement, skip: bool| {
+            let blanks = line.len() - line.trim_start().len();
+            let placed = StatementAt {
+                line: number,
+                column: line[..blanks].chars().count() + 1,
+                statement,
+            };
+            if !skip {
+                return Err(ObjError {
+                    statement: Some(placed),
+                    ..at(number, statement.why(false))
+                });
+            }
+            skipped.push(placed);
+            Ok(())
+        };
         match words.next() {
             Some("v") => {
                 v += 1;
@@ -430,19 +564,12 @@ fn check(text: &str, max_triangles: usize) -> Result<Checked, ObjError> {
                 line: number,
                 file: rest_after(line, keyword).to_string(),
             }),
-            Some("l") => {
-                return Err(at(
-                    number,
-                    "a line element (l) is no surface; only faces (f) are read".to_string(),
-                ));
-            }
+            Some("l") => no_triangle(Statement::LineElement, skips.line_elements)?,
             Some("f") => {
                 let corners: Vec<&str> = words.collect();
                 if corners.len() < 3 {
-                    return Err(at(
-                        number,
-                        format!("a face needs at least 3 vertices, got {}", corners.len()),
-                    ));
+                    no_triangle(Statement::ShortFace(corners.len()), skips.short_faces)?;
+                    continue;
                 }
                 let (mut with_uv, mut with_normal) = (0, 0);
                 for corner in &corners {
@@ -504,12 +631,15 @@ fn check(text: &str, max_triangles: usize) -> Result<Checked, ObjError> {
         }
     }
     if faces.is_empty() {
-        return Err(whole("the file has no faces (f)".to_string()));
+        let skipped_faces = skipped.iter().any(|s| matches!(s.statement, Statement::ShortFace(_)));
+        let which = if skipped_faces { " of 3 vertices or more" } else { "" };
+        return Err(whole(format!("the file has no faces (f){which}")));
     }
     Ok(Checked {
         faces,
         material_names,
         libraries,
+        skipped,
     })
 }
 
@@ -624,7 +754,7 @@ mod tests {
         let text = "mtllib one.mtl\nmtllib two words.mtl\n\
             v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n\
             f 1 2 3\nusemtl a\nf 2 4 3\nusemtl b\nf 1 2 4\ng side\nusemtl  a \nf 1 4 3\n";
-        let m = Mesh::parse(text, 100).unwrap();
+        let m = Mesh::parse(text, 100, Skips::NONE).unwrap();
         assert_eq!(m.material_names, ["default", "a", "b"]);
         assert_eq!(m.materials, [0, 1, 2, 1]);
         assert_eq!(m.lines, [7, 9, 11, 14]);
@@ -646,7 +776,7 @@ mod tests {
 
     #[test]
     fn faces_become_triangles_with_their_lines() {
-        let m = Mesh::parse(SQUARE, 100).unwrap();
+        let m = Mesh::parse(SQUARE, 100, Skips::NONE).unwrap();
         // The quad fans into (1 2 3) (1 3 4); the pair's second face is (1 3 4) by relative
         // indices. Each model keeps its own vertices (tobj re-indexes per model).
         assert_eq!(m.faces.len(), 4);
@@ -660,10 +790,10 @@ mod tests {
 
     #[test]
     fn a_mirroring_transform_keeps_the_normals_outward() {
-        let mut m = Mesh::parse(SQUARE, 100).unwrap();
+        let mut m = Mesh::parse(SQUARE, 100, Skips::NONE).unwrap();
         // x -> -x, then up by 2: the square lands on [-1, 0] x [0, 1] at z = 2.
         let t = Transform::from_parts(DVec3::new(-1.0, 1.0, 1.0), DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0));
-        assert_eq!(m.transform(&t, &"square.obj"), Ok(()));
+        assert_eq!(m.transform(&t, &"square.obj", Syntax::Toml), Ok(()));
         assert_eq!(m.faces[0], [0, 2, 1]);
         let t0 = m.triangles()[0].points();
         assert_eq!(
@@ -677,9 +807,9 @@ mod tests {
         assert!(m.triangles().iter().all(|t| t.normal() == DVec3::Z));
         // A move beyond the coordinates' range names the first vertex it takes there.
         let far = Transform::from_parts(DVec3::ONE, DVec3::ZERO, DVec3::new(limits::MAX_COORDINATE, 0.0, 0.0));
-        let mut m = Mesh::parse(SQUARE, 100).unwrap();
+        let mut m = Mesh::parse(SQUARE, 100, Skips::NONE).unwrap();
         assert_eq!(
-            m.transform(&far, &"square.obj"),
+            m.transform(&far, &"square.obj", Syntax::Toml),
             Err(
                 "moves a vertex of square.obj to [1000000001.0, 0.0, 0.0], beyond the coordinates' range [-1e9, 1e9]"
                     .to_string()
@@ -689,24 +819,80 @@ mod tests {
 
     #[test]
     fn the_first_flat_face_is_named_with_its_line() {
-        let m = Mesh::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 1 1 3\n", 100).unwrap();
+        let m = Mesh::parse(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 1 1 3\n",
+            100,
+            Skips::NONE,
+        )
+        .unwrap();
         assert_eq!(m.degenerate_face(), Some((6, "its points are on one line")));
-        let m = Mesh::parse(SQUARE, 100).unwrap();
+        let m = Mesh::parse(SQUARE, 100, Skips::NONE).unwrap();
         assert_eq!(m.degenerate_face(), None);
+    }
+
+    #[test]
+    fn statements_that_make_no_triangle_are_refused_or_skipped() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n l 1 2 3\nf 1 2 3\nf 1 2\nf\nf 2 4 3\nl 1 4\n";
+        let e = Mesh::parse(text, 100, Skips::NONE).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "line 5: a line element (l) is no surface; only faces (f) are read"
+        );
+        assert_eq!(
+            e.located_in(&"m.obj"),
+            "m.obj:5:2: l: a line element (l) is no surface; only faces (f) are read"
+        );
+        let lines_only = Skips {
+            line_elements: true,
+            short_faces: false,
+        };
+        let e = Mesh::parse(text, 100, lines_only).unwrap_err();
+        assert_eq!(e.to_string(), "line 7: a face needs at least 3 vertices, got 2");
+        assert_eq!(
+            e.located_in(&"m.obj"),
+            "m.obj:7:1: f: a face needs at least 3 vertices (f v1 v2 v3 ...), got 2"
+        );
+        // Skipped: the other faces kept on their lines, the skipped statements recorded.
+        let both = Skips {
+            line_elements: true,
+            short_faces: true,
+        };
+        let m = Mesh::parse(text, 100, both).unwrap();
+        assert_eq!(m.lines, [6, 9]);
+        let points: Vec<[DVec3; 3]> = m.triangles().iter().map(|t| t.points()).collect();
+        let corner = DVec3::new(1.0, 1.0, 0.0);
+        assert_eq!(
+            points,
+            [[DVec3::ZERO, DVec3::X, DVec3::Y], [DVec3::X, corner, DVec3::Y]]
+        );
+        let skipped: Vec<(usize, usize, Statement)> =
+            m.skipped.iter().map(|s| (s.line, s.column, s.statement)).collect();
+        assert_eq!(
+            skipped,
+            [
+                (5, 2, Statement::LineElement),
+                (7, 1, Statement::ShortFace(2)),
+                (8, 1, Statement::ShortFace(0)),
+                (10, 1, Statement::LineElement),
+            ]
+        );
+        // A file whose faces are all skipped has none to draw.
+        let e = Mesh::parse("v 0 0 0\nv 1 0 0\nf 1 2\n", 100, both).unwrap_err();
+        assert_eq!(e.to_string(), "the file has no faces (f) of 3 vertices or more");
     }
 
     #[test]
     fn only_regular_files_are_read() {
         let device = if cfg!(unix) { "/dev/zero" } else { "." };
         for path in [device, "."] {
-            let e = Mesh::read(Path::new(path), 100).unwrap_err();
+            let e = Mesh::read(Path::new(path), 100, Skips::NONE).unwrap_err();
             assert_eq!(e.to_string(), "not a regular file", "{path}");
         }
     }
 
     #[test]
     fn bad_files_are_refused_on_their_line() {
-        let err = |text: &str| Mesh::parse(text, 100).unwrap_err().to_string();
+        let err = |text: &str| Mesh::parse(text, 100, Skips::NONE).unwrap_err().to_string();
         assert_eq!(
             err("v 0 0 0\nv 1 0 0\nf 1 2\n"),
             "line 3: a face needs at least 3 vertices, got 2"
@@ -782,9 +968,19 @@ mod tests {
         }
         // Accepted as tobj reads them: empty texture or normal indices, a sign.
         for face in ["f 1 2 3/", "f 1 2 3//", "f +1 2 3", "f 1// 2 3"] {
-            assert!(Mesh::parse(&format!("{square}{face}\n"), 100).is_ok(), "{face}");
+            assert!(
+                Mesh::parse(&format!("{square}{face}\n"), 100, Skips::NONE).is_ok(),
+                "{face}"
+            );
         }
-        assert!(Mesh::parse("v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n", 100).is_ok());
+        assert!(
+            Mesh::parse(
+                "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n",
+                100,
+                Skips::NONE
+            )
+            .is_ok()
+        );
         // A colour (unused) on every vertex or none, each a number.
         assert_eq!(
             err("v 0 0 0 1 0 0\nv 1 0 0\n"),
@@ -794,7 +990,11 @@ mod tests {
             err("v 0 0 0 1 0 0\nv 1 0 0 1 red 0\n"),
             "line 2: vertex 2: `red` is not a number (written x y z, x y z w or x y z r g b)"
         );
-        let limited = Mesh::parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 1 2 3 4 2 3\n", 4);
+        let limited = Mesh::parse(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 1 2 3 4 2 3\n",
+            4,
+            Skips::NONE,
+        );
         assert_eq!(
             limited.unwrap_err().to_string(),
             "line 6: the mesh would hold 5 triangles, at most 4 are allowed"

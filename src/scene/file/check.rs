@@ -4,7 +4,7 @@
 //! angles; and the serde defaults that several tables share.
 
 use crate::scene::locate::{FieldError, FieldPath};
-use crate::scene::rules;
+use crate::scene::rules::{self, Syntax::Toml};
 use glam::DVec3;
 use serde::Deserialize;
 
@@ -104,23 +104,23 @@ pub(super) fn positive(path: &FieldPath, x: f64, hi: f64) -> Check<f64> {
 
 /// A point or vector with finite components of magnitude at most `limits::MAX_COORDINATE`.
 pub(super) fn vec3(path: &FieldPath, v: Xyz) -> Check<DVec3> {
-    placed(path, rules::point(v.0))
+    placed(path, rules::point(v.0, Toml))
 }
 
 /// A direction: finite and of non-zero length; returned normalised.
 pub(super) fn direction(path: &FieldPath, v: Xyz) -> Check<DVec3> {
-    let d = placed(path, rules::direction(v.0))?;
+    let d = placed(path, rules::direction(v.0, Toml))?;
     Ok(d / d.length())
 }
 
 /// A colour: each channel finite in `[0, hi]`.
 pub(super) fn color(path: &FieldPath, v: Xyz, hi: f64) -> Check<DVec3> {
-    placed(path, rules::color(v.0, hi))
+    placed(path, rules::color(v.0, hi, Toml))
 }
 
 /// Angles in degrees, each finite in [-360, 360].
 pub(super) fn angles(path: &FieldPath, v: Xyz) -> Check<DVec3> {
-    placed(path, rules::angles(v.0))
+    placed(path, rules::angles(v.0, Toml))
 }
 
 /// The two edges of a rectangle or window (`edge1`, `edge2` of the entry at `path`): each of

@@ -7,8 +7,9 @@ use super::material::resolve_material;
 use super::shapes::normal_interpolation;
 use super::transform::{FileTransform, transform_of};
 use crate::scene::locate::{FieldError, FieldPath};
+use crate::scene::rules::Syntax;
 use crate::shape::Shape;
-use crate::shape::mesh::Mesh;
+use crate::shape::mesh::{Mesh, Skips};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -39,7 +40,7 @@ impl FileMesh {
         let field = path.key("file");
         let file = dir.join(&self.file);
         let shown = file.display();
-        let mut mesh = Mesh::read_into_scene(&file, room).map_err(|e| FieldError {
+        let mut mesh = Mesh::read_into_scene(&file, room, Skips::NONE).map_err(|e| FieldError {
             path: field.clone(),
             message: e.in_file(&shown),
             got: None,
@@ -51,7 +52,7 @@ impl FileMesh {
         };
         let transform = transform_of(&path.key("transform"), self.transform)?;
         if let Some(t) = &transform
-            && let Err(m) = mesh.transform(t, &shown)
+            && let Err(m) = mesh.transform(t, &shown, Syntax::Toml)
         {
             return fail(&path.key("transform"), m);
         }

@@ -249,7 +249,10 @@ fn smooth_triangle(
         Some(ns) => {
             let mut out = [DVec3::ZERO; 3];
             for (i, n) in ns.into_iter().enumerate() {
-                out[i] = placed(&path.key("normals").index(i), rules::direction(n.0))?;
+                out[i] = placed(
+                    &path.key("normals").index(i),
+                    rules::direction(n.0, rules::Syntax::Toml),
+                )?;
             }
             out
         }

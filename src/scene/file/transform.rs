@@ -78,7 +78,7 @@ pub(super) fn transform_of(path: &FieldPath, t: Option<FileTransform>) -> Check<
     } else {
         let scale = placed(
             &path.key("scale"),
-            rules::scale_factors(t.scale.map_or([1.0; 3], |s| s.0)),
+            rules::scale_factors(t.scale.map_or([1.0; 3], |s| s.0), rules::Syntax::Toml),
         )?;
         let rotation = angles(&path.key("rotation"), t.rotation.unwrap_or_default())?;
         let translation = vec3(&path.key("translation"), t.translation.unwrap_or_default())?;

@@ -6,7 +6,8 @@
 //! (`exact.rs` finds what to write so that values read back to the bit). The format, its
 //! mapping to lumiere and what the writers refuse are documented in docs/simrenderer.md.
 
-mod exact;
+/// The numbers the writers write; [`crate::scene::rules::Syntax`] shows vectors with them.
+pub(in crate::scene) mod exact;
 pub mod lex;
 mod read;
 mod toml;

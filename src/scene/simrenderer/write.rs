@@ -12,6 +12,7 @@ use crate::film::Normalization;
 use crate::interference::{Aperture, ApertureLight};
 use crate::light::Light;
 use crate::material::Material;
+use crate::scene::rules::Syntax;
 use crate::scene::{Scene, ShadingModel, Specular};
 use crate::shape::{Cuboid, NormalInterpolation, Shape};
 use glam::DVec3;
@@ -22,7 +23,7 @@ fn num(x: f64) -> String {
 }
 
 fn vec3(v: DVec3) -> String {
-    format!("{} {} {}", num(v.x), num(v.y), num(v.z))
+    Syntax::SimRenderer.vector(&v.to_array())
 }
 
 /// `reflexion_algorithm`'s name for a shading model, if SIMRenderer has it.

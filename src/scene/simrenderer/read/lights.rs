@@ -8,6 +8,7 @@ use crate::interference::{Aperture, ApertureLight, Invalid, Mask, Planar, VISIBL
 use crate::light::{Attenuation, Light, PointLight};
 use crate::limits;
 use crate::scene::SceneError;
+use crate::scene::rules::Syntax::SimRenderer;
 use crate::scene::simrenderer::lex::{self, Line};
 use glam::DVec3;
 use std::collections::BTreeMap;
@@ -111,9 +112,9 @@ impl<'a> Reader<'a> {
                 if amplified.max_element() > limits::MAX_LIGHT {
                     let here = lines.get("amplification").cloned().unwrap_or(place);
                     let m = format!(
-                        "the colour times the amplification must stay at most {:e} per channel, got {:?}",
+                        "the colour times the amplification must stay at most {:e} per channel, got {}",
                         limits::MAX_LIGHT,
-                        amplified.to_array()
+                        SimRenderer.vector(&amplified.to_array())
                     );
                     self.problem(&here, m, dropped)?;
                     return Ok(None);
@@ -172,7 +173,10 @@ impl<'a> Reader<'a> {
                         continue;
                     }
                     if ends_read == 1 && p == ends[0] {
-                        let m = format!("the second end must differ from the first, {:?}", p.to_array());
+                        let m = format!(
+                            "the second end must differ from the first, {}",
+                            SimRenderer.vector(&p.to_array())
+                        );
                         self.problem(&here, m, "the line is skipped")?;
                         continue;
                     }
@@ -236,8 +240,8 @@ impl<'a> Reader<'a> {
                 if ends[0] == ends[1] {
                     let here = lines.get("position").or(lines.get("point")).cloned().unwrap_or(place);
                     let m = format!(
-                        "the slit's ends must differ: the first is SIMRenderer's default second end {:?}",
-                        ends[1].to_array()
+                        "the slit's ends must differ: the first is SIMRenderer's default second end {}",
+                        SimRenderer.vector(&ends[1].to_array())
                     );
                     self.problem(&here, m, dropped)?;
                     return Ok(None);

@@ -9,8 +9,9 @@ use super::{At, Reader, at, at_value};
 use crate::limits;
 use crate::material::Material;
 use crate::scene::SceneError;
+use crate::scene::rules::Syntax::SimRenderer;
 use crate::scene::simrenderer::lex::{self, Item, Line};
-use crate::shape::mesh::Mesh;
+use crate::shape::mesh::{Mesh, Skips, Statement};
 use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Lens, NormalInterpolation, Plane, Shape, SmoothTriangle, Sphere, SphericalCap, Torus,
     Transform, Triangle,
@@ -225,10 +226,10 @@ impl<'a> Reader<'a> {
                 let p: Vec<DVec3> = (0..3).map(|i| points.get(i).map_or(defaults[i], |(p, _)| *p)).collect();
                 if let Some(why) = Triangle::degenerate(p[0], p[1], p[2]) {
                     let m = format!(
-                        "the points {:?}, {:?} and {:?} make no triangle: {why}",
-                        p[0].to_array(),
-                        p[1].to_array(),
-                        p[2].to_array()
+                        "the points {}, {} and {} make no triangle: {why}",
+                        SimRenderer.vector(&p[0].to_array()),
+                        SimRenderer.vector(&p[1].to_array()),
+                        SimRenderer.vector(&p[2].to_array())
                     );
                     let here = points.last().map_or(place.clone(), |(_, a)| a.clone());
                     self.problem(&here, m, dropped)?;
@@ -266,9 +267,9 @@ impl<'a> Reader<'a> {
                 // it underflows.
                 if !axis.is_finite() {
                     let m = format!(
-                        "the two points {:?} and {:?} must differ (a {kind} needs a length)",
-                        from.to_array(),
-                        to.to_array()
+                        "the two points {} and {} must differ (a {kind} needs a length)",
+                        SimRenderer.vector(&from.to_array()),
+                        SimRenderer.vector(&to.to_array())
                     );
                     let here = points.last().map_or(place.clone(), |(_, a)| a.clone());
                     self.problem(&here, m, dropped)?;
@@ -352,17 +353,24 @@ impl<'a> Reader<'a> {
         let path = self.dir.join(&file);
         let shown = path.display().to_string();
         let room = limits::MAX_OBJECTS.saturating_sub(self.objects);
-        let mut mesh = match Mesh::read_into_scene(&path, room) {
+        // SIMRenderer's model reader skips a line element without a word (its keyword table
+        // has no `l`), and a face of fewer than 3 vertices with a message.
+        let skips = Skips {
+            line_elements: true,
+            short_faces: self.lenient,
+        };
+        let mut mesh = match Mesh::read_into_scene(&path, room, skips) {
             Ok(mesh) => mesh,
             Err(e) => {
-                self.problem(&file_at, e.in_file(&shown), dropped)?;
+                self.problem(&file_at, e.located_in(&shown), dropped)?;
                 return Ok(None);
             }
         };
+        self.report_skipped(&mesh, &shown, &file_at)?;
         mesh.round_to_f32();
         let t = Transform::from_parts(scale, rotation, translation);
         let moved = !t.is_identity();
-        if moved && let Err(m) = mesh.transform(&t, &shown) {
+        if moved && let Err(m) = mesh.transform(&t, &shown, SimRenderer) {
             self.problem(&place, format!("the transform {m}"), dropped)?;
             return Ok(None);
         }
@@ -387,6 +395,38 @@ impl<'a> Reader<'a> {
             shapes,
             model: Some(materials),
         }))
+    }
+
+    /// The statements of `mesh`'s file that make no triangle and were skipped, the first of
+    /// each kind located: line elements a warning, short faces a problem (skipped under
+    /// `lenient` only).
+    fn report_skipped(&mut self, mesh: &Mesh, shown: &str, file_at: &At) -> Result<(), SceneError> {
+        let lines: Vec<_> = mesh
+            .skipped
+            .iter()
+            .filter(|s| s.statement == Statement::LineElement)
+            .collect();
+        if let Some(first) = lines.first() {
+            let m = format!(
+                "{}; the file's {} line element(s) are skipped, as SIMRenderer's model reader skips them",
+                first.in_file(&shown),
+                lines.len()
+            );
+            self.warn(file_at, m);
+        }
+        let faces: Vec<_> = mesh
+            .skipped
+            .iter()
+            .filter(|s| matches!(s.statement, Statement::ShortFace(_)))
+            .collect();
+        if let Some(first) = faces.first() {
+            let then = format!(
+                "the file's {} face(s) of fewer than 3 vertices are skipped and its others kept, as SIMRenderer's model reader skips them",
+                faces.len()
+            );
+            self.problem(file_at, first.in_file(&shown), &then)?;
+        }
+        Ok(())
     }
 
     /// The materials of `mesh`'s faces ([`super::mtl`]): its libraries read from `folder`

@@ -3,7 +3,7 @@
 //! column; and `unit`, which makes a direction unit.
 
 use crate::limits;
-use crate::scene::rules;
+use crate::scene::rules::{self, Syntax::SimRenderer};
 use crate::scene::simrenderer::lex::{self, Line, ValueError};
 use glam::DVec3;
 
@@ -23,12 +23,12 @@ fn placed<T>(l: &Line, checked: Result<T, String>) -> Result<T, ValueError> {
 
 /// A point: finite coordinates of magnitude at most [`crate::limits::MAX_COORDINATE`].
 pub(super) fn point(l: &Line) -> Result<DVec3, ValueError> {
-    placed(l, rules::point(lex::vector(l.value, l.value_column)?))
+    placed(l, rules::point(lex::vector(l.value, l.value_column)?, SimRenderer))
 }
 
 /// A direction: a point of non-zero length (not yet made unit).
 pub(super) fn direction(l: &Line) -> Result<DVec3, ValueError> {
-    placed(l, rules::direction(lex::vector(l.value, l.value_column)?))
+    placed(l, rules::direction(lex::vector(l.value, l.value_column)?, SimRenderer))
 }
 
 /// Texture coordinates `u v`, each finite within the coordinates' range.
@@ -75,16 +75,19 @@ pub(super) fn int_in(l: &Line, lo: i32, hi: i32) -> Result<i32, ValueError> {
 
 /// A colour with each channel in `[0, hi]`.
 pub(super) fn color(l: &Line, hi: f64) -> Result<DVec3, ValueError> {
-    placed(l, rules::color(lex::color(l.value, l.value_column)?, hi))
+    placed(l, rules::color(lex::color(l.value, l.value_column)?, hi, SimRenderer))
 }
 
 /// Scale factors of magnitude in [`crate::limits::MIN_SCALE`, `crate::limits::MAX_SCALE`]
 /// (negative ones mirror).
 pub(super) fn scale_factors(l: &Line) -> Result<DVec3, ValueError> {
-    placed(l, rules::scale_factors(lex::vector(l.value, l.value_column)?))
+    placed(
+        l,
+        rules::scale_factors(lex::vector(l.value, l.value_column)?, SimRenderer),
+    )
 }
 
 /// Angles in degrees, each in [-360, 360].
 pub(super) fn angles(l: &Line) -> Result<DVec3, ValueError> {
-    placed(l, rules::angles(lex::vector(l.value, l.value_column)?))
+    placed(l, rules::angles(lex::vector(l.value, l.value_column)?, SimRenderer))
 }
