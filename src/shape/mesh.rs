@@ -11,7 +11,7 @@
 //! (`l`), indices out of range, and more triangles than allowed. `tobj`'s own errors are
 //! placed on the line it stopped at. A reader may skip the statements that make no
 //! triangle (a line element, a face of fewer than 3 vertices) instead of refusing them
-//! ([`Skips`]): they are recorded ([`Mesh::skipped`]) and left out of what `tobj` reads.
+//! ([`Tolerated`]): they are recorded ([`Mesh::skipped`]) and left out of what `tobj` reads.
 //! Every other statement that draws nothing (`o`, `g`, `s`, `vp`, `p`, ...) is left to
 //! `tobj`, which groups by `o` and `g` and ignores the rest. The material libraries
 //! (`mtllib`) and each face's material name (`usemtl`, `default` before the first) are
@@ -52,23 +52,23 @@ pub struct Mesh {
     pub materials: Vec<u32>,
     /// The material libraries the file names (`mtllib`), in order, as written.
     pub libraries: Vec<Library>,
-    /// The statements skipped under the reader's [`Skips`], in file order.
+    /// The statements skipped under the reader's [`Tolerated`], in file order.
     pub skipped: Vec<StatementAt>,
 }
 
-/// Which statements that make no triangle a reader skips (recording them in
+/// Which statements that make no triangle a reader tolerates: skips (recording them in
 /// [`Mesh::skipped`]) rather than refuses on their line.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Skips {
+pub struct Tolerated {
     /// Line elements (`l`).
     pub line_elements: bool,
     /// Faces of fewer than 3 vertices.
     pub short_faces: bool,
 }
 
-impl Skips {
+impl Tolerated {
     /// Both refused.
-    pub const NONE: Skips = Skips {
+    pub const NONE: Tolerated = Tolerated {
         line_elements: false,
         short_faces: false,
     };
@@ -104,7 +104,7 @@ impl Statement {
     }
 }
 
-/// A statement that makes no triangle, skipped under [`Skips`] or refused: its line and the
+/// A statement that makes no triangle, skipped under [`Tolerated`] or refused: its line and the
 /// column of its keyword (1-based, in characters).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct StatementAt {
@@ -207,8 +207,8 @@ fn whole(message: String) -> ObjError {
 impl Mesh {
     /// Reads and checks the file (see the module doc), refusing files larger than
     /// [`limits::MAX_FILE_BYTES`] and meshes of more than `max_triangles`, and skipping
-    /// what `skips` says.
-    pub fn read(path: &Path, max_triangles: usize, skips: Skips) -> Result<Mesh, ObjError> {
+    /// what `tolerated` says.
+    pub fn read(path: &Path, max_triangles: usize, tolerated: Tolerated) -> Result<Mesh, ObjError> {
         let cannot = |e: std::io::Error| whole(format!("cannot read the mesh file: {e}"));
         let meta = std::fs::metadata(path).map_err(cannot)?;
         // Not a directory, a device or a pipe, whose length says nothing of what they give.
@@ -216,15 +216,15 @@ impl Mesh {
             return Err(whole("not a regular file".to_string()));
         }
         let bytes = limits::read_file(path).map_err(cannot)?;
-        Mesh::parse(&String::from_utf8_lossy(&bytes), max_triangles, skips)
+        Mesh::parse(&String::from_utf8_lossy(&bytes), max_triangles, tolerated)
     }
 
     /// Reads the mesh of a scene that has room for `room` more objects: at most
     /// [`limits::MAX_MESH_TRIANGLES`] triangles, fewer when the room is smaller, and then an
     /// error for too many triangles says that the scene's other objects leave too little.
-    pub fn read_into_scene(path: &Path, room: usize, skips: Skips) -> Result<Mesh, ObjError> {
+    pub fn read_into_scene(path: &Path, room: usize, tolerated: Tolerated) -> Result<Mesh, ObjError> {
         let most = limits::MAX_MESH_TRIANGLES.min(room);
-        Mesh::read(path, most, skips).map_err(|mut e| {
+        Mesh::read(path, most, tolerated).map_err(|mut e| {
             if e.over_limit && most < limits::MAX_MESH_TRIANGLES {
                 e.message += &format!(
                     " (the scene's other objects leave room for {most} of the {} objects it may hold)",
@@ -235,14 +235,14 @@ impl Mesh {
         })
     }
 
-    /// Checks and parses `.obj` text, skipping what `skips` says.
-    pub fn parse(text: &str, max_triangles: usize, skips: Skips) -> Result<Mesh, ObjError> {
+    /// Checks and parses `.obj` text, skipping what `tolerated` says.
+    pub fn parse(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Mesh, ObjError> {
         let Checked {
             faces,
             material_names,
             libraries,
             skipped,
-        } = check(text, max_triangles, skips)?;
+        } = check(text, max_triangles, tolerated)?;
         // The skipped lines left empty, so that the others keep their numbers.
         let kept: String;
         let text = if skipped.is_empty() {
@@ -477,8 +477,8 @@ fn rest_after<'a>(line: &'a str, keyword: &str) -> &'a str {
 }
 
 /// The checks of the module doc; returns what every face gives ([`FaceLine`]), with the
-/// material names, the libraries and the statements `skips` skips.
-fn check(text: &str, max_triangles: usize, skips: Skips) -> Result<Checked, ObjError> {
+/// material names, the libraries and the statements `tolerated` lets it skip.
+fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Checked, ObjError> {
     // Counts of vertices, texture coordinates and normals in the whole file: `tobj`
     // resolves positive indices against them (relative ones against those read so far).
     let (mut v_total, mut vt_total, mut vn_total) = (0, 0, 0);
@@ -501,7 +501,7 @@ fn check(text: &str, max_triangles: usize, skips: Skips) -> Result<Checked, ObjE
     for (i, line) in text.lines().enumerate() {
         let number = i + 1;
         let mut words = line.split_whitespace();
-        // A statement that makes no triangle: skipped or refused, as `skips` says.
+        // A statement that makes no triangle: skipped or refused, as `tolerated` says.
         let mut no_triangle = |statement: Statement, skip: bool| {
             let blanks = line.len() - line.trim_start().len();
             let placed = StatementAt {
@@ -564,11 +564,11 @@ fn check(text: &str, max_triangles: usize, skips: Skips) -> Result<Checked, ObjE
                 line: number,
                 file: rest_after(line, keyword).to_string(),
             }),
-            Some("l") => no_triangle(Statement::LineElement, skips.line_elements)?,
+            Some("l") => no_triangle(Statement::LineElement, tolerated.line_elements)?,
             Some("f") => {
                 let corners: Vec<&str> = words.collect();
                 if corners.len() < 3 {
-                    no_triangle(Statement::ShortFace(corners.len()), skips.short_faces)?;
+                    no_triangle(Statement::ShortFace(corners.len()), tolerated.short_faces)?;
                     continue;
                 }
                 let (mut with_uv, mut with_normal) = (0, 0);
@@ -754,7 +754,7 @@ mod tests {
         let text = "mtllib one.mtl\nmtllib two words.mtl\n\
             v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n\
             f 1 2 3\nusemtl a\nf 2 4 3\nusemtl b\nf 1 2 4\ng side\nusemtl  a \nf 1 4 3\n";
-        let m = Mesh::parse(text, 100, Skips::NONE).unwrap();
+        let m = Mesh::parse(text, 100, Tolerated::NONE).unwrap();
         assert_eq!(m.material_names, ["default", "a", "b"]);
         assert_eq!(m.materials, [0, 1, 2, 1]);
         assert_eq!(m.lines, [7, 9, 11, 14]);
@@ -776,7 +776,7 @@ mod tests {
 
     #[test]
     fn faces_become_triangles_with_their_lines() {
-        let m = Mesh::parse(SQUARE, 100, Skips::NONE).unwrap();
+        let m = Mesh::parse(SQUARE, 100, Tolerated::NONE).unwrap();
         // The quad fans into (1 2 3) (1 3 4); the pair's second face is (1 3 4) by relative
         // indices. Each model keeps its own vertices (tobj re-indexes per model).
         assert_eq!(m.faces.len(), 4);
@@ -790,7 +790,7 @@ mod tests {
 
     #[test]
     fn a_mirroring_transform_keeps_the_normals_outward() {
-        let mut m = Mesh::parse(SQUARE, 100, Skips::NONE).unwrap();
+        let mut m = Mesh::parse(SQUARE, 100, Tolerated::NONE).unwrap();
         // x -> -x, then up by 2: the square lands on [-1, 0] x [0, 1] at z = 2.
         let t = Transform::from_parts(DVec3::new(-1.0, 1.0, 1.0), DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0));
         assert_eq!(m.transform(&t, &"square.obj", Syntax::Toml), Ok(()));
@@ -807,7 +807,7 @@ mod tests {
         assert!(m.triangles().iter().all(|t| t.normal() == DVec3::Z));
         // A move beyond the coordinates' range names the first vertex it takes there.
         let far = Transform::from_parts(DVec3::ONE, DVec3::ZERO, DVec3::new(limits::MAX_COORDINATE, 0.0, 0.0));
-        let mut m = Mesh::parse(SQUARE, 100, Skips::NONE).unwrap();
+        let mut m = Mesh::parse(SQUARE, 100, Tolerated::NONE).unwrap();
         assert_eq!(
             m.transform(&far, &"square.obj", Syntax::Toml),
             Err(
@@ -822,18 +822,18 @@ mod tests {
         let m = Mesh::parse(
             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 1 1 3\n",
             100,
-            Skips::NONE,
+            Tolerated::NONE,
         )
         .unwrap();
         assert_eq!(m.degenerate_face(), Some((6, "its points are on one line")));
-        let m = Mesh::parse(SQUARE, 100, Skips::NONE).unwrap();
+        let m = Mesh::parse(SQUARE, 100, Tolerated::NONE).unwrap();
         assert_eq!(m.degenerate_face(), None);
     }
 
     #[test]
     fn statements_that_make_no_triangle_are_refused_or_skipped() {
         let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n l 1 2 3\nf 1 2 3\nf 1 2\nf\nf 2 4 3\nl 1 4\n";
-        let e = Mesh::parse(text, 100, Skips::NONE).unwrap_err();
+        let e = Mesh::parse(text, 100, Tolerated::NONE).unwrap_err();
         assert_eq!(
             e.to_string(),
             "line 5: a line element (l) is no surface; only faces (f) are read"
@@ -842,7 +842,7 @@ mod tests {
             e.located_in(&"m.obj"),
             "m.obj:5:2: l: a line element (l) is no surface; only faces (f) are read"
         );
-        let lines_only = Skips {
+        let lines_only = Tolerated {
             line_elements: true,
             short_faces: false,
         };
@@ -853,7 +853,7 @@ mod tests {
             "m.obj:7:1: f: a face needs at least 3 vertices (f v1 v2 v3 ...), got 2"
         );
         // Skipped: the other faces kept on their lines, the skipped statements recorded.
-        let both = Skips {
+        let both = Tolerated {
             line_elements: true,
             short_faces: true,
         };
@@ -885,14 +885,14 @@ mod tests {
     fn only_regular_files_are_read() {
         let device = if cfg!(unix) { "/dev/zero" } else { "." };
         for path in [device, "."] {
-            let e = Mesh::read(Path::new(path), 100, Skips::NONE).unwrap_err();
+            let e = Mesh::read(Path::new(path), 100, Tolerated::NONE).unwrap_err();
             assert_eq!(e.to_string(), "not a regular file", "{path}");
         }
     }
 
     #[test]
     fn bad_files_are_refused_on_their_line() {
-        let err = |text: &str| Mesh::parse(text, 100, Skips::NONE).unwrap_err().to_string();
+        let err = |text: &str| Mesh::parse(text, 100, Tolerated::NONE).unwrap_err().to_string();
         assert_eq!(
             err("v 0 0 0\nv 1 0 0\nf 1 2\n"),
             "line 3: a face needs at least 3 vertices, got 2"
@@ -969,7 +969,7 @@ mod tests {
         // Accepted as tobj reads them: empty texture or normal indices, a sign.
         for face in ["f 1 2 3/", "f 1 2 3//", "f +1 2 3", "f 1// 2 3"] {
             assert!(
-                Mesh::parse(&format!("{square}{face}\n"), 100, Skips::NONE).is_ok(),
+                Mesh::parse(&format!("{square}{face}\n"), 100, Tolerated::NONE).is_ok(),
                 "{face}"
             );
         }
@@ -977,7 +977,7 @@ mod tests {
             Mesh::parse(
                 "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n",
                 100,
-                Skips::NONE
+                Tolerated::NONE
             )
             .is_ok()
         );
@@ -993,7 +993,7 @@ mod tests {
         let limited = Mesh::parse(
             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 1 2 3 4 2 3\n",
             4,
-            Skips::NONE,
+            Tolerated::NONE,
         );
         assert_eq!(
             limited.unwrap_err().to_string(),

@@ -9,7 +9,7 @@ use super::transform::{FileTransform, transform_of};
 use crate::scene::locate::{FieldError, FieldPath};
 use crate::scene::rules::Syntax;
 use crate::shape::Shape;
-use crate::shape::mesh::{Mesh, Skips};
+use crate::shape::mesh::{Mesh, Tolerated};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -40,7 +40,7 @@ impl FileMesh {
         let field = path.key("file");
         let file = dir.join(&self.file);
         let shown = file.display();
-        let mut mesh = Mesh::read_into_scene(&file, room, Skips::NONE).map_err(|e| FieldError {
+        let mut mesh = Mesh::read_into_scene(&file, room, Tolerated::NONE).map_err(|e| FieldError {
             path: field.clone(),
             message: e.in_file(&shown),
             got: None,

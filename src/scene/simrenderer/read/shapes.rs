@@ -11,7 +11,7 @@ use crate::material::Material;
 use crate::scene::SceneError;
 use crate::scene::rules::Syntax::SimRenderer;
 use crate::scene::simrenderer::lex::{self, Item, Line};
-use crate::shape::mesh::{Mesh, Skips, Statement};
+use crate::shape::mesh::{Mesh, Statement, Tolerated};
 use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Lens, NormalInterpolation, Plane, Shape, SmoothTriangle, Sphere, SphericalCap, Torus,
     Transform, Triangle,
@@ -355,11 +355,11 @@ impl<'a> Reader<'a> {
         let room = limits::MAX_OBJECTS.saturating_sub(self.objects);
         // SIMRenderer's model reader skips a line element without a word (its keyword table
         // has no `l`), and a face of fewer than 3 vertices with a message.
-        let skips = Skips {
+        let tolerated = Tolerated {
             line_elements: true,
             short_faces: self.lenient,
         };
-        let mut mesh = match Mesh::read_into_scene(&path, room, skips) {
+        let mut mesh = match Mesh::read_into_scene(&path, room, tolerated) {
             Ok(mesh) => mesh,
             Err(e) => {
                 self.problem(&file_at, e.located_in(&shown), dropped)?;
