@@ -265,7 +265,7 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
     assert_eq!(
         err,
         format!(
-            "lumiere: error: {}: not an image compare reads (neither its first bytes nor its extension .txt name a known format); it reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA\n",
+            "lumiere: error: {}: not an image lumiere reads (neither its first bytes nor its extension .txt name a known format); it reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA\n",
             text.display()
         )
     );
@@ -288,7 +288,7 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
     assert_eq!(
         err,
         format!(
-            "lumiere: error: {}: its extension .png names PNG, but its first bytes are not a PNG file's: not an image, or one cut short or written as something else; compare reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA\n",
+            "lumiere: error: {}: its extension .png names PNG, but its first bytes are not a PNG file's: not an image, or one cut short or written as something else; lumiere reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA\n",
             named.display()
         )
     );
@@ -330,7 +330,7 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
     assert_eq!(
         err,
         format!(
-            "lumiere: error: {}: the PNG image is 100000 x 100000 = 10000000000 pixels: compare reads at most 33554432 (as many as lumiere renders)\n",
+            "lumiere: error: {}: the PNG image is 100000 x 100000 = 10000000000 pixels: lumiere reads at most 33554432 (as many as it renders)\n",
             bomb.display()
         )
     );
@@ -360,7 +360,7 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
         assert_eq!(
             err,
             format!(
-                "lumiere: error: {}: the {size} pixels: compare reads at most 33554432 (as many as lumiere renders)\n",
+                "lumiere: error: {}: the {size} pixels: lumiere reads at most 33554432 (as many as it renders)\n",
                 bomb.display()
             )
         );

@@ -1392,3 +1392,41 @@ fn two_mistakes_at_once_are_said_to_leave_something_else() {
         assert_eq!(json["also_differs"], also);
     }
 }
+
+#[test]
+fn an_image_diagnose_cannot_read_is_refused_in_words_naming_no_other_command() {
+    // The reader's messages are shared by every command that reads an image: under
+    // `diagnose` they say what lumiere reads, not what `compare` reads.
+    let dir = temp_dir("diagnose-unreadable");
+    let scene = repo("scenes/reference.toml");
+    let text = dir.join("notes.txt");
+    std::fs::write(&text, "a text, not an image").unwrap();
+    let gif = dir.join("mine.gif");
+    std::fs::write(&gif, b"GIF89a\x01\x00\x01\x00").unwrap();
+    let huge = dir.join("huge.ppm");
+    std::fs::write(&huge, "P6\n100000 100000\n255\n").unwrap();
+    let allowed = "PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA";
+    for (image, message) in [
+        (
+            &text,
+            format!(
+                "not an image lumiere reads (neither its first bytes nor its extension .txt name a known format); it reads {allowed}"
+            ),
+        ),
+        (
+            &gif,
+            format!("a GIF image, which lumiere does not read; it reads {allowed}"),
+        ),
+        (
+            &huge,
+            "the PPM image is 100000 x 100000 = 10000000000 pixels: lumiere reads at most 33554432 (as many as it renders)"
+                .to_string(),
+        ),
+    ] {
+        let o = lumiere(&["diagnose", scene.to_str().unwrap(), image.to_str().unwrap()]);
+        assert_eq!((o.status.code(), o.stdout.len()), (Some(2), 0));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(err, format!("lumiere: error: {}: {message}\n", image.display()));
+        assert!(!err.contains("compare"), "{err}");
+    }
+}

@@ -1,4 +1,6 @@
-//! Reading the images `compare` takes, as 8-bit RGB, with a note for every conversion.
+//! Reading the images `compare`, `diagnose` and the figures' review take, as 8-bit RGB,
+//! with a note for every conversion. The messages name no command ("lumiere reads ..."):
+//! each command that reads an image prints them as they are.
 //!
 //! The format is told by the file's first bytes (the extension only for TGA, which has no
 //! signature). What each converts:
@@ -21,7 +23,7 @@ use crate::limits;
 use image::{DynamicImage, ImageFormat};
 use std::path::Path;
 
-/// What `compare` reads, for messages.
+/// What lumiere reads as an image, for messages.
 pub const ALLOWED: &str = "PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA";
 
 /// The note on a JPEG image. Its compression stores colour at half resolution and rounds
@@ -110,7 +112,7 @@ fn too_many_pixels(format: &str, width: u64, height: u64) -> Option<String> {
     let pixels = width as u128 * height as u128;
     (pixels > limits::MAX_PIXELS as u128).then(|| {
         format!(
-            "the {format} image is {width} x {height} = {pixels} pixels: compare reads at most {} (as many as lumiere renders)",
+            "the {format} image is {width} x {height} = {pixels} pixels: lumiere reads at most {} (as many as it renders)",
             limits::MAX_PIXELS
         )
     })
@@ -203,7 +205,7 @@ pub fn image_signature(path: &Path) -> Option<&'static str> {
 }
 
 /// Why a file that no format's signature starts is not read: its extension names a
-/// format compare reads and its bytes are not that format's, or neither names one.
+/// format lumiere reads and its bytes are not that format's, or neither names one.
 fn unrecognised(extension: &str) -> String {
     let named = if extension.eq_ignore_ascii_case("pfm") {
         Some("PFM")
@@ -212,7 +214,7 @@ fn unrecognised(extension: &str) -> String {
     };
     match named {
         Some(format) => format!(
-            "its extension .{extension} names {format}, but its first bytes are not a {format} file's: not an image, or one cut short or written as something else; compare reads {ALLOWED}"
+            "its extension .{extension} names {format}, but its first bytes are not a {format} file's: not an image, or one cut short or written as something else; lumiere reads {ALLOWED}"
         ),
         None => {
             let ext = if extension.is_empty() {
@@ -221,7 +223,7 @@ fn unrecognised(extension: &str) -> String {
                 format!("extension .{extension}")
             };
             format!(
-                "not an image compare reads (neither its first bytes nor its {ext} name a known format); it reads {ALLOWED}"
+                "not an image lumiere reads (neither its first bytes nor its {ext} name a known format); it reads {ALLOWED}"
             )
         }
     }
@@ -263,7 +265,7 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
     };
     let Some(name) = format_name(format) else {
         return Err(format!(
-            "a {} image, which compare does not read; it reads {ALLOWED}",
+            "a {} image, which lumiere does not read; it reads {ALLOWED}",
             format
                 .extensions_str()
                 .first()
@@ -481,7 +483,7 @@ mod tests {
         let e = decode(b"hello, world", "txt").unwrap_err();
         assert_eq!(
             e,
-            "not an image compare reads (neither its first bytes nor its extension .txt name a known format); it reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA"
+            "not an image lumiere reads (neither its first bytes nor its extension .txt name a known format); it reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA"
         );
         for ext in ["png", "tga", ""] {
             assert_eq!(
@@ -491,7 +493,7 @@ mod tests {
         }
         assert_eq!(
             decode(b"hello, world", "png").unwrap_err(),
-            "its extension .png names PNG, but its first bytes are not a PNG file's: not an image, or one cut short or written as something else; compare reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA"
+            "its extension .png names PNG, but its first bytes are not a PNG file's: not an image, or one cut short or written as something else; lumiere reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA"
         );
         let e = decode(b"hello, world", "PFM").unwrap_err();
         assert!(
@@ -499,7 +501,7 @@ mod tests {
             "{e}"
         );
         let e = decode(b"GIF89a\x01\x00\x01\x00", "gif").unwrap_err();
-        assert!(e.starts_with("a GIF image, which compare does not read"), "{e}");
+        assert!(e.starts_with("a GIF image, which lumiere does not read"), "{e}");
         let e = decode(b"\x89PNG\r\n\x1a\n", "png").unwrap_err();
         assert!(e.starts_with("cannot decode the PNG image: "), "{e}");
     }
@@ -588,7 +590,7 @@ mod tests {
         ] {
             assert_eq!(
                 decode(&bytes, extension).unwrap_err(),
-                format!("{message}: compare reads at most 33554432 (as many as lumiere renders)")
+                format!("{message}: lumiere reads at most 33554432 (as many as it renders)")
             );
         }
     }
