@@ -557,7 +557,7 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     assert_eq!(code, 1, "{out} {err}");
     for line in [
         "undrawn            16 pixels left out",
-        "alpha channel dropped (every pixel opaque or fully transparent)",
+        "alpha channel dropped (every pixel opaque or transparent black)",
         "differing pixels   1 of 32 (3.1250 %) beyond 0 levels",
         "max difference     9 levels",
         "rule               at most 0 % of the drawn pixels beyond 0 levels",
@@ -640,8 +640,9 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
             argb.display()
         )
     );
-    // Each image drawn only where the other is not: both named.
-    let flipped: Vec<u8> = yours.chunks(4).flat_map(|p| [p[0], p[1], p[2], 255 - p[3]]).collect();
+    // Each image drawn only where the other is not (transparent black where the other is
+    // drawn, opaque black where the other is undrawn): both named.
+    let flipped: Vec<u8> = yours.chunks(4).flat_map(|p| [0, 0, 0, 255 - p[3]]).collect();
     let other = dir.join("other-half.png");
     fs::write(
         &other,
@@ -653,11 +654,85 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     assert_eq!(
         err.trim(),
         format!(
-            "lumiere: error: every pixel is fully transparent (alpha 0) in {} or in {}: no pixel drawn in both to compare",
+            "lumiere: error: every pixel is undrawn (transparent black: alpha and colour 0) in {} or in {}: no pixel drawn in both to compare",
             a.display(),
             other.display()
         )
     );
+}
+
+#[test]
+fn alpha_zero_pixels_with_a_colour_are_compared_as_stored() {
+    // An 8 x 6 oracle and yours: rows 0-1 opaque and right; rows 2-3 at alpha 0 with a
+    // colour, right on row 2 and 40 levels off in red on row 3 (alpha never set there);
+    // rows 4-5 transparent black, as SIMRenderer's console mode leaves the rows it does not
+    // trace. Only the 16 transparent black pixels are left out: the 8 wrong ones of row 3
+    // are found, the note counts the 16 coloured pixels of alpha 0.
+    let dir = temp_dir("compare-alpha-colour");
+    let (w, h) = (8u32, 6u32);
+    let oracle: Vec<u8> = (0..w * h).flat_map(|i| [(5 * i) as u8, 100, 200]).collect();
+    let yours: Vec<u8> = oracle
+        .chunks(3)
+        .enumerate()
+        .flat_map(|(i, p)| match i / w as usize {
+            0 | 1 => [p[0], p[1], p[2], 255],
+            2 => [p[0], p[1], p[2], 0],
+            3 => [p[0] + 40, p[1], p[2], 0],
+            _ => [0, 0, 0, 0],
+        })
+        .collect();
+    let (a, b) = (dir.join("yours.png"), dir.join("oracle.png"));
+    fs::write(
+        &a,
+        encode_with(image::ImageFormat::Png, w, h, &yours, image::ExtendedColorType::Rgba8),
+    )
+    .unwrap();
+    fs::write(&b, encode_png(w, h, &oracle).unwrap()).unwrap();
+    let note = "alpha channel dropped: 16 pixels fully transparent (alpha 0) but not black, their colour compared as stored (drawn with alpha never set?); only transparent black pixels (alpha and colour 0) are left out as never drawn";
+    let img = read_image(&a).unwrap();
+    assert_eq!(img.notes, [note]);
+    assert_eq!(img.undrawn.iter().filter(|&&u| u).count(), 16);
+    assert_eq!(img.alpha_zero, 32);
+    assert!(!img.nothing_drawn());
+    let (code, out, err) = compare(&[s(&a), s(&b)]);
+    assert_eq!(code, 1, "{out} {err}");
+    for line in [
+        format!("note               {}: {note}", a.display()),
+        "undrawn            16 pixels left out: transparent black (alpha and colour 0), never drawn; the rest are compared".into(),
+        "differing pixels   8 of 32 (25.0000 %) beyond 0 levels".into(),
+        "max difference     40 levels".into(),
+    ] {
+        assert!(out.contains(&line), "{line}: {out}");
+    }
+    let (_, j) = compare_json(&[s(&a), s(&b), "--worst", "20"]);
+    assert_eq!(
+        (
+            &j["undrawn"],
+            &j["metrics"]["pixels"],
+            &j["metrics"]["beyond_tolerance"]
+        ),
+        (&16.into(), &32.into(), &8.into())
+    );
+    let worst: Vec<(u64, u64)> = j["worst"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p["x"].as_u64().unwrap(), p["y"].as_u64().unwrap()))
+        .collect();
+    assert_eq!(worst, (0..8).map(|x| (x, 3)).collect::<Vec<_>>());
+    // Grey with alpha: a black pixel of alpha 0 (undrawn), a grey one of alpha 0 and an
+    // opaque one (both compared).
+    let grey = dir.join("grey.png");
+    let px = [0, 0, 90, 0, 50, 255];
+    fs::write(
+        &grey,
+        encode_with(image::ImageFormat::Png, 3, 1, &px, image::ExtendedColorType::La8),
+    )
+    .unwrap();
+    let img = read_image(&grey).unwrap();
+    assert_eq!((&img.undrawn[..], img.alpha_zero), (&[true, false, false][..], 2));
+    assert!(img.notes[1].starts_with("alpha channel dropped: 1 pixels fully transparent (alpha 0) but not black"));
+    assert!(!img.nothing_drawn());
 }
 
 #[test]

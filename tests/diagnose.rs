@@ -905,7 +905,7 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(text.contains("undrawn            1728 pixels left out"), "{text}");
     let html = std::fs::read_to_string(report.join("index.html")).unwrap();
-    assert!(html.contains("1728 undrawn (fully transparent) apart"));
+    assert!(html.contains("1728 undrawn (transparent black) apart"));
     // The library, on the same pixels: with the mask as the command line reads it, and
     // without (the cleared rows black).
     let oracle = Oracle::new(&scene, &Options::default());
@@ -926,6 +926,45 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     };
     assert_eq!(phong_beyond(&drawn), 0);
     assert!(phong_beyond(&whole) > 0);
+    // The same rows at alpha 0 but white (drawn, alpha never set there): judged as stored,
+    // none undrawn, and the note on the standard error counts them.
+    let white: Vec<u8> = rgba
+        .chunks(4)
+        .enumerate()
+        .flat_map(|(i, p)| {
+            if undrawn(i) {
+                [255, 255, 255, 0]
+            } else {
+                [p[0], p[1], p[2], 255]
+            }
+        })
+        .collect();
+    let unset = dir.join("unset-rows.png");
+    image::RgbaImage::from_raw(W, H, white.clone())
+        .unwrap()
+        .save(&unset)
+        .unwrap();
+    let args = diagnose_reference_centred(&unset);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = lumiere(&[&args[..], &["--json"]].concat());
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr),
+        format!(
+            "lumiere: {}: alpha channel dropped: 1728 pixels fully transparent (alpha 0) but not black, their colour compared as stored (drawn with alpha never set?); only transparent black pixels (alpha and colour 0) are left out as never drawn\n",
+            unset.display()
+        )
+    );
+    let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let as_stored = oracle.diagnose(&white.chunks(4).flat_map(|p| [p[0], p[1], p[2]]).collect::<Vec<_>>());
+    assert_eq!(d["undrawn"], 0);
+    assert_eq!(d["oracle"]["beyond"], as_stored.oracle.beyond);
+    assert_eq!(d["oracle"]["judged"], as_stored.oracle.judged);
+    assert!(
+        as_stored.oracle.beyond > drawn.oracle.beyond + 1000,
+        "{}",
+        as_stored.oracle.beyond
+    );
     // Nothing drawn at all: refused; with colours written under alpha 0 (an ARGB image
     // whose alpha was never set), refused with the hint.
     // The diagnosis's error, with exit code 2.

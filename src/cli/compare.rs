@@ -141,25 +141,20 @@ pub(super) fn scene_error(path: &Path, error: CliError, order: &str) -> CliError
     }
 }
 
-/// The pixels fully transparent in either image (never drawn), left out of the comparison;
+/// The pixels never drawn (transparent black) in either image, left out of the comparison;
 /// empty when there are none.
 fn undrawn_pixels(a: &Image, b: &Image) -> Vec<bool> {
-    match (a.transparent.is_empty(), b.transparent.is_empty()) {
+    match (a.undrawn.is_empty(), b.undrawn.is_empty()) {
         (true, true) => Vec::new(),
-        (false, true) => a.transparent.clone(),
-        (true, false) => b.transparent.clone(),
-        (false, false) => a
-            .transparent
-            .iter()
-            .zip(&b.transparent)
-            .map(|(&x, &y)| x || y)
-            .collect(),
+        (false, true) => a.undrawn.clone(),
+        (true, false) => b.undrawn.clone(),
+        (false, false) => a.undrawn.iter().zip(&b.undrawn).map(|(&x, &y)| x || y).collect(),
     }
 }
 
-/// Why no pixel is left to compare when each is fully transparent in one image or the
-/// other: the image with no pixel drawn (with the hint of [`Image::alpha_hint`] when its
-/// colours are drawn), or both images when each leaves out what the other drew.
+/// Why no pixel is left to compare: the image with alpha 0 everywhere (with the hint of
+/// [`Image::alpha_hint`] when its colours are drawn), or both images when each pixel is
+/// undrawn in one or the other.
 fn nothing_drawn(args: &CompareArgs, a: &Image, b: &Image) -> String {
     let (pa, pb) = (args.a.display(), args.b.display());
     let nothing = "every pixel is fully transparent (alpha 0): nothing was drawn to compare";
@@ -176,7 +171,9 @@ fn nothing_drawn(args: &CompareArgs, a: &Image, b: &Image) -> String {
         (true, false) => format!("{pa}: {nothing}{}", a.alpha_hint()),
         (false, true) => format!("{pb}: {nothing}{}", b.alpha_hint()),
         (false, false) => {
-            format!("every pixel is fully transparent (alpha 0) in {pa} or in {pb}: no pixel drawn in both to compare")
+            format!(
+                "every pixel is undrawn (transparent black: alpha and colour 0) in {pa} or in {pb}: no pixel drawn in both to compare"
+            )
         }
     }
 }
@@ -384,7 +381,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         max_flip: args.max_flip,
     };
     let undrawn = undrawn_pixels(&a, &b);
-    if !undrawn.is_empty() && undrawn.iter().all(|&u| u) {
+    if a.nothing_drawn() || b.nothing_drawn() || (!undrawn.is_empty() && undrawn.iter().all(|&u| u)) {
         return Err(CliError::BadInput(nothing_drawn(args, &a, &b)));
     }
     let masks = Masks {
@@ -493,7 +490,7 @@ fn print_text(args: &CompareArgs, scene: &str, a: &Image, b: &Image, r: &Report,
     println!("size               {} x {}", r.width, r.height);
     if r.undrawn > 0 {
         println!(
-            "undrawn            {} pixels left out: fully transparent (alpha 0), never drawn; the rest are compared",
+            "undrawn            {} pixels left out: transparent black (alpha and colour 0), never drawn; the rest are compared",
             r.undrawn
         );
     }

@@ -142,7 +142,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
         let oracle = Oracle::new(&scene, &options);
         images
             .iter()
-            .map(|image| oracle.diagnose_drawn(&image.rgb, &image.transparent))
+            .map(|image| oracle.diagnose_drawn(&image.rgb, &image.undrawn))
             .collect::<Vec<_>>()
     })?;
     let scene_name = scene_path.display().to_string();
@@ -403,7 +403,7 @@ fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
     if d.undrawn > 0 {
         let _ = writeln!(
             out,
-            "undrawn            {} pixels left out: fully transparent, never drawn (SIMRenderer's console mode leaves the last rows of a wide image so)",
+            "undrawn            {} pixels left out: transparent black (alpha and colour 0), never drawn (SIMRenderer's console mode leaves the last rows of a wide image so)",
             d.undrawn
         );
     }

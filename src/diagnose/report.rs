@@ -87,7 +87,7 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
         "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>lumiere diagnose</title>\n\
          <style>body{{font-family:sans-serif;margin:2em}}img{{image-rendering:pixelated;width:320px;border:1px solid #888}}\
          td,th{{padding:2px 8px;text-align:left}}figure{{display:inline-block;margin:4px}}</style></head><body>\n\
-         <h1>Diagnosis of {} against {}</h1>\n<p>{} x {} pixels; judged on {} ({} x {}), {} on edges apart, {} undrawn (fully transparent) apart; \
+         <h1>Diagnosis of {} against {}</h1>\n<p>{} x {} pixels; judged on {} ({} x {}), {} on edges apart, {} undrawn (transparent black) apart; \
          tolerance {} levels, at most {:.4} % beyond.</p>\n<p><b>Verdict: {}</b>. The oracle: {} of {} pixels beyond the tolerance \
          ({:.4} %), RMS {:.4}; {} beyond any sampling of the pixel.</p>\n",
         escape(image),
