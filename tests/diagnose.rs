@@ -1352,7 +1352,14 @@ fn a_reused_report_folder_holds_only_what_the_report_references() {
     for name in kept {
         std::fs::write(report.join(name), "mine").unwrap();
     }
-    let fixed = ["edges.png", "heat-oracle.png", "image.png", "index.html", "oracle.png"];
+    let fixed = [
+        ".lumiere-report",
+        "edges.png",
+        "heat-oracle.png",
+        "image.png",
+        "index.html",
+        "oracle.png",
+    ];
     for (image, top, mistakes) in [
         (
             &mistaken,
@@ -1468,4 +1475,129 @@ fn an_image_diagnose_cannot_read_is_refused_in_words_naming_no_other_command() {
         assert_eq!(err, format!("lumiere: error: {}: {message}\n", image.display()));
         assert!(!err.contains("compare"), "{err}");
     }
+}
+
+#[test]
+fn reports_of_images_no_longer_diagnosed_are_removed_and_nothing_else() {
+    // `--report DIR` of phong, correct and third, then of phong and other: third's folder
+    // goes, correct's loses its report but keeps the note written into it; a folder of
+    // someone else's, one with a marker lumiere did not write, and a report written alone
+    // into a folder of DIR stay. Then one image into DIR: the folders of several go; then
+    // several again: the report written alone into DIR itself goes, the rest of DIR stays.
+    let dir = temp_dir("diagnose-stale-reports");
+    let (phong, correct) = phong_and_correct(&dir);
+    let (third, other) = (dir.join("third.png"), dir.join("other.png"));
+    std::fs::copy(&correct, &third).unwrap();
+    std::fs::copy(&correct, &other).unwrap();
+    let report = dir.join("report");
+    let run = |images: &[&std::path::Path], into: &std::path::Path| {
+        let reference = repo("scenes/reference.toml");
+        let mut args = vec!["diagnose", reference.to_str().unwrap()];
+        args.extend(images.iter().map(|i| i.to_str().unwrap()));
+        args.extend(["--convention", "sample_position=center", "--spp", "1", "--top", "1"]);
+        args.extend(["--report", into.to_str().unwrap()]);
+        let o = lumiere(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stderr).unwrap()
+    };
+    let report_files = [
+        ".lumiere-report",
+        "edges.png",
+        "heat-oracle.png",
+        "image.png",
+        "index.html",
+        "oracle.png",
+    ];
+    let err = run(&[&phong, &correct, &third], &report);
+    assert_eq!(err, "");
+    assert_eq!(file_list(&report), ["correct", "phong", "third"]);
+    assert_eq!(file_list(&report.join("third")), report_files);
+    let marker = std::fs::read_to_string(report.join("phong/.lumiere-report")).unwrap();
+    assert!(
+        marker.starts_with(&format!(
+            "lumiere diagnose report\nwritten as one of several, into the folder above\nimage {}\n",
+            phong.display()
+        )),
+        "{marker}"
+    );
+    std::fs::write(report.join("correct/notes.txt"), "mine").unwrap();
+    std::fs::create_dir_all(report.join("mine")).unwrap();
+    std::fs::write(report.join("mine/index.html"), "mine").unwrap();
+    std::fs::create_dir_all(report.join("forged")).unwrap();
+    std::fs::write(report.join("forged/.lumiere-report"), "not lumiere's\n").unwrap();
+    std::fs::write(report.join("forged/index.html"), "mine").unwrap();
+    std::fs::write(report.join("notes.txt"), "mine").unwrap();
+    assert_eq!(run(&[&correct], &report.join("alone")), "");
+
+    let err = run(&[&phong, &other], &report);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: {}: the report files of an image not diagnosed in this run removed; the other files kept\n\
+             lumiere: {}: removed: the report of an image not diagnosed in this run\n",
+            report.join("correct").display(),
+            report.join("third").display()
+        )
+    );
+    assert_eq!(
+        file_list(&report),
+        ["alone", "correct", "forged", "mine", "notes.txt", "other", "phong"]
+    );
+    assert_eq!(file_list(&report.join("correct")), ["notes.txt"]);
+    assert_eq!(file_list(&report.join("forged")), [".lumiere-report", "index.html"]);
+    assert_eq!(file_list(&report.join("mine")), ["index.html"]);
+    assert_eq!(file_list(&report.join("alone")), report_files);
+    assert_eq!(file_list(&report.join("other")), report_files);
+
+    // One image into DIR: the folders written as one of several go.
+    let err = run(&[&phong], &report);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: {}: removed: the report of an image not diagnosed in this run\n\
+             lumiere: {}: removed: the report of an image not diagnosed in this run\n",
+            report.join("other").display(),
+            report.join("phong").display()
+        )
+    );
+    let mut expected = [
+        &report_files[..],
+        &[
+            "heat-1.png",
+            "mistake-1.png",
+            "alone",
+            "correct",
+            "forged",
+            "mine",
+            "notes.txt",
+        ],
+    ]
+    .concat();
+    expected.sort();
+    assert_eq!(file_list(&report), expected);
+    // Several again: the report written alone into DIR goes, its folders and files stay.
+    let err = run(&[&phong, &other], &report);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: {}: the report files of an image not diagnosed in this run removed; the other files kept\n",
+            report.display()
+        )
+    );
+    assert_eq!(
+        file_list(&report),
+        ["alone", "correct", "forged", "mine", "notes.txt", "other", "phong"]
+    );
+    // A stale report's image diagnosed again: it is an input, and stays.
+    let again = report.join("other/image.png");
+    let err = run(&[&phong, &again], &report);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: {}: the report files of an image not diagnosed in this run removed; the other files kept\n",
+            report.join("other").display()
+        )
+    );
+    assert_eq!(file_list(&report.join("other")), ["image.png"]);
+    assert_eq!(file_list(&report.join("image")), report_files);
 }

@@ -52,7 +52,9 @@ pub struct DiagnoseArgs {
     #[arg(long, default_value_t = 3, value_name = "N", value_parser = super::numbers::how_many, allow_negative_numbers = true)]
     pub top: usize,
     /// Write an HTML report (index.html, the images and heat-maps) into this folder (made if
-    /// its parent exists); with several images, into a folder of it per image.
+    /// its parent exists); with several images, into a folder of it per image. The reports
+    /// an earlier run left there of images not diagnosed now are removed (only folders
+    /// lumiere marked as its reports, and in them only the report's files).
     #[arg(long, value_name = "DIR")]
     pub report: Option<PathBuf>,
     /// The oracle's images are sRGB-encoded (as `render --srgb` writes them): compare
@@ -154,7 +156,12 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
                 std::fs::create_dir_all(dir)
                     .map_err(|e| WriteError::new(dir, "cannot create the report's folder", e))?;
             }
-            report::write(dir, d, &scene_name, &image_name, args.top)
+            let how = if args.images.len() == 1 {
+                report::Written::Alone
+            } else {
+                report::Written::OneOfSeveral
+            };
+            report::write(dir, d, &scene_name, &image_name, args.top, how)
                 .map_err(|e| WriteError::new(dir, "cannot write the report", e))?;
         }
         if args.json {
@@ -174,6 +181,23 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
             print!("{}", text(d, &scene_name, &image_name, args.top));
             if let Some(next) = next_step(d, args, &scene_name, &image_name) {
                 println!("next               {next}");
+            }
+        }
+    }
+    if let Some(dir) = &args.report {
+        let inputs: Vec<&Path> = inputs(scene_path, &args.images).map(|(_, p)| p).collect();
+        let stale = report::remove_stale_reports(dir, &reports, &inputs)
+            .map_err(|e| WriteError::new(dir, "cannot remove an earlier report", e))?;
+        for s in stale {
+            match s {
+                report::Stale::Removed(folder) => eprintln!(
+                    "lumiere: {}: removed: the report of an image not diagnosed in this run",
+                    folder.display()
+                ),
+                report::Stale::Cleared(folder) => eprintln!(
+                    "lumiere: {}: the report files of an image not diagnosed in this run removed; the other files kept",
+                    folder.display()
+                ),
             }
         }
     }
