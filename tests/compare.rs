@@ -1205,3 +1205,184 @@ fn an_indexed_png_is_read_as_its_palette_and_noted() {
     let (_, json) = compare_json(&[s(&rgb), s(&rgb)]);
     assert_eq!(json["notes"], serde_json::json!([]));
 }
+
+/// Runs `lumiere ARGS` in the folder `cwd`: exit code, stdout, stderr.
+fn lumiere_in(cwd: &Path, args: &[&str]) -> (i32, String, String) {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("lumiere runs");
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+/// The words of a command line as a POSIX shell splits it (blanks, single quotes and the
+/// `'\''` of a quote inside them), without the leading `lumiere`.
+fn words(line: &str) -> Vec<String> {
+    let (mut words, mut word, mut quoted, mut any) = (Vec::new(), String::new(), false, false);
+    let mut chars = line.chars();
+    while let Some(c) = chars.next() {
+        match c {
+            '\'' => (quoted, any) = (!quoted, true),
+            '\\' if !quoted => word.extend(chars.next()),
+            ' ' if !quoted => {
+                if any || !word.is_empty() {
+                    words.push(std::mem::take(&mut word));
+                }
+                any = false;
+            }
+            c => word.push(c),
+        }
+    }
+    if any || !word.is_empty() {
+        words.push(word);
+    }
+    assert_eq!(words.first().map(String::as_str), Some("lumiere"), "{line}");
+    words.split_off(1)
+}
+
+/// Runs a printed command line in `cwd`, which must succeed; its stdout.
+fn run_line_in(cwd: &Path, line: &str) -> String {
+    let words = words(line);
+    let args: Vec<&str> = words.iter().map(String::as_str).collect();
+    let (code, out, err) = lumiere_in(cwd, &args);
+    assert_eq!(code, 0, "`{line}` in {}: {err}", cwd.display());
+    out
+}
+
+#[test]
+fn printed_command_lines_hold_from_the_working_folder() {
+    // A course figure names its scene by its path from the repository's root. Compared
+    // from another folder, the probe, diagnose and render lines name the scene by a path
+    // that holds from there: found above the image, or above the working folder; a copy of
+    // the figure out of the repository names a placeholder and says why.
+    let dir = temp_dir("compare-lines");
+    let figure = repo("figures/lighting/03-ambient-directional.png");
+    let scene = repo("scenes/figures/lighting/03-ambient-directional.toml")
+        .canonicalize()
+        .unwrap();
+    let (w, h, mut rgb) = lumiere::compare::load_rgb8(&figure).unwrap();
+    let i = 3 * (20 * w as usize + 10);
+    rgb[i] = rgb[i].wrapping_add(50);
+    let yours = dir.join("yours.png");
+    fs::write(&yours, encode_png(w, h, &rgb).unwrap()).unwrap();
+    let copy = dir.join("copy.png");
+    fs::copy(&figure, &copy).unwrap();
+    let probe_of = |cwd: &Path, oracle: &Path| {
+        let (code, out, err) = lumiere_in(cwd, &["compare", s(&yours), s(oracle), "--worst", "1", "--json"]);
+        assert_eq!(code, 1, "{err}");
+        let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+        (j["worst"][0]["probe"].as_str().unwrap().to_string(), j["notes"].clone())
+    };
+    let tail = "--pixel 10,20 --width 800 --height 600";
+
+    // Below the repository's root, the figure by its path from there: `../../scenes/...`.
+    let lighting = repo("figures/lighting");
+    let (probe, _) = probe_of(&lighting, Path::new("03-ambient-directional.png"));
+    assert_eq!(
+        probe,
+        format!("lumiere probe ../../scenes/figures/lighting/03-ambient-directional.toml {tail}")
+    );
+    let out = run_line_in(&lighting, &probe);
+    assert!(
+        out.starts_with("scene ../../scenes/figures/lighting/03-ambient-directional.toml\npixel (10, 20) of 800 x 600"),
+        "{out}"
+    );
+    // A copy of the figure, from a folder of the repository: found above the working folder.
+    let src = repo("src");
+    let (probe, _) = probe_of(&src, &copy);
+    assert_eq!(
+        probe,
+        format!("lumiere probe ../scenes/figures/lighting/03-ambient-directional.toml {tail}")
+    );
+    run_line_in(&src, &probe);
+    // Out of the repository, the figure in it: found above the image, a path that holds
+    // from the working folder (the probe line, and the text's diagnose line).
+    let (probe, notes) = probe_of(&dir, &figure);
+    assert_eq!(notes, serde_json::json!([]));
+    let path = words(&probe)[1].clone();
+    assert_eq!(dir.join(&path).canonicalize().unwrap(), scene);
+    assert_eq!(probe, format!("lumiere probe {path} {tail}"));
+    run_line_in(&dir, &probe);
+    let (_, out, _) = lumiere_in(&dir, &["compare", "yours.png", s(&figure), "--worst", "1"]);
+    assert!(
+        out.contains(&format!("next               `lumiere diagnose {path} yours.png` names")),
+        "{out}"
+    );
+    // Images of two sizes: the render line makes the oracle's image at yours, from here.
+    let small = dir.join("small.png");
+    fs::write(&small, encode_png(2, 1, &[0; 6]).unwrap()).unwrap();
+    let (code, _, err) = lumiere_in(&dir, &["compare", "small.png", s(&figure)]);
+    assert_eq!(code, 2);
+    let render = err.split('`').nth(1).unwrap();
+    assert_eq!(
+        render,
+        format!("lumiere render {path} -o oracle.png --width 2 --height 1")
+    );
+    run_line_in(&dir, render);
+    assert_eq!(lumiere::compare::load_rgb8(&dir.join("oracle.png")).unwrap().0, 2);
+    // The copy, out of the repository and compared from there: its scene is not found, said
+    // in a note; the lines name the placeholder.
+    let (probe, notes) = probe_of(&dir, &copy);
+    assert_eq!(probe, format!("lumiere probe SCENE.toml {tail}"));
+    assert_eq!(
+        notes,
+        serde_json::json!([format!(
+            "{}: a course figure of scenes/figures/lighting/03-ambient-directional.toml (its path from the repository's root), which is found neither in the image's folder, the working folder nor any folder above them: the command lines name SCENE.toml in its place; give the scene's path with --scene",
+            copy.display()
+        )])
+    );
+    let (_, _, err) = lumiere_in(&dir, &["compare", "small.png", "copy.png"]);
+    assert!(
+        err.contains("`lumiere render SCENE -o oracle.png --width 2 --height 1` (copy.png: a course figure of scenes/figures/lighting/03-ambient-directional.toml (its path from the repository's root), which is found neither"),
+        "{err}"
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn printed_paths_with_blanks_are_quoted() {
+    // A scene and images in a folder whose name holds a blank and a quote: the probe and
+    // diagnose lines quote them, and the probe line runs as printed.
+    let dir = temp_dir("compare-quoted");
+    let folder = dir.join("my 'lab' images");
+    fs::create_dir_all(&folder).unwrap();
+    let scene = folder.join("ref scene.toml");
+    fs::copy(repo("scenes/reference.toml"), &scene).unwrap();
+    let (yours, oracle) = (folder.join("my image.png"), folder.join("oracle.png"));
+    let o = lumiere(&["render", s(&scene), "-o", s(&oracle), "--width", "16", "--height", "12"]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    fs::write(&yours, encode_png(16, 12, &[255; 3 * 16 * 12]).unwrap()).unwrap();
+    let rel = |p: &Path| p.strip_prefix(&*dir).unwrap().to_str().unwrap().to_string();
+    let (code, out, err) = lumiere_in(
+        &dir,
+        &[
+            "compare",
+            &rel(&yours),
+            &rel(&oracle),
+            "--scene",
+            &rel(&scene),
+            "--worst",
+            "1",
+        ],
+    );
+    assert_eq!(code, 1, "{err}");
+    let quoted_scene = r#"'my '\''lab'\'' images/ref scene.toml'"#;
+    assert!(
+        out.contains(&format!(
+            "next               `lumiere diagnose {quoted_scene} 'my '\\''lab'\\'' images/my image.png'` names"
+        )),
+        "{out}"
+    );
+    let probe = out.lines().last().unwrap().split("  ").last().unwrap().trim();
+    assert!(
+        probe.starts_with(&format!("lumiere probe {quoted_scene} --pixel ")),
+        "{out}"
+    );
+    let text = run_line_in(&dir, probe);
+    assert!(text.starts_with("scene my 'lab' images/ref scene.toml\n"), "{text}");
+}

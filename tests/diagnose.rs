@@ -1315,6 +1315,22 @@ fn command_line_says_what_to_run_when_the_catalogue_does_not_explain_the_image()
         assert_eq!(json["black"], name == "black.png", "{name}");
         assert_eq!(json["verdict"], "partly_explained", "{name}");
     }
+    // An image whose name holds a blank: the lines quote it, as a shell reads one word.
+    if cfg!(unix) {
+        let blank = dir.join("grey image.png");
+        std::fs::copy(dir.join("grey.png"), &blank).unwrap();
+        let args = diagnose_reference_centred(&blank);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let text = String::from_utf8(lumiere(&args).stdout).unwrap();
+        assert!(
+            text.contains(&format!(
+                "then `lumiere compare '{}' oracle.png --scene {} --spp 1",
+                blank.display(),
+                reference.display()
+            )),
+            "{text}"
+        );
+    }
     let phong = catalogue().into_iter().find(|m| m.name == "phong-for-blinn").unwrap();
     let png = dir.join("phong.png");
     std::fs::write(

@@ -4,6 +4,7 @@
 //! Several images of one size (a class's) are diagnosed against one oracle, rendered once.
 //! Exit 0 whatever the verdict, 2 bad input.
 
+use super::compare::shell_word;
 use super::{CliError, Overrides, load_scene};
 use clap::Args;
 use lumiere::compare::read::{Image, read_image};
@@ -367,13 +368,15 @@ fn check_reports_spare_inputs(
 
 /// What to run next when the catalogue does not explain the image (no mistake of it, or
 /// one explaining less than half): render the oracle's image and compare, whose worst
-/// pixels off edges come with their probe lines. `None` for the other verdicts.
+/// pixels off edges come with their probe lines; the scene and image as given, which hold
+/// from the working folder. `None` for the other verdicts.
 fn next_step(d: &Diagnosis, args: &DiagnoseArgs, scene: &str, image: &str) -> Option<String> {
     if !matches!(d.verdict, Verdict::Unexplained | Verdict::PartlyExplained) {
         return None;
     }
     let settings = super::compare::settings(&args.overrides);
     let srgb = if args.srgb { " --srgb" } else { "" };
+    let (scene, image) = (shell_word(scene), shell_word(image));
     Some(format!(
         "`lumiere render {scene} -o oracle.png --width {} --height {}{settings}{srgb}`, then `lumiere compare {image} oracle.png --scene {scene}{settings}` lists the worst pixels off edges, each with the probe line of the oracle's ray tree there",
         d.width, d.height
