@@ -205,7 +205,7 @@ pub struct Report {
     pub pass: bool,
     /// Why the images fail (empty when they pass).
     pub failures: Vec<String>,
-    /// Pixels left out of every metric: fully transparent, never drawn.
+    /// Pixels left out of every metric: transparent black (alpha and colour 0), never drawn.
     pub undrawn: u64,
     /// The metrics of every drawn pixel.
     pub metrics: Stats,
@@ -223,8 +223,9 @@ pub struct Report {
 pub struct Masks<'a> {
     /// True on the pixels spanning an edge, when the scene is known.
     pub edges: Option<&'a [bool]>,
-    /// True on the pixels never drawn (fully transparent), as SIMRenderer's console mode
-    /// leaves the last rows of an image wider than tall; empty when every pixel is drawn.
+    /// True on the pixels never drawn (transparent black, [`read::Image::undrawn`]), as
+    /// SIMRenderer's console mode leaves the last rows of an image wider than tall; empty
+    /// when every pixel is drawn.
     pub undrawn: &'a [bool],
 }
 

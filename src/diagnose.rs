@@ -202,8 +202,8 @@ pub struct Diagnosis {
     pub max_fraction: f64,
     /// Grid pixels on an edge (left out of every score).
     pub edges: usize,
-    /// Grid pixels the image leaves fully transparent, never drawn (left out of every
-    /// score).
+    /// Grid pixels the image leaves undrawn (transparent black: the mask given to
+    /// [`Oracle::diagnose_drawn`]), left out of every score.
     pub undrawn: usize,
     /// The image against the oracle.
     pub oracle: Score,
@@ -801,7 +801,7 @@ impl<'s> Oracle<'s> {
 
     /// Diagnoses `image` with the pixels `transparent` marks (one per image pixel, or none
     /// at all) left out: never drawn, as SIMRenderer's console mode leaves the last rows of
-    /// an image wider than tall.
+    /// an image wider than tall ([`crate::compare::read::Image::undrawn`]).
     pub fn diagnose_drawn(&self, image: &[u8], transparent: &[bool]) -> Diagnosis {
         let (width, height, options) = (self.width, self.height, &self.options);
         assert_eq!(

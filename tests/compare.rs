@@ -265,7 +265,7 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
     assert_eq!(
         err,
         format!(
-            "lumiere: error: {}: not an image compare reads (neither its first bytes nor its extension .txt name a known format); it reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA\n",
+            "lumiere: error: {}: not an image lumiere reads (neither its first bytes nor its extension .txt name a known format); it reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA\n",
             text.display()
         )
     );
@@ -288,7 +288,7 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
     assert_eq!(
         err,
         format!(
-            "lumiere: error: {}: its extension .png names PNG, but its first bytes are not a PNG file's: not an image, or one cut short or written as something else; compare reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA\n",
+            "lumiere: error: {}: its extension .png names PNG, but its first bytes are not a PNG file's: not an image, or one cut short or written as something else; lumiere reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA\n",
             named.display()
         )
     );
@@ -330,7 +330,7 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
     assert_eq!(
         err,
         format!(
-            "lumiere: error: {}: the PNG image is 100000 x 100000 = 10000000000 pixels: compare reads at most 33554432 (as many as lumiere renders)\n",
+            "lumiere: error: {}: the PNG image is 100000 x 100000 = 10000000000 pixels: lumiere reads at most 33554432 (as many as it renders)\n",
             bomb.display()
         )
     );
@@ -360,7 +360,7 @@ fn bad_inputs_are_refused_with_exit_2_and_a_clear_message() {
         assert_eq!(
             err,
             format!(
-                "lumiere: error: {}: the {size} pixels: compare reads at most 33554432 (as many as lumiere renders)\n",
+                "lumiere: error: {}: the {size} pixels: lumiere reads at most 33554432 (as many as it renders)\n",
                 bomb.display()
             )
         );
@@ -557,7 +557,7 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     assert_eq!(code, 1, "{out} {err}");
     for line in [
         "undrawn            16 pixels left out",
-        "alpha channel dropped (every pixel opaque or fully transparent)",
+        "alpha channel dropped (every pixel opaque or transparent black)",
         "differing pixels   1 of 32 (3.1250 %) beyond 0 levels",
         "max difference     9 levels",
         "rule               at most 0 % of the drawn pixels beyond 0 levels",
@@ -640,8 +640,9 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
             argb.display()
         )
     );
-    // Each image drawn only where the other is not: both named.
-    let flipped: Vec<u8> = yours.chunks(4).flat_map(|p| [p[0], p[1], p[2], 255 - p[3]]).collect();
+    // Each image drawn only where the other is not (transparent black where the other is
+    // drawn, opaque black where the other is undrawn): both named.
+    let flipped: Vec<u8> = yours.chunks(4).flat_map(|p| [0, 0, 0, 255 - p[3]]).collect();
     let other = dir.join("other-half.png");
     fs::write(
         &other,
@@ -653,11 +654,85 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     assert_eq!(
         err.trim(),
         format!(
-            "lumiere: error: every pixel is fully transparent (alpha 0) in {} or in {}: no pixel drawn in both to compare",
+            "lumiere: error: every pixel is undrawn (transparent black: alpha and colour 0) in {} or in {}: no pixel drawn in both to compare",
             a.display(),
             other.display()
         )
     );
+}
+
+#[test]
+fn alpha_zero_pixels_with_a_colour_are_compared_as_stored() {
+    // An 8 x 6 oracle and yours: rows 0-1 opaque and right; rows 2-3 at alpha 0 with a
+    // colour, right on row 2 and 40 levels off in red on row 3 (alpha never set there);
+    // rows 4-5 transparent black, as SIMRenderer's console mode leaves the rows it does not
+    // trace. Only the 16 transparent black pixels are left out: the 8 wrong ones of row 3
+    // are found, the note counts the 16 coloured pixels of alpha 0.
+    let dir = temp_dir("compare-alpha-colour");
+    let (w, h) = (8u32, 6u32);
+    let oracle: Vec<u8> = (0..w * h).flat_map(|i| [(5 * i) as u8, 100, 200]).collect();
+    let yours: Vec<u8> = oracle
+        .chunks(3)
+        .enumerate()
+        .flat_map(|(i, p)| match i / w as usize {
+            0 | 1 => [p[0], p[1], p[2], 255],
+            2 => [p[0], p[1], p[2], 0],
+            3 => [p[0] + 40, p[1], p[2], 0],
+            _ => [0, 0, 0, 0],
+        })
+        .collect();
+    let (a, b) = (dir.join("yours.png"), dir.join("oracle.png"));
+    fs::write(
+        &a,
+        encode_with(image::ImageFormat::Png, w, h, &yours, image::ExtendedColorType::Rgba8),
+    )
+    .unwrap();
+    fs::write(&b, encode_png(w, h, &oracle).unwrap()).unwrap();
+    let note = "alpha channel dropped: 16 pixels fully transparent (alpha 0) but not black, their colour compared as stored (drawn with alpha never set?); only transparent black pixels (alpha and colour 0) are left out as never drawn";
+    let img = read_image(&a).unwrap();
+    assert_eq!(img.notes, [note]);
+    assert_eq!(img.undrawn.iter().filter(|&&u| u).count(), 16);
+    assert_eq!(img.alpha_zero, 32);
+    assert!(!img.nothing_drawn());
+    let (code, out, err) = compare(&[s(&a), s(&b)]);
+    assert_eq!(code, 1, "{out} {err}");
+    for line in [
+        format!("note               {}: {note}", a.display()),
+        "undrawn            16 pixels left out: transparent black (alpha and colour 0), never drawn; the rest are compared".into(),
+        "differing pixels   8 of 32 (25.0000 %) beyond 0 levels".into(),
+        "max difference     40 levels".into(),
+    ] {
+        assert!(out.contains(&line), "{line}: {out}");
+    }
+    let (_, j) = compare_json(&[s(&a), s(&b), "--worst", "20"]);
+    assert_eq!(
+        (
+            &j["undrawn"],
+            &j["metrics"]["pixels"],
+            &j["metrics"]["beyond_tolerance"]
+        ),
+        (&16.into(), &32.into(), &8.into())
+    );
+    let worst: Vec<(u64, u64)> = j["worst"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p["x"].as_u64().unwrap(), p["y"].as_u64().unwrap()))
+        .collect();
+    assert_eq!(worst, (0..8).map(|x| (x, 3)).collect::<Vec<_>>());
+    // Grey with alpha: a black pixel of alpha 0 (undrawn), a grey one of alpha 0 and an
+    // opaque one (both compared).
+    let grey = dir.join("grey.png");
+    let px = [0, 0, 90, 0, 50, 255];
+    fs::write(
+        &grey,
+        encode_with(image::ImageFormat::Png, 3, 1, &px, image::ExtendedColorType::La8),
+    )
+    .unwrap();
+    let img = read_image(&grey).unwrap();
+    assert_eq!((&img.undrawn[..], img.alpha_zero), (&[true, false, false][..], 2));
+    assert!(img.notes[1].starts_with("alpha channel dropped: 1 pixels fully transparent (alpha 0) but not black"));
+    assert!(!img.nothing_drawn());
 }
 
 #[test]
@@ -1129,4 +1204,185 @@ fn an_indexed_png_is_read_as_its_palette_and_noted() {
     // An RGB PNG has no such note.
     let (_, json) = compare_json(&[s(&rgb), s(&rgb)]);
     assert_eq!(json["notes"], serde_json::json!([]));
+}
+
+/// Runs `lumiere ARGS` in the folder `cwd`: exit code, stdout, stderr.
+fn lumiere_in(cwd: &Path, args: &[&str]) -> (i32, String, String) {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("lumiere runs");
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+/// The words of a command line as a POSIX shell splits it (blanks, single quotes and the
+/// `'\''` of a quote inside them), without the leading `lumiere`.
+fn words(line: &str) -> Vec<String> {
+    let (mut words, mut word, mut quoted, mut any) = (Vec::new(), String::new(), false, false);
+    let mut chars = line.chars();
+    while let Some(c) = chars.next() {
+        match c {
+            '\'' => (quoted, any) = (!quoted, true),
+            '\\' if !quoted => word.extend(chars.next()),
+            ' ' if !quoted => {
+                if any || !word.is_empty() {
+                    words.push(std::mem::take(&mut word));
+                }
+                any = false;
+            }
+            c => word.push(c),
+        }
+    }
+    if any || !word.is_empty() {
+        words.push(word);
+    }
+    assert_eq!(words.first().map(String::as_str), Some("lumiere"), "{line}");
+    words.split_off(1)
+}
+
+/// Runs a printed command line in `cwd`, which must succeed; its stdout.
+fn run_line_in(cwd: &Path, line: &str) -> String {
+    let words = words(line);
+    let args: Vec<&str> = words.iter().map(String::as_str).collect();
+    let (code, out, err) = lumiere_in(cwd, &args);
+    assert_eq!(code, 0, "`{line}` in {}: {err}", cwd.display());
+    out
+}
+
+#[test]
+fn printed_command_lines_hold_from_the_working_folder() {
+    // A course figure names its scene by its path from the repository's root. Compared
+    // from another folder, the probe, diagnose and render lines name the scene by a path
+    // that holds from there: found above the image, or above the working folder; a copy of
+    // the figure out of the repository names a placeholder and says why.
+    let dir = temp_dir("compare-lines");
+    let figure = repo("figures/lighting/03-ambient-directional.png");
+    let scene = repo("scenes/figures/lighting/03-ambient-directional.toml")
+        .canonicalize()
+        .unwrap();
+    let (w, h, mut rgb) = lumiere::compare::load_rgb8(&figure).unwrap();
+    let i = 3 * (20 * w as usize + 10);
+    rgb[i] = rgb[i].wrapping_add(50);
+    let yours = dir.join("yours.png");
+    fs::write(&yours, encode_png(w, h, &rgb).unwrap()).unwrap();
+    let copy = dir.join("copy.png");
+    fs::copy(&figure, &copy).unwrap();
+    let probe_of = |cwd: &Path, oracle: &Path| {
+        let (code, out, err) = lumiere_in(cwd, &["compare", s(&yours), s(oracle), "--worst", "1", "--json"]);
+        assert_eq!(code, 1, "{err}");
+        let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+        (j["worst"][0]["probe"].as_str().unwrap().to_string(), j["notes"].clone())
+    };
+    let tail = "--pixel 10,20 --width 800 --height 600";
+
+    // Below the repository's root, the figure by its path from there: `../../scenes/...`.
+    let lighting = repo("figures/lighting");
+    let (probe, _) = probe_of(&lighting, Path::new("03-ambient-directional.png"));
+    assert_eq!(
+        probe,
+        format!("lumiere probe ../../scenes/figures/lighting/03-ambient-directional.toml {tail}")
+    );
+    let out = run_line_in(&lighting, &probe);
+    assert!(
+        out.starts_with("scene ../../scenes/figures/lighting/03-ambient-directional.toml\npixel (10, 20) of 800 x 600"),
+        "{out}"
+    );
+    // A copy of the figure, from a folder of the repository: found above the working folder.
+    let src = repo("src");
+    let (probe, _) = probe_of(&src, &copy);
+    assert_eq!(
+        probe,
+        format!("lumiere probe ../scenes/figures/lighting/03-ambient-directional.toml {tail}")
+    );
+    run_line_in(&src, &probe);
+    // Out of the repository, the figure in it: found above the image, a path that holds
+    // from the working folder (the probe line, and the text's diagnose line).
+    let (probe, notes) = probe_of(&dir, &figure);
+    assert_eq!(notes, serde_json::json!([]));
+    let path = words(&probe)[1].clone();
+    assert_eq!(dir.join(&path).canonicalize().unwrap(), scene);
+    assert_eq!(probe, format!("lumiere probe {path} {tail}"));
+    run_line_in(&dir, &probe);
+    let (_, out, _) = lumiere_in(&dir, &["compare", "yours.png", s(&figure), "--worst", "1"]);
+    assert!(
+        out.contains(&format!("next               `lumiere diagnose {path} yours.png` names")),
+        "{out}"
+    );
+    // Images of two sizes: the render line makes the oracle's image at yours, from here.
+    let small = dir.join("small.png");
+    fs::write(&small, encode_png(2, 1, &[0; 6]).unwrap()).unwrap();
+    let (code, _, err) = lumiere_in(&dir, &["compare", "small.png", s(&figure)]);
+    assert_eq!(code, 2);
+    let render = err.split('`').nth(1).unwrap();
+    assert_eq!(
+        render,
+        format!("lumiere render {path} -o oracle.png --width 2 --height 1")
+    );
+    run_line_in(&dir, render);
+    assert_eq!(lumiere::compare::load_rgb8(&dir.join("oracle.png")).unwrap().0, 2);
+    // The copy, out of the repository and compared from there: its scene is not found, said
+    // in a note; the lines name the placeholder.
+    let (probe, notes) = probe_of(&dir, &copy);
+    assert_eq!(probe, format!("lumiere probe SCENE.toml {tail}"));
+    assert_eq!(
+        notes,
+        serde_json::json!([format!(
+            "{}: a course figure of scenes/figures/lighting/03-ambient-directional.toml (its path from the repository's root), which is found neither in the image's folder, the working folder nor any folder above them: the command lines name SCENE.toml in its place; give the scene's path with --scene",
+            copy.display()
+        )])
+    );
+    let (_, _, err) = lumiere_in(&dir, &["compare", "small.png", "copy.png"]);
+    assert!(
+        err.contains("`lumiere render SCENE -o oracle.png --width 2 --height 1` (copy.png: a course figure of scenes/figures/lighting/03-ambient-directional.toml (its path from the repository's root), which is found neither"),
+        "{err}"
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn printed_paths_with_blanks_are_quoted() {
+    // A scene and images in a folder whose name holds a blank and a quote: the probe and
+    // diagnose lines quote them, and the probe line runs as printed.
+    let dir = temp_dir("compare-quoted");
+    let folder = dir.join("my 'lab' images");
+    fs::create_dir_all(&folder).unwrap();
+    let scene = folder.join("ref scene.toml");
+    fs::copy(repo("scenes/reference.toml"), &scene).unwrap();
+    let (yours, oracle) = (folder.join("my image.png"), folder.join("oracle.png"));
+    let o = lumiere(&["render", s(&scene), "-o", s(&oracle), "--width", "16", "--height", "12"]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    fs::write(&yours, encode_png(16, 12, &[255; 3 * 16 * 12]).unwrap()).unwrap();
+    let rel = |p: &Path| p.strip_prefix(&*dir).unwrap().to_str().unwrap().to_string();
+    let (code, out, err) = lumiere_in(
+        &dir,
+        &[
+            "compare",
+            &rel(&yours),
+            &rel(&oracle),
+            "--scene",
+            &rel(&scene),
+            "--worst",
+            "1",
+        ],
+    );
+    assert_eq!(code, 1, "{err}");
+    let quoted_scene = r#"'my '\''lab'\'' images/ref scene.toml'"#;
+    assert!(
+        out.contains(&format!(
+            "next               `lumiere diagnose {quoted_scene} 'my '\\''lab'\\'' images/my image.png'` names"
+        )),
+        "{out}"
+    );
+    let probe = out.lines().last().unwrap().split("  ").last().unwrap().trim();
+    assert!(
+        probe.starts_with(&format!("lumiere probe {quoted_scene} --pixel ")),
+        "{out}"
+    );
+    let text = run_line_in(&dir, probe);
+    assert!(text.starts_with("scene my 'lab' images/ref scene.toml\n"), "{text}");
 }

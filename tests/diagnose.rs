@@ -905,7 +905,7 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(text.contains("undrawn            1728 pixels left out"), "{text}");
     let html = std::fs::read_to_string(report.join("index.html")).unwrap();
-    assert!(html.contains("1728 undrawn (fully transparent) apart"));
+    assert!(html.contains("1728 undrawn (transparent black) apart"));
     // The library, on the same pixels: with the mask as the command line reads it, and
     // without (the cleared rows black).
     let oracle = Oracle::new(&scene, &Options::default());
@@ -926,6 +926,45 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     };
     assert_eq!(phong_beyond(&drawn), 0);
     assert!(phong_beyond(&whole) > 0);
+    // The same rows at alpha 0 but white (drawn, alpha never set there): judged as stored,
+    // none undrawn, and the note on the standard error counts them.
+    let white: Vec<u8> = rgba
+        .chunks(4)
+        .enumerate()
+        .flat_map(|(i, p)| {
+            if undrawn(i) {
+                [255, 255, 255, 0]
+            } else {
+                [p[0], p[1], p[2], 255]
+            }
+        })
+        .collect();
+    let unset = dir.join("unset-rows.png");
+    image::RgbaImage::from_raw(W, H, white.clone())
+        .unwrap()
+        .save(&unset)
+        .unwrap();
+    let args = diagnose_reference_centred(&unset);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = lumiere(&[&args[..], &["--json"]].concat());
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stderr),
+        format!(
+            "lumiere: {}: alpha channel dropped: 1728 pixels fully transparent (alpha 0) but not black, their colour compared as stored (drawn with alpha never set?); only transparent black pixels (alpha and colour 0) are left out as never drawn\n",
+            unset.display()
+        )
+    );
+    let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let as_stored = oracle.diagnose(&white.chunks(4).flat_map(|p| [p[0], p[1], p[2]]).collect::<Vec<_>>());
+    assert_eq!(d["undrawn"], 0);
+    assert_eq!(d["oracle"]["beyond"], as_stored.oracle.beyond);
+    assert_eq!(d["oracle"]["judged"], as_stored.oracle.judged);
+    assert!(
+        as_stored.oracle.beyond > drawn.oracle.beyond + 1000,
+        "{}",
+        as_stored.oracle.beyond
+    );
     // Nothing drawn at all: refused; with colours written under alpha 0 (an ARGB image
     // whose alpha was never set), refused with the hint.
     // The diagnosis's error, with exit code 2.
@@ -1276,6 +1315,22 @@ fn command_line_says_what_to_run_when_the_catalogue_does_not_explain_the_image()
         assert_eq!(json["black"], name == "black.png", "{name}");
         assert_eq!(json["verdict"], "partly_explained", "{name}");
     }
+    // An image whose name holds a blank: the lines quote it, as a shell reads one word.
+    if cfg!(unix) {
+        let blank = dir.join("grey image.png");
+        std::fs::copy(dir.join("grey.png"), &blank).unwrap();
+        let args = diagnose_reference_centred(&blank);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let text = String::from_utf8(lumiere(&args).stdout).unwrap();
+        assert!(
+            text.contains(&format!(
+                "then `lumiere compare '{}' oracle.png --scene {} --spp 1",
+                blank.display(),
+                reference.display()
+            )),
+            "{text}"
+        );
+    }
     let phong = catalogue().into_iter().find(|m| m.name == "phong-for-blinn").unwrap();
     let png = dir.join("phong.png");
     std::fs::write(
@@ -1313,7 +1368,14 @@ fn a_reused_report_folder_holds_only_what_the_report_references() {
     for name in kept {
         std::fs::write(report.join(name), "mine").unwrap();
     }
-    let fixed = ["edges.png", "heat-oracle.png", "image.png", "index.html", "oracle.png"];
+    let fixed = [
+        ".lumiere-report",
+        "edges.png",
+        "heat-oracle.png",
+        "image.png",
+        "index.html",
+        "oracle.png",
+    ];
     for (image, top, mistakes) in [
         (
             &mistaken,
@@ -1391,4 +1453,167 @@ fn two_mistakes_at_once_are_said_to_leave_something_else() {
         assert_eq!(json["verdict"], "mistake_found");
         assert_eq!(json["also_differs"], also);
     }
+}
+
+#[test]
+fn an_image_diagnose_cannot_read_is_refused_in_words_naming_no_other_command() {
+    // The reader's messages are shared by every command that reads an image: under
+    // `diagnose` they say what lumiere reads, not what `compare` reads.
+    let dir = temp_dir("diagnose-unreadable");
+    let scene = repo("scenes/reference.toml");
+    let text = dir.join("notes.txt");
+    std::fs::write(&text, "a text, not an image").unwrap();
+    let gif = dir.join("mine.gif");
+    std::fs::write(&gif, b"GIF89a\x01\x00\x01\x00").unwrap();
+    let huge = dir.join("huge.ppm");
+    std::fs::write(&huge, "P6\n100000 100000\n255\n").unwrap();
+    let allowed = "PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA";
+    for (image, message) in [
+        (
+            &text,
+            format!(
+                "not an image lumiere reads (neither its first bytes nor its extension .txt name a known format); it reads {allowed}"
+            ),
+        ),
+        (
+            &gif,
+            format!("a GIF image, which lumiere does not read; it reads {allowed}"),
+        ),
+        (
+            &huge,
+            "the PPM image is 100000 x 100000 = 10000000000 pixels: lumiere reads at most 33554432 (as many as it renders)"
+                .to_string(),
+        ),
+    ] {
+        let o = lumiere(&["diagnose", scene.to_str().unwrap(), image.to_str().unwrap()]);
+        assert_eq!((o.status.code(), o.stdout.len()), (Some(2), 0));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(err, format!("lumiere: error: {}: {message}\n", image.display()));
+        assert!(!err.contains("compare"), "{err}");
+    }
+}
+
+#[test]
+fn reports_of_images_no_longer_diagnosed_are_removed_and_nothing_else() {
+    // `--report DIR` of phong, correct and third, then of phong and other: third's folder
+    // goes, correct's loses its report but keeps the note written into it; a folder of
+    // someone else's, one with a marker lumiere did not write, and a report written alone
+    // into a folder of DIR stay. Then one image into DIR: the folders of several go; then
+    // several again: the report written alone into DIR itself goes, the rest of DIR stays.
+    let dir = temp_dir("diagnose-stale-reports");
+    let (phong, correct) = phong_and_correct(&dir);
+    let (third, other) = (dir.join("third.png"), dir.join("other.png"));
+    std::fs::copy(&correct, &third).unwrap();
+    std::fs::copy(&correct, &other).unwrap();
+    let report = dir.join("report");
+    let run = |images: &[&std::path::Path], into: &std::path::Path| {
+        let reference = repo("scenes/reference.toml");
+        let mut args = vec!["diagnose", reference.to_str().unwrap()];
+        args.extend(images.iter().map(|i| i.to_str().unwrap()));
+        args.extend(["--convention", "sample_position=center", "--spp", "1", "--top", "1"]);
+        args.extend(["--report", into.to_str().unwrap()]);
+        let o = lumiere(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stderr).unwrap()
+    };
+    let report_files = [
+        ".lumiere-report",
+        "edges.png",
+        "heat-oracle.png",
+        "image.png",
+        "index.html",
+        "oracle.png",
+    ];
+    let err = run(&[&phong, &correct, &third], &report);
+    assert_eq!(err, "");
+    assert_eq!(file_list(&report), ["correct", "phong", "third"]);
+    assert_eq!(file_list(&report.join("third")), report_files);
+    let marker = std::fs::read_to_string(report.join("phong/.lumiere-report")).unwrap();
+    assert!(
+        marker.starts_with(&format!(
+            "lumiere diagnose report\nwritten as one of several, into the folder above\nimage {}\n",
+            phong.display()
+        )),
+        "{marker}"
+    );
+    std::fs::write(report.join("correct/notes.txt"), "mine").unwrap();
+    std::fs::create_dir_all(report.join("mine")).unwrap();
+    std::fs::write(report.join("mine/index.html"), "mine").unwrap();
+    std::fs::create_dir_all(report.join("forged")).unwrap();
+    std::fs::write(report.join("forged/.lumiere-report"), "not lumiere's\n").unwrap();
+    std::fs::write(report.join("forged/index.html"), "mine").unwrap();
+    std::fs::write(report.join("notes.txt"), "mine").unwrap();
+    assert_eq!(run(&[&correct], &report.join("alone")), "");
+
+    let err = run(&[&phong, &other], &report);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: {}: the report files of an image not diagnosed in this run removed; the other files kept\n\
+             lumiere: {}: removed: the report of an image not diagnosed in this run\n",
+            report.join("correct").display(),
+            report.join("third").display()
+        )
+    );
+    assert_eq!(
+        file_list(&report),
+        ["alone", "correct", "forged", "mine", "notes.txt", "other", "phong"]
+    );
+    assert_eq!(file_list(&report.join("correct")), ["notes.txt"]);
+    assert_eq!(file_list(&report.join("forged")), [".lumiere-report", "index.html"]);
+    assert_eq!(file_list(&report.join("mine")), ["index.html"]);
+    assert_eq!(file_list(&report.join("alone")), report_files);
+    assert_eq!(file_list(&report.join("other")), report_files);
+
+    // One image into DIR: the folders written as one of several go.
+    let err = run(&[&phong], &report);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: {}: removed: the report of an image not diagnosed in this run\n\
+             lumiere: {}: removed: the report of an image not diagnosed in this run\n",
+            report.join("other").display(),
+            report.join("phong").display()
+        )
+    );
+    let mut expected = [
+        &report_files[..],
+        &[
+            "heat-1.png",
+            "mistake-1.png",
+            "alone",
+            "correct",
+            "forged",
+            "mine",
+            "notes.txt",
+        ],
+    ]
+    .concat();
+    expected.sort();
+    assert_eq!(file_list(&report), expected);
+    // Several again: the report written alone into DIR goes, its folders and files stay.
+    let err = run(&[&phong, &other], &report);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: {}: the report files of an image not diagnosed in this run removed; the other files kept\n",
+            report.display()
+        )
+    );
+    assert_eq!(
+        file_list(&report),
+        ["alone", "correct", "forged", "mine", "notes.txt", "other", "phong"]
+    );
+    // A stale report's image diagnosed again: it is an input, and stays.
+    let again = report.join("other/image.png");
+    let err = run(&[&phong, &again], &report);
+    assert_eq!(
+        err,
+        format!(
+            "lumiere: {}: the report files of an image not diagnosed in this run removed; the other files kept\n",
+            report.join("other").display()
+        )
+    );
+    assert_eq!(file_list(&report.join("other")), ["image.png"]);
+    assert_eq!(file_list(&report.join("image")), report_files);
 }

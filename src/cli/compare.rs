@@ -13,7 +13,8 @@ use lumiere::figures::provenance::text_chunks;
 use lumiere::film::{WriteError, encode_png, write_atomic};
 use lumiere::world::World;
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::borrow::Cow;
+use std::path::{Component, Path, PathBuf};
 
 #[derive(Args, Debug)]
 pub struct CompareArgs {
@@ -109,7 +110,7 @@ fn read(path: &Path) -> Result<Image, CliError> {
             CliError::BadInput(format!(
                 "{}: is a scene file, not an image: compare takes two images, yours then the oracle's (`lumiere compare YOURS ORACLE`); `lumiere render {} -o oracle.png --width W --height H` renders the oracle's at your image's size",
                 path.display(),
-                path.display()
+                shell_word(&path.display().to_string())
             ))
         } else {
             CliError::BadInput(e)
@@ -141,25 +142,20 @@ pub(super) fn scene_error(path: &Path, error: CliError, order: &str) -> CliError
     }
 }
 
-/// The pixels fully transparent in either image (never drawn), left out of the comparison;
+/// The pixels never drawn (transparent black) in either image, left out of the comparison;
 /// empty when there are none.
 fn undrawn_pixels(a: &Image, b: &Image) -> Vec<bool> {
-    match (a.transparent.is_empty(), b.transparent.is_empty()) {
+    match (a.undrawn.is_empty(), b.undrawn.is_empty()) {
         (true, true) => Vec::new(),
-        (false, true) => a.transparent.clone(),
-        (true, false) => b.transparent.clone(),
-        (false, false) => a
-            .transparent
-            .iter()
-            .zip(&b.transparent)
-            .map(|(&x, &y)| x || y)
-            .collect(),
+        (false, true) => a.undrawn.clone(),
+        (true, false) => b.undrawn.clone(),
+        (false, false) => a.undrawn.iter().zip(&b.undrawn).map(|(&x, &y)| x || y).collect(),
     }
 }
 
-/// Why no pixel is left to compare when each is fully transparent in one image or the
-/// other: the image with no pixel drawn (with the hint of [`Image::alpha_hint`] when its
-/// colours are drawn), or both images when each leaves out what the other drew.
+/// Why no pixel is left to compare: the image with alpha 0 everywhere (with the hint of
+/// [`Image::alpha_hint`] when its colours are drawn), or both images when each pixel is
+/// undrawn in one or the other.
 fn nothing_drawn(args: &CompareArgs, a: &Image, b: &Image) -> String {
     let (pa, pb) = (args.a.display(), args.b.display());
     let nothing = "every pixel is fully transparent (alpha 0): nothing was drawn to compare";
@@ -176,7 +172,9 @@ fn nothing_drawn(args: &CompareArgs, a: &Image, b: &Image) -> String {
         (true, false) => format!("{pa}: {nothing}{}", a.alpha_hint()),
         (false, true) => format!("{pb}: {nothing}{}", b.alpha_hint()),
         (false, false) => {
-            format!("every pixel is fully transparent (alpha 0) in {pa} or in {pb}: no pixel drawn in both to compare")
+            format!(
+                "every pixel is undrawn (transparent black: alpha and colour 0) in {pa} or in {pb}: no pixel drawn in both to compare"
+            )
         }
     }
 }
@@ -227,22 +225,140 @@ fn check_args(args: &CompareArgs) -> Result<(), CliError> {
 }
 
 /// The scene file a course figure's PNG names in its provenance (docs/figures.md), if
-/// `path` is one.
-fn figure_scene(path: &Path) -> Option<String> {
+/// `path` is one, with the scene hash it records (`fnv1a64:` and 16 hex digits).
+fn figure_provenance(path: &Path) -> Option<(String, Option<String>)> {
     let bytes = std::fs::read(path).ok()?;
     let chunks = text_chunks(&bytes).ok()?;
-    chunks
-        .into_iter()
-        .find(|(key, _)| key == "Scene")
-        .map(|(_, scene)| scene)
+    let value = |name: &str| chunks.iter().find(|(key, _)| key == name).map(|(_, v)| v.clone());
+    Some((value("Scene")?, value("Scene hash")))
 }
 
-/// The scene the worst pixels' probe lines name: `--scene`, else the one the oracle names
-/// when it is a course figure, else a placeholder.
-fn probe_scene(args: &CompareArgs) -> String {
-    match &args.scene {
-        Some(scene) => scene.display().to_string(),
-        None => figure_scene(&args.b).unwrap_or_else(|| "SCENE.toml".to_string()),
+/// The scene file a course figure's PNG names in its provenance, if `path` is one.
+fn figure_scene(path: &Path) -> Option<String> {
+    figure_provenance(path).map(|(scene, _)| scene)
+}
+
+/// The scene the command lines of a comparison name.
+#[derive(Clone, Debug, PartialEq)]
+enum LineScene {
+    /// `--scene`, as given.
+    Given(String),
+    /// The scene a course figure names, found: its path from the working folder.
+    Figure(String),
+    /// A course figure's scene, as its provenance names it, not found from here.
+    Missing(String),
+    /// No scene known.
+    Unknown,
+}
+
+impl LineScene {
+    /// The scene of the command lines of `args`: `--scene`, else the one the oracle names
+    /// when it is a course figure ([`find_figure_scene`]).
+    fn of(args: &CompareArgs) -> LineScene {
+        if let Some(scene) = &args.scene {
+            return LineScene::Given(scene.display().to_string());
+        }
+        match figure_provenance(&args.b) {
+            None => LineScene::Unknown,
+            Some((named, hash)) => match find_figure_scene(&args.b, &named, hash.as_deref()) {
+                Some(path) => LineScene::Figure(path),
+                None => LineScene::Missing(named),
+            },
+        }
+    }
+
+    /// The scene as a command line names it: its path, or `placeholder` when it is not
+    /// known here.
+    fn word<'a>(&'a self, placeholder: &'a str) -> Cow<'a, str> {
+        match self {
+            LineScene::Given(path) | LineScene::Figure(path) => shell_word(path),
+            LineScene::Missing(_) | LineScene::Unknown => Cow::Borrowed(placeholder),
+        }
+    }
+
+    /// The note on a course figure's scene not found, which the command lines name by a
+    /// placeholder; `None` for the others.
+    fn note(&self, figure: &Path, placeholder: &str) -> Option<String> {
+        let LineScene::Missing(named) = self else {
+            return None;
+        };
+        Some(format!(
+            "{}: a course figure of {named} (its path from the repository's root), which is found neither in the image's folder, the working folder nor any folder above them: the command lines name {placeholder} in its place; give the scene's path with --scene",
+            figure.display()
+        ))
+    }
+}
+
+/// Where the scene file `named` in the provenance of the course figure `image` is, as a
+/// path that holds from the working folder; `None` when it is not found. The figures write
+/// the path their scene was found by, relative to the folder `lumiere figures` ran in (the
+/// repository's root), so a relative `named` is looked for in the folder of the image and
+/// each folder above it (a figure under the repository's `figures/`), then in the working
+/// folder and each folder above it; the first file whose FNV-1a 64 is the provenance's
+/// `hash` is taken, else the first file found. It is printed as `named` when that holds from
+/// here, else relative to the working folder when both lie below a common folder but the
+/// root, else absolute.
+fn find_figure_scene(image: &Path, named: &str, hash: Option<&str>) -> Option<String> {
+    let relative = Path::new(named);
+    let here = std::env::current_dir().ok()?.canonicalize().ok()?;
+    let candidates: Vec<PathBuf> = if relative.is_absolute() {
+        vec![relative.to_path_buf()]
+    } else {
+        let image_dir = image
+            .canonicalize()
+            .ok()
+            .and_then(|p| p.parent().map(Path::to_path_buf));
+        let image_bases = image_dir.iter().flat_map(|d| d.ancestors());
+        image_bases
+            .chain(here.ancestors())
+            .map(|base| base.join(relative))
+            .collect()
+    };
+    let files: Vec<PathBuf> = candidates
+        .into_iter()
+        .filter(|c| c.is_file())
+        .filter_map(|c| c.canonicalize().ok())
+        .collect();
+    let same_bytes = |path: &PathBuf| {
+        hash.is_some_and(|h| {
+            std::fs::read(path).is_ok_and(|bytes| h == format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(&bytes)))
+        })
+    };
+    let found = files.iter().find(|f| same_bytes(f)).or(files.first())?;
+    if !relative.is_absolute() && here.join(relative).canonicalize().ok().as_ref() == Some(found) {
+        return Some(named.to_string());
+    }
+    Some(path_from(&here, found).display().to_string())
+}
+
+/// `target` as a path from the folder `from` (both canonical): relative, with `..` to
+/// climb, when they share a folder below the root; else `target` itself.
+fn path_from(from: &Path, target: &Path) -> PathBuf {
+    let (a, b): (Vec<_>, Vec<_>) = (from.components().collect(), target.components().collect());
+    let common = a.iter().zip(&b).take_while(|(x, y)| x == y).count();
+    let roots = a.iter().take_while(|c| !matches!(c, Component::Normal(_))).count();
+    if common <= roots {
+        return target.to_path_buf();
+    }
+    let mut path: PathBuf = a[common..].iter().map(|_| Component::ParentDir).collect();
+    path.extend(&b[common..]);
+    path
+}
+
+/// `word` as one word of a shell's command line: as it is when no shell reads any of its
+/// characters specially, else quoted (in single quotes; in double quotes on Windows, whose
+/// paths hold no `"`).
+pub(super) fn shell_word(word: &str) -> Cow<'_, str> {
+    let plain = !word.is_empty()
+        && word
+            .chars()
+            .all(|c| c.is_alphanumeric() || "-_./,:=+@%".contains(c) || (cfg!(windows) && c == '\\'));
+    if plain {
+        Cow::Borrowed(word)
+    } else if cfg!(windows) {
+        Cow::Owned(format!("\"{word}\""))
+    } else {
+        Cow::Owned(format!("'{}'", word.replace('\'', "'\\''")))
     }
 }
 
@@ -260,20 +376,25 @@ fn warn_if_swapped(args: &CompareArgs) {
     }
 }
 
+/// The placeholder the command lines name for a scene not known here.
+const SCENE_PLACEHOLDER: &str = "SCENE.toml";
+
 /// The `lumiere probe` command line of pixel `(x, y)` of `scene` with the settings given.
-fn probe_line(args: &CompareArgs, scene: &str, width: u32, height: u32, x: u32, y: u32) -> String {
+fn probe_line(args: &CompareArgs, scene: &LineScene, width: u32, height: u32, x: u32, y: u32) -> String {
     format!(
-        "lumiere probe {scene} --pixel {x},{y} --width {width} --height {height}{}",
+        "lumiere probe {} --pixel {x},{y} --width {width} --height {height}{}",
+        scene.word(SCENE_PLACEHOLDER),
         settings(&args.overrides)
     )
 }
 
 /// The `lumiere diagnose` command line of the first image against `scene` with the
 /// settings given: what a failed comparison runs next.
-fn diagnose_line(args: &CompareArgs, scene: &str) -> String {
+fn diagnose_line(args: &CompareArgs, scene: &LineScene) -> String {
     format!(
-        "lumiere diagnose {scene} {}{}",
-        args.a.display(),
+        "lumiere diagnose {} {}{}",
+        scene.word(SCENE_PLACEHOLDER),
+        shell_word(&args.a.display().to_string()),
         settings(&args.overrides)
     )
 }
@@ -283,7 +404,7 @@ pub(super) fn settings(o: &Overrides) -> String {
     let mut line = String::new();
     let mut add = |name: &str, value: Option<String>| {
         if let Some(v) = value {
-            line.push_str(&format!(" --{name} {v}"));
+            line.push_str(&format!(" --{name} {}", shell_word(&v)));
         }
     };
     add("spp", o.spp.map(|v| v.to_string()));
@@ -355,20 +476,20 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let a = read(&args.a)?;
     let b = read(&args.b)?;
     warn_if_swapped(args);
+    let scene = LineScene::of(args);
     if (a.width, a.height) != (b.width, b.height) {
-        let scene = match &args.scene {
-            Some(scene) => Some(scene.display().to_string()),
-            None => figure_scene(&args.b),
-        };
+        let missing = scene
+            .note(&args.b, "SCENE")
+            .map_or(String::new(), |note| format!(" ({note})"));
         return Err(CliError::BadInput(format!(
-            "the images differ in size: {} is {} x {}, {} is {} x {}; render the oracle's image at your image's size: `lumiere render {} -o oracle.png --width {} --height {}`",
+            "the images differ in size: {} is {} x {}, {} is {} x {}; render the oracle's image at your image's size: `lumiere render {} -o oracle.png --width {} --height {}`{missing}",
             args.a.display(),
             a.width,
             a.height,
             args.b.display(),
             b.width,
             b.height,
-            scene.as_deref().unwrap_or("SCENE"),
+            scene.word("SCENE"),
             a.width,
             a.height
         )));
@@ -384,7 +505,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         max_flip: args.max_flip,
     };
     let undrawn = undrawn_pixels(&a, &b);
-    if !undrawn.is_empty() && undrawn.iter().all(|&u| u) {
+    if a.nothing_drawn() || b.nothing_drawn() || (!undrawn.is_empty() && undrawn.iter().all(|&u| u)) {
         return Err(CliError::BadInput(nothing_drawn(args, &a, &b)));
     }
     let masks = Masks {
@@ -395,6 +516,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let notes: Vec<String> = [(&args.a, &a), (&args.b, &b)]
         .iter()
         .flat_map(|(path, img)| img.notes.iter().map(move |n| format!("{}: {n}", path.display())))
+        .chain(scene.note(&args.b, SCENE_PLACEHOLDER))
         .collect();
 
     let write_png = |path: &Option<PathBuf>, rgb: &dyn Fn() -> Vec<u8>| -> Result<(), CliError> {
@@ -416,9 +538,9 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     }
 
     if args.json {
-        print_json(args, &probe_scene(args), &report, &notes)?;
+        print_json(args, &scene, &report, &notes)?;
     } else {
-        print_text(args, &probe_scene(args), &a, &b, &report, &notes);
+        print_text(args, &scene, &a, &b, &report, &notes);
     }
     if !report.pass {
         return Err(CliError::Failed(report.failures.join("; ")));
@@ -426,7 +548,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn print_json(args: &CompareArgs, scene: &str, r: &Report, notes: &[String]) -> Result<(), CliError> {
+fn print_json(args: &CompareArgs, scene: &LineScene, r: &Report, notes: &[String]) -> Result<(), CliError> {
     let json = Json {
         a: args.a.display().to_string(),
         b: args.b.display().to_string(),
@@ -483,7 +605,7 @@ fn summary(s: &Stats) -> String {
     )
 }
 
-fn print_text(args: &CompareArgs, scene: &str, a: &Image, b: &Image, r: &Report, notes: &[String]) {
+fn print_text(args: &CompareArgs, scene: &LineScene, a: &Image, b: &Image, r: &Report, notes: &[String]) {
     let m = &r.metrics;
     println!("yours              {} ({})", args.a.display(), a.format);
     println!("oracle             {} ({})", args.b.display(), b.format);
@@ -493,7 +615,7 @@ fn print_text(args: &CompareArgs, scene: &str, a: &Image, b: &Image, r: &Report,
     println!("size               {} x {}", r.width, r.height);
     if r.undrawn > 0 {
         println!(
-            "undrawn            {} pixels left out: fully transparent (alpha 0), never drawn; the rest are compared",
+            "undrawn            {} pixels left out: transparent black (alpha and colour 0), never drawn; the rest are compared",
             r.undrawn
         );
     }

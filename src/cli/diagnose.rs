@@ -4,6 +4,7 @@
 //! Several images of one size (a class's) are diagnosed against one oracle, rendered once.
 //! Exit 0 whatever the verdict, 2 bad input.
 
+use super::compare::shell_word;
 use super::{CliError, Overrides, load_scene};
 use clap::Args;
 use lumiere::compare::read::{Image, read_image};
@@ -52,7 +53,9 @@ pub struct DiagnoseArgs {
     #[arg(long, default_value_t = 3, value_name = "N", value_parser = super::numbers::how_many, allow_negative_numbers = true)]
     pub top: usize,
     /// Write an HTML report (index.html, the images and heat-maps) into this folder (made if
-    /// its parent exists); with several images, into a folder of it per image.
+    /// its parent exists); with several images, into a folder of it per image. The reports
+    /// an earlier run left there of images not diagnosed now are removed (only folders
+    /// lumiere marked as its reports, and in them only the report's files).
     #[arg(long, value_name = "DIR")]
     pub report: Option<PathBuf>,
     /// The oracle's images are sRGB-encoded (as `render --srgb` writes them): compare
@@ -142,7 +145,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
         let oracle = Oracle::new(&scene, &options);
         images
             .iter()
-            .map(|image| oracle.diagnose_drawn(&image.rgb, &image.transparent))
+            .map(|image| oracle.diagnose_drawn(&image.rgb, &image.undrawn))
             .collect::<Vec<_>>()
     })?;
     let scene_name = scene_path.display().to_string();
@@ -154,7 +157,12 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
                 std::fs::create_dir_all(dir)
                     .map_err(|e| WriteError::new(dir, "cannot create the report's folder", e))?;
             }
-            report::write(dir, d, &scene_name, &image_name, args.top)
+            let how = if args.images.len() == 1 {
+                report::Written::Alone
+            } else {
+                report::Written::OneOfSeveral
+            };
+            report::write(dir, d, &scene_name, &image_name, args.top, how)
                 .map_err(|e| WriteError::new(dir, "cannot write the report", e))?;
         }
         if args.json {
@@ -174,6 +182,23 @@ pub fn run(args: &DiagnoseArgs) -> Result<(), CliError> {
             print!("{}", text(d, &scene_name, &image_name, args.top));
             if let Some(next) = next_step(d, args, &scene_name, &image_name) {
                 println!("next               {next}");
+            }
+        }
+    }
+    if let Some(dir) = &args.report {
+        let inputs: Vec<&Path> = inputs(scene_path, &args.images).map(|(_, p)| p).collect();
+        let stale = report::remove_stale_reports(dir, &reports, &inputs)
+            .map_err(|e| WriteError::new(dir, "cannot remove an earlier report", e))?;
+        for s in stale {
+            match s {
+                report::Stale::Removed(folder) => eprintln!(
+                    "lumiere: {}: removed: the report of an image not diagnosed in this run",
+                    folder.display()
+                ),
+                report::Stale::Cleared(folder) => eprintln!(
+                    "lumiere: {}: the report files of an image not diagnosed in this run removed; the other files kept",
+                    folder.display()
+                ),
             }
         }
     }
@@ -343,13 +368,15 @@ fn check_reports_spare_inputs(
 
 /// What to run next when the catalogue does not explain the image (no mistake of it, or
 /// one explaining less than half): render the oracle's image and compare, whose worst
-/// pixels off edges come with their probe lines. `None` for the other verdicts.
+/// pixels off edges come with their probe lines; the scene and image as given, which hold
+/// from the working folder. `None` for the other verdicts.
 fn next_step(d: &Diagnosis, args: &DiagnoseArgs, scene: &str, image: &str) -> Option<String> {
     if !matches!(d.verdict, Verdict::Unexplained | Verdict::PartlyExplained) {
         return None;
     }
     let settings = super::compare::settings(&args.overrides);
     let srgb = if args.srgb { " --srgb" } else { "" };
+    let (scene, image) = (shell_word(scene), shell_word(image));
     Some(format!(
         "`lumiere render {scene} -o oracle.png --width {} --height {}{settings}{srgb}`, then `lumiere compare {image} oracle.png --scene {scene}{settings}` lists the worst pixels off edges, each with the probe line of the oracle's ray tree there",
         d.width, d.height
@@ -403,7 +430,7 @@ fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
     if d.undrawn > 0 {
         let _ = writeln!(
             out,
-            "undrawn            {} pixels left out: fully transparent, never drawn (SIMRenderer's console mode leaves the last rows of a wide image so)",
+            "undrawn            {} pixels left out: transparent black (alpha and colour 0), never drawn (SIMRenderer's console mode leaves the last rows of a wide image so)",
             d.undrawn
         );
     }

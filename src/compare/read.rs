@@ -1,4 +1,6 @@
-//! Reading the images `compare` takes, as 8-bit RGB, with a note for every conversion.
+//! Reading the images `compare`, `diagnose` and the figures' review take, as 8-bit RGB,
+//! with a note for every conversion. The messages name no command ("lumiere reads ..."):
+//! each command that reads an image prints them as they are.
 //!
 //! The format is told by the file's first bytes (the extension only for TGA, which has no
 //! signature). What each converts:
@@ -6,10 +8,14 @@
 //!   indexed colour as its palette's colours, noted;
 //! - 16-bit PNG or PPM / PGM: each value `v` to `round(255 v / 65535)`;
 //! - grey (PGM, grey PNG, ...): the grey level in R, G and B;
-//! - alpha: dropped, the colour compared as stored (not composited); the fully transparent
-//!   pixels are marked ([`Image::transparent`]), which `compare` and `diagnose` leave out
-//!   (an image with every pixel so is refused, with [`Image::alpha_hint`] when its colours
-//!   are drawn);
+//! - alpha: dropped, the colour compared as stored (not composited), a pixel of alpha 0 with
+//!   a colour too; only transparent black pixels, all four channels 0, are marked as never
+//!   drawn ([`Image::undrawn`]), which `compare` and `diagnose` leave out. That is how
+//!   SIMRenderer's console mode leaves the rows it does not trace (a Java `BufferedImage`
+//!   of `TYPE_INT_ARGB` starts at 0 in every channel); a colour under alpha 0 is something
+//!   drawn with alpha never set, and an error there must show. An image with alpha 0
+//!   everywhere is refused ([`Image::nothing_drawn`]): its alpha tells nothing drawn from
+//!   black drawn, and [`Image::alpha_hint`] says why when its colours are there;
 //! - PFM and EXR (float radiance, as `lumiere render -o X.pfm` writes): each channel clamped
 //!   to [0, 1] and quantised to 8 bits exactly as lumiere's film does
 //!   ([`crate::film::quantize`], no gamma), so a float image compares as the PNG it would
@@ -21,7 +27,7 @@ use crate::limits;
 use image::{DynamicImage, ImageFormat};
 use std::path::Path;
 
-/// What `compare` reads, for messages.
+/// What lumiere reads as an image, for messages.
 pub const ALLOWED: &str = "PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA";
 
 /// The note on a JPEG image. Its compression stores colour at half resolution and rounds
@@ -56,15 +62,19 @@ pub struct Image {
     pub format: &'static str,
     /// Every conversion made on the way to 8-bit RGB, in words.
     pub notes: Vec<String>,
-    /// Per pixel, whether its alpha is 0 (never drawn: SIMRenderer's console mode leaves
-    /// the last rows of an image wider than tall so); empty when no pixel is.
-    pub transparent: Vec<bool>,
+    /// Per pixel, whether it was never drawn: transparent black, alpha and colour 0 at 8
+    /// bits (SIMRenderer's console mode leaves the last rows of an image wider than tall
+    /// so); empty when no pixel is.
+    pub undrawn: Vec<bool>,
+    /// How many pixels have alpha 0 at 8 bits, black or not.
+    pub alpha_zero: usize,
 }
 
 impl Image {
-    /// Whether every pixel is fully transparent: nothing was drawn.
+    /// Whether every pixel is fully transparent (alpha 0): nothing was drawn, or nothing
+    /// tells what was.
     pub fn nothing_drawn(&self) -> bool {
-        !self.transparent.is_empty() && self.transparent.iter().all(|&t| t)
+        self.alpha_zero > 0 && self.alpha_zero as u64 == self.width as u64 * self.height as u64
     }
 
     /// What to add to the refusal of an image with nothing drawn: when its colours are not
@@ -110,7 +120,7 @@ fn too_many_pixels(format: &str, width: u64, height: u64) -> Option<String> {
     let pixels = width as u128 * height as u128;
     (pixels > limits::MAX_PIXELS as u128).then(|| {
         format!(
-            "the {format} image is {width} x {height} = {pixels} pixels: compare reads at most {} (as many as lumiere renders)",
+            "the {format} image is {width} x {height} = {pixels} pixels: lumiere reads at most {} (as many as it renders)",
             limits::MAX_PIXELS
         )
     })
@@ -203,7 +213,7 @@ pub fn image_signature(path: &Path) -> Option<&'static str> {
 }
 
 /// Why a file that no format's signature starts is not read: its extension names a
-/// format compare reads and its bytes are not that format's, or neither names one.
+/// format lumiere reads and its bytes are not that format's, or neither names one.
 fn unrecognised(extension: &str) -> String {
     let named = if extension.eq_ignore_ascii_case("pfm") {
         Some("PFM")
@@ -212,7 +222,7 @@ fn unrecognised(extension: &str) -> String {
     };
     match named {
         Some(format) => format!(
-            "its extension .{extension} names {format}, but its first bytes are not a {format} file's: not an image, or one cut short or written as something else; compare reads {ALLOWED}"
+            "its extension .{extension} names {format}, but its first bytes are not a {format} file's: not an image, or one cut short or written as something else; lumiere reads {ALLOWED}"
         ),
         None => {
             let ext = if extension.is_empty() {
@@ -221,7 +231,7 @@ fn unrecognised(extension: &str) -> String {
                 format!("extension .{extension}")
             };
             format!(
-                "not an image compare reads (neither its first bytes nor its {ext} name a known format); it reads {ALLOWED}"
+                "not an image lumiere reads (neither its first bytes nor its {ext} name a known format); it reads {ALLOWED}"
             )
         }
     }
@@ -253,7 +263,8 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
             rgb,
             format: "PFM",
             notes,
-            transparent: Vec::new(),
+            undrawn: Vec::new(),
+            alpha_zero: 0,
         });
     }
     let format = match image::guess_format(bytes) {
@@ -263,7 +274,7 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
     };
     let Some(name) = format_name(format) else {
         return Err(format!(
-            "a {} image, which compare does not read; it reads {ALLOWED}",
+            "a {} image, which lumiere does not read; it reads {ALLOWED}",
             format
                 .extensions_str()
                 .first()
@@ -296,27 +307,43 @@ fn decode_any(bytes: &[u8], extension: &str) -> Result<Image, String> {
         }
     }
     let (width, height) = (img.width(), img.height());
-    let transparent = fully_transparent(&img);
-    let clear = transparent.iter().filter(|&&t| t).count();
-    let rgb = to_rgb8(img, name, clear, &mut notes);
+    let clear = alpha_is_zero(&img);
+    let (rgb, not_opaque) = to_rgb8(img, name, &mut notes);
+    let alpha_zero = clear.iter().filter(|&&c| c).count();
+    let mut undrawn: Vec<bool> = clear
+        .iter()
+        .zip(rgb.chunks_exact(3))
+        .map(|(&c, p)| c && p == [0, 0, 0])
+        .collect();
+    let undrawn_count = undrawn.iter().filter(|&&u| u).count();
+    if undrawn_count == 0 {
+        undrawn = Vec::new();
+    }
+    if let Some(not_opaque) = not_opaque {
+        notes.push(alpha_note(
+            not_opaque.saturating_sub(alpha_zero),
+            alpha_zero - undrawn_count,
+            undrawn_count,
+        ));
+    }
     Ok(Image {
         width,
         height,
         rgb,
         format: name,
         notes,
-        transparent,
+        undrawn,
+        alpha_zero,
     })
 }
 
 /// Per pixel, whether its alpha is 0 once at 8 bits; empty when the image has no alpha
-/// channel or no such pixel.
-fn fully_transparent(img: &DynamicImage) -> Vec<bool> {
+/// channel.
+fn alpha_is_zero(img: &DynamicImage) -> Vec<bool> {
     if !img.color().has_alpha() {
         return Vec::new();
     }
-    let mask: Vec<bool> = img.to_rgba8().pixels().map(|p| p.0[3] == 0).collect();
-    if mask.contains(&true) { mask } else { Vec::new() }
+    img.to_rgba8().pixels().map(|p| p.0[3] == 0).collect()
 }
 
 fn float_note(format: &str) -> String {
@@ -341,71 +368,91 @@ pub fn level_from_16(v: u16) -> u8 {
     ((v as u32 * 255 + 32767) / 65535) as u8
 }
 
-/// The note on a dropped alpha channel, of which `not_opaque` pixels are not opaque and
-/// `clear` of those fully transparent (alpha 0 once at 8 bits, [`Image::transparent`], left
-/// to the commands that leave them out): the others, partly transparent, are compared as
-/// stored.
-fn alpha_note(not_opaque: usize, clear: usize) -> String {
-    match (not_opaque.saturating_sub(clear), clear) {
-        (0, 0) => "alpha channel dropped (every pixel opaque)".into(),
-        (0, _) => "alpha channel dropped (every pixel opaque or fully transparent)".into(),
-        (partly, _) => format!(
-            "alpha channel dropped: {partly} pixels partly transparent, their colour compared as stored (not composited)"
-        ),
+/// The note on a dropped alpha channel: `partly` pixels partly transparent and `coloured`
+/// of alpha 0 with a colour, both compared as stored; `undrawn` transparent black, never
+/// drawn ([`Image::undrawn`], left to the commands that leave them out).
+fn alpha_note(partly: usize, coloured: usize, undrawn: usize) -> String {
+    let mut kept = Vec::new();
+    if partly > 0 {
+        kept.push(format!(
+            "{partly} pixels partly transparent, their colour compared as stored (not composited)"
+        ));
+    }
+    if coloured > 0 {
+        kept.push(format!(
+            "{coloured} pixels fully transparent (alpha 0) but not black, their colour compared as stored (drawn with alpha never set?); only transparent black pixels (alpha and colour 0) are left out as never drawn"
+        ));
+    }
+    match (kept.is_empty(), undrawn) {
+        (true, 0) => "alpha channel dropped (every pixel opaque)".into(),
+        (true, _) => "alpha channel dropped (every pixel opaque or transparent black)".into(),
+        (false, _) => format!("alpha channel dropped: {}", kept.join("; ")),
     }
 }
 
-/// The 8-bit RGB of a decoded image, noting each conversion; `clear` of its pixels are
-/// fully transparent.
-fn to_rgb8(img: DynamicImage, format: &str, clear: usize, notes: &mut Vec<String>) -> Vec<u8> {
+/// The 8-bit RGB of a decoded image, noting each conversion but the alpha channel's, and,
+/// when it has one, how many pixels are not opaque at its own depth.
+fn to_rgb8(img: DynamicImage, format: &str, notes: &mut Vec<String>) -> (Vec<u8>, Option<usize>) {
     let grey = "grey input: its level used for R, G and B";
     let sixteen = "16-bit input converted to 8 bits (round(255 v / 65535))";
     match img {
-        DynamicImage::ImageRgb8(i) => i.into_raw(),
-        DynamicImage::ImageRgba8(i) => {
-            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != u8::MAX).count(), clear));
-            i.pixels().flat_map(|p| [p.0[0], p.0[1], p.0[2]]).collect()
-        }
+        DynamicImage::ImageRgb8(i) => (i.into_raw(), None),
+        DynamicImage::ImageRgba8(i) => (
+            i.pixels().flat_map(|p| [p.0[0], p.0[1], p.0[2]]).collect(),
+            Some(i.pixels().filter(|p| p.0[3] != u8::MAX).count()),
+        ),
         DynamicImage::ImageLuma8(i) => {
             notes.push(grey.into());
-            i.into_raw().into_iter().flat_map(|v| [v; 3]).collect()
+            (i.into_raw().into_iter().flat_map(|v| [v; 3]).collect(), None)
         }
         DynamicImage::ImageLumaA8(i) => {
             notes.push(grey.into());
-            notes.push(alpha_note(i.pixels().filter(|p| p.0[1] != u8::MAX).count(), clear));
-            i.pixels().flat_map(|p| [p.0[0]; 3]).collect()
+            (
+                i.pixels().flat_map(|p| [p.0[0]; 3]).collect(),
+                Some(i.pixels().filter(|p| p.0[1] != u8::MAX).count()),
+            )
         }
         DynamicImage::ImageRgb16(i) => {
             notes.push(sixteen.into());
-            i.into_raw().into_iter().map(level_from_16).collect()
+            (i.into_raw().into_iter().map(level_from_16).collect(), None)
         }
         DynamicImage::ImageRgba16(i) => {
             notes.push(sixteen.into());
-            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != u16::MAX).count(), clear));
-            i.pixels()
-                .flat_map(|p| [0, 1, 2].map(|c| level_from_16(p.0[c])))
-                .collect()
+            (
+                i.pixels()
+                    .flat_map(|p| [0, 1, 2].map(|c| level_from_16(p.0[c])))
+                    .collect(),
+                Some(i.pixels().filter(|p| p.0[3] != u16::MAX).count()),
+            )
         }
         DynamicImage::ImageLuma16(i) => {
             notes.push(sixteen.into());
             notes.push(grey.into());
-            i.into_raw().into_iter().flat_map(|v| [level_from_16(v); 3]).collect()
+            (
+                i.into_raw().into_iter().flat_map(|v| [level_from_16(v); 3]).collect(),
+                None,
+            )
         }
         DynamicImage::ImageLumaA16(i) => {
             notes.push(sixteen.into());
             notes.push(grey.into());
-            notes.push(alpha_note(i.pixels().filter(|p| p.0[1] != u16::MAX).count(), clear));
-            i.pixels().flat_map(|p| [level_from_16(p.0[0]); 3]).collect()
+            (
+                i.pixels().flat_map(|p| [level_from_16(p.0[0]); 3]).collect(),
+                Some(i.pixels().filter(|p| p.0[1] != u16::MAX).count()),
+            )
         }
-        DynamicImage::ImageRgb32F(i) => float_rgb(i.as_raw(), 3, format, notes),
-        DynamicImage::ImageRgba32F(i) => {
-            let rgb = float_rgb(i.as_raw(), 4, format, notes);
-            notes.push(alpha_note(i.pixels().filter(|p| p.0[3] != 1.0).count(), clear));
-            rgb
-        }
+        DynamicImage::ImageRgb32F(i) => (float_rgb(i.as_raw(), 3, format, notes), None),
+        DynamicImage::ImageRgba32F(i) => (
+            float_rgb(i.as_raw(), 4, format, notes),
+            Some(i.pixels().filter(|p| p.0[3] != 1.0).count()),
+        ),
         other => {
             notes.push(format!("{:?} pixels converted to 8-bit RGB", other.color()));
-            other.to_rgb8().into_raw()
+            let alpha = other
+                .color()
+                .has_alpha()
+                .then(|| other.to_rgba8().pixels().filter(|p| p.0[3] != u8::MAX).count());
+            (other.to_rgb8().into_raw(), alpha)
         }
     }
 }
@@ -427,25 +474,26 @@ mod tests {
 
     #[test]
     fn alpha_hint_only_when_nothing_drawn_holds_colours() {
-        let image = |rgb: Vec<u8>, transparent: Vec<bool>| Image {
+        let image = |rgb: Vec<u8>, undrawn: Vec<bool>, alpha_zero: usize| Image {
             width: 2,
             height: 1,
             rgb,
             format: "PNG",
             notes: Vec::new(),
-            transparent,
+            undrawn,
+            alpha_zero,
         };
         // Both pixels at alpha 0, one of them red: colours drawn, alpha never set.
-        let unset = image(vec![0, 0, 0, 255, 0, 0], vec![true, true]);
+        let unset = image(vec![0, 0, 0, 255, 0, 0], vec![true, false], 2);
         assert!(unset.nothing_drawn());
         assert!(unset.alpha_hint().contains("TYPE_INT_ARGB"));
         // Both at alpha 0 and black: nothing drawn, no hint.
-        let clear = image(vec![0; 6], vec![true, true]);
+        let clear = image(vec![0; 6], vec![true, true], 2);
         assert!(clear.nothing_drawn());
         assert_eq!(clear.alpha_hint(), "");
         // One pixel drawn, or none transparent: no hint either.
-        assert_eq!(image(vec![255, 0, 0, 0, 0, 0], vec![false, true]).alpha_hint(), "");
-        assert_eq!(image(vec![255; 6], Vec::new()).alpha_hint(), "");
+        assert_eq!(image(vec![255, 0, 0, 0, 0, 0], vec![false, true], 1).alpha_hint(), "");
+        assert_eq!(image(vec![255; 6], Vec::new(), 0).alpha_hint(), "");
     }
 
     #[test]
@@ -481,7 +529,7 @@ mod tests {
         let e = decode(b"hello, world", "txt").unwrap_err();
         assert_eq!(
             e,
-            "not an image compare reads (neither its first bytes nor its extension .txt name a known format); it reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA"
+            "not an image lumiere reads (neither its first bytes nor its extension .txt name a known format); it reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA"
         );
         for ext in ["png", "tga", ""] {
             assert_eq!(
@@ -491,7 +539,7 @@ mod tests {
         }
         assert_eq!(
             decode(b"hello, world", "png").unwrap_err(),
-            "its extension .png names PNG, but its first bytes are not a PNG file's: not an image, or one cut short or written as something else; compare reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA"
+            "its extension .png names PNG, but its first bytes are not a PNG file's: not an image, or one cut short or written as something else; lumiere reads PNG, PPM / PGM / PBM (ASCII or binary), PFM, EXR, JPEG, BMP, TGA"
         );
         let e = decode(b"hello, world", "PFM").unwrap_err();
         assert!(
@@ -499,7 +547,7 @@ mod tests {
             "{e}"
         );
         let e = decode(b"GIF89a\x01\x00\x01\x00", "gif").unwrap_err();
-        assert!(e.starts_with("a GIF image, which compare does not read"), "{e}");
+        assert!(e.starts_with("a GIF image, which lumiere does not read"), "{e}");
         let e = decode(b"\x89PNG\r\n\x1a\n", "png").unwrap_err();
         assert!(e.starts_with("cannot decode the PNG image: "), "{e}");
     }
@@ -588,7 +636,7 @@ mod tests {
         ] {
             assert_eq!(
                 decode(&bytes, extension).unwrap_err(),
-                format!("{message}: compare reads at most 33554432 (as many as lumiere renders)")
+                format!("{message}: lumiere reads at most 33554432 (as many as it renders)")
             );
         }
     }

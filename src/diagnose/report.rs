@@ -6,6 +6,13 @@
 //! 16 levels or more ([`crate::compare::heat_map`]). A folder written before holds only
 //! what the last report references: the mistakes' images past its top are removed
 //! ([`is_mistake_image`]); no other file is touched.
+//!
+//! Each report folder holds a marker, [`MARKER`], saying that lumiere wrote it and whether
+//! alone (`--report DIR` of one image) or as one of several (`DIR/NAME` of a run of several
+//! images). A later run into the same `DIR` removes the reports it finds there that it does
+//! not write ([`remove_stale_reports`]), so no report of an image left off the command line
+//! is taken for current; it removes only folders that hold lumiere's marker, and in them
+//! only the files a report writes.
 
 use super::{Candidate, Diagnosis};
 use crate::compare::heat_map;
@@ -18,11 +25,68 @@ fn escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
 
+/// The file that marks a folder as a report lumiere wrote ([`Written`] says how).
+pub const MARKER: &str = ".lumiere-report";
+
+/// The first line of [`MARKER`], which identifies it.
+const MARKER_TITLE: &str = "lumiere diagnose report";
+
+/// How a report folder was written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Written {
+    /// `--report DIR` of one image: the folder is `DIR`.
+    Alone,
+    /// `--report DIR` of several images: the folder is `DIR/NAME`, one of several.
+    OneOfSeveral,
+}
+
+impl Written {
+    /// The marker's second line.
+    fn line(self) -> &'static str {
+        match self {
+            Written::Alone => "written alone",
+            Written::OneOfSeveral => "written as one of several, into the folder above",
+        }
+    }
+}
+
+/// The text of the marker of a report of `image` against `scene`, written so.
+fn marker_text(written: Written, scene: &str, image: &str) -> String {
+    format!(
+        "{MARKER_TITLE}\n{}\nimage {image}\nscene {scene}\na later `lumiere diagnose --report` into the same folder removes the report files of a folder so marked when it does not write it\n",
+        written.line()
+    )
+}
+
+/// How the report in `dir` was written, read from its marker; `None` when `dir` holds no
+/// marker that lumiere wrote.
+pub fn written_as(dir: &Path) -> Option<Written> {
+    let text = std::fs::read_to_string(dir.join(MARKER)).ok()?;
+    let mut lines = text.lines();
+    if lines.next() != Some(MARKER_TITLE) {
+        return None;
+    }
+    let second = lines.next()?;
+    [Written::Alone, Written::OneOfSeveral]
+        .into_iter()
+        .find(|w| w.line() == second)
+}
+
+/// The fixed files of every report.
+const FIXED: [&str; 6] = [
+    "index.html",
+    "image.png",
+    "oracle.png",
+    "heat-oracle.png",
+    "edges.png",
+    MARKER,
+];
+
 /// The names of the files [`write`] may write into its folder with `top` mistakes shown:
-/// the fixed ones, and `mistake-N.png` and `heat-N.png` for N up to `top`.
+/// the fixed ones (the marker among them), and `mistake-N.png` and `heat-N.png` for N up
+/// to `top`.
 pub fn file_names(top: usize) -> Vec<String> {
-    let fixed = ["index.html", "image.png", "oracle.png", "heat-oracle.png", "edges.png"];
-    let mut names: Vec<String> = fixed.map(String::from).to_vec();
+    let mut names: Vec<String> = FIXED.map(String::from).to_vec();
     for k in 1..=top {
         names.push(format!("mistake-{k}.png"));
         names.push(format!("heat-{k}.png"));
@@ -38,6 +102,11 @@ pub fn is_mistake_image(name: &str) -> bool {
             .and_then(|rest| rest.strip_suffix(".png"))
             .is_some_and(|n| !n.is_empty() && !n.starts_with('0') && n.bytes().all(|b| b.is_ascii_digit()))
     })
+}
+
+/// Whether `name` is a file some report writes, with any number of mistakes shown.
+fn is_report_file(name: &str) -> bool {
+    FIXED.contains(&name) || is_mistake_image(name)
 }
 
 /// Removes from `dir` the per-mistake images ([`is_mistake_image`]) that are not in
@@ -56,12 +125,90 @@ fn remove_stale(dir: &Path, written: &[PathBuf]) -> std::io::Result<()> {
     Ok(())
 }
 
-/// Writes the report into `dir` (which must exist) and removes the per-mistake images an
-/// earlier report left there that this one does not reference; returns the files written,
-/// each named in [`file_names`].
-pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) -> std::io::Result<Vec<PathBuf>> {
+/// Removes the files a report writes ([`is_report_file`]) from `folder`, but the files
+/// `keep` (canonical paths), the marker last (a folder half cleared is still known as a
+/// report); then the folder itself when `remove_folder` and nothing else is left in it.
+/// Returns whether the folder was removed.
+fn clear(folder: &Path, remove_folder: bool, keep: &[PathBuf]) -> std::io::Result<bool> {
+    for entry in std::fs::read_dir(folder)? {
+        let entry = entry?;
+        let name = entry.file_name();
+        let ours = name.to_str().is_some_and(|n| is_report_file(n) && n != MARKER);
+        let kept = || entry.path().canonicalize().is_ok_and(|p| keep.contains(&p));
+        if ours && entry.file_type()?.is_file() && !kept() {
+            std::fs::remove_file(entry.path())?;
+        }
+    }
+    std::fs::remove_file(folder.join(MARKER))?;
+    if !remove_folder || std::fs::read_dir(folder)?.next().is_some() {
+        return Ok(false);
+    }
+    std::fs::remove_dir(folder)?;
+    Ok(true)
+}
+
+/// What [`remove_stale_reports`] did to an earlier report.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Stale {
+    /// The folder and its files removed.
+    Removed(PathBuf),
+    /// The report's files removed; the folder kept, with files of someone else's in it.
+    Cleared(PathBuf),
+}
+
+/// Removes the reports an earlier `--report dir` left in `dir` that this run, which wrote
+/// the report folders `current`, does not write: each folder of `dir` written as one of
+/// several ([`Written::OneOfSeveral`]) that is not in `current`, and the report of one
+/// image written into `dir` itself when `dir` is not in `current`. Only folders whose
+/// marker lumiere wrote are touched, and in them only the files a report writes, but the
+/// run's `inputs` (a report's `image.png` diagnosed again stays); a folder is removed when
+/// nothing else is left in it, and kept (without its marker) otherwise. Symbolic links are
+/// not followed. Returns what it did, folders in name order.
+pub fn remove_stale_reports(dir: &Path, current: &[PathBuf], inputs: &[&Path]) -> std::io::Result<Vec<Stale>> {
+    let keep: Vec<PathBuf> = inputs.iter().filter_map(|i| i.canonicalize().ok()).collect();
+    let mut stale = Vec::new();
+    if !current.iter().any(|c| c == dir) && written_as(dir) == Some(Written::Alone) {
+        clear(dir, false, &keep)?;
+        stale.push(Stale::Cleared(dir.to_path_buf()));
+    }
+    let mut folders = Vec::new();
+    for entry in std::fs::read_dir(dir)? {
+        let entry = entry?;
+        let folder = entry.path();
+        if entry.file_type()?.is_dir()
+            && !current.contains(&folder)
+            && written_as(&folder) == Some(Written::OneOfSeveral)
+        {
+            folders.push(folder);
+        }
+    }
+    folders.sort();
+    for folder in folders {
+        stale.push(if clear(&folder, true, &keep)? {
+            Stale::Removed(folder)
+        } else {
+            Stale::Cleared(folder)
+        });
+    }
+    Ok(stale)
+}
+
+/// Writes the report into `dir` (which must exist), marked as `how` it is written, and
+/// removes the per-mistake images an earlier report left there that this one does not
+/// reference; returns the files written, each named in [`file_names`].
+pub fn write(
+    dir: &Path,
+    d: &Diagnosis,
+    scene: &str,
+    image: &str,
+    top: usize,
+    how: Written,
+) -> std::io::Result<Vec<PathBuf>> {
     let (w, h) = (d.grid.width, d.grid.height);
     let mut written = Vec::new();
+    let marker = dir.join(MARKER);
+    write_atomic(&marker, marker_text(how, scene, image).as_bytes())?;
+    written.push(marker);
     let mut png = |name: &str, rgb: &[u8]| -> std::io::Result<()> {
         let bytes = encode_png(w, h, rgb).map_err(std::io::Error::other)?;
         let path = dir.join(name);
@@ -87,7 +234,7 @@ pub fn write(dir: &Path, d: &Diagnosis, scene: &str, image: &str, top: usize) ->
         "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>lumiere diagnose</title>\n\
          <style>body{{font-family:sans-serif;margin:2em}}img{{image-rendering:pixelated;width:320px;border:1px solid #888}}\
          td,th{{padding:2px 8px;text-align:left}}figure{{display:inline-block;margin:4px}}</style></head><body>\n\
-         <h1>Diagnosis of {} against {}</h1>\n<p>{} x {} pixels; judged on {} ({} x {}), {} on edges apart, {} undrawn (fully transparent) apart; \
+         <h1>Diagnosis of {} against {}</h1>\n<p>{} x {} pixels; judged on {} ({} x {}), {} on edges apart, {} undrawn (transparent black) apart; \
          tolerance {} levels, at most {:.4} % beyond.</p>\n<p><b>Verdict: {}</b>. The oracle: {} of {} pixels beyond the tolerance \
          ({:.4} %), RMS {:.4}; {} beyond any sampling of the pixel.</p>\n",
         escape(image),
