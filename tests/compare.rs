@@ -14,7 +14,7 @@ use lumiere::output::{Format, encode, encode_pfm};
 use lumiere::world::World;
 use proptest::prelude::*;
 use std::fs;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Runs `lumiere compare ARGS`: exit code, stdout, stderr.
 fn compare(args: &[&str]) -> (i32, String, String) {
@@ -531,6 +531,16 @@ fn metrics_rule_and_json_by_hand() {
     assert_eq!(j["metrics"]["flip_mean"], 0.0);
 }
 
+/// Writes `yours` (RGBA) and `oracle` (RGB), both `w x h`, as `dir/yours.png` and
+/// `dir/oracle.png`.
+fn write_rgba_against_rgb(dir: &Path, w: u32, h: u32, yours: &[u8], oracle: &[u8]) -> (PathBuf, PathBuf) {
+    let (a, b) = (dir.join("yours.png"), dir.join("oracle.png"));
+    let rgba = encode_with(image::ImageFormat::Png, w, h, yours, image::ExtendedColorType::Rgba8);
+    fs::write(&a, rgba).unwrap();
+    fs::write(&b, encode_png(w, h, oracle).unwrap()).unwrap();
+    (a, b)
+}
+
 #[test]
 fn fully_transparent_pixels_are_left_out_as_undrawn() {
     // An 8 x 6 oracle, and yours drawn on its first 4 rows (one pixel there 9 levels off)
@@ -545,13 +555,7 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
         .flat_map(|(i, p)| if i >= 32 { [0, 0, 0, 0] } else { [p[0], p[1], p[2], 255] })
         .collect();
     yours[4 * 9] += 9;
-    let (a, b) = (dir.join("yours.png"), dir.join("oracle.png"));
-    fs::write(
-        &a,
-        encode_with(image::ImageFormat::Png, w, h, &yours, image::ExtendedColorType::Rgba8),
-    )
-    .unwrap();
-    fs::write(&b, encode_png(w, h, &oracle).unwrap()).unwrap();
+    let (a, b) = write_rgba_against_rgb(&dir, w, h, &yours, &oracle);
     let heat = dir.join("heat.png");
     let (code, out, err) = compare(&[s(&a), s(&b), "--heatmap", s(&heat)]);
     assert_eq!(code, 1, "{out} {err}");
@@ -681,13 +685,7 @@ fn alpha_zero_pixels_with_a_colour_are_compared_as_stored() {
             _ => [0, 0, 0, 0],
         })
         .collect();
-    let (a, b) = (dir.join("yours.png"), dir.join("oracle.png"));
-    fs::write(
-        &a,
-        encode_with(image::ImageFormat::Png, w, h, &yours, image::ExtendedColorType::Rgba8),
-    )
-    .unwrap();
-    fs::write(&b, encode_png(w, h, &oracle).unwrap()).unwrap();
+    let (a, b) = write_rgba_against_rgb(&dir, w, h, &yours, &oracle);
     let note = "alpha channel dropped: 16 pixels fully transparent (alpha 0) but not black, their colour compared as stored (drawn with alpha never set?); only transparent black pixels (alpha and colour 0) are left out as never drawn";
     let img = read_image(&a).unwrap();
     assert_eq!(img.notes, [note]);

@@ -874,17 +874,14 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     let rgb = render_mistake(&scene, &phong).unwrap();
     let drawn_rows = 54;
     let undrawn = |i: usize| i / W as usize >= drawn_rows;
-    let rgba: Vec<u8> = rgb
-        .chunks(3)
-        .enumerate()
-        .flat_map(|(i, p)| {
-            if undrawn(i) {
-                [0, 0, 0, 0]
-            } else {
-                [p[0], p[1], p[2], 255]
-            }
-        })
-        .collect();
+    // The image drawn, its undrawn rows `fill`.
+    let with_rows = |fill: [u8; 4]| -> Vec<u8> {
+        rgb.chunks(3)
+            .enumerate()
+            .flat_map(|(i, p)| if undrawn(i) { fill } else { [p[0], p[1], p[2], 255] })
+            .collect()
+    };
+    let rgba = with_rows([0, 0, 0, 0]);
     let dir = temp_dir("undrawn");
     let path = dir.join("wide.png");
     image::RgbaImage::from_raw(W, H, rgba.clone())
@@ -928,17 +925,7 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     assert!(phong_beyond(&whole) > 0);
     // The same rows at alpha 0 but white (drawn, alpha never set there): judged as stored,
     // none undrawn, and the note on the standard error counts them.
-    let white: Vec<u8> = rgba
-        .chunks(4)
-        .enumerate()
-        .flat_map(|(i, p)| {
-            if undrawn(i) {
-                [255, 255, 255, 0]
-            } else {
-                [p[0], p[1], p[2], 255]
-            }
-        })
-        .collect();
+    let white = with_rows([255, 255, 255, 0]);
     let unset = dir.join("unset-rows.png");
     image::RgbaImage::from_raw(W, H, white.clone())
         .unwrap()
