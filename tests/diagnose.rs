@@ -77,6 +77,17 @@ fn named(d: &lumiere::diagnose::Diagnosis) -> Vec<(&'static str, (usize, f64))> 
     }
 }
 
+/// The files of every report folder, whatever the image (the mistakes' and heat-maps' files
+/// come on top).
+const REPORT_FILES: [&str; 6] = [
+    ".lumiere-report",
+    "edges.png",
+    "heat-oracle.png",
+    "image.png",
+    "index.html",
+    "oracle.png",
+];
+
 #[test]
 fn every_mistake_is_found_where_it_shows() {
     // A mistake shows on a scene when its image differs from the oracle's by more than the
@@ -881,17 +892,22 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
             .flat_map(|(i, p)| if undrawn(i) { fill } else { [p[0], p[1], p[2], 255] })
             .collect()
     };
-    let rgba = with_rows([0, 0, 0, 0]);
     let dir = temp_dir("undrawn");
-    let path = dir.join("wide.png");
-    image::RgbaImage::from_raw(W, H, rgba.clone())
-        .unwrap()
-        .save(&path)
-        .unwrap();
-    let args = diagnose_reference_centred(&path);
+    // `rgba` saved as `dir/NAME`, the diagnose arguments for it, and its `--json` run.
+    let diagnosed = |name: &str, rgba: &[u8]| {
+        let path = dir.join(name);
+        image::RgbaImage::from_raw(W, H, rgba.to_vec())
+            .unwrap()
+            .save(&path)
+            .unwrap();
+        let args = diagnose_reference_centred(&path);
+        let o = lumiere(&[args.iter().map(String::as_str).collect::<Vec<_>>(), vec!["--json"]].concat());
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        (path, args, o)
+    };
+    let rgba = with_rows([0, 0, 0, 0]);
+    let (_, args, o) = diagnosed("wide.png", &rgba);
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    let o = lumiere(&[&args[..], &["--json"]].concat());
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(d["undrawn"], 1728);
     assert_eq!(d["verdict"], "mistake_found");
@@ -926,15 +942,7 @@ fn fully_transparent_pixels_are_left_out_as_undrawn() {
     // The same rows at alpha 0 but white (drawn, alpha never set there): judged as stored,
     // none undrawn, and the note on the standard error counts them.
     let white = with_rows([255, 255, 255, 0]);
-    let unset = dir.join("unset-rows.png");
-    image::RgbaImage::from_raw(W, H, white.clone())
-        .unwrap()
-        .save(&unset)
-        .unwrap();
-    let args = diagnose_reference_centred(&unset);
-    let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    let o = lumiere(&[&args[..], &["--json"]].concat());
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let (unset, _, o) = diagnosed("unset-rows.png", &white);
     assert_eq!(
         String::from_utf8_lossy(&o.stderr),
         format!(
@@ -1355,14 +1363,7 @@ fn a_reused_report_folder_holds_only_what_the_report_references() {
     for name in kept {
         std::fs::write(report.join(name), "mine").unwrap();
     }
-    let fixed = [
-        ".lumiere-report",
-        "edges.png",
-        "heat-oracle.png",
-        "image.png",
-        "index.html",
-        "oracle.png",
-    ];
+    let fixed = REPORT_FILES;
     for (image, top, mistakes) in [
         (
             &mistaken,
@@ -1503,14 +1504,7 @@ fn reports_of_images_no_longer_diagnosed_are_removed_and_nothing_else() {
         assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
         String::from_utf8(o.stderr).unwrap()
     };
-    let report_files = [
-        ".lumiere-report",
-        "edges.png",
-        "heat-oracle.png",
-        "image.png",
-        "index.html",
-        "oracle.png",
-    ];
+    let report_files = REPORT_FILES;
     let err = run(&[&phong, &correct, &third], &report);
     assert_eq!(err, "");
     assert_eq!(file_list(&report), ["correct", "phong", "third"]);
