@@ -1326,6 +1326,23 @@ fn command_line_says_what_to_run_when_the_catalogue_does_not_explain_the_image()
             "{text}"
         );
     }
+    // An image named oracle.png in the working folder: the next render writes elsewhere
+    // rather than over it.
+    std::fs::copy(dir.join("grey.png"), dir.join("oracle.png")).unwrap();
+    let args = diagnose_reference_centred(std::path::Path::new("oracle.png"));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(&args)
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        text.contains(&format!(
+            "`lumiere render {0} -o lumiere-oracle.png --width 96 --height 72 --spp 1 --convention sample_position=center`, then `lumiere compare oracle.png lumiere-oracle.png --scene {0} --spp 1",
+            reference.display()
+        )),
+        "{text}"
+    );
     let phong = catalogue().into_iter().find(|m| m.name == "phong-for-blinn").unwrap();
     let png = dir.join("phong.png");
     std::fs::write(

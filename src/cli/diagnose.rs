@@ -376,11 +376,27 @@ fn next_step(d: &Diagnosis, args: &DiagnoseArgs, scene: &str, image: &str) -> Op
     }
     let settings = super::compare::settings(&args.overrides);
     let srgb = if args.srgb { " --srgb" } else { "" };
+    let oracle = oracle_name(Path::new(image));
     let (scene, image) = (shell_word(scene), shell_word(image));
     Some(format!(
-        "`lumiere render {scene} -o oracle.png --width {} --height {}{settings}{srgb}`, then `lumiere compare {image} oracle.png --scene {scene}{settings}` lists the worst pixels off edges, each with the probe line of the oracle's ray tree there",
+        "`lumiere render {scene} -o {oracle} --width {} --height {}{settings}{srgb}`, then `lumiere compare {image} {oracle} --scene {scene}{settings}` lists the worst pixels off edges, each with the probe line of the oracle's ray tree there",
         d.width, d.height
     ))
+}
+
+/// The file the next step renders the oracle's image into, in the working folder:
+/// `oracle.png`, or `lumiere-oracle.png` when the image diagnosed is that file, which the
+/// render would overwrite.
+fn oracle_name(image: &Path) -> &'static str {
+    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => a == b,
+    };
+    if same(image, Path::new("oracle.png")) {
+        "lumiere-oracle.png"
+    } else {
+        "oracle.png"
+    }
 }
 
 /// `B of J pixels beyond T levels (F %), RMS R`.
