@@ -358,6 +358,7 @@ impl<'a> Reader<'a> {
         let tolerated = Tolerated {
             line_elements: true,
             short_faces: self.lenient,
+            bad_indices: false,
         };
         let mut mesh = match Mesh::read_into_scene(&path, room, tolerated) {
             Ok(mesh) => mesh,
