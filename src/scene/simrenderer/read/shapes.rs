@@ -370,6 +370,7 @@ impl<'a> Reader<'a> {
             }
         };
         self.report_skipped(&mesh, &shown, &file_at)?;
+        self.report_relative(&mesh, &shown, &file_at);
         mesh.round_to_f32();
         let t = Transform::from_parts(scale, rotation, translation);
         let moved = !t.is_identity();
@@ -459,6 +460,25 @@ impl<'a> Reader<'a> {
             }
         }
         Ok(())
+    }
+
+    /// A warning, in both modes, at the first face of `mesh`'s file with a negative
+    /// (relative) index: SIMRenderer's model reader reads it without its sign
+    /// (`SFace.parseFaceIndexToken` splits on `-`), so its image of the model differs.
+    fn report_relative(&mut self, mesh: &Mesh, shown: &str, file_at: &At) {
+        let Some(first) = mesh.relative.first() else {
+            return;
+        };
+        let Statement::RelativeIndex { index, .. } = first.statement else {
+            return;
+        };
+        let m = format!(
+            "{}; SIMRenderer's model reader reads an index without its sign ({index} as {}), so its image of this model differs from lumiere's, which reads the file's {} face(s) with a negative index as OBJ defines them",
+            first.in_file(&shown),
+            index.unsigned_abs(),
+            mesh.relative.len()
+        );
+        self.warn(file_at, m);
     }
 
     /// The materials of `mesh`'s faces ([`super::mtl`]): its libraries read from `folder`
