@@ -375,3 +375,120 @@ fn line_elements_and_short_faces_are_skipped_as_simrenderer_skips_them() {
     );
     assert_eq!(middle(&dir, &red, &["--lenient"]), [223, 96, 0]);
 }
+
+/// A face with a vertex index past the file's count, which SIMRenderer's model reader skips
+/// (`SPolygonOBJ.buildVertexList` leaves it no vertex, `SModelOBJLoader.load` counts it in
+/// error): refused in strict mode on its line and column; under --lenient skipped with the
+/// model's other faces kept. A texture index past the count keeps the face without texture
+/// coordinates, as SIMRenderer keeps it.
+#[test]
+fn a_face_with_an_index_out_of_range_is_skipped_under_lenient() {
+    let dir = temp_dir("model-materials-indices");
+    write_in(&dir, "parts.mtl", MTL);
+    let obj = dir.join("parts.obj").display().to_string();
+    // The three squares, the last red too, and on line 13 a triangle of vertex 9 of 8.
+    let squares = OBJ.replace("usemtl absent\n", "");
+    let past = squares.replace("f 2 5 6 3\n", "f 2 5 6 3\nf 2 5 9\n");
+    write_in(&dir, "parts.obj", &past);
+    let red = write_in(&dir, "red.txt", &lab(0.0, ""));
+    let options = |lenient| lumiere::scene::simrenderer::Options {
+        lenient,
+        ..Default::default()
+    };
+    let e = lumiere::scene::simrenderer::load(Path::new(&red), &options(false)).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        format!("{red}:21:6: model.file: {obj}:13:1: f: vertex index 9, but the file has 8")
+    );
+    let vertex_warning = format!(
+        "{red}:21:6: model.file: {obj}:13:1: f: vertex index 9, but the file has 8; the file's 1 face(s) \
+         with a vertex index out of range are skipped and its others kept, as SIMRenderer's model reader \
+         skips a face whose vertex index passes the file's count"
+    );
+    let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options(true)).unwrap();
+    assert_eq!(parsed.scene.objects.len(), 6);
+    let warnings: Vec<String> = parsed.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(warnings, std::slice::from_ref(&vertex_warning));
+    assert_eq!(middle(&dir, &red, &["--lenient"]), [223, 96, 0]);
+    // The red square's face with texture index 2 of 1 (the `vt` on line 15): kept, flat.
+    write_in(
+        &dir,
+        "parts.obj",
+        &format!("{}vt 0 0\n", past.replace("f 2 5 6 3\n", "f 2/1 5/1 6/1 3/2\n")),
+    );
+    let e = lumiere::scene::simrenderer::load(Path::new(&red), &options(false)).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        format!("{red}:21:6: model.file: {obj}:12:1: f: texture index 2, but the file has 1")
+    );
+    let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options(true)).unwrap();
+    assert_eq!(parsed.scene.objects.len(), 6);
+    assert!(
+        parsed
+            .scene
+            .objects
+            .iter()
+            .all(|o| matches!(o.shape, Shape::Triangle(_))),
+        "{:?}",
+        parsed.scene.objects
+    );
+    let warnings: Vec<String> = parsed.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(
+        warnings,
+        [
+            vertex_warning,
+            format!(
+                "{red}:21:6: model.file: {obj}:12:1: f: texture index 2, but the file has 1; the file's 1 face(s) \
+                 with a texture index out of range are kept without texture coordinates, as SIMRenderer's model \
+                 reader keeps a face whose texture index passes the file's count"
+            )
+        ]
+    );
+    assert_eq!(middle(&dir, &red, &["--lenient"]), [223, 96, 0]);
+}
+
+/// SIMRenderer's model reader reads a face's index without its sign (`SFace` splits its
+/// words on `-`), so `-3` is vertex 3; lumiere reads it as OBJ does, counting back from the
+/// last vertex read, and warns in both modes at the first such face.
+#[test]
+fn a_negative_index_is_read_as_obj_reads_it_with_a_warning() {
+    let dir = temp_dir("model-materials-relative");
+    write_in(&dir, "parts.mtl", MTL);
+    let obj = dir.join("parts.obj").display().to_string();
+    // Vertices 1 to 3 far off to the side, 4 to 6 a triangle around the origin: line 9 is
+    // (4 5 6) as OBJ reads it, (3 2 1) as SIMRenderer does; line 10 (1 2 3) and (1 2 4).
+    write_in(
+        &dir,
+        "parts.obj",
+        "mtllib parts.mtl\nv 5 5 0\nv 6 5 0\nv 5 6 0\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\n\
+         usemtl red\nf -3 -2 -1\nf 1 2 -4\n",
+    );
+    let red = write_in(&dir, "red.txt", &lab(0.0, ""));
+    let warning = format!(
+        "{red}:21:6: model.file: {obj}:9:1: f: vertex index -3 counts back from the last vertex read (a relative \
+         index); SIMRenderer's model reader reads an index without its sign (-3 as 3), so its image of this model \
+         differs from lumiere's, which reads the file's 2 face(s) with a negative index as OBJ defines them"
+    );
+    for lenient in [false, true] {
+        let options = lumiere::scene::simrenderer::Options {
+            lenient,
+            ..Default::default()
+        };
+        let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options).unwrap();
+        let warnings: Vec<String> = parsed.warnings.iter().map(|w| w.to_string()).collect();
+        assert_eq!(warnings, std::slice::from_ref(&warning), "lenient {lenient}");
+        let Shape::Triangle(t) = &parsed.scene.objects[0].shape else {
+            panic!("{:?}", parsed.scene.objects[0].shape)
+        };
+        assert_eq!(
+            t.points(),
+            [
+                glam::DVec3::new(-1.0, -1.0, 0.0),
+                glam::DVec3::new(1.0, -1.0, 0.0),
+                glam::DVec3::Y
+            ]
+        );
+    }
+    // The middle pixel is in the triangle (4 5 6), red.
+    assert_eq!(middle(&dir, &red, &[]), [223, 96, 0]);
+}

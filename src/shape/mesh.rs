@@ -10,8 +10,11 @@
 //! vertex that is not `v`, `v/vt`, `v//vn` or `v/vt/vn` in whole numbers, line elements
 //! (`l`), indices out of range, and more triangles than allowed. `tobj`'s own errors are
 //! placed on the line it stopped at. A reader may skip the statements that make no
-//! triangle (a line element, a face of fewer than 3 vertices) instead of refusing them
-//! ([`Tolerated`]): they are recorded ([`Mesh::skipped`]) and left out of what `tobj` reads.
+//! triangle (a line element, a face of fewer than 3 vertices, a face with a vertex index
+//! out of range) instead of refusing them, and keep a face with a texture or normal index
+//! out of range without its texture coordinates or normals ([`Tolerated`]): they are
+//! recorded ([`Mesh::skipped`]) and left out of what `tobj` reads. The faces with a
+//! negative (relative) index are recorded too ([`Mesh::relative`]).
 //! Every other statement that draws nothing (`o`, `g`, `s`, `vp`, `p`, ...) is left to
 //! `tobj`, which groups by `o` and `g` and ignores the rest. The material libraries
 //! (`mtllib`) and each face's material name (`usemtl`, `default` before the first) are
@@ -26,6 +29,7 @@ use super::{NormalInterpolation, Shape, SmoothTriangle, Transform, Triangle};
 use crate::limits;
 use crate::scene::rules::Syntax;
 use glam::DVec3;
+use std::borrow::Cow;
 use std::io::{BufRead, Read};
 use std::path::Path;
 use std::sync::Arc;
@@ -52,35 +56,87 @@ pub struct Mesh {
     pub materials: Vec<u32>,
     /// The material libraries the file names (`mtllib`), in order, as written.
     pub libraries: Vec<Library>,
-    /// The statements skipped under the reader's [`Tolerated`], in file order.
+    /// The statements skipped (or, for a texture or normal index out of range, kept without
+    /// the texture coordinates or normals) under the reader's [`Tolerated`], in file order.
     pub skipped: Vec<StatementAt>,
+    /// The faces of 3 vertices or more with a negative index, which counts back from the
+    /// last element of its kind read (OBJ's relative index), each with its first such index
+    /// ([`Statement::RelativeIndex`]), in file order: whether drawn or skipped.
+    pub relative: Vec<StatementAt>,
 }
 
-/// Which statements that make no triangle a reader tolerates: skips (recording them in
-/// [`Mesh::skipped`]) rather than refuses on their line.
+/// Which statements a reader tolerates rather than refuses on their line, recording them in
+/// [`Mesh::skipped`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Tolerated {
-    /// Line elements (`l`).
+    /// Line elements (`l`), skipped.
     pub line_elements: bool,
-    /// Faces of fewer than 3 vertices.
+    /// Faces of fewer than 3 vertices, skipped.
     pub short_faces: bool,
+    /// Faces with an index out of range ([`Statement::BadIndex`]): skipped for a vertex
+    /// index, kept without their texture coordinates (or normals) for a texture (or normal)
+    /// index.
+    pub bad_indices: bool,
 }
 
 impl Tolerated {
-    /// Both refused.
+    /// All refused.
     pub const NONE: Tolerated = Tolerated {
         line_elements: false,
         short_faces: false,
+        bad_indices: false,
     };
 }
 
-/// A statement that makes no triangle.
+/// What a face's index names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Element {
+    /// A vertex (`v`).
+    Vertex,
+    /// Texture coordinates (`vt`).
+    Texture,
+    /// A normal (`vn`).
+    Normal,
+}
+
+impl Element {
+    /// The word a message names its index with (`vertex index 4`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Element::Vertex => "vertex",
+            Element::Texture => "texture",
+            Element::Normal => "normal",
+        }
+    }
+
+    /// The element itself, as a message names the last one read.
+    fn noun(self) -> &'static str {
+        match self {
+            Element::Vertex => "vertex",
+            Element::Texture => "texture coordinates",
+            Element::Normal => "normal",
+        }
+    }
+}
+
+/// A statement a reader refuses or tolerates ([`Tolerated`]), or notes
+/// ([`Statement::RelativeIndex`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Statement {
     /// A line element (`l`).
     LineElement,
     /// A face (`f`) of this many vertices, fewer than 3.
     ShortFace(usize),
+    /// A face's index of an element out of range: 0, beyond the file's `total` of them, or a
+    /// negative one that counts back past the `before` of them read before the face.
+    BadIndex {
+        element: Element,
+        index: i64,
+        before: usize,
+        total: usize,
+    },
+    /// A face's negative index (in range), which counts back from the last element read.
+    RelativeIndex { element: Element, index: i64 },
 }
 
 impl Statement {
@@ -88,11 +144,12 @@ impl Statement {
     pub fn keyword(self) -> &'static str {
         match self {
             Statement::LineElement => "l",
-            Statement::ShortFace(_) => "f",
+            Statement::ShortFace(_) | Statement::BadIndex { .. } | Statement::RelativeIndex { .. } => "f",
         }
     }
 
-    /// Why it makes no triangle, with the statement's allowed form when `form`.
+    /// What is wrong with it (or, for a relative index, what it means), with the statement's
+    /// allowed form when `form`.
     fn why(self, form: bool) -> String {
         match self {
             Statement::LineElement => "a line element (l) is no surface; only faces (f) are read".to_string(),
@@ -100,12 +157,32 @@ impl Statement {
                 let written = if form { " (f v1 v2 v3 ...)" } else { "" };
                 format!("a face needs at least 3 vertices{written}, got {n}")
             }
+            Statement::BadIndex {
+                element,
+                index,
+                before,
+                total,
+            } => {
+                let what = element.name();
+                if index == 0 {
+                    format!("{what} index 0: indices start at 1 (or count back from -1)")
+                } else if index > 0 {
+                    format!("{what} index {index}, but the file has {total}")
+                } else {
+                    format!("{what} index {index}, but only {before} come before this face")
+                }
+            }
+            Statement::RelativeIndex { element, index } => format!(
+                "{} index {index} counts back from the last {} read (a relative index)",
+                element.name(),
+                element.noun()
+            ),
         }
     }
 }
 
-/// A statement that makes no triangle, skipped under [`Tolerated`] or refused: its line and the
-/// column of its keyword (1-based, in characters).
+/// A statement of [`Statement`], skipped under [`Tolerated`], refused or noted: its line and
+/// the column of its keyword (1-based, in characters).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct StatementAt {
     pub line: usize,
@@ -242,22 +319,22 @@ impl Mesh {
             material_names,
             libraries,
             skipped,
+            relative,
+            replaced,
         } = check(text, max_triangles, tolerated)?;
-        // The skipped lines left empty, so that the others keep their numbers.
+        // The lines replaced (the skipped ones left empty), so that the others keep their
+        // numbers.
         let kept: String;
-        let text = if skipped.is_empty() {
+        let text = if replaced.is_empty() {
             text
         } else {
-            let mut gone = skipped.iter().map(|s| s.line).peekable();
+            let mut next = replaced.iter().peekable();
             kept = text
                 .split_inclusive('\n')
                 .enumerate()
-                .map(|(i, line)| {
-                    if gone.next_if_eq(&(i + 1)).is_some() {
-                        "\n"
-                    } else {
-                        line
-                    }
+                .map(|(i, line)| match next.next_if(|(n, _)| *n == i + 1) {
+                    Some((_, with)) => Cow::Owned(format!("{with}\n")),
+                    None => Cow::Borrowed(line),
                 })
                 .collect();
             &kept
@@ -339,6 +416,7 @@ impl Mesh {
             materials: per_triangle.iter().map(|f| f.material).collect(),
             libraries,
             skipped,
+            relative,
         })
     }
 
@@ -462,13 +540,17 @@ impl Mesh {
     }
 }
 
-/// What [`check`] finds: what every face gives, the material names, the libraries and the
-/// statements skipped.
+/// What [`check`] finds: what every face gives, the material names, the libraries, the
+/// statements skipped, the faces with a relative index, and the lines `tobj` is to read
+/// otherwise (by number, in order: empty for a statement skipped, a face without the
+/// texture or normal indices it is kept without).
 struct Checked {
     faces: Vec<FaceLine>,
     material_names: Vec<String>,
     libraries: Vec<Library>,
     skipped: Vec<StatementAt>,
+    relative: Vec<StatementAt>,
+    replaced: Vec<(usize, String)>,
 }
 
 /// The rest of `line` after its first word `keyword`, without the blanks around it.
@@ -477,7 +559,8 @@ fn rest_after<'a>(line: &'a str, keyword: &str) -> &'a str {
 }
 
 /// The checks of the module doc; returns what every face gives ([`FaceLine`]), with the
-/// material names, the libraries and the statements `tolerated` lets it skip.
+/// material names, the libraries, the statements `tolerated` lets it skip (or keep without
+/// texture coordinates or normals) and the faces with a relative index ([`Checked`]).
 fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Checked, ObjError> {
     // Counts of vertices, texture coordinates and normals in the whole file: `tobj`
     // resolves positive indices against them (relative ones against those read so far).
@@ -498,24 +581,32 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
     let mut material = 0u32;
     let mut libraries = Vec::new();
     let mut skipped = Vec::new();
+    let mut relative = Vec::new();
+    let mut replaced = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let number = i + 1;
         let mut words = line.split_whitespace();
-        // A statement that makes no triangle: skipped or refused, as `tolerated` says.
-        let mut no_triangle = |statement: Statement, skip: bool| {
+        // A statement of this line, placed on its keyword.
+        let placed = |statement: Statement| {
             let blanks = line.len() - line.trim_start().len();
-            let placed = StatementAt {
+            StatementAt {
                 line: number,
                 column: line[..blanks].chars().count() + 1,
                 statement,
-            };
-            if !skip {
-                return Err(ObjError {
-                    statement: Some(placed),
-                    ..at(number, statement.why(false))
-                });
             }
-            skipped.push(placed);
+        };
+        let refused = |statement: Statement| ObjError {
+            statement: Some(placed(statement)),
+            ..at(number, statement.why(false))
+        };
+        // A statement that makes no triangle: skipped (and left out of what tobj reads) or
+        // refused, as `tolerated` says.
+        let mut no_triangle = |statement: Statement, skip: bool| {
+            if !skip {
+                return Err(refused(statement));
+            }
+            skipped.push(placed(statement));
+            replaced.push((number, String::new()));
             Ok(())
         };
         match words.next() {
@@ -572,6 +663,10 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                     continue;
                 }
                 let (mut with_uv, mut with_normal) = (0, 0);
+                // The first index out of range of each element (tolerated), and the first
+                // negative one.
+                let mut bad: [Option<Statement>; 3] = [None; 3];
+                let mut first_relative = None;
                 for corner in &corners {
                     let parts: Vec<&str> = corner.split('/').collect();
                     with_uv += usize::from(parts.get(1).is_some_and(|p| !p.is_empty()));
@@ -582,10 +677,10 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                     }
                     let whole = parts.len() == 1;
                     for (k, part) in parts.into_iter().enumerate() {
-                        let (what, before, total) = [
-                            ("vertex", v, v_total),
-                            ("texture", vt, vt_total),
-                            ("normal", vn, vn_total),
+                        let (element, before, total) = [
+                            (Element::Vertex, v, v_total),
+                            (Element::Texture, vt, vt_total),
+                            (Element::Normal, vn, vn_total),
                         ][k];
                         if part.is_empty() {
                             continue;
@@ -595,8 +690,28 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                             let word = if whole { String::new() } else { format!("`{corner}`: ") };
                             at(number, format!("{word}`{part}` is no index: {form}"))
                         })?;
-                        check_index(what, index as i64, before, total).map_err(|m| at(number, m))?;
+                        let index = index as i64;
+                        if index < 0 {
+                            first_relative.get_or_insert(Statement::RelativeIndex { element, index });
+                        }
+                        if let Some(statement) = check_index(element, index, before, total) {
+                            if !tolerated.bad_indices {
+                                return Err(refused(statement));
+                            }
+                            bad[k].get_or_insert(statement);
+                        }
                     }
+                }
+                relative.extend(first_relative.map(placed));
+                if let Some(statement) = bad[0] {
+                    skipped.push(placed(statement));
+                    replaced.push((number, String::new()));
+                    continue;
+                }
+                skipped.extend(bad[1..].iter().flatten().map(|s| placed(*s)));
+                let (keep_uvs, keep_normals) = (bad[1].is_none(), bad[2].is_none());
+                if !keep_uvs || !keep_normals {
+                    replaced.push((number, face_without(&corners, keep_uvs, keep_normals)));
                 }
                 triangles += corners.len() - 2;
                 if triangles > max_triangles {
@@ -622,8 +737,8 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                 faces.push(FaceLine {
                     line: number,
                     corners: corners.len(),
-                    normals: with_normal > 0,
-                    uvs: with_uv > 0,
+                    normals: with_normal > 0 && keep_normals,
+                    uvs: with_uv > 0 && keep_uvs,
                     material,
                 });
             }
@@ -631,8 +746,23 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
         }
     }
     if faces.is_empty() {
-        let skipped_faces = skipped.iter().any(|s| matches!(s.statement, Statement::ShortFace(_)));
-        let which = if skipped_faces { " of 3 vertices or more" } else { "" };
+        let skipped_as = |f: fn(&Statement) -> bool| skipped.iter().any(|s| f(&s.statement));
+        let short = skipped_as(|s| matches!(s, Statement::ShortFace(_)));
+        let bad = skipped_as(|s| {
+            matches!(
+                s,
+                Statement::BadIndex {
+                    element: Element::Vertex,
+                    ..
+                }
+            )
+        });
+        let which = match (short, bad) {
+            (false, false) => "",
+            (true, false) => " of 3 vertices or more",
+            (false, true) => " whose vertex indices are in range",
+            (true, true) => " of 3 vertices or more whose vertex indices are in range",
+        };
         return Err(whole(format!("the file has no faces (f){which}")));
     }
     Ok(Checked {
@@ -640,7 +770,27 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
         material_names,
         libraries,
         skipped,
+        relative,
+        replaced,
     })
+}
+
+/// The face of `corners` as a line without their texture indices (unless `uvs`) and normal
+/// indices (unless `normals`).
+fn face_without(corners: &[&str], uvs: bool, normals: bool) -> String {
+    let mut line = String::from("f");
+    for corner in corners {
+        let mut parts = corner.split('/');
+        let v = parts.next().unwrap_or_default();
+        let vt = parts.next().filter(|_| uvs).unwrap_or_default();
+        let vn = parts.next().filter(|_| normals).unwrap_or_default();
+        line += &match (vt.is_empty(), vn.is_empty()) {
+            (true, true) => format!(" {v}"),
+            (false, true) => format!(" {v}/{vt}"),
+            (_, false) => format!(" {v}/{vt}/{vn}"),
+        };
+    }
+    line
 }
 
 /// The first `n` of `words` as numbers (as tobj reads them), or why not: `what` (`vertex 3`)
@@ -684,23 +834,19 @@ fn check_vertex(values: &[&str], n: usize) -> Result<(), String> {
     Ok(())
 }
 
-/// A face's index of a `what` (vertex, texture, normal): from 1 to `total`, or from -1 back
-/// to the first of the `before` read so far.
-fn check_index(what: &str, index: i64, before: usize, total: usize) -> Result<(), String> {
+/// A face's index of an `element`: from 1 to `total`, or from -1 back to the first of the
+/// `before` read so far; else the statement of it out of range.
+fn check_index(element: Element, index: i64, before: usize, total: usize) -> Option<Statement> {
     let fine = if index > 0 {
         index as u64 <= total as u64
     } else {
         index < 0 && index.unsigned_abs() <= before as u64
     };
-    if fine {
-        return Ok(());
-    }
-    Err(if index == 0 {
-        format!("{what} index 0: indices start at 1 (or count back from -1)")
-    } else if index > 0 {
-        format!("{what} index {index}, but the file has {total}")
-    } else {
-        format!("{what} index {index}, but only {before} come before this face")
+    (!fine).then_some(Statement::BadIndex {
+        element,
+        index,
+        before,
+        total,
     })
 }
 
@@ -844,7 +990,7 @@ mod tests {
         );
         let lines_only = Tolerated {
             line_elements: true,
-            short_faces: false,
+            ..Tolerated::NONE
         };
         let e = Mesh::parse(text, 100, lines_only).unwrap_err();
         assert_eq!(e.to_string(), "line 7: a face needs at least 3 vertices, got 2");
@@ -856,6 +1002,7 @@ mod tests {
         let both = Tolerated {
             line_elements: true,
             short_faces: true,
+            bad_indices: false,
         };
         let m = Mesh::parse(text, 100, both).unwrap();
         assert_eq!(m.lines, [6, 9]);
@@ -879,6 +1026,108 @@ mod tests {
         // A file whose faces are all skipped has none to draw.
         let e = Mesh::parse("v 0 0 0\nv 1 0 0\nf 1 2\n", 100, both).unwrap_err();
         assert_eq!(e.to_string(), "the file has no faces (f) of 3 vertices or more");
+    }
+
+    #[test]
+    fn faces_with_an_index_out_of_range_are_refused_or_tolerated() {
+        // Five vertices, one texture coordinate, one normal; line 9 a vertex index past the
+        // count, line 10 a texture index past it, line 11 a normal index 0, line 12 a
+        // relative vertex index past the first vertex, line 13 both a texture and a vertex
+        // index out of range, line 14 a texture and a normal one.
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\nvt 0.5 0.5\nvn 0 0 1\n\
+            f 1 2 3\nf 2 4 6\nf 1/1 2/1 4/2\n  f 1//1 4//1 3//0\nf 2 5 -6\n\
+            f 1/2 2/1 7/1\nf 2/1/1 5/9/1 4/1/-2\n";
+        let e = Mesh::parse(text, 100, Tolerated::NONE).unwrap_err();
+        assert_eq!(e.to_string(), "line 9: vertex index 6, but the file has 5");
+        assert_eq!(
+            e.located_in(&"m.obj"),
+            "m.obj:9:1: f: vertex index 6, but the file has 5"
+        );
+        let tolerant = Tolerated {
+            bad_indices: true,
+            ..Tolerated::NONE
+        };
+        let m = Mesh::parse(text, 100, tolerant).unwrap();
+        let bad = |line, column, element, index, before, total| StatementAt {
+            line,
+            column,
+            statement: Statement::BadIndex {
+                element,
+                index,
+                before,
+                total,
+            },
+        };
+        assert_eq!(
+            m.skipped,
+            [
+                bad(9, 1, Element::Vertex, 6, 5, 5),
+                bad(10, 1, Element::Texture, 2, 1, 1),
+                bad(11, 3, Element::Normal, 0, 1, 1),
+                bad(12, 1, Element::Vertex, -6, 5, 5),
+                bad(13, 1, Element::Vertex, 7, 5, 5),
+                bad(14, 1, Element::Texture, 9, 1, 1),
+                bad(14, 1, Element::Normal, -2, 1, 1),
+            ]
+        );
+        // The faces of lines 9, 12 and 13 skipped; those of lines 10, 11 and 14 kept without
+        // texture coordinates or normals (14 without either: a flat triangle).
+        assert_eq!(m.lines, [8, 10, 11, 14]);
+        let (a, b, c, d, e) = (
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+        );
+        let points: Vec<[DVec3; 3]> = m.triangles().iter().map(|t| t.points()).collect();
+        assert_eq!(points, [[a, b, c], [a, b, d], [a, d, c], [b, e, d]]);
+        assert_eq!(m.uvs, [None; 4]);
+        assert_eq!(m.normals, [None, None, None, None]);
+        // The relative index of line 12 is recorded, and line 14's (a normal index).
+        let relative: Vec<(usize, Statement)> = m.relative.iter().map(|s| (s.line, s.statement)).collect();
+        assert_eq!(
+            relative,
+            [
+                (
+                    12,
+                    Statement::RelativeIndex {
+                        element: Element::Vertex,
+                        index: -6
+                    }
+                ),
+                (
+                    14,
+                    Statement::RelativeIndex {
+                        element: Element::Normal,
+                        index: -2
+                    }
+                ),
+            ]
+        );
+        // A texture index out of range keeps the normals, and a normal index the texture
+        // coordinates.
+        let m = Mesh::parse(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/2/1\nf 1/1/1 2/1/1 3/1/3\n",
+            100,
+            tolerant,
+        )
+        .unwrap();
+        assert_eq!(m.normals, [Some([DVec3::Z; 3]), None]);
+        assert_eq!(m.uvs, [None, Some([[0.0, 0.0]; 3])]);
+        // A file whose faces are all skipped has none to draw.
+        let e = Mesh::parse("v 0 0 0\nv 1 0 0\nf 1 2 3\n", 100, tolerant).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "the file has no faces (f) whose vertex indices are in range"
+        );
+        // In range, a relative index is recorded and read as OBJ reads it.
+        let m = Mesh::parse("v 9 9 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n", 100, Tolerated::NONE).unwrap();
+        assert_eq!(m.triangles()[0].points(), [a, b, c]);
+        assert_eq!(
+            m.relative[0].in_file(&"m.obj"),
+            "m.obj:5:1: f: vertex index -3 counts back from the last vertex read (a relative index)"
+        );
     }
 
     #[test]

@@ -11,7 +11,7 @@ use crate::material::Material;
 use crate::scene::SceneError;
 use crate::scene::rules::Syntax::SimRenderer;
 use crate::scene::simrenderer::lex::{self, Item, Line};
-use crate::shape::mesh::{Mesh, Statement, Tolerated};
+use crate::shape::mesh::{Element, Mesh, Statement, Tolerated};
 use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Lens, NormalInterpolation, Plane, Shape, SmoothTriangle, Sphere, SphericalCap, Torus,
     Transform, Triangle,
@@ -354,10 +354,13 @@ impl<'a> Reader<'a> {
         let shown = path.display().to_string();
         let room = limits::MAX_OBJECTS.saturating_sub(self.objects);
         // SIMRenderer's model reader skips a line element without a word (its keyword table
-        // has no `l`), and a face of fewer than 3 vertices with a message.
+        // has no `l`), a face of fewer than 3 vertices or with a vertex index past the file's
+        // count with a message (`SModelOBJLoader.load`), and keeps a face with a texture or
+        // normal index past it without them (`SPolygonOBJ`).
         let tolerated = Tolerated {
             line_elements: true,
             short_faces: self.lenient,
+            bad_indices: self.lenient,
         };
         let mut mesh = match Mesh::read_into_scene(&path, room, tolerated) {
             Ok(mesh) => mesh,
@@ -367,6 +370,7 @@ impl<'a> Reader<'a> {
             }
         };
         self.report_skipped(&mesh, &shown, &file_at)?;
+        self.report_relative(&mesh, &shown, &file_at);
         mesh.round_to_f32();
         let t = Transform::from_parts(scale, rotation, translation);
         let moved = !t.is_identity();
@@ -397,9 +401,10 @@ impl<'a> Reader<'a> {
         }))
     }
 
-    /// The statements of `mesh`'s file that make no triangle and were skipped, the first of
-    /// each kind located: line elements a warning, short faces a problem (skipped under
-    /// `lenient` only).
+    /// The statements of `mesh`'s file that were skipped, the first of each kind located:
+    /// line elements a warning; short faces, and faces with an index out of range (skipped,
+    /// or kept without texture coordinates or normals), a problem (tolerated under `lenient`
+    /// only).
     fn report_skipped(&mut self, mesh: &Mesh, shown: &str, file_at: &At) -> Result<(), SceneError> {
         let lines: Vec<_> = mesh
             .skipped
@@ -426,7 +431,54 @@ impl<'a> Reader<'a> {
             );
             self.problem(file_at, first.in_file(&shown), &then)?;
         }
+        for (element, done) in [
+            (
+                Element::Vertex,
+                "are skipped and its others kept, as SIMRenderer's model reader skips a face",
+            ),
+            (
+                Element::Texture,
+                "are kept without texture coordinates, as SIMRenderer's model reader keeps a face",
+            ),
+            (
+                Element::Normal,
+                "are kept without normals, as SIMRenderer's model reader keeps a face",
+            ),
+        ] {
+            let faces: Vec<_> = mesh
+                .skipped
+                .iter()
+                .filter(|s| matches!(s.statement, Statement::BadIndex { element: e, .. } if e == element))
+                .collect();
+            if let Some(first) = faces.first() {
+                let what = element.name();
+                let then = format!(
+                    "the file's {} face(s) with a {what} index out of range {done} whose {what} index passes the file's count",
+                    faces.len()
+                );
+                self.problem(file_at, first.in_file(&shown), &then)?;
+            }
+        }
         Ok(())
+    }
+
+    /// A warning, in both modes, at the first face of `mesh`'s file with a negative
+    /// (relative) index: SIMRenderer's model reader reads it without its sign
+    /// (`SFace.parseFaceIndexToken` splits on `-`), so its image of the model differs.
+    fn report_relative(&mut self, mesh: &Mesh, shown: &str, file_at: &At) {
+        let Some(first) = mesh.relative.first() else {
+            return;
+        };
+        let Statement::RelativeIndex { index, .. } = first.statement else {
+            return;
+        };
+        let m = format!(
+            "{}; SIMRenderer's model reader reads an index without its sign ({index} as {}), so its image of this model differs from lumiere's, which reads the file's {} face(s) with a negative index as OBJ defines them",
+            first.in_file(&shown),
+            index.unsigned_abs(),
+            mesh.relative.len()
+        );
+        self.warn(file_at, m);
     }
 
     /// The materials of `mesh`'s faces ([`super::mtl`]): its libraries read from `folder`
