@@ -398,10 +398,10 @@ fn a_face_with_an_index_out_of_range_is_skipped_under_lenient() {
     let e = lumiere::scene::simrenderer::load(Path::new(&red), &options(false)).unwrap_err();
     assert_eq!(
         e.to_string(),
-        format!("{red}:21:6: model.file: {obj}:13:1: f: vertex index 9, but the file has 8")
+        format!("{red}:21:6: model.file: {obj}:13:7: f: vertex index 9, but the file has 8")
     );
     let vertex_warning = format!(
-        "{red}:21:6: model.file: {obj}:13:1: f: vertex index 9, but the file has 8; the file's 1 face(s) \
+        "{red}:21:6: model.file: {obj}:13:7: f: vertex index 9, but the file has 8; the file's 1 face(s) \
          with a vertex index out of range are skipped and its others kept, as SIMRenderer's model reader \
          skips a face whose vertex index passes the file's count"
     );
@@ -419,7 +419,7 @@ fn a_face_with_an_index_out_of_range_is_skipped_under_lenient() {
     let e = lumiere::scene::simrenderer::load(Path::new(&red), &options(false)).unwrap_err();
     assert_eq!(
         e.to_string(),
-        format!("{red}:21:6: model.file: {obj}:12:1: f: texture index 2, but the file has 1")
+        format!("{red}:21:6: model.file: {obj}:12:17: f: texture index 2, but the file has 1")
     );
     let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options(true)).unwrap();
     assert_eq!(parsed.scene.objects.len(), 6);
@@ -438,7 +438,7 @@ fn a_face_with_an_index_out_of_range_is_skipped_under_lenient() {
         [
             vertex_warning,
             format!(
-                "{red}:21:6: model.file: {obj}:12:1: f: texture index 2, but the file has 1; the file's 1 face(s) \
+                "{red}:21:6: model.file: {obj}:12:17: f: texture index 2, but the file has 1; the file's 1 face(s) \
                  with a texture index out of range are kept without texture coordinates, as SIMRenderer's model \
                  reader keeps a face whose texture index passes the file's count"
             )
@@ -465,7 +465,7 @@ fn a_negative_index_is_read_as_obj_reads_it_with_a_warning() {
     );
     let red = write_in(&dir, "red.txt", &lab(0.0, ""));
     let warning = format!(
-        "{red}:21:6: model.file: {obj}:9:1: f: vertex index -3 counts back from the last vertex read (a relative \
+        "{red}:21:6: model.file: {obj}:9:3: f: vertex index -3 counts back from the last vertex read (a relative \
          index); SIMRenderer's model reader reads an index without its sign (-3 as 3), so its image of this model \
          differs from lumiere's, which reads the file's 2 face(s) with a negative index as OBJ defines them"
     );

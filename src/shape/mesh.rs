@@ -182,7 +182,8 @@ impl Statement {
 }
 
 /// A statement of [`Statement`], skipped under [`Tolerated`], refused or noted: its line and
-/// the column of its keyword (1-based, in characters).
+/// column (1-based, in characters): its keyword's, or for an index ([`Statement::BadIndex`],
+/// [`Statement::RelativeIndex`]) the index's own.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct StatementAt {
     pub line: usize,
@@ -586,19 +587,21 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
     for (i, line) in text.lines().enumerate() {
         let number = i + 1;
         let mut words = line.split_whitespace();
-        // A statement of this line, placed on its keyword.
-        let placed = |statement: Statement| {
-            let blanks = line.len() - line.trim_start().len();
-            StatementAt {
-                line: number,
-                column: line[..blanks].chars().count() + 1,
-                statement,
-            }
+        // The column (1-based, in characters) where `word`, a part of this line, starts.
+        let column_of = |word: &str| line[..word.as_ptr() as usize - line.as_ptr() as usize].chars().count() + 1;
+        // A statement of this line, placed on `word`.
+        let placed_on = |statement: Statement, word: &str| StatementAt {
+            line: number,
+            column: column_of(word),
+            statement,
         };
-        let refused = |statement: Statement| ObjError {
-            statement: Some(placed(statement)),
+        // A statement of this line, placed on its keyword.
+        let placed = |statement: Statement| placed_on(statement, line.trim_start());
+        let refused_on = |statement: Statement, word: &str| ObjError {
+            statement: Some(placed_on(statement, word)),
             ..at(number, statement.why(false))
         };
+        let refused = |statement: Statement| refused_on(statement, line.trim_start());
         // A statement that makes no triangle: skipped (and left out of what tobj reads) or
         // refused, as `tolerated` says.
         let mut no_triangle = |statement: Statement, skip: bool| {
@@ -664,8 +667,8 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                 }
                 let (mut with_uv, mut with_normal) = (0, 0);
                 // The first index out of range of each element (tolerated), and the first
-                // negative one.
-                let mut bad: [Option<Statement>; 3] = [None; 3];
+                // negative one, each placed on the index.
+                let mut bad: [Option<StatementAt>; 3] = [None; 3];
                 let mut first_relative = None;
                 for corner in &corners {
                     let parts: Vec<&str> = corner.split('/').collect();
@@ -692,23 +695,25 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                         })?;
                         let index = index as i64;
                         if index < 0 {
-                            first_relative.get_or_insert(Statement::RelativeIndex { element, index });
+                            first_relative.get_or_insert(placed_on(Statement::RelativeIndex { element, index }, part));
                         }
                         if let Some(statement) = check_index(element, index, before, total) {
                             if !tolerated.bad_indices {
-                                return Err(refused(statement));
+                                return Err(refused_on(statement, part));
                             }
-                            bad[k].get_or_insert(statement);
+                            bad[k].get_or_insert(placed_on(statement, part));
                         }
                     }
                 }
-                relative.extend(first_relative.map(placed));
+                // A face SIMRenderer reads with its indices' signs dropped, skipped here or
+                // not: it may draw one lumiere skips.
+                relative.extend(first_relative);
                 if let Some(statement) = bad[0] {
-                    skipped.push(placed(statement));
+                    skipped.push(statement);
                     replaced.push((number, String::new()));
                     continue;
                 }
-                skipped.extend(bad[1..].iter().flatten().map(|s| placed(*s)));
+                skipped.extend(bad[1..].iter().flatten());
                 let (keep_uvs, keep_normals) = (bad[1].is_none(), bad[2].is_none());
                 if !keep_uvs || !keep_normals {
                     replaced.push((number, face_without(&corners, keep_uvs, keep_normals)));
@@ -1041,7 +1046,7 @@ mod tests {
         assert_eq!(e.to_string(), "line 9: vertex index 6, but the file has 5");
         assert_eq!(
             e.located_in(&"m.obj"),
-            "m.obj:9:1: f: vertex index 6, but the file has 5"
+            "m.obj:9:7: f: vertex index 6, but the file has 5"
         );
         let tolerant = Tolerated {
             bad_indices: true,
@@ -1061,13 +1066,13 @@ mod tests {
         assert_eq!(
             m.skipped,
             [
-                bad(9, 1, Element::Vertex, 6, 5, 5),
-                bad(10, 1, Element::Texture, 2, 1, 1),
-                bad(11, 3, Element::Normal, 0, 1, 1),
-                bad(12, 1, Element::Vertex, -6, 5, 5),
-                bad(13, 1, Element::Vertex, 7, 5, 5),
-                bad(14, 1, Element::Texture, 9, 1, 1),
-                bad(14, 1, Element::Normal, -2, 1, 1),
+                bad(9, 7, Element::Vertex, 6, 5, 5),
+                bad(10, 13, Element::Texture, 2, 1, 1),
+                bad(11, 18, Element::Normal, 0, 1, 1),
+                bad(12, 7, Element::Vertex, -6, 5, 5),
+                bad(13, 11, Element::Vertex, 7, 5, 5),
+                bad(14, 11, Element::Texture, 9, 1, 1),
+                bad(14, 19, Element::Normal, -2, 1, 1),
             ]
         );
         // The faces of lines 9, 12 and 13 skipped; those of lines 10, 11 and 14 kept without
@@ -1126,7 +1131,7 @@ mod tests {
         assert_eq!(m.triangles()[0].points(), [a, b, c]);
         assert_eq!(
             m.relative[0].in_file(&"m.obj"),
-            "m.obj:5:1: f: vertex index -3 counts back from the last vertex read (a relative index)"
+            "m.obj:5:3: f: vertex index -3 counts back from the last vertex read (a relative index)"
         );
     }
 
