@@ -11,7 +11,7 @@ use crate::material::Material;
 use crate::scene::SceneError;
 use crate::scene::rules::Syntax::SimRenderer;
 use crate::scene::simrenderer::lex::{self, Item, Line};
-use crate::shape::mesh::{Element, Mesh, Statement, Tolerated};
+use crate::shape::mesh::{Element, Mesh, Statement, StatementAt, Tolerated};
 use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Lens, NormalInterpolation, Plane, Shape, SmoothTriangle, Sphere, SphericalCap, Torus,
     Transform, Triangle,
@@ -406,57 +406,51 @@ impl<'a> Reader<'a> {
     /// or kept without texture coordinates or normals), a problem (tolerated under `lenient`
     /// only).
     fn report_skipped(&mut self, mesh: &Mesh, shown: &str, file_at: &At) -> Result<(), SceneError> {
-        let lines: Vec<_> = mesh
-            .skipped
-            .iter()
-            .filter(|s| s.statement == Statement::LineElement)
-            .collect();
-        if let Some(first) = lines.first() {
+        if let Some((first, n)) = first_of(&mesh.skipped, |s| *s == Statement::LineElement) {
             let m = format!(
-                "{}; the file's {} line element(s) are skipped, as SIMRenderer's model reader skips them",
-                first.in_file(&shown),
-                lines.len()
+                "{}; the file's {n} line element(s) are skipped, as SIMRenderer's model reader skips them",
+                first.in_file(&shown)
             );
             self.warn(file_at, m);
         }
-        let faces: Vec<_> = mesh
-            .skipped
-            .iter()
-            .filter(|s| matches!(s.statement, Statement::ShortFace(_)))
-            .collect();
-        if let Some(first) = faces.first() {
-            let then = format!(
-                "the file's {} face(s) of fewer than 3 vertices are skipped and its others kept, as SIMRenderer's model reader skips them",
-                faces.len()
-            );
-            self.problem(file_at, first.in_file(&shown), &then)?;
-        }
-        for (element, done) in [
+        // Each kind of face tolerated, short (`None`) or with an index of `Some(element)` out of
+        // range, and what was done with it.
+        let bad_index = |element: Element, done: &str| {
+            let what = element.name();
+            let done = format!("with a {what} index out of range {done} whose {what} index passes the file's count");
+            (Some(element), done)
+        };
+        let faces = [
             (
+                None,
+                "of fewer than 3 vertices are skipped and its others kept, as SIMRenderer's model reader skips them"
+                    .to_string(),
+            ),
+            bad_index(
                 Element::Vertex,
                 "are skipped and its others kept, as SIMRenderer's model reader skips a face",
             ),
-            (
+            bad_index(
                 Element::Texture,
                 "are kept without texture coordinates, as SIMRenderer's model reader keeps a face",
             ),
-            (
+            bad_index(
                 Element::Normal,
                 "are kept without normals, as SIMRenderer's model reader keeps a face",
             ),
-        ] {
-            let faces: Vec<_> = mesh
-                .skipped
-                .iter()
-                .filter(|s| matches!(s.statement, Statement::BadIndex { element: e, .. } if e == element))
-                .collect();
-            if let Some(first) = faces.first() {
-                let what = element.name();
-                let then = format!(
-                    "the file's {} face(s) with a {what} index out of range {done} whose {what} index passes the file's count",
-                    faces.len()
-                );
-                self.problem(file_at, first.in_file(&shown), &then)?;
+        ];
+        for (kind, done) in faces {
+            let is = |s: &Statement| match (kind, s) {
+                (None, Statement::ShortFace(_)) => true,
+                (Some(element), Statement::BadIndex { element: e, .. }) => element == *e,
+                _ => false,
+            };
+            if let Some((first, n)) = first_of(&mesh.skipped, is) {
+                self.problem(
+                    file_at,
+                    first.in_file(&shown),
+                    &format!("the file's {n} face(s) {done}"),
+                )?;
             }
         }
         Ok(())
@@ -565,4 +559,11 @@ fn triangle_kind(kind: &str) -> bool {
 /// Whether a geometry of this kind takes its two points from `point` or `position` lines.
 fn points_kind(kind: &str) -> bool {
     matches!(kind, "tube" | "cylinder" | "cone" | "lens")
+}
+
+/// The first of `statements` that `is` picks, with how many it picks.
+fn first_of(statements: &[StatementAt], is: impl Fn(&Statement) -> bool) -> Option<(&StatementAt, usize)> {
+    let mut picked = statements.iter().filter(|s| is(&s.statement));
+    let first = picked.next()?;
+    Some((first, 1 + picked.count()))
 }
