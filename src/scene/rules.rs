@@ -33,6 +33,17 @@ impl Syntax {
     }
 }
 
+/// What "the transform" of a mesh read from `file` does when it moves the mesh's vertex
+/// `v` beyond the coordinates' range ([`crate::shape::mesh::Mesh::transform`]), with `v`
+/// as the scene file's `syntax` writes it.
+pub fn moved_mesh(file: &impl std::fmt::Display, v: DVec3, syntax: Syntax) -> String {
+    let m = limits::MAX_COORDINATE;
+    format!(
+        "moves a vertex of {file} to {}, beyond the coordinates' range [-{m:e}, {m:e}]",
+        syntax.vector(&v.to_array())
+    )
+}
+
 /// A finite number in `[lo, hi]`.
 pub fn number_in(x: f64, lo: f64, hi: f64) -> Result<f64, String> {
     if !x.is_finite() || x < lo || x > hi {
@@ -120,6 +131,20 @@ pub fn scale_factors(v: [f64; 3], syntax: Syntax) -> Result<DVec3, String> {
 mod tests {
     use super::Syntax::{SimRenderer, Toml};
     use super::*;
+
+    #[test]
+    fn a_mesh_moved_out_of_range_is_named_with_its_vertex_as_the_file_writes_it() {
+        let v = DVec3::new(1.001e9, 0.0, -0.5);
+        let range = "beyond the coordinates' range [-1e9, 1e9]";
+        assert_eq!(
+            moved_mesh(&"cube.obj", v, Toml),
+            format!("moves a vertex of cube.obj to [1001000000.0, 0.0, -0.5], {range}")
+        );
+        assert_eq!(
+            moved_mesh(&"cube.obj", v, SimRenderer),
+            format!("moves a vertex of cube.obj to 1001000000 0 -0.5, {range}")
+        );
+    }
 
     #[test]
     fn each_rule_says_its_range() {

@@ -27,7 +27,6 @@
 
 use super::{NormalInterpolation, Shape, SmoothTriangle, Transform, Triangle};
 use crate::limits;
-use crate::scene::rules::Syntax;
 use glam::DVec3;
 use std::borrow::Cow;
 use std::io::{BufRead, Read};
@@ -437,20 +436,15 @@ impl Mesh {
     }
 
     /// Moves every vertex by `t`; where `t` mirrors, swaps each face's winding back so the
-    /// normals stay outward. `Err` names the first vertex it moves beyond the coordinates'
-    /// range, in words that follow "the transform" as both scene readers say it, with the
-    /// mesh's `file` and the vertex in the scene file's `syntax` (the mesh is then only
-    /// partly moved, and not to be used).
-    pub fn transform(&mut self, t: &Transform, file: &impl std::fmt::Display, syntax: Syntax) -> Result<(), String> {
+    /// normals stay outward. `Err` holds the first vertex it moves beyond the coordinates'
+    /// range (the mesh is then only partly moved, and not to be used; the scene readers
+    /// word it with [`crate::scene::rules::moved_mesh`]).
+    pub fn transform(&mut self, t: &Transform) -> Result<(), DVec3> {
         for v in &mut self.vertices {
             *v = t.point(*v);
         }
-        if let Some(v) = self.vertices.iter().find(|v| !limits::within_coordinates(**v)) {
-            let m = limits::MAX_COORDINATE;
-            return Err(format!(
-                "moves a vertex of {file} to {}, beyond the coordinates' range [-{m:e}, {m:e}]",
-                syntax.vector(&v.to_array())
-            ));
+        if let Some(&v) = self.vertices.iter().find(|v| !limits::within_coordinates(**v)) {
+            return Err(v);
         }
         for n in self.normals.iter_mut().flatten() {
             *n = n.map(|n| t.normal(n));
@@ -944,7 +938,7 @@ mod tests {
         let mut m = Mesh::parse(SQUARE, 100, Tolerated::NONE).unwrap();
         // x -> -x, then up by 2: the square lands on [-1, 0] x [0, 1] at z = 2.
         let t = Transform::from_parts(DVec3::new(-1.0, 1.0, 1.0), DVec3::ZERO, DVec3::new(0.0, 0.0, 2.0));
-        assert_eq!(m.transform(&t, &"square.obj", Syntax::Toml), Ok(()));
+        assert_eq!(m.transform(&t), Ok(()));
         assert_eq!(m.faces[0], [0, 2, 1]);
         let t0 = m.triangles()[0].points();
         assert_eq!(
@@ -960,11 +954,8 @@ mod tests {
         let far = Transform::from_parts(DVec3::ONE, DVec3::ZERO, DVec3::new(limits::MAX_COORDINATE, 0.0, 0.0));
         let mut m = Mesh::parse(SQUARE, 100, Tolerated::NONE).unwrap();
         assert_eq!(
-            m.transform(&far, &"square.obj", Syntax::Toml),
-            Err(
-                "moves a vertex of square.obj to [1000000001.0, 0.0, 0.0], beyond the coordinates' range [-1e9, 1e9]"
-                    .to_string()
-            )
+            m.transform(&far),
+            Err(DVec3::new(limits::MAX_COORDINATE + 1.0, 0.0, 0.0))
         );
     }
 

@@ -1,10 +1,12 @@
 //! The checks of a file's values, each error placed on its field: numbers in a range,
-//! points, directions, colours, angles, the edges of a rectangle and counts summed over an
-//! array; [`Whole`], a whole number before its range is checked; [`Xyz`], the three numbers the file writes for a point, a direction, a colour or
-//! angles; and the serde defaults that several tables share.
+//! points, directions, colours, angles, the edges of a rectangle, the name of a normal
+//! interpolation and counts summed over an array; [`Whole`], a whole number before its
+//! range is checked; [`Xyz`], the three numbers the file writes for a point, a direction,
+//! a colour or angles; and the serde defaults that several tables share.
 
 use crate::scene::locate::{FieldError, FieldPath};
 use crate::scene::rules::{self, Syntax::Toml};
+use crate::shape::NormalInterpolation;
 use glam::DVec3;
 use serde::Deserialize;
 
@@ -175,4 +177,15 @@ pub(super) fn one() -> Xyz {
 /// `[0, 0, 1]`: the camera's up, a shape's axis or normal, an aperture's front.
 pub(super) fn plus_z() -> Xyz {
     Xyz([0.0, 0.0, 1.0])
+}
+
+/// The rule named `name` at `path` (a triangle's or a mesh's `normal_interpolation`).
+pub(super) fn normal_interpolation(path: &FieldPath, name: &str) -> Check<NormalInterpolation> {
+    NormalInterpolation::from_name(name).map_or_else(
+        || {
+            let names: Vec<String> = NormalInterpolation::NAMES.iter().map(|n| format!("{n:?}")).collect();
+            fail(path, format!("must be {}, got {name:?}", names.join(" or ")))
+        },
+        Ok,
+    )
 }

@@ -2,12 +2,11 @@
 //! relative to the scene file, moved by the entry's transform, one object each.
 
 use super::Listed;
-use super::check::{Check, fail};
+use super::check::{Check, fail, normal_interpolation};
 use super::material::resolve_material;
-use super::shapes::normal_interpolation;
 use super::transform::{FileTransform, transform_of};
 use crate::scene::locate::{FieldError, FieldPath};
-use crate::scene::rules::Syntax;
+use crate::scene::rules::{self, Syntax};
 use crate::shape::Shape;
 use crate::shape::mesh::{Mesh, Tolerated};
 use serde::Deserialize;
@@ -52,9 +51,9 @@ impl FileMesh {
         };
         let transform = transform_of(&path.key("transform"), self.transform)?;
         if let Some(t) = &transform
-            && let Err(m) = mesh.transform(t, &shown, Syntax::Toml)
+            && let Err(v) = mesh.transform(t)
         {
-            return fail(&path.key("transform"), m);
+            return fail(&path.key("transform"), rules::moved_mesh(&shown, v, Syntax::Toml));
         }
         if let Some(m) = mesh.flat_face_message(&shown, transform.is_some()) {
             return fail(&field, m);

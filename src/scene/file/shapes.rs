@@ -3,7 +3,9 @@
 //! transform.
 
 use super::Listed;
-use super::check::{Check, Xyz, angles, direction, fail, in_range, placed, plus_z, positive, spanning_edges, vec3};
+use super::check::{
+    Check, Xyz, angles, direction, fail, in_range, normal_interpolation, placed, plus_z, positive, spanning_edges, vec3,
+};
 use super::material::resolve_material;
 use super::mesh::FileMesh;
 use super::transform::{FileTransform, moved, transform_of};
@@ -219,17 +221,6 @@ pub(super) struct FileTube {
 
 fn minus_y() -> Xyz {
     Xyz([0.0, -1.0, 0.0])
-}
-
-/// The rule named `name` at `path` (a triangle's or a mesh's `normal_interpolation`).
-pub(super) fn normal_interpolation(path: &FieldPath, name: &str) -> Check<NormalInterpolation> {
-    NormalInterpolation::from_name(name).map_or_else(
-        || {
-            let names: Vec<String> = NormalInterpolation::NAMES.iter().map(|n| format!("{n:?}")).collect();
-            fail(path, format!("must be {}, got {name:?}", names.join(" or ")))
-        },
-        Ok,
-    )
 }
 
 /// The smooth triangle over `flat` of the triangle entry at `path` (see [`FileTriangle`]).

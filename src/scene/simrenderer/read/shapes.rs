@@ -9,7 +9,7 @@ use super::{At, Reader, at, at_value};
 use crate::limits;
 use crate::material::Material;
 use crate::scene::SceneError;
-use crate::scene::rules::Syntax::SimRenderer;
+use crate::scene::rules::{self, Syntax::SimRenderer};
 use crate::scene::simrenderer::lex::{self, Item, Line};
 use crate::shape::mesh::{Element, Mesh, Statement, StatementAt, Tolerated};
 use crate::shape::{
@@ -374,7 +374,8 @@ impl<'a> Reader<'a> {
         mesh.round_to_f32();
         let t = Transform::from_parts(scale, rotation, translation);
         let moved = !t.is_identity();
-        if moved && let Err(m) = mesh.transform(&t, &shown, SimRenderer) {
+        if moved && let Err(v) = mesh.transform(&t) {
+            let m = rules::moved_mesh(&shown, v, SimRenderer);
             self.problem(&place, format!("the transform {m}"), dropped)?;
             return Ok(None);
         }
