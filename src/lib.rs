@@ -12,7 +12,7 @@
 //!    of the slides and the chapter, each once), [`material`], [`texture`] (image textures
 //!    of texture materials), [`sampling`] (seeded random
 //!    streams), [`skips`] (the renderer's named shortcuts), [`limits`], [`film`],
-//!    [`compare`].
+//!    [`compare`], [`shell`] (the words of a printed command line, quoted for the shell).
 //! 2. [`shape`] (plane, rectangle, disk, sphere, box, cylinder, cone, torus, triangle,
 //!    spherical cap, lens, transformed; each with its texture coordinates), [`camera`],
 //!    [`placement`], [`output`], [`review`].
@@ -104,6 +104,7 @@ pub mod scene;
 pub mod shading;
 pub mod shape;
 pub mod shard;
+pub mod shell;
 pub mod skips;
 pub mod solve;
 pub mod stress;

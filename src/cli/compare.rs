@@ -11,6 +11,7 @@ use lumiere::compare::{Judged, Masks, Report, Rule, Stats, compare, heat_map, un
 use lumiere::edges::edge_mask;
 use lumiere::figures::provenance::text_chunks;
 use lumiere::film::{WriteError, encode_png, write_atomic};
+use lumiere::shell;
 use lumiere::world::World;
 use serde::Serialize;
 use std::borrow::Cow;
@@ -110,7 +111,7 @@ fn read(path: &Path) -> Result<Image, CliError> {
             CliError::BadInput(format!(
                 "{}: is a scene file, not an image: compare takes two images, yours then the oracle's (`lumiere compare YOURS ORACLE`); `lumiere render {} -o oracle.png --width W --height H` renders the oracle's at your image's size",
                 path.display(),
-                shell_word(&path.display().to_string())
+                shell::word(&path.display().to_string())
             ))
         } else {
             CliError::BadInput(e)
@@ -271,7 +272,7 @@ impl LineScene {
     /// known here.
     fn word<'a>(&'a self, placeholder: &'a str) -> Cow<'a, str> {
         match self {
-            LineScene::Given(path) | LineScene::Figure(path) => shell_word(path),
+            LineScene::Given(path) | LineScene::Figure(path) => shell::word(path),
             LineScene::Missing(_) | LineScene::Unknown => Cow::Borrowed(placeholder),
         }
     }
@@ -345,23 +346,6 @@ fn path_from(from: &Path, target: &Path) -> PathBuf {
     path
 }
 
-/// `word` as one word of a shell's command line: as it is when no shell reads any of its
-/// characters specially, else quoted (in single quotes; in double quotes on Windows, whose
-/// paths hold no `"`).
-pub(super) fn shell_word(word: &str) -> Cow<'_, str> {
-    let plain = !word.is_empty()
-        && word
-            .chars()
-            .all(|c| c.is_alphanumeric() || "-_./,:=+@%".contains(c) || (cfg!(windows) && c == '\\'));
-    if plain {
-        Cow::Borrowed(word)
-    } else if cfg!(windows) {
-        Cow::Owned(format!("\"{word}\""))
-    } else {
-        Cow::Owned(format!("'{}'", word.replace('\'', "'\\''")))
-    }
-}
-
 /// A warning when the first image is a course figure and the second is not: the oracle's
 /// image goes second, and the text's `yours` and `oracle` would be the wrong way round.
 fn warn_if_swapped(args: &CompareArgs) {
@@ -394,7 +378,7 @@ fn diagnose_line(args: &CompareArgs, scene: &LineScene) -> String {
     format!(
         "lumiere diagnose {} {}{}",
         scene.word(SCENE_PLACEHOLDER),
-        shell_word(&args.a.display().to_string()),
+        shell::word(&args.a.display().to_string()),
         settings(&args.overrides)
     )
 }
@@ -404,7 +388,7 @@ pub(super) fn settings(o: &Overrides) -> String {
     let mut line = String::new();
     let mut add = |name: &str, value: Option<String>| {
         if let Some(v) = value {
-            line.push_str(&format!(" --{name} {}", shell_word(&v)));
+            line.push_str(&format!(" --{name} {}", shell::word(&v)));
         }
     };
     add("spp", o.spp.map(|v| v.to_string()));

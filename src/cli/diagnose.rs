@@ -4,7 +4,6 @@
 //! Several images of one size (a class's) are diagnosed against one oracle, rendered once.
 //! Exit 0 whatever the verdict, 2 bad input.
 
-use super::compare::shell_word;
 use super::{CliError, Overrides, load_scene};
 use clap::Args;
 use lumiere::compare::read::{Image, read_image};
@@ -13,6 +12,7 @@ use lumiere::diagnose::{Diagnosis, Options, Oracle, Score, Verdict, report};
 use lumiere::film::WriteError;
 use lumiere::limits::MAX_THREADS;
 use lumiere::scene::{self, Scene};
+use lumiere::shell;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -377,7 +377,7 @@ fn next_step(d: &Diagnosis, args: &DiagnoseArgs, scene: &str, image: &str) -> Op
     let settings = super::compare::settings(&args.overrides);
     let srgb = if args.srgb { " --srgb" } else { "" };
     let oracle = oracle_name(Path::new(image));
-    let (scene, image) = (shell_word(scene), shell_word(image));
+    let (scene, image) = (shell::word(scene), shell::word(image));
     Some(format!(
         "`lumiere render {scene} -o {oracle} --width {} --height {}{settings}{srgb}`, then `lumiere compare {image} {oracle} --scene {scene}{settings}` lists the worst pixels off edges, each with the probe line of the oracle's ray tree there",
         d.width, d.height

@@ -115,14 +115,9 @@ fn tidy(path: &Path) -> PathBuf {
     path.components().filter(|c| *c != Component::CurDir).collect()
 }
 
-/// A path as a shell word: quoted when it holds anything but plain characters.
+/// A path as one word of the command line ([`crate::shell::word`]).
 fn shell_word(path: &Path) -> String {
-    let s = path.display().to_string();
-    if !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || "/._-+,:=".contains(c)) {
-        s
-    } else {
-        format!("'{}'", s.replace('\'', "'\\''"))
-    }
+    crate::shell::word(&path.display().to_string()).into_owned()
 }
 
 impl Run {
