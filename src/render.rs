@@ -248,13 +248,7 @@ fn render_pixel_members<R: Recorder, const K: usize>(
 pub fn render(world: &World, progress: &(dyn Fn() + Sync)) -> (Film, RenderStats) {
     let s = &world.scene.settings;
     let (pixels, stats) = render_rows(world, 0..s.height, progress, None);
-    let film = Film {
-        width: s.width,
-        height: s.height,
-        pixels,
-        normalization: s.color_normalization,
-    };
-    (film, stats)
+    (s.film(pixels), stats)
 }
 
 /// Renders the rows `rows` (row-major pixels of those rows). When `cancel` becomes true,
@@ -298,13 +292,7 @@ pub fn render_rows_members<T: Send + Clone, const K: usize>(
 pub fn render_reference(world: &World, progress: &(dyn Fn() + Sync)) -> (Film, RenderStats) {
     let s = &world.scene.settings;
     let (pixels, stats) = render_rows_reference(world, 0..s.height, progress, None);
-    let film = Film {
-        width: s.width,
-        height: s.height,
-        pixels,
-        normalization: s.color_normalization,
-    };
-    (film, stats)
+    (s.film(pixels), stats)
 }
 
 /// [`render_rows`] with the reference tracer (see [`render_reference`]).

@@ -151,12 +151,7 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     let bytes = match (args.shard, format) {
         (Some(spec), _) => lumiere::shard::encode(&scene, spec, &pixels),
         (None, Some(format)) => {
-            let film = lumiere::film::Film {
-                width: scene.settings.width,
-                height: scene.settings.height,
-                pixels,
-                normalization: scene.settings.color_normalization,
-            };
+            let film = scene.settings.film(pixels);
             lumiere::output::encode(&film, format, args.srgb)
                 .map_err(|e| CliError::Failed(format!("cannot encode the image: {e}")))?
         }

@@ -162,12 +162,7 @@ pub fn render_figure_until(figure: Figure, scale: f64, cancel: &AtomicBool) -> O
     if cancel.load(Ordering::Relaxed) {
         return None;
     }
-    let film = crate::film::Film {
-        width: w,
-        height: h,
-        pixels,
-        normalization: scene.settings.color_normalization,
-    };
+    let film = scene.settings.film(pixels);
     let image = image::RgbImage::from_raw(w, h, film.to_rgb8()).expect("film size");
     Some(RenderedFigure {
         figure,

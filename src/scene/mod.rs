@@ -21,7 +21,7 @@ pub use overrides::Overrides;
 pub use read_text::{read_text, text_of};
 
 use crate::conventions::Conventions;
-use crate::film::Normalization;
+use crate::film::{Film, Normalization};
 use crate::light::Light;
 use crate::material::Material;
 use crate::shape::Shape;
@@ -265,6 +265,19 @@ pub struct Settings {
     /// Whitted tracer alone.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub caustics: Option<CausticSettings>,
+}
+
+impl Settings {
+    /// The film of a whole render at these settings: its size and normalization, with
+    /// `pixels` (row-major, `width * height` of them).
+    pub fn film(&self, pixels: Vec<DVec3>) -> Film {
+        Film {
+            width: self.width,
+            height: self.height,
+            pixels,
+            normalization: self.color_normalization,
+        }
+    }
 }
 
 /// The opt-in caustic pass of the `[caustics]` table (see [`crate::caustics`]): photons
