@@ -104,6 +104,23 @@ impl Grid {
         }
     }
 
+    /// The pixels judged, in words: `every pixel`, or `every 2nd pixel of every 2nd row`
+    /// (the text's and the report's wording).
+    pub fn describe(&self) -> String {
+        if self.stride == 1 {
+            return "every pixel".to_string();
+        }
+        let n = self.stride;
+        let suffix = match (n % 10, n % 100) {
+            (_, 11..=13) => "th",
+            (1, _) => "st",
+            (2, _) => "nd",
+            (3, _) => "rd",
+            _ => "th",
+        };
+        format!("every {n}{suffix} pixel of every {n}{suffix} row")
+    }
+
     /// The image pixels of the grid, row-major.
     pub fn pixels(&self) -> Vec<(u32, u32)> {
         (0..self.height)
@@ -995,6 +1012,29 @@ mod tests {
         assert_eq!(g.pixels()[201], (4, 4));
         let small = Grid::new(160, 120, 40_000);
         assert_eq!((small.stride, small.width, small.height), (1, 160, 120));
+    }
+
+    #[test]
+    fn the_judged_grid_in_words_has_english_ordinals() {
+        let words = |stride| {
+            Grid {
+                stride,
+                width: 1,
+                height: 1,
+            }
+            .describe()
+        };
+        assert_eq!(words(1), "every pixel");
+        assert_eq!(words(2), "every 2nd pixel of every 2nd row");
+        assert_eq!(words(3), "every 3rd pixel of every 3rd row");
+        assert_eq!(words(4), "every 4th pixel of every 4th row");
+        assert_eq!(words(11), "every 11th pixel of every 11th row");
+        assert_eq!(words(12), "every 12th pixel of every 12th row");
+        assert_eq!(words(13), "every 13th pixel of every 13th row");
+        assert_eq!(words(21), "every 21st pixel of every 21st row");
+        assert_eq!(words(22), "every 22nd pixel of every 22nd row");
+        assert_eq!(words(23), "every 23rd pixel of every 23rd row");
+        assert_eq!(words(111), "every 111th pixel of every 111th row");
     }
 
     /// A candidate of `beyond` pixels beyond at `rms`, fitted or not.

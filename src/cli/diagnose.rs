@@ -431,12 +431,9 @@ fn verdict_words(d: &Diagnosis) -> String {
 fn text(d: &Diagnosis, scene: &str, image: &str, top: usize) -> String {
     let mut out = String::new();
     let judged = if d.grid.stride == 1 {
-        "every pixel judged".to_string()
+        format!("{} judged", d.grid.describe())
     } else {
-        format!(
-            "every {}th pixel of every {}th row judged ({} x {})",
-            d.grid.stride, d.grid.stride, d.grid.width, d.grid.height
-        )
+        format!("{} judged ({} x {})", d.grid.describe(), d.grid.width, d.grid.height)
     };
     let _ = writeln!(
         out,

@@ -241,11 +241,7 @@ pub fn write(
         escape(scene),
         d.width,
         d.height,
-        if d.grid.stride == 1 {
-            "every pixel".to_string()
-        } else {
-            format!("every {}th pixel of every {}th row", d.grid.stride, d.grid.stride)
-        },
+        d.grid.describe(),
         w,
         h,
         d.edges,

@@ -1,5 +1,6 @@
 //! The `camera`, `viewport` and `raytracer` blocks: what each holds once read (the settings
-//! the scene is built with), and the values lumiere does not support yet, refused by name.
+//! the scene is built with); `task`, `space` and `image_file_name` are read and checked but
+//! change nothing (lumiere picks its threads and intersection core, and `-o` names the image).
 
 use super::keywords::{
     CAMERA, COLOR_NORMALIZATIONS, PIXEL_COORDINATES, RAYTRACER, REFLEXION_ALGORITHMS, SPACES, VIEWPORT, shading_of,

@@ -89,7 +89,7 @@ const KEYWORDS: &[&[&str]] = &[
     &["nb_oscillator"],
     &["front", "devant"],
     &["mask", "masque"],
-    // Keywords of what lumiere does not model (textures, caps, lenses).
+    // The caps' and lenses' curvature, and a texture material's images.
     &["curvature", "courbure"],
     &["texture_ka"],
     &["texture_kd"],
