@@ -48,6 +48,7 @@
 
 use crate::limits;
 use crate::shading::Attenuation;
+use crate::texture::{repeat, texel_index};
 use glam::DVec3;
 use std::f64::consts::TAU;
 
@@ -106,26 +107,8 @@ impl Mask {
     /// Whether the texel at texture coordinates `(u, v)` is open (`STexture.getSColor`
     /// with the top-left origin, coordinates outside [0, 1] wrapped by repetition).
     fn open_at(&self, u: f64, v: f64) -> bool {
-        let (u, v) = (repeat(u), repeat(v));
-        let col = (u * (self.width - 1) as f64) as usize;
-        let row = (v * (self.height - 1) as f64) as usize;
-        self.open[row * self.width as usize + col]
+        self.open[texel_index(self.width, self.height, (repeat(u), repeat(v)))]
     }
-}
-
-/// `SVectorUV`'s repetition into [0, 1]: 1 stays 1, 1.25 becomes 0.25, -0.25 becomes 0.75.
-fn repeat(x: f64) -> f64 {
-    let mut x = x;
-    if x > 0.0 {
-        while x > 1.0 {
-            x -= 1.0;
-        }
-    } else {
-        while x < 0.0 {
-            x += 1.0;
-        }
-    }
-    x
 }
 
 /// Where the oscillators are.
@@ -501,9 +484,6 @@ mod tests {
         let o = a.oscillators(2).unwrap();
         // The corner center - right/2 - up/2 with right = -X: (0.5, -0.5, 1).
         assert_eq!(o, [DVec3::new(0.5, -0.5, 1.0)]);
-        assert_eq!(repeat(1.0), 1.0);
-        assert_eq!(repeat(1.25), 0.25);
-        assert_eq!(repeat(-0.25), 0.75);
     }
 
     #[test]

@@ -130,10 +130,7 @@ impl Texture {
             UvFormat::OriginUvTopLeft => v,
             UvFormat::OriginUvBottomLeft => 1.0 - v,
         };
-        // `as` truncates towards zero, as Java's `(int)` does; NaN gives 0.
-        let column = ((u * (self.width - 1) as f64) as u32).min(self.width - 1);
-        let row = ((v * (self.height - 1) as f64) as u32).min(self.height - 1);
-        self.texels[row as usize * self.width as usize + column as usize]
+        self.texels[texel_index(self.width, self.height, (u, v))]
     }
 
     /// FNV-1a 64 over the texels' bits: the identity of the image in a scene's hash.
@@ -161,6 +158,16 @@ impl serde::Serialize for Texture {
         st.serialize_field("texels_fnv1a64", &format!("{:016x}", self.hash()))?;
         st.end()
     }
+}
+
+/// The place, row-major from the top-left texel, of the texel that SIMRenderer's
+/// `STexture.getSColor` reads at coordinates `(u, v)` of `[0, 1]` with the top-left
+/// origin: column `(int) (u (width - 1))`, row `(int) (v (height - 1))` (`as` truncates
+/// towards zero, as Java's `(int)` does; NaN gives 0).
+pub fn texel_index(width: u32, height: u32, (u, v): (f64, f64)) -> usize {
+    let column = ((u * (width - 1) as f64) as u32).min(width - 1);
+    let row = ((v * (height - 1) as f64) as u32).min(height - 1);
+    row as usize * width as usize + column as usize
 }
 
 /// SIMRenderer's repetition of a texture coordinate into `[0, 1]` (`SVectorUV.cropRepeat`):
@@ -224,6 +231,22 @@ mod tests {
         assert_eq!(t.color((-0.25, 0.0), top), DVec3::Y);
         assert_eq!(t.color((2.0, 0.0), top), DVec3::Z);
         assert_eq!(t.color((-1.0, 0.0), top), DVec3::X);
+    }
+
+    #[test]
+    fn texel_places_truncate_as_java_does() {
+        // 3 x 2 texels: column (int) (2 u), row (int) (v).
+        for (uv, want) in [
+            ((0.0, 0.0), 0),
+            ((0.49, 0.99), 0),
+            ((0.5, 0.5), 1),
+            ((0.999, 0.0), 1),
+            ((1.0, 0.0), 2),
+            ((1.0, 1.0), 5),
+            ((f64::NAN, 1.0), 3),
+        ] {
+            assert_eq!(texel_index(3, 2, uv), want, "{uv:?}");
+        }
     }
 
     #[test]
