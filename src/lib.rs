@@ -11,8 +11,9 @@
 //!    the course's two renderers disagree, as named switches), [`shading`] (the formulas
 //!    of the slides and the chapter, each once), [`material`], [`texture`] (image textures
 //!    of texture materials), [`sampling`] (seeded random
-//!    streams), [`skips`] (the renderer's named shortcuts), [`limits`], [`film`],
-//!    [`compare`], [`shell`] (the words of a printed command line, quoted for the shell).
+//!    streams), [`skips`] (the renderer's named shortcuts), [`limits`], [`decimal`] (numbers
+//!    as the files lumiere reads write them), [`film`], [`compare`], [`shell`] (the words of
+//!    a printed command line, quoted for the shell).
 //! 2. [`shape`] (plane, rectangle, disk, sphere, box, cylinder, cone, torus, triangle,
 //!    spherical cap, lens, transformed; each with its texture coordinates), [`camera`],
 //!    [`placement`], [`output`], [`review`].
@@ -83,6 +84,7 @@ pub mod caustic_study;
 pub mod caustics;
 pub mod compare;
 pub mod conventions;
+pub mod decimal;
 pub mod diagnose;
 pub mod edges;
 pub mod family;

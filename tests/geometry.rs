@@ -2,7 +2,7 @@
 //! (`scenes/geometry.toml`) reads and renders; hits computed by hand through the whole
 //! pipeline (file, world, closest hit); every new field's bad values give a located error
 //! naming what is allowed; mesh files are read relative to the scene file, and their errors
-//! name the `.obj` file and its line; a mirroring transform keeps a mesh's normals outward.
+//! name the `.obj` file, line and column; a mirroring transform keeps a mesh's normals outward.
 
 use crate::common::*;
 use glam::DVec3;
@@ -237,40 +237,40 @@ fn mesh_files_are_read_relative_to_the_scene_file() {
 }
 
 #[test]
-fn mesh_errors_name_the_obj_file_and_its_line() {
+fn mesh_errors_name_the_obj_file_and_the_line_and_column() {
     let dir = temp_dir("mesh-errors");
     let obj = dir.join("meshes/m.obj").display().to_string();
     let scene = dir.join("scene.toml").display().to_string();
-    for (text, line, message) in [
+    for (text, place, message) in [
         (
             "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n",
-            "4",
-            "a face needs at least 3 vertices, got 2",
+            "4:1",
+            "f: a face needs at least 3 vertices (f v1 v2 v3 ...), got 2",
         ),
         (
             "v 0 0 0\n# a comment\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n",
-            "3",
-            "vertex 2: coordinates must be finite numbers in [-1e9, 1e9], got [1.0, 0.0, NaN]",
+            "3:7",
+            "vertex 2: coordinates must be finite numbers in [-1e9, 1e9], got 1 0 NaN",
         ),
         (
-            "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n",
-            "4",
+            "v 0 0 0\nv 1 0 0\nv 2 0 0\n f 1 2 3\n",
+            "4:2",
             "the face makes no triangle: its points are on one line",
         ),
         (
             "v 0 0 0\nv 1 0 0\nv 0 one 0\nf 1 2 3\n",
-            "3",
+            "3:5",
             "vertex 3: `one` is not a number (written x y z, x y z w or x y z r g b)",
         ),
         (
             "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf\t1\t2\t99999999999999999999\r\n",
-            "4",
+            "4:7",
             "`99999999999999999999` is no index: a face's vertex is v, v/vt, v//vn or v/vt/vn, each a whole number",
         ),
         (
             "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
-            "4",
-            "vertex index 9, but the file has 3",
+            "4:7",
+            "f: vertex index 9, but the file has 3",
         ),
     ] {
         let path = mesh_scene(&dir, text, "");
@@ -288,7 +288,7 @@ fn mesh_errors_name_the_obj_file_and_its_line() {
         );
         assert_eq!(
             e.to_string(),
-            format!("{scene}:10:8: shapes[0].file: {obj}:{line}: {message}")
+            format!("{scene}:10:8: shapes[0].file: {obj}:{place}: {message}")
         );
     }
     // A transform that squashes a face flat names the face's line too: the sine of the
@@ -298,7 +298,7 @@ fn mesh_errors_name_the_obj_file_and_its_line() {
     assert_eq!(
         scene::load(&path).unwrap_err().to_string(),
         format!(
-            "{scene}:10:8: shapes[0].file: {obj}:4: the face makes no triangle after the transform: its points are on one line"
+            "{scene}:10:8: shapes[0].file: {obj}:4:1: the face makes no triangle after the transform: its points are on one line"
         )
     );
     // A transform that moves a vertex beyond the coordinates' range names that vertex, on

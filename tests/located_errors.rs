@@ -2,7 +2,9 @@
 //! point at the offending key or value of the right entry and name its field path: unknown
 //! fields list the valid ones for the entry's type, wrong types say what was expected, a
 //! misspelt `type` lists the allowed types (serde's internally tagged enums would report
-//! every such error at the first entry of the array, with no field: see src/scene/tag.rs).
+//! every such error at the first entry of the array, with no field: see src/scene/tag.rs). An
+//! error of a mesh's `.obj` file is placed on its own line and column, alike through both
+//! scene formats.
 
 use lumiere::scene::parse;
 
@@ -351,4 +353,142 @@ fn bytes_that_are_not_utf8_are_placed_on_their_line_and_column() {
     }
     assert!(!dir.join("out.png").exists());
     assert!(parse(&toml, "s.toml").is_ok());
+}
+
+/// An `.obj` file's error is placed on its line and on the column of the word at fault,
+/// its numbers written as an OBJ file writes them, and said alike after a TOML mesh's
+/// `file` and a SIMRenderer model's `file`; so are the model's warnings under `--lenient`.
+#[test]
+fn obj_errors_are_placed_on_their_word_through_both_scene_formats() {
+    use lumiere::scene::simrenderer::{self, Options};
+    use std::path::Path;
+    let dir = crate::common::temp_dir("located-obj");
+    let write = |name: &str, text: &str| crate::common::write_in(&dir, name, text);
+    let obj = dir.join("m.obj").display().to_string();
+    // `file` is on line 9, its value at column 8; the model's on line 2, at column 6.
+    let toml = write(
+        "s.toml",
+        "[image]\nwidth = 8\nheight = 6\n[camera]\nposition = [0, -5, 1]\nlook_at = [0, 0, 0]\n\
+         [[shapes]]\ntype = \"mesh\"\nfile = \"m.obj\"\n",
+    );
+    let lab = write("lab.txt", "model\nfile m.obj\nend\n");
+    let toml_error = || lumiere::scene::load(Path::new(&toml)).unwrap_err().to_string();
+    let lab_read = |lenient| {
+        let options = Options {
+            lenient,
+            ..Options::default()
+        };
+        simrenderer::load(Path::new(&lab), &options)
+    };
+    let square = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    let form = "a face's vertex is v, v/vt, v//vn or v/vt/vn, each a whole number";
+    // Errors of both readers (SIMRenderer's in strict mode).
+    for (text, said) in [
+        (
+            "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n".to_string(),
+            "2:3: vertex 2: coordinates must be finite numbers in [-1e9, 1e9], got NaN 0 0".to_string(),
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 -inf 0.5 2\nf 1 2 3\n".to_string(),
+            "3:5: vertex 3: coordinates must be finite numbers in [-1e9, 1e9], got 0 -inf 0.25 (x y z divided by w)"
+                .to_string(),
+        ),
+        (
+            format!("{square}v 1 1 x\n"),
+            "4:7: vertex 4: `x` is not a number (written x y z, x y z w or x y z r g b)".to_string(),
+        ),
+        (
+            "v 0 0 0 1 0 0\n  v 1 0 0\n".to_string(),
+            "2:3: vertex 2: no colour (r g b), unlike vertex 1: give every vertex a colour or none".to_string(),
+        ),
+        (
+            format!("{square}vt 0\nf 1 2 3\n"),
+            "4:1: texture coordinates 1: 1 number, written u v".to_string(),
+        ),
+        (format!("{square}f 1 2 3/1/1/1\n"), format!("4:7: `3/1/1/1`: {form}")),
+        (
+            format!("{square}f 1 2 3/x\n"),
+            format!("4:9: `3/x`: `x` is no index: {form}"),
+        ),
+        (
+            format!("{square}vn 0 0 1\nf 1//1 2 3//1\n"),
+            "5:8: 2 of the face's 3 vertices have a normal: give it to all of them or none".to_string(),
+        ),
+        (
+            format!("{square}\tf 1 2\nf 1 2 3\n"),
+            "4:2: f: a face needs at least 3 vertices (f v1 v2 v3 ...), got 2".to_string(),
+        ),
+        (
+            format!("{square}f 1 2 9\n"),
+            "4:7: f: vertex index 9, but the file has 3".to_string(),
+        ),
+        (
+            format!("{square}\tusemtl\nf 1 2 3\n"),
+            "4:2: material parse error".to_string(),
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 2 0 0\n  f 1 2 3\n".to_string(),
+            "4:3: the face makes no triangle: its points are on one line".to_string(),
+        ),
+    ] {
+        write("m.obj", &text);
+        assert_eq!(
+            toml_error(),
+            format!("{toml}:9:8: shapes[0].file: {obj}:{said}"),
+            "{text}"
+        );
+        let e = lab_read(false).err().map(|e| e.to_string());
+        assert_eq!(e, Some(format!("{lab}:2:6: model.file: {obj}:{said}")), "{text}");
+    }
+    // A line element: refused in a TOML mesh, skipped with a warning in a model (in both
+    // modes), on the keyword `l`.
+    let line_element = "4:3: l: a line element (l) is no surface; only faces (f) are read";
+    write("m.obj", &format!("{square}  l 1 2\nf 1 2 3\nl 2 3\n"));
+    assert_eq!(
+        toml_error(),
+        format!("{toml}:9:8: shapes[0].file: {obj}:{line_element}")
+    );
+    let line_warning = format!(
+        "{lab}:2:6: model.file: {obj}:{line_element}; the file's 2 line element(s) are skipped, as SIMRenderer's \
+         model reader skips them"
+    );
+    for lenient in [false, true] {
+        let warnings: Vec<String> = lab_read(lenient)
+            .unwrap()
+            .warnings
+            .iter()
+            .map(|w| w.to_string())
+            .collect();
+        assert_eq!(warnings, std::slice::from_ref(&line_warning), "lenient {lenient}");
+    }
+    // Under --lenient, a short face and a face with a texture index out of range are
+    // warned of where they are (the short face's keyword, the index); an error that is no
+    // statement drops the model, placed as in strict mode.
+    write(
+        "m.obj",
+        &format!("{square}vt 0 0\n f 1 2\nf 1/1 2/1 3/2\nf 1/1 2/1 3/1\n"),
+    );
+    let warnings: Vec<String> = lab_read(true).unwrap().warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(
+        warnings,
+        [
+            format!(
+                "{lab}:2:6: model.file: {obj}:5:2: f: a face needs at least 3 vertices (f v1 v2 v3 ...), got 2; \
+                 the file's 1 face(s) of fewer than 3 vertices are skipped and its others kept, as SIMRenderer's \
+                 model reader skips them"
+            ),
+            format!(
+                "{lab}:2:6: model.file: {obj}:6:13: f: texture index 2, but the file has 1; the file's 1 face(s) \
+                 with a texture index out of range are kept without texture coordinates, as SIMRenderer's model \
+                 reader keeps a face whose texture index passes the file's count"
+            ),
+        ]
+    );
+    write("m.obj", &format!("{square}f 1 2 3/1/1/1\n"));
+    // (The scene, left without its only block, is then empty: a warning of its own follows.)
+    let dropped = lab_read(true).unwrap().warnings[0].to_string();
+    assert_eq!(
+        dropped,
+        format!("{lab}:2:6: model.file: {obj}:4:7: `3/1/1/1`: {form}; the model is dropped")
+    );
 }

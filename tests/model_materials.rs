@@ -302,7 +302,7 @@ fn a_flat_face_is_skipped_under_lenient() {
     let out = lumiere(&["render", &red, "-o", dir.join("x.png").to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("parts.obj:5: the face makes no triangle"), "{stderr}");
+    assert!(stderr.contains("parts.obj:5:1: the face makes no triangle"), "{stderr}");
     let options = lumiere::scene::simrenderer::Options {
         lenient: true,
         ..Default::default()

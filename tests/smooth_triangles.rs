@@ -304,12 +304,13 @@ fn a_model_with_vertex_normals_is_smooth() {
         e.ends_with("shapes[0].normal_interpolation: must be \"normalized\" or \"linear\", got \"phong\""),
         "{e}"
     );
-    // A face that gives some of its vertices a normal is refused on its line.
+    // A face that gives some of its vertices a normal is refused on its first vertex unlike
+    // the face's first.
     write_in(&dir, "mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2 3\n");
     let mixed = write_in(&dir, "mixed.txt", &lab("").replace("two.obj", "mixed.obj"));
     let e = scene::load(Path::new(&mixed)).unwrap_err().to_string();
     assert!(
-        e.contains("mixed.obj:5: 1 of the face's 3 vertices have a normal: give it to all of them or none"),
+        e.contains("mixed.obj:5:8: 1 of the face's 3 vertices have a normal: give it to all of them or none"),
         "{e}"
     );
 }

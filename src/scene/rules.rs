@@ -4,7 +4,7 @@
 //! value as the file writes it (`, got 1e-7`), which only the reader has. A rule on a vector
 //! shows it as the reader's format writes one ([`Syntax`]).
 
-use crate::limits;
+use crate::{decimal, limits};
 use glam::DVec3;
 
 /// A scene file format's way of writing a vector, for messages to show one as the file
@@ -24,11 +24,7 @@ impl Syntax {
     pub fn vector(self, v: &[f64]) -> String {
         match self {
             Syntax::Toml => format!("{v:?}"),
-            Syntax::SimRenderer => v
-                .iter()
-                .map(|&x| super::simrenderer::exact::number(x, "Infinity"))
-                .collect::<Vec<_>>()
-                .join(" "),
+            Syntax::SimRenderer => decimal::numbers(v, "Infinity"),
         }
     }
 }

@@ -8,8 +8,10 @@
 //! short of numbers or with a word that is none, a colour on some vertices only (`tobj`
 //! finds vertex `k`'s at place `k`), faces of fewer than 3 vertices, a face's
 //! vertex that is not `v`, `v/vt`, `v//vn` or `v/vt/vn` in whole numbers, line elements
-//! (`l`), indices out of range, and more triangles than allowed. `tobj`'s own errors are
-//! placed on the line it stopped at. A reader may skip the statements that make no
+//! (`l`), indices out of range, and more triangles than allowed. Each error is placed
+//! on its line and on the column of the word at fault ([`ObjError`]), `tobj`'s own on the
+//! keyword of the line it stopped at; a message shows numbers as an OBJ file writes them
+//! ([`crate::decimal`]). A reader may skip the statements that make no
 //! triangle (a line element, a face of fewer than 3 vertices, a face with a vertex index
 //! out of range) instead of refusing them, and keep a face with a texture or normal index
 //! out of range without its texture coordinates or normals ([`Tolerated`]): they are
@@ -26,7 +28,7 @@
 //! normal ([`Mesh::triangles`]).
 
 use super::{NormalInterpolation, Shape, SmoothTriangle, Transform, Triangle};
-use crate::limits;
+use crate::{decimal, limits};
 use glam::DVec3;
 use std::borrow::Cow;
 use std::io::{BufRead, Read};
@@ -34,15 +36,17 @@ use std::path::Path;
 use std::sync::Arc;
 
 /// A mesh read from a file: vertices, triangles (indices into them, in winding order) and
-/// the file's line of the face each triangle comes from; for a triangle whose face gives
-/// every vertex a normal (`v//vn`, `v/vt/vn`) or texture coordinates (`v/vt`, `v/vt/vn`),
-/// those of its three corners.
+/// the file's line and column of the face each triangle comes from; for a triangle whose
+/// face gives every vertex a normal (`v//vn`, `v/vt/vn`) or texture coordinates (`v/vt`,
+/// `v/vt/vn`), those of its three corners.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mesh {
     pub vertices: Vec<DVec3>,
     pub faces: Vec<[u32; 3]>,
     /// 1-based line of the face of each triangle.
     pub lines: Vec<usize>,
+    /// 1-based column (in characters) of the keyword `f` of each triangle's face.
+    pub columns: Vec<usize>,
     /// Each triangle's corner normals (as the file writes them, not made unit), if its
     /// face has them.
     pub normals: Vec<Option<[DVec3; 3]>>,
@@ -148,14 +152,11 @@ impl Statement {
     }
 
     /// What is wrong with it (or, for a relative index, what it means), with the statement's
-    /// allowed form when `form`.
-    fn why(self, form: bool) -> String {
+    /// allowed form.
+    fn why(self) -> String {
         match self {
             Statement::LineElement => "a line element (l) is no surface; only faces (f) are read".to_string(),
-            Statement::ShortFace(n) => {
-                let written = if form { " (f v1 v2 v3 ...)" } else { "" };
-                format!("a face needs at least 3 vertices{written}, got {n}")
-            }
+            Statement::ShortFace(n) => format!("a face needs at least 3 vertices (f v1 v2 v3 ...), got {n}"),
             Statement::BadIndex {
                 element,
                 index,
@@ -191,15 +192,10 @@ pub struct StatementAt {
 }
 
 impl StatementAt {
-    /// `FILE:LINE:COLUMN: KEYWORD: MESSAGE`, the message naming the statement's allowed form.
+    /// `FILE:LINE:COLUMN: KEYWORD: MESSAGE`, the message naming the statement's allowed form
+    /// ([`ObjError::in_file`] of the statement refused).
     pub fn in_file(&self, file: &impl std::fmt::Display) -> String {
-        format!(
-            "{file}:{}:{}: {}: {}",
-            self.line,
-            self.column,
-            self.statement.keyword(),
-            self.statement.why(true)
-        )
+        ObjError::from(*self).in_file(file)
     }
 }
 
@@ -210,11 +206,12 @@ pub struct Library {
     pub file: String,
 }
 
-/// What a face of the file gives: its line, its number of vertices, and whether every
-/// vertex has a normal and texture coordinates.
+/// What a face of the file gives: its line and its keyword's column, its number of
+/// vertices, and whether every vertex has a normal and texture coordinates.
 #[derive(Clone, Copy)]
 struct FaceLine {
     line: usize,
+    column: usize,
     corners: usize,
     normals: bool,
     uvs: bool,
@@ -222,51 +219,44 @@ struct FaceLine {
     material: u32,
 }
 
-/// Why a mesh file was refused: the message, and the line it concerns when there is one.
+/// Why a mesh file was refused: the message, and where in the file when it concerns a line.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ObjError {
-    pub line: Option<usize>,
+    /// The line and column (1-based, the column in characters) of the word at fault: the first
+    /// word that is no number or whose number is out of range, a face's vertex or index, or
+    /// the keyword of a statement refused whole; `None` for an error of the whole file.
+    pub place: Option<(usize, usize)>,
     pub message: String,
-    /// The statement refused, when it is one that makes no triangle.
-    pub statement: Option<StatementAt>,
     /// Whether the file has more triangles than it was allowed.
     pub over_limit: bool,
 }
 
 impl ObjError {
-    /// The message placed in `file` (as a scene reader names it): `FILE:LINE: MESSAGE`, or
-    /// `FILE: MESSAGE` for an error of the whole file.
+    /// The message placed in `file` (as both scene readers name it): `FILE:LINE:COLUMN:
+    /// MESSAGE`, or `FILE: MESSAGE` for an error of the whole file.
     pub fn in_file(&self, file: &impl std::fmt::Display) -> String {
-        match self.line {
-            Some(line) => format!("{file}:{line}: {}", self.message),
+        match self.place {
+            Some((line, column)) => format!("{file}:{line}:{column}: {}", self.message),
             None => format!("{file}: {}", self.message),
         }
     }
+}
 
-    /// As [`ObjError::in_file`], but a statement that makes no triangle placed on its column
-    /// and named with its allowed form ([`StatementAt::in_file`]).
-    pub fn located_in(&self, file: &impl std::fmt::Display) -> String {
-        match &self.statement {
-            Some(s) => s.in_file(file),
-            None => self.in_file(file),
-        }
+/// A statement refused: `KEYWORD: MESSAGE` on its place.
+impl From<StatementAt> for ObjError {
+    fn from(s: StatementAt) -> ObjError {
+        at(
+            s.line,
+            s.column,
+            format!("{}: {}", s.statement.keyword(), s.statement.why()),
+        )
     }
 }
 
-impl std::fmt::Display for ObjError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.line {
-            Some(line) => write!(f, "line {line}: {}", self.message),
-            None => f.write_str(&self.message),
-        }
-    }
-}
-
-fn at(line: usize, message: String) -> ObjError {
+fn at(line: usize, column: usize, message: String) -> ObjError {
     ObjError {
-        line: Some(line),
+        place: Some((line, column)),
         message,
-        statement: None,
         over_limit: false,
     }
 }
@@ -274,9 +264,8 @@ fn at(line: usize, message: String) -> ObjError {
 /// An error of the whole file.
 fn whole(message: String) -> ObjError {
     ObjError {
-        line: None,
+        place: None,
         message,
-        statement: None,
         over_limit: false,
     }
 }
@@ -314,6 +303,7 @@ impl Mesh {
 
     /// Checks and parses `.obj` text, skipping what `tolerated` says.
     pub fn parse(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Mesh, ObjError> {
+        let written = text;
         let Checked {
             faces,
             material_names,
@@ -348,8 +338,11 @@ impl Mesh {
             ..Default::default()
         };
         // Material libraries are not opened; the (ignored) material list records the failure.
-        let (models, _) = tobj::load_obj_buf(&mut reader, &options, |_| Err(tobj::LoadError::OpenFileFailed))
-            .map_err(|e| at(reader.line(), e.to_string()))?;
+        let (models, _) =
+            tobj::load_obj_buf(&mut reader, &options, |_| Err(tobj::LoadError::OpenFileFailed)).map_err(|e| {
+                let line = reader.line();
+                at(line, keyword_column(written, line), e.to_string())
+            })?;
         let mut vertices = Vec::new();
         let mut triangles = Vec::new();
         // Each triangle's corner normals and texture coordinates as tobj gives them (it
@@ -410,6 +403,7 @@ impl Mesh {
             vertices,
             faces: triangles,
             lines: per_triangle.iter().map(|f| f.line).collect(),
+            columns: per_triangle.iter().map(|f| f.column).collect(),
             normals,
             uvs,
             material_names,
@@ -463,13 +457,13 @@ impl Mesh {
         Ok(())
     }
 
-    /// The first face that makes no triangle: its line in the file and why
-    /// ([`Triangle::degenerate`]).
-    pub fn degenerate_face(&self) -> Option<(usize, &'static str)> {
+    /// The first face that makes no triangle: its line and column (its keyword's) in the
+    /// file and why ([`Triangle::degenerate`]).
+    pub fn degenerate_face(&self) -> Option<(usize, usize, &'static str)> {
         self.faces
             .iter()
-            .zip(&self.lines)
-            .find_map(|(f, &line)| self.why_flat(f).map(|why| (line, why)))
+            .zip(self.lines.iter().zip(&self.columns))
+            .find_map(|(f, (&line, &column))| self.why_flat(f).map(|why| (line, column, why)))
     }
 
     /// Why the triangle of corners `face` makes none ([`Triangle::degenerate`]), if it does not.
@@ -488,6 +482,7 @@ impl Mesh {
         }
         retain(&mut self.faces, &keep);
         retain(&mut self.lines, &keep);
+        retain(&mut self.columns, &keep);
         retain(&mut self.normals, &keep);
         retain(&mut self.uvs, &keep);
         retain(&mut self.materials, &keep);
@@ -499,7 +494,7 @@ impl Mesh {
     pub fn flat_face_message(&self, file: &impl std::fmt::Display, moved: bool) -> Option<String> {
         let after = if moved { " after the transform" } else { "" };
         self.degenerate_face()
-            .map(|(line, why)| format!("{file}:{line}: the face makes no triangle{after}: {why}"))
+            .map(|(line, column, why)| format!("{file}:{line}:{column}: the face makes no triangle{after}: {why}"))
     }
 
     /// The shapes of the triangles: smooth ones ([`SmoothTriangle`], under `interpolation`)
@@ -581,64 +576,58 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
     for (i, line) in text.lines().enumerate() {
         let number = i + 1;
         let mut words = line.split_whitespace();
+        let Some(keyword) = words.next() else {
+            continue;
+        };
         // The column (1-based, in characters) where `word`, a part of this line, starts.
         let column_of = |word: &str| line[..word.as_ptr() as usize - line.as_ptr() as usize].chars().count() + 1;
+        // The error `message`, placed on `word`.
+        let refused_on = |(message, word): (String, &str)| at(number, column_of(word), message);
         // A statement of this line, placed on `word`.
         let placed_on = |statement: Statement, word: &str| StatementAt {
             line: number,
             column: column_of(word),
             statement,
         };
-        // A statement of this line, placed on its keyword.
-        let placed = |statement: Statement| placed_on(statement, line.trim_start());
-        let refused_on = |statement: Statement, word: &str| ObjError {
-            statement: Some(placed_on(statement, word)),
-            ..at(number, statement.why(false))
-        };
-        let refused = |statement: Statement| refused_on(statement, line.trim_start());
-        // A statement that makes no triangle: skipped (and left out of what tobj reads) or
-        // refused, as `tolerated` says.
+        // A statement that makes no triangle, placed on its keyword: skipped (and left out of
+        // what tobj reads) or refused, as `tolerated` says.
         let mut no_triangle = |statement: Statement, skip: bool| {
+            let placed = placed_on(statement, keyword);
             if !skip {
-                return Err(refused(statement));
+                return Err(ObjError::from(placed));
             }
-            skipped.push(placed(statement));
+            skipped.push(placed);
             replaced.push((number, String::new()));
             Ok(())
         };
-        match words.next() {
-            Some("v") => {
+        match keyword {
+            "v" => {
                 v += 1;
                 let values: Vec<&str> = words.collect();
-                check_vertex(&values, v).map_err(|m| at(number, m))?;
+                check_vertex(keyword, &values, v).map_err(refused_on)?;
                 // tobj finds vertex k's colour at place k among the colours given.
                 let coloured = values.len() == 6;
                 if *first_coloured.get_or_insert(coloured) != coloured {
-                    let has = if coloured { "a" } else { "no" };
-                    return Err(at(
-                        number,
-                        format!(
-                            "vertex {v}: {has} colour (r g b), unlike vertex 1: give every vertex a colour or none"
-                        ),
-                    ));
+                    // On the colour given, or on the keyword of the vertex without one.
+                    let (has, word) = if coloured { ("a", values[3]) } else { ("no", keyword) };
+                    let m = format!(
+                        "vertex {v}: {has} colour (r g b), unlike vertex 1: give every vertex a colour or none"
+                    );
+                    return Err(refused_on((m, word)));
                 }
             }
-            Some("vt") => {
+            "vt" => {
                 vt += 1;
-                numbers(
-                    &words.collect::<Vec<_>>(),
-                    2,
-                    &format!("texture coordinates {vt}"),
-                    "written u v",
-                )
-                .map_err(|m| at(number, m))?;
+                let values: Vec<&str> = words.collect();
+                numbers(keyword, &values, 2, &format!("texture coordinates {vt}"), "written u v")
+                    .map_err(refused_on)?;
             }
-            Some("vn") => {
+            "vn" => {
                 vn += 1;
-                numbers(&words.collect::<Vec<_>>(), 3, &format!("normal {vn}"), "written x y z")
-                    .map_err(|m| at(number, m))?;
+                let values: Vec<&str> = words.collect();
+                numbers(keyword, &values, 3, &format!("normal {vn}"), "written x y z").map_err(refused_on)?;
             }
-            Some(keyword @ "usemtl") => {
+            "usemtl" => {
                 let name = rest_after(line, keyword);
                 material = match material_names.iter().position(|n| n == name) {
                     Some(k) => k as u32,
@@ -648,29 +637,30 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                     }
                 };
             }
-            Some(keyword @ "mtllib") => libraries.push(Library {
+            "mtllib" => libraries.push(Library {
                 line: number,
                 file: rest_after(line, keyword).to_string(),
             }),
-            Some("l") => no_triangle(Statement::LineElement, tolerated.line_elements)?,
-            Some("f") => {
+            "l" => no_triangle(Statement::LineElement, tolerated.line_elements)?,
+            "f" => {
                 let corners: Vec<&str> = words.collect();
                 if corners.len() < 3 {
                     no_triangle(Statement::ShortFace(corners.len()), tolerated.short_faces)?;
                     continue;
                 }
-                let (mut with_uv, mut with_normal) = (0, 0);
+                // Whether each vertex gives texture coordinates, and a normal.
+                let mut gives: Vec<[bool; 2]> = Vec::with_capacity(corners.len());
                 // The first index out of range of each element (tolerated), and the first
                 // negative one, each placed on the index.
                 let mut bad: [Option<StatementAt>; 3] = [None; 3];
                 let mut first_relative = None;
-                for corner in &corners {
+                for &corner in &corners {
                     let parts: Vec<&str> = corner.split('/').collect();
-                    with_uv += usize::from(parts.get(1).is_some_and(|p| !p.is_empty()));
-                    with_normal += usize::from(parts.get(2).is_some_and(|p| !p.is_empty()));
+                    let given = |k: usize| parts.get(k).is_some_and(|p| !p.is_empty());
+                    gives.push([given(1), given(2)]);
                     let form = "a face's vertex is v, v/vt, v//vn or v/vt/vn, each a whole number";
                     if parts.len() > 3 || parts[0].is_empty() {
-                        return Err(at(number, format!("`{corner}`: {form}")));
+                        return Err(refused_on((format!("`{corner}`: {form}"), corner)));
                     }
                     let whole = parts.len() == 1;
                     for (k, part) in parts.into_iter().enumerate() {
@@ -685,7 +675,7 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                         // As tobj reads an index (a pointer-sized whole number).
                         let index = part.parse::<isize>().map_err(|_| {
                             let word = if whole { String::new() } else { format!("`{corner}`: ") };
-                            at(number, format!("{word}`{part}` is no index: {form}"))
+                            refused_on((format!("{word}`{part}` is no index: {form}"), part))
                         })?;
                         let index = index as i64;
                         if index < 0 {
@@ -693,7 +683,7 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                         }
                         if let Some(statement) = check_index(element, index, before, total) {
                             if !tolerated.bad_indices {
-                                return Err(refused_on(statement, part));
+                                return Err(placed_on(statement, part).into());
                             }
                             bad[k].get_or_insert(placed_on(statement, part));
                         }
@@ -714,30 +704,30 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                 }
                 triangles += corners.len() - 2;
                 if triangles > max_triangles {
+                    let m = format!("the mesh would hold {triangles} triangles, at most {max_triangles} are allowed");
                     return Err(ObjError {
                         over_limit: true,
-                        ..at(
-                            number,
-                            format!("the mesh would hold {triangles} triangles, at most {max_triangles} are allowed"),
-                        )
+                        ..refused_on((m, keyword))
                     });
                 }
-                for (count, what) in [(with_uv, "texture coordinates"), (with_normal, "a normal")] {
+                for (k, what) in ["texture coordinates", "a normal"].into_iter().enumerate() {
+                    let count = gives.iter().filter(|g| g[k]).count();
                     if count != 0 && count != corners.len() {
-                        return Err(at(
-                            number,
-                            format!(
-                                "{count} of the face's {} vertices have {what}: give it to all of them or none",
-                                corners.len()
-                            ),
-                        ));
+                        // On the first vertex that differs from the face's first.
+                        let odd = gives.iter().position(|g| g[k] != gives[0][k]).unwrap_or(0);
+                        let m = format!(
+                            "{count} of the face's {} vertices have {what}: give it to all of them or none",
+                            corners.len()
+                        );
+                        return Err(refused_on((m, corners[odd])));
                     }
                 }
                 faces.push(FaceLine {
                     line: number,
+                    column: column_of(keyword),
                     corners: corners.len(),
-                    normals: with_normal > 0 && keep_normals,
-                    uvs: with_uv > 0 && keep_uvs,
+                    normals: gives[0][1] && keep_normals,
+                    uvs: gives[0][0] && keep_uvs,
                     material,
                 });
             }
@@ -792,45 +782,70 @@ fn face_without(corners: &[&str], uvs: bool, normals: bool) -> String {
     line
 }
 
-/// The first `n` of `words` as numbers (as tobj reads them), or why not: `what` (`vertex 3`)
-/// names the element and `form` (`written x y z`) says how it is written.
-fn numbers(words: &[&str], n: usize, what: &str, form: &str) -> Result<Vec<f64>, String> {
+/// Why a line is refused, and the word of the line the message is placed on.
+type Refusal<'a> = (String, &'a str);
+
+/// The first `n` of `words`, the words after `keyword`, as numbers (as tobj reads them), or
+/// why not, placed on the first word that is none or, short of numbers, on `keyword`:
+/// `what` (`vertex 3`) names the element and `form` (`written x y z`) says how it is written.
+fn numbers<'a>(keyword: &'a str, words: &[&'a str], n: usize, what: &str, form: &str) -> Result<Vec<f64>, Refusal<'a>> {
     let mut values = Vec::with_capacity(n);
-    for word in words.iter().take(n) {
+    for &word in words.iter().take(n) {
         let value = word
             .parse()
-            .map_err(|_| format!("{what}: `{word}` is not a number ({form})"))?;
+            .map_err(|_| (format!("{what}: `{word}` is not a number ({form})"), word))?;
         values.push(value);
     }
     if values.len() < n {
         let s = if values.len() == 1 { "" } else { "s" };
-        return Err(format!("{what}: {} number{s}, {form}", values.len()));
+        return Err((format!("{what}: {} number{s}, {form}", values.len()), keyword));
     }
     Ok(values)
 }
 
-/// Vertex number `n` is `x y z`, `x y z w` or `x y z r g b`, every word a number; its
-/// coordinates (divided by `w`, as `tobj` applies it, so not 0) must be finite and at most
-/// `MAX_COORDINATE` in magnitude.
-fn check_vertex(values: &[&str], n: usize) -> Result<(), String> {
+/// Vertex number `n`, the words `values` after its `keyword`, is `x y z`, `x y z w` or
+/// `x y z r g b`, every word a number; its coordinates (divided by `w`, as `tobj` applies
+/// it, so not 0) must be finite and at most `MAX_COORDINATE` in magnitude. Else why, placed
+/// on `keyword` for a count of numbers, on `w` when 0, on the first coordinate out of range
+/// (on `w` when its division takes a coordinate there), and shown as the file writes numbers
+/// ([`decimal::numbers`]).
+fn check_vertex<'a>(keyword: &'a str, values: &[&'a str], n: usize) -> Result<(), Refusal<'a>> {
     let what = format!("vertex {n}");
     let form = "written x y z, x y z w or x y z r g b";
     if values.len() == 5 || values.len() > 6 {
-        return Err(format!("{what}: {} numbers, {form}", values.len()));
+        return Err((format!("{what}: {} numbers, {form}", values.len()), keyword));
     }
-    let parsed = numbers(values, values.len().max(3), &what, form)?;
-    let w = if values.len() == 4 { parsed[3] } else { 1.0 };
-    if w == 0.0 {
-        return Err(format!("{what}: w is 0, and x y z are divided by it"));
+    let parsed = numbers(keyword, values, values.len().max(3), &what, form)?;
+    let w = (values.len() == 4).then(|| parsed[3]);
+    if w == Some(0.0) {
+        return Err((format!("{what}: w is 0, and x y z are divided by it"), values[3]));
     }
-    let xyz = [parsed[0] / w, parsed[1] / w, parsed[2] / w];
+    let divisor = w.unwrap_or(1.0);
+    let xyz = [parsed[0] / divisor, parsed[1] / divisor, parsed[2] / divisor];
     let m = limits::MAX_COORDINATE;
-    if xyz.iter().any(|c| !c.is_finite() || c.abs() > m) {
-        return Err(format!(
-            "vertex {n}: coordinates must be finite numbers in [-{m:e}, {m:e}], got {xyz:?}"
-        ));
-    }
-    Ok(())
+    let fine = |c: f64| c.is_finite() && c.abs() <= m;
+    let Some(k) = xyz.iter().position(|c| !fine(*c)) else {
+        return Ok(());
+    };
+    let (word, divided) = match w {
+        Some(_) if fine(parsed[k]) => (values[3], " (x y z divided by w)"),
+        Some(_) => (values[k], " (x y z divided by w)"),
+        None => (values[k], ""),
+    };
+    Err((
+        format!(
+            "{what}: coordinates must be finite numbers in [-{m:e}, {m:e}], got {}{divided}",
+            decimal::numbers(&xyz, "inf")
+        ),
+        word,
+    ))
+}
+
+/// The column (1-based, in characters) of the first word of `text`'s line `line` (1-based),
+/// 1 when it has none.
+fn keyword_column(text: &str, line: usize) -> usize {
+    let this = text.lines().nth(line.saturating_sub(1)).unwrap_or_default();
+    this.chars().take_while(|c| c.is_whitespace()).count() + 1
 }
 
 /// A face's index of an `element`: from 1 to `total`, or from -1 back to the first of the
@@ -967,7 +982,11 @@ mod tests {
             Tolerated::NONE,
         )
         .unwrap();
-        assert_eq!(m.degenerate_face(), Some((6, "its points are on one line")));
+        assert_eq!(m.degenerate_face(), Some((6, 1, "its points are on one line")));
+        assert_eq!(
+            m.flat_face_message(&"m.obj", true).unwrap(),
+            "m.obj:6:1: the face makes no triangle after the transform: its points are on one line"
+        );
         let m = Mesh::parse(SQUARE, 100, Tolerated::NONE).unwrap();
         assert_eq!(m.degenerate_face(), None);
     }
@@ -977,11 +996,7 @@ mod tests {
         let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n l 1 2 3\nf 1 2 3\nf 1 2\nf\nf 2 4 3\nl 1 4\n";
         let e = Mesh::parse(text, 100, Tolerated::NONE).unwrap_err();
         assert_eq!(
-            e.to_string(),
-            "line 5: a line element (l) is no surface; only faces (f) are read"
-        );
-        assert_eq!(
-            e.located_in(&"m.obj"),
+            e.in_file(&"m.obj"),
             "m.obj:5:2: l: a line element (l) is no surface; only faces (f) are read"
         );
         let lines_only = Tolerated {
@@ -989,9 +1004,8 @@ mod tests {
             ..Tolerated::NONE
         };
         let e = Mesh::parse(text, 100, lines_only).unwrap_err();
-        assert_eq!(e.to_string(), "line 7: a face needs at least 3 vertices, got 2");
         assert_eq!(
-            e.located_in(&"m.obj"),
+            e.in_file(&"m.obj"),
             "m.obj:7:1: f: a face needs at least 3 vertices (f v1 v2 v3 ...), got 2"
         );
         // Skipped: the other faces kept on their lines, the skipped statements recorded.
@@ -1021,7 +1035,10 @@ mod tests {
         );
         // A file whose faces are all skipped has none to draw.
         let e = Mesh::parse("v 0 0 0\nv 1 0 0\nf 1 2\n", 100, both).unwrap_err();
-        assert_eq!(e.to_string(), "the file has no faces (f) of 3 vertices or more");
+        assert_eq!(
+            e.in_file(&"m.obj"),
+            "m.obj: the file has no faces (f) of 3 vertices or more"
+        );
     }
 
     #[test]
@@ -1034,11 +1051,7 @@ mod tests {
             f 1 2 3\nf 2 4 6\nf 1/1 2/1 4/2\n  f 1//1 4//1 3//0\nf 2 5 -6\n\
             f 1/2 2/1 7/1\nf 2/1/1 5/9/1 4/1/-2\n";
         let e = Mesh::parse(text, 100, Tolerated::NONE).unwrap_err();
-        assert_eq!(e.to_string(), "line 9: vertex index 6, but the file has 5");
-        assert_eq!(
-            e.located_in(&"m.obj"),
-            "m.obj:9:7: f: vertex index 6, but the file has 5"
-        );
+        assert_eq!(e.in_file(&"m.obj"), "m.obj:9:7: f: vertex index 6, but the file has 5");
         let tolerant = Tolerated {
             bad_indices: true,
             ..Tolerated::NONE
@@ -1114,8 +1127,8 @@ mod tests {
         // A file whose faces are all skipped has none to draw.
         let e = Mesh::parse("v 0 0 0\nv 1 0 0\nf 1 2 3\n", 100, tolerant).unwrap_err();
         assert_eq!(
-            e.to_string(),
-            "the file has no faces (f) whose vertex indices are in range"
+            e.in_file(&"m.obj"),
+            "m.obj: the file has no faces (f) whose vertex indices are in range"
         );
         // In range, a relative index is recorded and read as OBJ reads it.
         let m = Mesh::parse("v 9 9 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n", 100, Tolerated::NONE).unwrap();
@@ -1131,93 +1144,154 @@ mod tests {
         let device = if cfg!(unix) { "/dev/zero" } else { "." };
         for path in [device, "."] {
             let e = Mesh::read(Path::new(path), 100, Tolerated::NONE).unwrap_err();
-            assert_eq!(e.to_string(), "not a regular file", "{path}");
+            assert_eq!(e.in_file(&path), format!("{path}: not a regular file"));
         }
     }
 
     #[test]
-    fn bad_files_are_refused_on_their_line() {
-        let err = |text: &str| Mesh::parse(text, 100, Tolerated::NONE).unwrap_err().to_string();
-        assert_eq!(
-            err("v 0 0 0\nv 1 0 0\nf 1 2\n"),
-            "line 3: a face needs at least 3 vertices, got 2"
-        );
-        assert_eq!(
-            err("v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
-            "line 2: vertex 2: coordinates must be finite numbers in [-1e9, 1e9], got [NaN, 0.0, 0.0]"
-        );
-        assert_eq!(
-            err("v 0 0 0\nv 2e9 0 0\nv 0 1 0\nf 1 2 3\n"),
-            "line 2: vertex 2: coordinates must be finite numbers in [-1e9, 1e9], got [2000000000.0, 0.0, 0.0]"
-        );
-        // w divides: 1 / 1e-300 overflows nothing until it passes the limit.
-        assert!(err("v 1 0 0 1e-300\nv 0 0 0\nv 0 1 0\nf 1 2 3\n").starts_with("line 1: vertex 1:"));
-        assert_eq!(
-            err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"),
-            "line 4: vertex index 4, but the file has 3"
-        );
-        assert_eq!(
-            err("v 0 0 0\nv 1 0 0\nf 1 2 -3\nv 0 1 0\n"),
-            "line 3: vertex index -3, but only 2 come before this face"
-        );
-        assert_eq!(
-            err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"),
-            "line 4: vertex index 0: indices start at 1 (or count back from -1)"
-        );
-        assert_eq!(
-            err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/2\nvt 0 0\n"),
-            "line 4: texture index 2, but the file has 1"
-        );
-        assert_eq!(
-            err("v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n"),
-            "line 4: a line element (l) is no surface; only faces (f) are read"
-        );
-        assert_eq!(err("v 0 0 0\n"), "the file has no faces (f)");
-        // Words that are not numbers or indices, named.
-        let square = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    fn each_error_is_placed_on_the_word_at_fault() {
+        let err = |text: &str| Mesh::parse(text, 100, Tolerated::NONE).unwrap_err().in_file(&"m.obj");
+        let xyz = "written x y z, x y z w or x y z r g b";
+        let range = "coordinates must be finite numbers in [-1e9, 1e9]";
+        let colour = "unlike vertex 1: give every vertex a colour or none";
+        // Vertices: the first bad number's word (w's when only its division takes a
+        // coordinate out of range), the keyword for a count of numbers; the coordinates as
+        // an OBJ file writes them.
         for (text, message) in [
             (
-                "v 0 0 0\nv 1 0 0\nv 0 1 x\nf 1 2 3\n",
-                "line 3: vertex 3: `x` is not a number (written x y z, x y z w or x y z r g b)",
+                "v 0 0 0\nv nan 0 0\n",
+                format!("m.obj:2:3: vertex 2: {range}, got NaN 0 0"),
             ),
             (
-                "v 0 0 0\nv 1 0\n",
-                "line 2: vertex 2: 2 numbers, written x y z, x y z w or x y z r g b",
+                "v 0 -2e9 0\n",
+                format!("m.obj:1:5: vertex 1: {range}, got 0 -2000000000 0"),
             ),
             (
-                "v 0 0 0 1 1\n",
-                "line 1: vertex 1: 5 numbers, written x y z, x y z w or x y z r g b",
+                "v 0.1 0 -inf\n",
+                format!("m.obj:1:9: vertex 1: {range}, got 0.1 0 -inf"),
             ),
-            ("v 0 0 0 0\n", "line 1: vertex 1: w is 0, and x y z are divided by it"),
-            ("vt 0.5\n", "line 1: texture coordinates 1: 1 number, written u v"),
-            ("vn 0 0 z\n", "line 1: normal 1: `z` is not a number (written x y z)"),
+            (
+                "v 6e8 0 0 0.5\n",
+                format!("m.obj:1:11: vertex 1: {range}, got 1200000000 0 0 (x y z divided by w)"),
+            ),
+            (
+                "v 0 inf 0 2\n",
+                format!("m.obj:1:5: vertex 1: {range}, got 0 inf 0 (x y z divided by w)"),
+            ),
+            (
+                "v 0 0 0 0\n",
+                "m.obj:1:9: vertex 1: w is 0, and x y z are divided by it".to_string(),
+            ),
+            ("v 0 1 x\n", format!("m.obj:1:7: vertex 1: `x` is not a number ({xyz})")),
+            // The column counts characters: the no-break space between words is 2 bytes.
+            (
+                "v\u{a0}0 1 x\n",
+                format!("m.obj:1:7: vertex 1: `x` is not a number ({xyz})"),
+            ),
+            ("v 0 0\n", format!("m.obj:1:1: vertex 1: 2 numbers, {xyz}")),
+            ("  v 0 0 0 1 1\n", format!("m.obj:1:3: vertex 1: 5 numbers, {xyz}")),
+            (
+                "v 0 0 0 1 0 0\nv 1 0 0\n",
+                format!("m.obj:2:1: vertex 2: no colour (r g b), {colour}"),
+            ),
+            (
+                "v 0 0 0\nv 1 0 0 1 0 0\n",
+                format!("m.obj:2:9: vertex 2: a colour (r g b), {colour}"),
+            ),
+            (
+                "v 0 0 0 1 0 0\nv 1 0 0 1 red 0\n",
+                format!("m.obj:2:11: vertex 2: `red` is not a number ({xyz})"),
+            ),
+            (
+                "vt 0.5\n",
+                "m.obj:1:1: texture coordinates 1: 1 number, written u v".to_string(),
+            ),
+            (
+                "vt 0 0\nvt 0 y\n",
+                "m.obj:2:6: texture coordinates 2: `y` is not a number (written u v)".to_string(),
+            ),
+            (
+                "vn 0 0 z\n",
+                "m.obj:1:8: normal 1: `z` is not a number (written x y z)".to_string(),
+            ),
+            ("vn 0 0\n", "m.obj:1:1: normal 1: 2 numbers, written x y z".to_string()),
         ] {
             assert_eq!(err(text), message, "{text:?}");
         }
+        // Faces: the vertex word for its form, the index word for an index, the keyword for
+        // a statement refused whole.
+        let square = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
         let form = "a face's vertex is v, v/vt, v//vn or v/vt/vn, each a whole number";
         for (face, message) in [
             (
                 "f 1 2 99999999999999999999",
-                format!("`99999999999999999999` is no index: {form}"),
+                format!("m.obj:4:7: `99999999999999999999` is no index: {form}"),
             ),
-            ("f 1 2 3/x", format!("`3/x`: `x` is no index: {form}")),
-            ("f 1 2 1.5", format!("`1.5` is no index: {form}")),
-            ("f 1 2 3/1/1/1", format!("`3/1/1/1`: {form}")),
-            ("f 1 2 /1", format!("`/1`: {form}")),
+            ("f 1 2 3/x", format!("m.obj:4:9: `3/x`: `x` is no index: {form}")),
+            ("f 1 2 1.5", format!("m.obj:4:7: `1.5` is no index: {form}")),
+            ("f 1 2 3/1/1/1", format!("m.obj:4:7: `3/1/1/1`: {form}")),
+            ("f  /1 2 3", format!("m.obj:4:4: `/1`: {form}")),
+            (
+                "f 1 2 4",
+                "m.obj:4:7: f: vertex index 4, but the file has 3".to_string(),
+            ),
+            (
+                "f 1 2 -4",
+                "m.obj:4:7: f: vertex index -4, but only 3 come before this face".to_string(),
+            ),
+            (
+                "f 0 1 2",
+                "m.obj:4:3: f: vertex index 0: indices start at 1 (or count back from -1)".to_string(),
+            ),
+            (
+                "vt 0 0\nf 1/1 2/1 3/2",
+                "m.obj:5:13: f: texture index 2, but the file has 1".to_string(),
+            ),
+            (
+                "vt 0 0\nf 1/1 2 3/1",
+                "m.obj:5:7: 2 of the face's 3 vertices have texture coordinates: give it to all of them or none"
+                    .to_string(),
+            ),
+            (
+                "vn 0 0 1\nf 1 2 3//1",
+                "m.obj:5:7: 1 of the face's 3 vertices have a normal: give it to all of them or none".to_string(),
+            ),
+            (
+                " l 1 2",
+                "m.obj:4:2: l: a line element (l) is no surface; only faces (f) are read".to_string(),
+            ),
+            (
+                "\tf 1 2",
+                "m.obj:4:2: f: a face needs at least 3 vertices (f v1 v2 v3 ...), got 2".to_string(),
+            ),
+            // tobj's own refusal (a material name after a tab, not a space), on the keyword.
+            ("\tusemtl\nf 1 2 3", "m.obj:4:2: material parse error".to_string()),
         ] {
-            assert_eq!(
-                err(&format!("{square}{face}\n")),
-                format!("line 4: {message}"),
-                "{face}"
-            );
+            assert_eq!(err(&format!("{square}{face}\n")), message, "{face}");
         }
-        // Accepted as tobj reads them: empty texture or normal indices, a sign.
+        assert_eq!(err("v 0 0 0\n"), "m.obj: the file has no faces (f)");
+        let limited = Mesh::parse(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\n  f 1 2 3 4 2 3\n",
+            4,
+            Tolerated::NONE,
+        );
+        assert_eq!(
+            limited.unwrap_err().in_file(&"m.obj"),
+            "m.obj:6:3: the mesh would hold 5 triangles, at most 4 are allowed"
+        );
+    }
+
+    #[test]
+    fn what_tobj_reads_is_accepted() {
+        // Empty texture or normal indices, a sign.
+        let square = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
         for face in ["f 1 2 3/", "f 1 2 3//", "f +1 2 3", "f 1// 2 3"] {
             assert!(
                 Mesh::parse(&format!("{square}{face}\n"), 100, Tolerated::NONE).is_ok(),
                 "{face}"
             );
         }
+        // A colour (unused) on every vertex.
         assert!(
             Mesh::parse(
                 "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n",
@@ -1226,23 +1300,8 @@ mod tests {
             )
             .is_ok()
         );
-        // A colour (unused) on every vertex or none, each a number.
-        assert_eq!(
-            err("v 0 0 0 1 0 0\nv 1 0 0\n"),
-            "line 2: vertex 2: no colour (r g b), unlike vertex 1: give every vertex a colour or none"
-        );
-        assert_eq!(
-            err("v 0 0 0 1 0 0\nv 1 0 0 1 red 0\n"),
-            "line 2: vertex 2: `red` is not a number (written x y z, x y z w or x y z r g b)"
-        );
-        let limited = Mesh::parse(
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 1 2 3 4 2 3\n",
-            4,
-            Tolerated::NONE,
-        );
-        assert_eq!(
-            limited.unwrap_err().to_string(),
-            "line 6: the mesh would hold 5 triangles, at most 4 are allowed"
-        );
+        // w divides x y z.
+        let m = Mesh::parse("v 3 0 0 0.25\nv 0 0 0\nv 0 1 0\nf 1 2 3\n", 100, Tolerated::NONE).unwrap();
+        assert_eq!(m.vertices[0], DVec3::new(12.0, 0.0, 0.0));
     }
 }

@@ -100,7 +100,7 @@ mod tests {
         assert_eq!(
             e.message,
             format!(
-                "{}:34: the mesh would hold 20 triangles, at most 19 are allowed (the scene's other objects leave \
+                "{}:34:1: the mesh would hold 20 triangles, at most 19 are allowed (the scene's other objects leave \
                  room for 19 of the 4000000 objects it may hold)",
                 obj.display()
             )

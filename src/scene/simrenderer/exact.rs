@@ -275,23 +275,6 @@ pub fn plasticity(m: f64) -> (f64, bool) {
     (short(p), false)
 }
 
-/// A number as both formats write it: an integer when it is one (below `1e15`), else the
-/// shortest decimal that reads back to the same bits; `inf` and `-inf` as `infinity`
-/// says (SIMRenderer's `Infinity`, TOML's `inf`).
-pub fn number(x: f64, infinity: &str) -> String {
-    if x.is_infinite() {
-        return if x > 0.0 {
-            infinity.to_string()
-        } else {
-            format!("-{infinity}")
-        };
-    }
-    if x == x.trunc() && x.abs() < 1e15 && !(x == 0.0 && x.is_sign_negative()) {
-        return format!("{}", x as i64);
-    }
-    format!("{x:?}")
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -305,12 +288,6 @@ mod tests {
         assert_eq!(short(2.0 / 3.0), 0.666666666667);
         // 13 digits, 1.000000000023, has no 12-digit decimal within 1e-12: it stays.
         assert_eq!(short(1.000000000023), 1.000000000023);
-        assert_eq!(number(3.0, "inf"), "3");
-        assert_eq!(number(-0.0, "inf"), "-0.0");
-        assert_eq!(number(0.85, "inf"), "0.85");
-        assert_eq!(number(1e-7, "Infinity"), "1e-7");
-        assert_eq!(number(f64::INFINITY, "Infinity"), "Infinity");
-        assert_eq!(number(1e300, "inf"), "1e300");
     }
 
     #[test]

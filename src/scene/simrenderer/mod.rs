@@ -6,8 +6,8 @@
 //! (`exact.rs` finds what to write so that values read back to the bit). The format, its
 //! mapping to lumiere and what the writers refuse are documented in docs/simrenderer.md.
 
-/// The numbers the writers write; [`crate::scene::rules::Syntax`] shows vectors with them.
-pub(in crate::scene) mod exact;
+/// The values the writers write so that they read back to the bit.
+mod exact;
 pub mod lex;
 mod read;
 mod toml;

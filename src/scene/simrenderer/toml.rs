@@ -5,10 +5,11 @@
 //! transformed (SIMRenderer's nested `geometry` blocks) is refused: a TOML shape has one
 //! transform.
 
-use super::exact::{self, number, unit_once, unit_twice};
+use super::exact::{self, unit_once, unit_twice};
 use super::writer::{Format, Writer};
 use super::{Refused, Written, object_label};
 use crate::area_light::AreaShape;
+use crate::decimal::number;
 use crate::film::Normalization;
 use crate::interference::Aperture;
 use crate::light::{Attenuation, Light};

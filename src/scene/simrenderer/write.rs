@@ -4,10 +4,11 @@
 //! SIMRenderer does not have gets a comment at the top listing them, and how lumiere
 //! renders the file as the original.
 
-use super::exact::{self, number, unit_once, unit_twice};
+use super::exact::{self, unit_once, unit_twice};
 use super::writer::{Format, Writer};
 use super::{DEFAULT_SEED, Refused, Written, object_label};
 use crate::conventions::{Conventions, SamplePosition};
+use crate::decimal::number;
 use crate::film::Normalization;
 use crate::interference::{Aperture, ApertureLight};
 use crate::light::Light;

@@ -365,7 +365,7 @@ impl<'a> Reader<'a> {
         let mut mesh = match Mesh::read_into_scene(&path, room, tolerated) {
             Ok(mesh) => mesh,
             Err(e) => {
-                self.problem(&file_at, e.located_in(&shown), dropped)?;
+                self.problem(&file_at, e.in_file(&shown), dropped)?;
                 return Ok(None);
             }
         };
