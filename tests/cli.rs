@@ -617,6 +617,26 @@ fn verbose_notes_go_to_stderr_and_json_stats_to_stdout() {
     );
 }
 
+#[test]
+fn counts_of_one_are_said_in_the_singular() {
+    let dir = temp_dir("singular");
+    let scene = dir.join("one.toml");
+    fs::write(
+        &scene,
+        "[image]\nwidth = 4\nheight = 3\n[camera]\nposition = [0, -5, 0]\nlook_at = [0, 0, 0]\n\
+         [[lights]]\ntype = \"point\"\nposition = [0, -5, 5]\n\
+         [[shapes]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\n",
+    )
+    .unwrap();
+    let (scene, out) = (scene.to_str().unwrap(), dir.join("one.png"));
+    let o = lumiere(&["-v", "render", scene, "-o", out.to_str().unwrap(), "--stats"]);
+    assert_eq!(o.status.code(), Some(0));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains(": 1 object, 1 light; 4 x 3 pixels"), "{stderr}");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("intersection core: linear over 1 object, "), "{stdout}");
+}
+
 /// Every `.rs` file under `dir`, recursively.
 fn rust_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
     for entry in fs::read_dir(dir).unwrap() {

@@ -311,6 +311,25 @@ fn numbers_out_of_range_are_shown_as_written_and_limits_short() {
 }
 
 #[test]
+fn a_mirror_pairs_opening_leaves_out_both_ends() {
+    let scene = |opening: &str| {
+        format!(
+            "[image]\nwidth = 8\nheight = 6\n[camera]\nposition = [0, -8, 2]\nlook_at = [0, 0, 1]\n\n\
+             [[shapes]]\ntype = \"mirror_pair\"\nopening = {opening}\nlength = 2\nheight = 2\n"
+        )
+    };
+    assert!(parse(&scene("179.5"), "s.toml").is_ok());
+    for opening in ["0", "180.0", "-30", "nan"] {
+        assert_eq!(
+            parse(&scene(opening), "s.toml").err().map(|e| e.to_string()),
+            Some(format!(
+                "s.toml:10:11: shapes[0].opening: must be a finite number in (0, 180), got {opening}"
+            ))
+        );
+    }
+}
+
+#[test]
 fn a_decimal_comma_is_named() {
     // TOML refuses `0,25`; the message says what was likely meant. A list is left alone.
     assert_eq!(

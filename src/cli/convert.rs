@@ -2,7 +2,7 @@
 //! SIMRenderer's keyword blocks), refused by name where that format cannot say something,
 //! read back once written to name anything that does not give the same scene to the bit.
 
-use super::{CliError, Reading, Verbosity, check_output_path, preset, read_scene};
+use super::{CliError, Reading, Verbosity, check_output_path, noun_for, preset, read_scene};
 use clap::Args;
 use lumiere::film::{WriteError, write_atomic};
 use lumiere::scene::{self, Format, simrenderer};
@@ -110,10 +110,12 @@ pub fn run(args: &ConvertArgs, v: Verbosity) -> Result<(), CliError> {
     }
     v.note(|| {
         format!(
-            "{out}: {} scene of {} objects and {} lights, from {source}",
+            "{out}: {} scene of {} {} and {} {}, from {source}",
             to.name(),
             scene.objects.len(),
-            scene.lights.len()
+            noun_for(scene.objects.len(), "object"),
+            scene.lights.len(),
+            noun_for(scene.lights.len(), "light")
         )
     });
     Ok(())

@@ -4,7 +4,7 @@
 //! leaving each set wholly old or wholly new, one run at a time in an output folder.
 
 use super::lock::FolderLock;
-use super::{CliError, Verbosity, signals, with_threads};
+use super::{CliError, Verbosity, noun_for, signals, with_threads};
 use clap::Args;
 use lumiere::figures::check::{Problem, check_index, check_set, extra_folders, manifest_scale};
 use lumiere::figures::{FigureSet, FiguresError, Reuse, Run, files, generate_until, write_index};
@@ -256,8 +256,9 @@ fn export(sets: &[&FigureSet], dir: &Path, format: Format, v: Verbosity) -> Resu
                 "(no folder made)".to_string()
             };
             println!(
-                "{:<12} {written:>3} scenes written, {skipped} skipped  {place}",
-                set.name
+                "{:<12} {written:>3} {} written, {skipped} skipped  {place}",
+                set.name,
+                noun_for(written, "scene")
             );
         }
     }

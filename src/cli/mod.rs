@@ -289,6 +289,12 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     }
 }
 
+/// `noun` (a regular English noun) as `n` of them are said: `1 object`, `2 objects`,
+/// `0 objects`, without the number.
+fn noun_for(n: usize, noun: &str) -> String {
+    if n == 1 { noun.to_string() } else { format!("{noun}s") }
+}
+
 /// Loads a scene file and applies overrides; errors are bad input. A SIMRenderer file's
 /// own settings (`pixel_coordinate`, the clipping planes) apply over `--conventions`'
 /// preset, then each `--convention`.

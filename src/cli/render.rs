@@ -1,7 +1,7 @@
 //! `lumiere render`: a scene file to an image or a shard file, with a progress bar on a
 //! terminal, and ray counts, skipped work and time by phase with `--stats` / `--json`.
 
-use super::{CliError, Overrides, Verbosity, check_output, check_output_path, resolved, signals};
+use super::{CliError, Overrides, Verbosity, check_output, check_output_path, noun_for, resolved, signals};
 use clap::{ArgGroup, Args};
 use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::film::{WriteError, write_atomic};
@@ -123,10 +123,12 @@ pub fn run(args: &RenderArgs, v: Verbosity) -> Result<(), CliError> {
     let s = &scene.settings;
     v.note(|| {
         format!(
-            "{}: {} objects, {} lights; {} x {} pixels, {} samples, depth {}, seed {}; rows {:?}",
+            "{}: {} {}, {} {}; {} x {} pixels, {} samples, depth {}, seed {}; rows {:?}",
             args.scene.display(),
             scene.objects.len(),
+            noun_for(scene.objects.len(), "object"),
             scene.lights.len(),
+            noun_for(scene.lights.len(), "light"),
             s.width,
             s.height,
             s.samples_per_pixel,
@@ -441,13 +443,14 @@ fn stats_report(stats: &RenderStats, phases: &Phases) -> String {
     });
     let phases = format!(
         "time by phase: load {:.3} s, build {:.3} s, render {:.3} s, write {:.3} s\n\
-         intersection core: {} over {} objects, {} bytes ({:.1} bytes/object), built in {:.3} s\n",
+         intersection core: {} over {} {}, {} bytes ({:.1} bytes/object), built in {:.3} s\n",
         phases.load,
         phases.build,
         phases.render,
         phases.write,
         a.name,
         a.objects,
+        noun_for(a.objects, "object"),
         a.bytes,
         a.bytes as f64 / a.objects.max(1) as f64,
         a.seconds

@@ -49,6 +49,15 @@ pub fn number_in(x: f64, lo: f64, hi: f64) -> Result<f64, String> {
     Ok(x)
 }
 
+/// A finite number in `(lo, hi)`, both ends left out.
+pub fn number_between(x: f64, lo: f64, hi: f64) -> Result<f64, String> {
+    if !x.is_finite() || x <= lo || x >= hi {
+        let (lo, hi) = (limits::short(lo), limits::short(hi));
+        return Err(format!("must be a finite number in ({lo}, {hi})"));
+    }
+    Ok(x)
+}
+
 /// A finite number in `(0, hi]`.
 pub fn positive(x: f64, hi: f64) -> Result<f64, String> {
     if !x.is_finite() || x <= 0.0 || x > hi {
@@ -149,6 +158,13 @@ mod tests {
             number_in(f64::NAN, 0.0, 1.0),
             Err("must be a finite number in [0, 1]".to_string())
         );
+        assert_eq!(number_between(179.9, 0.0, 180.0), Ok(179.9));
+        for x in [0.0, 180.0, f64::NAN] {
+            assert_eq!(
+                number_between(x, 0.0, 180.0),
+                Err("must be a finite number in (0, 180)".to_string())
+            );
+        }
         assert_eq!(positive(1e9, 1e9), Ok(1e9));
         assert_eq!(
             positive(0.0, 1e9),

@@ -46,6 +46,11 @@ pub(super) fn in_range(path: &FieldPath, x: f64, lo: f64, hi: f64) -> Check<f64>
     rules::number_in(x, lo, hi).or_else(|m| fail_got(path, m, x))
 }
 
+/// A finite number within `(lo, hi)`.
+pub(super) fn between(path: &FieldPath, x: f64, lo: f64, hi: f64) -> Check<f64> {
+    rules::number_between(x, lo, hi).or_else(|m| fail_got(path, m, x))
+}
+
 /// Three numbers, no more and no fewer: a point, a direction, a colour or angles as the file
 /// writes them (`[x, y, z]`). A longer or shorter array is an error on its value.
 #[derive(Clone, Copy, Default, PartialEq)]

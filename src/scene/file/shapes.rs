@@ -4,7 +4,8 @@
 
 use super::Listed;
 use super::check::{
-    Check, Xyz, angles, direction, fail, in_range, normal_interpolation, placed, plus_z, positive, spanning_edges, vec3,
+    Check, Xyz, angles, between, direction, fail, in_range, normal_interpolation, placed, plus_z, positive,
+    spanning_edges, vec3,
 };
 use super::material::resolve_material;
 use super::mesh::FileMesh;
@@ -628,10 +629,7 @@ fn mirror_pair(
         return fail(&path.key("bisector"), "must have a non-zero horizontal (x, y) part");
     }
     let b = b.normalize();
-    let opening = in_range(&path.key("opening"), opening, 0.0, 180.0)?;
-    if opening == 0.0 || opening == 180.0 {
-        return fail(&path.key("opening"), "must be in (0, 180) degrees");
-    }
+    let opening = between(&path.key("opening"), opening, 0.0, 180.0)?;
     let length = positive(&path.key("length"), length, limits::MAX_COORDINATE)?;
     let height = positive(&path.key("height"), height, limits::MAX_COORDINATE)?;
     let material = resolve_material(path, material, names)?;
