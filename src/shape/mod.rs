@@ -414,11 +414,12 @@ pub(crate) mod test_util {
     /// `count` seeded rays from points of the cube of half-side `2 size` around `center`
     /// (some inside the shape) towards points of the cube of half-side `1.2 size`.
     pub fn random_rays(seed: u64, center: DVec3, size: f64, count: usize) -> Vec<Ray> {
+        use crate::sampling::unit_interval;
         use rand_chacha::ChaCha8Rng;
         use rand_core::{Rng, SeedableRng};
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut point = |half: f64| {
-            let mut u = || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53) * 2.0 - 1.0;
+            let mut u = || unit_interval(rng.next_u64()) * 2.0 - 1.0;
             center + half * DVec3::new(u(), u(), u())
         };
         (0..count)
@@ -465,6 +466,7 @@ pub(crate) mod test_util {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampling::unit_interval;
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
 
@@ -570,7 +572,7 @@ mod tests {
     #[test]
     fn bounding_spheres_hold_every_hit_and_inner_balls_are_inside() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
-        let mut unit = move || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let mut unit = move || unit_interval(rng.next_u64());
         for shape in shapes() {
             let (center, radius) = shape.bounding_sphere().unwrap();
             let mut direction = || {

@@ -799,6 +799,7 @@ type MemberKey = (usize, usize, [u64; 3]);
 mod tests {
     use super::*;
     use crate::light::point_incidence;
+    use crate::sampling::unit_interval;
     use crate::shading::{blinn, phong, specular_tint};
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
@@ -823,7 +824,7 @@ mod tests {
     #[test]
     fn lanes_are_the_point_light_formulas_bit_for_bit() {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
-        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * unit_interval(rng.next_u64());
         let mut points = Vec::new();
         for _ in 0..257 {
             points.push(DVec3::new(uniform(-5.0, 5.0), uniform(-5.0, 5.0), uniform(0.0, 12.0)));
@@ -989,7 +990,7 @@ mod tests {
     #[test]
     fn lane_sum_is_shares_summed_in_point_order() {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
-        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * unit_interval(rng.next_u64());
         let len = 2 * SUM_BLOCK + 37;
         let points: Vec<DVec3> = (0..len)
             .map(|_| DVec3::new(uniform(-5.0, 5.0), uniform(-5.0, 5.0), uniform(0.0, 12.0)))

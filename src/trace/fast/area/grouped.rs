@@ -386,6 +386,7 @@ mod tests {
     use super::super::tests::lanes_of;
     use super::*;
     use crate::area_light::PointSet;
+    use crate::sampling::unit_interval;
     use crate::shading::Attenuation;
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
@@ -495,7 +496,7 @@ mod tests {
     #[test]
     fn cones_apart_means_every_verdict_misses() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
-        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * unit_interval(rng.next_u64());
         let (mut apart, mut near) = (0, 0);
         for _ in 0..2000 {
             let p = DVec3::new(uniform(-6.0, 6.0), uniform(-6.0, 6.0), uniform(0.0, 4.0));
