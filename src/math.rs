@@ -88,7 +88,7 @@ pub fn refract(v: DVec3, n_normal: DVec3, eta: f64) -> Option<DVec3> {
 }
 
 /// The root's argument of the law of refraction, `1 - n^2 (1 - (E.N)^2)`.
-fn refraction_radicand(eta: f64, e_dot_n: f64) -> f64 {
+pub fn refraction_radicand(eta: f64, e_dot_n: f64) -> f64 {
     1.0 - eta * eta * (1.0 - e_dot_n * e_dot_n)
 }
 
