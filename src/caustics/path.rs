@@ -20,7 +20,6 @@
 use super::emit::Start;
 use super::map::Photon;
 use crate::accel::Accel;
-use crate::conventions::InternalReflection;
 use crate::math::{Ray, offset_origin, reflect, refract};
 use crate::sampling::Stream;
 use crate::scene::Scene;
@@ -62,11 +61,7 @@ pub fn trace(scene: &Scene, accel: &Accel, start: Start, bounces: u32, rng: &mut
                     refracted = Some(t.normalize());
                     kt = mat.kt;
                 }
-                None => {
-                    if conventions.total_internal_reflection == InternalReflection::Reflected {
-                        kr += mat.kt;
-                    }
-                }
+                None => kr = conventions.total_internal_reflection.reflected_weight(kr, mat.kt),
             }
         }
         let k = kr + kt;

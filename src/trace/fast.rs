@@ -20,7 +20,6 @@
 //! [`Reference`]: super::Reference
 
 use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface, caustic_share, point_light_terms};
-use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, aperture_share};
 use crate::material::Material;
 use crate::math::{Ray, offset_origin, reflect, refract};
@@ -287,9 +286,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                     Some(t) => refracted = Some(t.normalize()),
                     None => {
                         // Total internal reflection: the transmitted energy is reflected, or lost.
-                        if conventions.total_internal_reflection == InternalReflection::Reflected {
-                            kr += mat.kt;
-                        }
+                        kr = conventions.total_internal_reflection.reflected_weight(kr, mat.kt);
                         self.count_members(deeper, |c| c.total_internal_reflections += 1);
                         rec.total_internal_reflection();
                     }
