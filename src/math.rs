@@ -20,6 +20,23 @@ impl Ray {
     pub fn at(&self, t: f64) -> DVec3 {
         self.origin + self.dir * t
     }
+
+    /// A ray leaving a surface point `p` (outward normal `n`, absolute error bound `err`)
+    /// along the unit `dir`: from `p` pushed past its rounding error to the side `dir` goes
+    /// ([`offset_origin`]), so that it never meets the surface it leaves at its start.
+    #[inline]
+    pub fn leaving(p: DVec3, n: DVec3, err: f64, dir: DVec3) -> Self {
+        Ray::new(offset_origin(p, n, err, dir), dir)
+    }
+}
+
+/// How a ray along `dir` meets a surface of outward normal `outward`: whether it enters
+/// (arrives against the normal, `dir.N < 0`), and the normal on the ray's side, `N` when it
+/// enters and `-N` when it leaves (the `N` of the laws of reflection and refraction).
+#[inline]
+pub fn facing_normal(dir: DVec3, outward: DVec3) -> (bool, DVec3) {
+    let entering = dir.dot(outward) < 0.0;
+    (entering, if entering { outward } else { -outward })
 }
 
 /// An orthonormal frame whose third axis is a given unit vector; maps between world space
@@ -186,6 +203,15 @@ mod tests {
     }
 
     #[test]
+    fn a_ray_enters_against_the_outward_normal_and_is_given_the_normal_on_its_side() {
+        let down = DVec3::new(0.6, 0.0, -0.8);
+        assert_eq!(facing_normal(down, DVec3::Z), (true, DVec3::Z));
+        assert_eq!(facing_normal(-down, DVec3::Z), (false, -DVec3::Z));
+        // Grazing (dir.N = 0): not entering.
+        assert_eq!(facing_normal(DVec3::X, DVec3::Z), (false, -DVec3::Z));
+    }
+
+    #[test]
     fn frame_is_orthonormal_and_round_trips() {
         for z in [DVec3::Z, -DVec3::Z, DVec3::new(1.0, 2.0, -3.0).normalize()] {
             let f = Frame::from_z(z);
@@ -201,5 +227,10 @@ mod tests {
         let up = offset_origin(p, DVec3::Z, 1e-9, DVec3::new(0.0, 1.0, 0.5));
         let down = offset_origin(p, DVec3::Z, 1e-9, DVec3::new(0.0, 1.0, -0.5));
         assert!(up.z > 1.0 && down.z < 1.0);
+        // A ray leaving along the offset's side: its origin is `offset_origin`'s, pushed by
+        // err |n|_1 = 1e-9 along +z.
+        let ray = Ray::leaving(p, DVec3::Z, 1e-9, DVec3::Z);
+        assert_eq!((ray.origin, ray.dir), (up, DVec3::Z));
+        assert_eq!(ray.origin, DVec3::new(0.0, 0.0, 1.0 + 1e-9));
     }
 }

@@ -22,7 +22,7 @@
 use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface, caustic_share, point_light_terms};
 use crate::light::{Incidence, Light, aperture_share};
 use crate::material::Material;
-use crate::math::{Ray, offset_origin, reflect, refract};
+use crate::math::{Ray, reflect, refract};
 use crate::scene::ShadingModel;
 use crate::shading::{
     ambient, beneath_notice, faces_away, local_weight, no_light, shadow_filter, transmission_weight, transparent_filter,
@@ -606,7 +606,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         self.counts.shadow += 1;
         let world = self.world;
         let objects = &world.scene.objects;
-        let ray = Ray::new(offset_origin(point, outward, err, inc.to_light), inc.to_light);
+        let ray = Ray::leaving(point, outward, err, inc.to_light);
         let t_max = inc.distance;
         rec.shadow_ray(&ray, t_max);
         let skips = world.skips;
