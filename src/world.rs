@@ -13,6 +13,7 @@ use crate::light::Light;
 use crate::material::Material;
 use crate::math::Ray;
 use crate::scene::{Object, SampleGrid, Scene};
+use crate::shading::transparent_filter;
 use crate::shape::{Shape, SurfaceHit, misses_bounding_sphere};
 use crate::skips::{Skip, Skips};
 use along::BallsAlong;
@@ -345,6 +346,14 @@ impl<'s> World<'s> {
 
     pub fn material_of(&self, object: usize) -> &Material {
         &self.scene.materials[self.scene.objects[object].material()]
+    }
+
+    /// The colour `S_g` a transparent object filters a shadow ray's light by, under the
+    /// scene's conventions ([`transparent_filter`]).
+    #[inline]
+    pub fn filter_color(&self, object: usize) -> DVec3 {
+        let mat = self.material_of(object);
+        transparent_filter(self.scene.settings.conventions.shadow_filter, mat.kt, mat.color)
     }
 
     /// The points of area light `index` (an [`AreaLight`](crate::area_light::AreaLight))

@@ -24,9 +24,7 @@ use crate::light::{Incidence, Light, aperture_share};
 use crate::material::Material;
 use crate::math::{Ray, reflect, refract};
 use crate::scene::ShadingModel;
-use crate::shading::{
-    ambient, beneath_notice, faces_away, local_weight, no_light, shadow_filter, transmission_weight, transparent_filter,
-};
+use crate::shading::{ambient, beneath_notice, faces_away, local_weight, no_light, shadow_filter, transmission_weight};
 use crate::skips::Skip;
 use crate::world::{Candidate, World};
 use glam::DVec3;
@@ -699,11 +697,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     fn crossed_filter<R: Recorder>(&mut self, rec: &mut R) -> DVec3 {
         rec.shadow_crossed(&self.crossed);
         let world = self.world;
-        let rule = world.scene.settings.conventions.shadow_filter;
-        shadow_filter(self.crossed.iter().map(|&i| {
-            let mat = world.material_of(i);
-            transparent_filter(rule, mat.kt, mat.color)
-        }))
+        shadow_filter(self.crossed.iter().map(|&i| world.filter_color(i)))
     }
 }
 
