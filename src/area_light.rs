@@ -133,7 +133,12 @@ impl AreaLight {
 
     /// Colour each point carries: `L / N`.
     pub fn point_color(&self) -> DVec3 {
-        self.color / self.count as f64
+        self.point_color_of(self.count)
+    }
+
+    /// Colour each point carries when the light is taken as `n` points: `L / n`.
+    pub fn point_color_of(&self, n: u32) -> DVec3 {
+        self.color / n as f64
     }
 }
 
@@ -222,5 +227,7 @@ mod tests {
         assert_ne!(l.fixed_points(42, 3), l.fixed_points(42, 4));
         assert_ne!(l.sample_points(42, 3, 7, 0), l.sample_points(42, 3, 7, 1));
         assert_eq!(l.point_color(), DVec3::splat(0.1));
+        // A family member taking 4 of its points: each carries 1 / 4.
+        assert_eq!(l.point_color_of(4), DVec3::splat(0.25));
     }
 }

@@ -79,11 +79,17 @@ pub(crate) fn point_light_terms_with(
 ) -> (DVec3, DVec3) {
     let spec = spec_term(model.specular, at.n, to_light, at.eye, mat.shininess);
     let r = at.reflectance(mat);
-    let kd = if model.diffuse { r.kd } else { 0.0 };
     (
-        diffuse(light, kd, r.diffuse, n_dot_l),
+        diffuse(light, diffuse_coefficient(model, &r), r.diffuse, n_dot_l),
         specular(light, r.ks, r.tint, spec),
     )
+}
+
+/// The `k_d` a point light's diffuse term is computed with: the reflectance's, or 0 under
+/// a shading model without the diffuse term.
+#[inline(always)]
+pub(crate) fn diffuse_coefficient(model: ShadingModel, r: &Reflectance) -> f64 {
+    if model.diffuse { r.kd } else { 0.0 }
 }
 
 /// The caustic share at a hit of a camera path, `E k_d S` ([`caustic`]) for the irradiance

@@ -45,6 +45,7 @@ use crate::shading::{
 };
 use crate::shape::Verdict;
 use crate::skips::Skip;
+use crate::trace::diffuse_coefficient;
 use crate::world::Candidate;
 use glam::DVec3;
 use multiversion::multiversion;
@@ -348,7 +349,7 @@ impl ShareFactors {
     fn new(point_color: DVec3, refl: &Reflectance, model: ShadingModel) -> Self {
         ShareFactors {
             point: point_color.to_array(),
-            kd: if model.diffuse { refl.kd } else { 0.0 },
+            kd: diffuse_coefficient(model, refl),
             color: refl.diffuse.to_array(),
             ks: refl.ks,
             tint: refl.tint.to_array(),
@@ -674,7 +675,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
     fn member_points(&self, j: usize, index: usize, area: &AreaLight, len: usize) -> (usize, DVec3) {
         match self.members[j].area_count {
             Some((light, count)) if light == index && (count as usize) < len => {
-                (count as usize, area.color / count as f64)
+                (count as usize, area.point_color_of(count))
             }
             _ => (len, area.point_color()),
         }
