@@ -5,6 +5,7 @@
 //! the whole image (the chapter's look: N distinct shadows); `per_sample` draws fresh points
 //! for every pixel sample from that sample's own stream (noise instead of banding).
 
+use crate::math::half_diagonal;
 use crate::placement::{Placement, on_segment, on_sphere, on_square};
 use crate::sampling::{Purpose, Stream, sample_index};
 use crate::shading::Attenuation;
@@ -124,10 +125,7 @@ impl AreaLight {
             AreaShape::Sphere { center, radius } => (*center, *radius),
             AreaShape::Tube { start, end } => (0.5 * (*start + *end), 0.5 * (*end - *start).length()),
             // The farthest corner: `|(+-edge1 +- edge2) / 2|`.
-            AreaShape::Window { center, edge1, edge2 } => (
-                *center,
-                0.5 * (*edge1 + *edge2).length().max((*edge1 - *edge2).length()),
-            ),
+            AreaShape::Window { center, edge1, edge2 } => (*center, half_diagonal(*edge1, *edge2)),
         }
     }
 

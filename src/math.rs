@@ -1,5 +1,6 @@
-//! Rays, orthonormal frames, the chapter's reflection and refraction laws, and the
-//! floating-point-aware offset that keeps secondary rays off the surface they leave.
+//! Rays, orthonormal frames, the chapter's reflection and refraction laws, the
+//! floating-point-aware offset that keeps secondary rays off the surface they leave, and the
+//! few identities of plane geometry the shapes and lights share.
 
 use glam::{DMat3, DVec3};
 
@@ -125,6 +126,20 @@ pub fn length(v: DVec3) -> f64 {
     v.dot(v).sqrt()
 }
 
+/// `sqrt(max(1 - x^2, 0))`: the other leg of a right triangle of hypotenuse 1 and leg `x`,
+/// the sine of an angle in `[0, pi]` from its cosine (or the cosine of one in
+/// `[-pi/2, pi/2]` from its sine); 0 where rounding puts `|x|` above 1.
+#[inline]
+pub fn other_leg(x: f64) -> f64 {
+    (1.0 - x * x).max(0.0).sqrt()
+}
+
+/// Half the longer diagonal of the parallelogram of edges `a` and `b`,
+/// `max(|a + b|, |a - b|) / 2`: the radius of the ball about its centre that holds it.
+pub fn half_diagonal(a: DVec3, b: DVec3) -> f64 {
+    0.5 * (a + b).length().max((a - b).length())
+}
+
 /// Largest absolute component.
 pub fn max_abs(v: DVec3) -> f64 {
     v.abs().max_element()
@@ -209,6 +224,21 @@ mod tests {
         assert_eq!(facing_normal(-down, DVec3::Z), (false, -DVec3::Z));
         // Grazing (dir.N = 0): not entering.
         assert_eq!(facing_normal(DVec3::X, DVec3::Z), (false, -DVec3::Z));
+    }
+
+    #[test]
+    fn other_legs_and_half_diagonals() {
+        // cos = 0.6: sin = sqrt(1 - 0.36) = 0.8 (to one rounding); |c| a hair above 1: 0.
+        assert!((other_leg(0.6) - 0.8).abs() < 1e-15);
+        assert_eq!(other_leg(1.0), 0.0);
+        assert_eq!(other_leg(1.0 + f64::EPSILON), 0.0);
+        // A 6 x 8 rectangle: diagonal 10, half 5; a parallelogram (3, 0) and (1, 1): the
+        // longer diagonal (4, 1) of length sqrt(17).
+        assert_eq!(half_diagonal(DVec3::new(6.0, 0.0, 0.0), DVec3::new(0.0, 8.0, 0.0)), 5.0);
+        assert_eq!(
+            half_diagonal(DVec3::new(3.0, 0.0, 0.0), DVec3::new(1.0, 1.0, 0.0)),
+            0.5 * 17f64.sqrt()
+        );
     }
 
     #[test]

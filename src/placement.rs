@@ -5,6 +5,7 @@
 //! Points are returned for the unit shape (unit sphere, segment [0, 1], unit square
 //! [0, 1]^2); `area_light` maps them onto the light's shape.
 
+use crate::math::other_leg;
 use crate::sampling::Stream;
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
@@ -88,7 +89,7 @@ pub fn on_sphere(placement: Placement, n: usize, rng: &mut Stream) -> Vec<DVec3>
                 _ => {
                     // z uniform in [-1, 1] (Archimedes: equal z bands have equal areas).
                     let z = 1.0 - 2.0 * uv.x;
-                    let r = (1.0 - z * z).max(0.0).sqrt();
+                    let r = other_leg(z);
                     DVec3::new(r * cos_phi, r * sin_phi, z)
                 }
             }

@@ -11,7 +11,7 @@ use crate::camera::Camera;
 use crate::caustics::{self, PhotonMap};
 use crate::light::Light;
 use crate::material::Material;
-use crate::math::Ray;
+use crate::math::{Ray, other_leg};
 use crate::scene::{Object, SampleGrid, Scene};
 use crate::shading::transparent_filter;
 use crate::shape::{Shape, SurfaceHit, misses_bounding_sphere};
@@ -64,10 +64,7 @@ pub(crate) fn cones_apart((a, cos_a): (DVec3, f64), (b, cos_b): (DVec3, f64)) ->
     if cos_a <= 0.0 || cos_b <= 0.0 {
         return false;
     }
-    let (sin_a, sin_b) = (
-        (1.0 - cos_a * cos_a).max(0.0).sqrt(),
-        (1.0 - cos_b * cos_b).max(0.0).sqrt(),
-    );
+    let (sin_a, sin_b) = (other_leg(cos_a), other_leg(cos_b));
     a.dot(b) < cos_a * cos_b - sin_a * sin_b - 1e-9
 }
 

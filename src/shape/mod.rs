@@ -41,7 +41,7 @@ pub use torus::{QuarticMethod, Torus};
 pub use transformed::{Transform, Transformed};
 pub use triangle::Triangle;
 
-use crate::math::Ray;
+use crate::math::{Ray, half_diagonal};
 use glam::DVec3;
 
 /// A surface hit: ray parameter and the outward unit normal there.
@@ -196,7 +196,6 @@ impl Shape {
     /// A ball containing the whole shape (center, radius), as small as is simple to say;
     /// `None` for unbounded shapes. Shadow rays that miss it miss the shape.
     pub fn bounding_sphere(&self) -> Option<(DVec3, f64)> {
-        let half_diagonal = |a: DVec3, b: DVec3| 0.5 * (a + b).length().max((a - b).length());
         Some(match self {
             Shape::Plane(_) => return None,
             Shape::Rectangle(r) => (r.corner + 0.5 * (r.edge1 + r.edge2), half_diagonal(r.edge1, r.edge2)),
