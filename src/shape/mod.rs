@@ -339,6 +339,14 @@ pub(crate) fn first_root((t0, t1): (f64, f64), t_min: f64, t_max: f64) -> f64 {
     if (t0 > t_min) & (t0 < t_max) { t0 } else { later }
 }
 
+/// A ball's radius padded so that rounding never rejects a ray that meets it, seen from a
+/// point `offset` away from its centre: `r (1 + 1e-9) + 1e-9 |offset|_1` (the 1-norm, at
+/// least the length, pads without a square root).
+#[inline(always)]
+pub(crate) fn padded_radius(radius: f64, offset: DVec3) -> f64 {
+    radius * (1.0 + 1e-9) + 1e-9 * l1(offset)
+}
+
 /// Whether the ray misses the ball (`center`, `radius`) within `(t_min, t_max)` by a clear
 /// margin (relative 1e-9 of the radius and of the distance): then it misses every shape
 /// inside the ball, whatever that shape's own routine would compute, so the routine need not
@@ -348,7 +356,7 @@ pub(crate) fn first_root((t0, t1): (f64, f64), t_min: f64, t_max: f64) -> f64 {
 pub(crate) fn misses_bounding_sphere(ray: &Ray, t_min: f64, t_max: f64, (center, radius): (DVec3, f64)) -> bool {
     let f = ray.origin - center;
     let b = f.dot(ray.dir);
-    let reach = radius * (1.0 + 1e-9) + 1e-9 * l1(f);
+    let reach = padded_radius(radius, f);
     let perp = f - b * ray.dir;
     // Every comparison made, no branch (see `fan`).
     (perp.length_squared() > reach * reach) | (-b + reach < t_min) | (-b - reach > t_max)
@@ -538,6 +546,14 @@ mod tests {
         assert_eq!((shape, object), (40, 48), "size_of::<Shape>(), size_of::<Object>()");
         assert_eq!(size_of::<Sphere>(), 32);
         assert_eq!(size_of::<Triangle>(), 32);
+    }
+
+    #[test]
+    fn a_ball_is_padded_by_a_relative_1e_9_of_its_radius_and_distance() {
+        // Radius 2 seen from (3, -4, 0) away: 2 (1 + 1e-9) + 1e-9 (3 + 4) = 2 + 9e-9.
+        let r = padded_radius(2.0, DVec3::new(3.0, -4.0, 0.0));
+        assert!((r - (2.0 + 9e-9)).abs() < 1e-15, "{r}");
+        assert_eq!(padded_radius(0.0, DVec3::ZERO), 0.0);
     }
 
     #[test]

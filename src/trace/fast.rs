@@ -25,6 +25,7 @@ use crate::material::Material;
 use crate::math::{Ray, reflect, refract};
 use crate::scene::ShadingModel;
 use crate::shading::{ambient, beneath_notice, faces_away, local_weight, no_light, shadow_filter, transmission_weight};
+use crate::shape::padded_radius;
 use crate::skips::Skip;
 use crate::world::{Candidate, World};
 use glam::DVec3;
@@ -715,7 +716,6 @@ fn below_horizon(point: DVec3, n: DVec3, center: DVec3, radius: f64) -> bool {
 fn segment_meets_sphere(ray: &Ray, t_max: f64, center: DVec3, radius: f64) -> bool {
     let to_center = center - ray.origin;
     let t = to_center.dot(ray.dir).clamp(0.0, t_max);
-    // 1e-9 of the 1-norm (>= the length) pads without a square root.
-    let reach = radius * (1.0 + 1e-9) + 1e-9 * to_center.abs().element_sum();
+    let reach = padded_radius(radius, to_center);
     (ray.origin + t * ray.dir - center).length_squared() <= reach * reach
 }
