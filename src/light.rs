@@ -6,7 +6,7 @@
 
 use crate::math::length;
 pub use crate::shading::Attenuation;
-use crate::shading::{Channels, spot_factor};
+use crate::shading::{Channels, largest_spot_factor, spot_factor};
 use glam::DVec3;
 
 /// A point light (also one point of an area light).
@@ -164,7 +164,7 @@ impl Light {
             Light::Aperture(a) => return a.color.max_element() * a.amplification * a.attenuation.largest(),
         };
         let spot_max = match self {
-            Light::Spot(s) => s.c_max.max(s.c_min),
+            Light::Spot(s) => largest_spot_factor(s.c_min, s.c_max),
             _ => 1.0,
         };
         // A is largest at d = 0 unless C_const = 0, where it is unbounded.

@@ -85,6 +85,13 @@ pub fn spot_factor(o_dot_d: f64, cos_half: f64, c_min: f64, c_max: f64) -> f64 {
     (1.0 - t) * c_max + t * c_min
 }
 
+/// The largest [`spot_factor`] in the cone: `max(C_max, C_min)`, at the axis or at the
+/// edge (the factor is linear in `t` between them).
+#[inline]
+pub fn largest_spot_factor(c_min: f64, c_max: f64) -> f64 {
+    c_max.max(c_min)
+}
+
 /// Whether the unit direction `d` from a spotlight to a point is outside its cone
 /// (chapter 7.4b): `o.d < cos(theta/2)`, from `o.d` and `cos(theta/2)`; a cone of zero
 /// opening (`cos(theta/2) = 1`) holds no direction.
@@ -431,6 +438,9 @@ mod tests {
         assert!(!outside_spot_cone(0.5, 0.5));
         assert!(outside_spot_cone(0.49, 0.5));
         assert!(outside_spot_cone(1.0, 1.0));
+        // The largest factor: C_max on the axis, or C_min at the edge when it is larger.
+        assert_eq!(largest_spot_factor(0.2, 1.0), 1.0);
+        assert_eq!(largest_spot_factor(0.8, 0.5), 0.8);
     }
 
     #[test]

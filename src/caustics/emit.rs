@@ -21,7 +21,7 @@ use crate::light::{Attenuation, Light};
 use crate::math::{Frame, Ray, other_leg};
 use crate::sampling::Stream;
 use crate::scene::Scene;
-use crate::shading::spot_factor;
+use crate::shading::{largest_spot_factor, spot_factor};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -140,7 +140,7 @@ impl Emitters {
                     (DVec3::Z, -1.0)
                 };
                 let omega = 2.0 * PI * (1.0 - cos_max);
-                let peak = spot.map_or(1.0, |s| s.c_max.max(s.c_min));
+                let peak = spot.map_or(1.0, |s| largest_spot_factor(s.c_min, s.c_max));
                 let reach = dist.max(radius);
                 // The flux the target intercepts, at most: what sets the emitter's share.
                 weights.push(color.element_sum() * peak * omega * attenuation.factor(reach) * reach * reach);
