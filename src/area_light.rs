@@ -5,6 +5,7 @@
 //! the whole image (the chapter's look: N distinct shadows); `per_sample` draws fresh points
 //! for every pixel sample from that sample's own stream (noise instead of banding).
 
+use crate::math::half_diagonal;
 use crate::placement::{Placement, on_segment, on_sphere, on_square};
 use crate::sampling::{Purpose, Stream, sample_index};
 use crate::shading::Attenuation;
@@ -124,16 +125,18 @@ impl AreaLight {
             AreaShape::Sphere { center, radius } => (*center, *radius),
             AreaShape::Tube { start, end } => (0.5 * (*start + *end), 0.5 * (*end - *start).length()),
             // The farthest corner: `|(+-edge1 +- edge2) / 2|`.
-            AreaShape::Window { center, edge1, edge2 } => (
-                *center,
-                0.5 * (*edge1 + *edge2).length().max((*edge1 - *edge2).length()),
-            ),
+            AreaShape::Window { center, edge1, edge2 } => (*center, half_diagonal(*edge1, *edge2)),
         }
     }
 
     /// Colour each point carries: `L / N`.
     pub fn point_color(&self) -> DVec3 {
-        self.color / self.count as f64
+        self.point_color_of(self.count)
+    }
+
+    /// Colour each point carries when the light is taken as `n` points: `L / n`.
+    pub fn point_color_of(&self, n: u32) -> DVec3 {
+        self.color / n as f64
     }
 }
 
@@ -222,5 +225,7 @@ mod tests {
         assert_ne!(l.fixed_points(42, 3), l.fixed_points(42, 4));
         assert_ne!(l.sample_points(42, 3, 7, 0), l.sample_points(42, 3, 7, 1));
         assert_eq!(l.point_color(), DVec3::splat(0.1));
+        // A family member taking 4 of its points: each carries 1 / 4.
+        assert_eq!(l.point_color_of(4), DVec3::splat(0.25));
     }
 }

@@ -88,6 +88,18 @@ pub enum InternalReflection {
     Dropped,
 }
 
+impl InternalReflection {
+    /// The weight of the reflected ray at a hit of reflection weight `k_r` and transmission
+    /// weight `k_t` where the refracted ray is totally internally reflected: `k_r + k_t`, or
+    /// `k_r`.
+    pub fn reflected_weight(self, kr: f64, kt: f64) -> f64 {
+        match self {
+            InternalReflection::Reflected => kr + kt,
+            InternalReflection::Dropped => kr,
+        }
+    }
+}
+
 /// What weighs a hit's local illumination (ambient, diffuse and specular terms).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -385,6 +397,13 @@ mod erased {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn internal_reflection_sends_the_refracted_weight_to_the_reflection_or_drops_it() {
+        // k_r 0.25, k_t 0.5: the chapter's reflected ray carries 0.75, SIMRenderer's 0.25.
+        assert_eq!(InternalReflection::Reflected.reflected_weight(0.25, 0.5), 0.75);
+        assert_eq!(InternalReflection::Dropped.reflected_weight(0.25, 0.5), 0.25);
+    }
 
     #[test]
     fn every_switch_reads_back_what_describe_prints() {

@@ -41,7 +41,7 @@ pub mod mistakes;
 pub mod report;
 
 use crate::edges::{footprint, is_edge};
-use crate::film::{Normalization, clamp_unit, quantize};
+use crate::film::{Normalization, level_value, rgb8_encoded, unrounded_level};
 use crate::layers::{PixelLayers, pixel_layers};
 use crate::limits::MAX_DEPTH;
 use crate::output::{srgb_decode, srgb_encode};
@@ -335,7 +335,7 @@ fn squared_level_error(radiance: DVec3, levels: &[u8], output: Output) -> f64 {
         .to_array()
         .into_iter()
         .zip(levels)
-        .map(|(c, &level)| (clamp_unit((output.encode)(c)) * 255.0 - level as f64).powi(2))
+        .map(|(c, &level)| (unrounded_level((output.encode)(c)) - level as f64).powi(2))
         .sum()
 }
 
@@ -351,7 +351,7 @@ fn linear(c: f64) -> f64 {
 /// How the oracle writes a radiance in 8 bits, as the film does: the scene's colour
 /// normalization ([`Normalization::apply`]: SIMRenderer's `division_factor` divides a colour
 /// by its largest channel above 1), then a transfer on each channel (none, or sRGB's), then
-/// clamping and rounding ([`quantize`]).
+/// clamping and rounding ([`quantize`](crate::film::quantize)).
 #[derive(Clone, Copy)]
 struct Output {
     normalization: Normalization,
@@ -368,10 +368,7 @@ impl Output {
     }
 
     fn rgb8(self, c: DVec3) -> [u8; 3] {
-        self.normalization
-            .apply(c)
-            .to_array()
-            .map(|v| quantize((self.encode)(v)))
+        rgb8_encoded(c, self.normalization, self.encode)
     }
 }
 
@@ -871,7 +868,7 @@ impl<'s> Oracle<'s> {
             .map(|(i, l)| {
                 let rgb = &image_rgb[3 * i..3 * i + 3];
                 let decode = |level: u8| {
-                    let v = level as f64 / 255.0;
+                    let v = level_value(level);
                     if options.srgb { srgb_decode(v) } else { v }
                 };
                 (l, DVec3::new(decode(rgb[0]), decode(rgb[1]), decode(rgb[2])))

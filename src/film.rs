@@ -51,20 +51,42 @@ impl Normalization {
 /// A pixel's colour in 8 bits: normalized ([`Normalization::apply`]), then each channel
 /// quantised.
 pub fn rgb8(c: DVec3, normalization: Normalization) -> [u8; 3] {
-    let c = normalization.apply(c);
-    [quantize(c.x), quantize(c.y), quantize(c.z)]
+    rgb8_encoded(c, normalization, |v| v)
+}
+
+/// A pixel's colour in 8 bits with a transfer function: normalized
+/// ([`Normalization::apply`]), each channel through `encode` (the identity, or the sRGB
+/// curve), then quantised.
+#[inline]
+pub fn rgb8_encoded(c: DVec3, normalization: Normalization, encode: impl Fn(f64) -> f64) -> [u8; 3] {
+    normalization.apply(c).to_array().map(|v| quantize(encode(v)))
 }
 
 /// One channel clamped to [0, 1], NaN to 0: the value [`quantize`] rounds.
+#[inline]
 pub fn clamp_unit(c: f64) -> f64 {
     if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) }
 }
 
+/// One channel in 8-bit levels before rounding: clamped to [0, 1] (NaN to 0), times 255.
+#[inline]
+pub fn unrounded_level(c: f64) -> f64 {
+    clamp_unit(c) * 255.0
+}
+
 /// One channel to 8 bits: clamp to [0, 1] (NaN to 0), then round to nearest.
+#[inline]
 pub fn quantize(c: f64) -> u8 {
     // The cast truncates, which is `floor` for the value here (0.5 to 255.5): no call to
     // libm's `floor` (not an instruction on baseline x86-64) for every channel of every lane.
-    (clamp_unit(c) * 255.0 + 0.5) as u8
+    (unrounded_level(c) + 0.5) as u8
+}
+
+/// The value in [0, 1] an 8-bit level stands for, `level / 255`: what [`quantize`] rounds
+/// to that level, with no transfer curve.
+#[inline]
+pub fn level_value(level: u8) -> f64 {
+    level as f64 / 255.0
 }
 
 impl Film {
@@ -197,6 +219,25 @@ mod tests {
                 assert_eq!(quantize(c), (c * 255.0 + 0.5).floor() as u8, "{c}");
             }
         }
+    }
+
+    #[test]
+    fn levels_before_rounding_and_the_values_levels_stand_for() {
+        // 0.5 is 127.5 levels before rounding; clamped above 1 and below 0, NaN to 0.
+        assert_eq!(unrounded_level(0.5), 127.5);
+        assert_eq!(unrounded_level(1.5), 255.0);
+        assert_eq!(unrounded_level(f64::NAN), 0.0);
+        // Level 51 stands for 51 / 255 = 0.2, and every level's value quantises back to it.
+        assert_eq!(level_value(51), 0.2);
+        for k in 0..=255 {
+            assert_eq!(quantize(level_value(k)), k);
+        }
+        // A transfer applied per channel after the normalization: squaring (0.5, 0.2, 2)
+        // gives (0.25, 0.04, 1) after clamping, 64, 10 and 255 levels.
+        let c = DVec3::new(0.5, 0.2, 2.0);
+        assert_eq!(rgb8_encoded(c, Normalization::ClampChannel, |v| v * v), [64, 10, 255]);
+        // Divided by its largest channel first: (0.25, 0.1, 1), squared (0.0625, 0.01, 1).
+        assert_eq!(rgb8_encoded(c, Normalization::DivisionFactor, |v| v * v), [16, 3, 255]);
     }
 
     #[test]

@@ -47,6 +47,7 @@
 //!   (`SAbstractShader.shadeWithInterferenceLight`, `SShadowRay`).
 
 use crate::limits;
+use crate::output::srgb_encode;
 use crate::shading::Attenuation;
 use crate::texture::{repeat, texel_index};
 use glam::DVec3;
@@ -367,15 +368,7 @@ pub fn wavelength_color(nm: f64) -> Option<DVec3> {
         -0.9689307 * x + 1.8757561 * y + 0.0415175 * z,
         0.0557101 * x + -0.2040211 * y + 1.0569959 * z,
     );
-    let encode = |c: f64| {
-        let c = c.clamp(0.0, 1.0);
-        if c <= 0.0031308 {
-            c * 12.92
-        } else {
-            1.055 * libm::pow(c, 1.0 / 2.4) - 0.055
-        }
-    };
-    Some(DVec3::new(encode(linear.x), encode(linear.y), encode(linear.z)))
+    Some(linear.to_array().map(srgb_encode).into())
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@
 
 use crate::math::length;
 pub use crate::shading::Attenuation;
-use crate::shading::{Channels, spot_factor};
+use crate::shading::{Channels, largest_spot_factor, spot_factor};
 use glam::DVec3;
 
 /// A point light (also one point of an area light).
@@ -161,28 +161,14 @@ impl Light {
             // N points of colour L / N: at most L in all.
             Light::Area(a) => (&a.color, Some(a.attenuation)),
             // The relative intensity is at most 1 (N² / N² at an instant).
-            Light::Aperture(a) => {
-                let most = a.color.max_element() * a.amplification;
-                return most
-                    * if a.attenuation.constant > 0.0 {
-                        1.0 / a.attenuation.constant
-                    } else {
-                        f64::INFINITY
-                    };
-            }
+            Light::Aperture(a) => return a.color.max_element() * a.amplification * a.attenuation.largest(),
         };
         let spot_max = match self {
-            Light::Spot(s) => s.c_max.max(s.c_min),
+            Light::Spot(s) => largest_spot_factor(s.c_min, s.c_max),
             _ => 1.0,
         };
         // A is largest at d = 0 unless C_const = 0, where it is unbounded.
-        let a_max = atten.map_or(1.0, |a| {
-            if a.constant > 0.0 {
-                1.0 / a.constant
-            } else {
-                f64::INFINITY
-            }
-        });
+        let a_max = atten.map_or(1.0, |a| a.largest());
         color.max_element() * a_max * spot_max
     }
 }

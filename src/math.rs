@@ -1,5 +1,6 @@
-//! Rays, orthonormal frames, the chapter's reflection and refraction laws, and the
-//! floating-point-aware offset that keeps secondary rays off the surface they leave.
+//! Rays, orthonormal frames, the chapter's reflection and refraction laws, the
+//! floating-point-aware offset that keeps secondary rays off the surface they leave, and the
+//! few identities of plane geometry the shapes and lights share.
 
 use glam::{DMat3, DVec3};
 
@@ -20,6 +21,23 @@ impl Ray {
     pub fn at(&self, t: f64) -> DVec3 {
         self.origin + self.dir * t
     }
+
+    /// A ray leaving a surface point `p` (outward normal `n`, absolute error bound `err`)
+    /// along the unit `dir`: from `p` pushed past its rounding error to the side `dir` goes
+    /// ([`offset_origin`]), so that it never meets the surface it leaves at its start.
+    #[inline]
+    pub fn leaving(p: DVec3, n: DVec3, err: f64, dir: DVec3) -> Self {
+        Ray::new(offset_origin(p, n, err, dir), dir)
+    }
+}
+
+/// How a ray along `dir` meets a surface of outward normal `outward`: whether it enters
+/// (arrives against the normal, `dir.N < 0`), and the normal on the ray's side, `N` when it
+/// enters and `-N` when it leaves (the `N` of the laws of reflection and refraction).
+#[inline]
+pub fn facing_normal(dir: DVec3, outward: DVec3) -> (bool, DVec3) {
+    let entering = dir.dot(outward) < 0.0;
+    (entering, if entering { outward } else { -outward })
 }
 
 /// An orthonormal frame whose third axis is a given unit vector; maps between world space
@@ -88,7 +106,7 @@ pub fn refract(v: DVec3, n_normal: DVec3, eta: f64) -> Option<DVec3> {
 }
 
 /// The root's argument of the law of refraction, `1 - n^2 (1 - (E.N)^2)`.
-fn refraction_radicand(eta: f64, e_dot_n: f64) -> f64 {
+pub fn refraction_radicand(eta: f64, e_dot_n: f64) -> f64 {
     1.0 - eta * eta * (1.0 - e_dot_n * e_dot_n)
 }
 
@@ -106,6 +124,20 @@ pub fn total_internal_reflection(eta: f64, e_dot_n: f64) -> bool {
 #[inline(always)]
 pub fn length(v: DVec3) -> f64 {
     v.dot(v).sqrt()
+}
+
+/// `sqrt(max(1 - x^2, 0))`: the other leg of a right triangle of hypotenuse 1 and leg `x`,
+/// the sine of an angle in `[0, pi]` from its cosine (or the cosine of one in
+/// `[-pi/2, pi/2]` from its sine); 0 where rounding puts `|x|` above 1.
+#[inline]
+pub fn other_leg(x: f64) -> f64 {
+    (1.0 - x * x).max(0.0).sqrt()
+}
+
+/// Half the longer diagonal of the parallelogram of edges `a` and `b`,
+/// `max(|a + b|, |a - b|) / 2`: the radius of the ball about its centre that holds it.
+pub fn half_diagonal(a: DVec3, b: DVec3) -> f64 {
+    0.5 * (a + b).length().max((a - b).length())
 }
 
 /// Largest absolute component.
@@ -186,6 +218,30 @@ mod tests {
     }
 
     #[test]
+    fn a_ray_enters_against_the_outward_normal_and_is_given_the_normal_on_its_side() {
+        let down = DVec3::new(0.6, 0.0, -0.8);
+        assert_eq!(facing_normal(down, DVec3::Z), (true, DVec3::Z));
+        assert_eq!(facing_normal(-down, DVec3::Z), (false, -DVec3::Z));
+        // Grazing (dir.N = 0): not entering.
+        assert_eq!(facing_normal(DVec3::X, DVec3::Z), (false, -DVec3::Z));
+    }
+
+    #[test]
+    fn other_legs_and_half_diagonals() {
+        // cos = 0.6: sin = sqrt(1 - 0.36) = 0.8 (to one rounding); |c| a hair above 1: 0.
+        assert!((other_leg(0.6) - 0.8).abs() < 1e-15);
+        assert_eq!(other_leg(1.0), 0.0);
+        assert_eq!(other_leg(1.0 + f64::EPSILON), 0.0);
+        // A 6 x 8 rectangle: diagonal 10, half 5; a parallelogram (3, 0) and (1, 1): the
+        // longer diagonal (4, 1) of length sqrt(17).
+        assert_eq!(half_diagonal(DVec3::new(6.0, 0.0, 0.0), DVec3::new(0.0, 8.0, 0.0)), 5.0);
+        assert_eq!(
+            half_diagonal(DVec3::new(3.0, 0.0, 0.0), DVec3::new(1.0, 1.0, 0.0)),
+            0.5 * 17f64.sqrt()
+        );
+    }
+
+    #[test]
     fn frame_is_orthonormal_and_round_trips() {
         for z in [DVec3::Z, -DVec3::Z, DVec3::new(1.0, 2.0, -3.0).normalize()] {
             let f = Frame::from_z(z);
@@ -201,5 +257,10 @@ mod tests {
         let up = offset_origin(p, DVec3::Z, 1e-9, DVec3::new(0.0, 1.0, 0.5));
         let down = offset_origin(p, DVec3::Z, 1e-9, DVec3::new(0.0, 1.0, -0.5));
         assert!(up.z > 1.0 && down.z < 1.0);
+        // A ray leaving along the offset's side: its origin is `offset_origin`'s, pushed by
+        // err |n|_1 = 1e-9 along +z.
+        let ray = Ray::leaving(p, DVec3::Z, 1e-9, DVec3::Z);
+        assert_eq!((ray.origin, ray.dir), (up, DVec3::Z));
+        assert_eq!(ray.origin, DVec3::new(0.0, 0.0, 1.0 + 1e-9));
     }
 }

@@ -2,7 +2,7 @@
 //! default or sRGB-encoded on request, quantise), `.pfm` and `.exr` (32-bit float radiance,
 //! unclamped, for exact comparisons).
 
-use crate::film::{Film, encode_png, quantize};
+use crate::film::{Film, clamp_unit, encode_png, rgb8_encoded};
 use std::path::Path;
 
 /// An output file format.
@@ -38,7 +38,7 @@ impl Format {
 /// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1]:
 /// `12.92 c` for `c <= 0.0031308`, else `1.055 c^(1/2.4) - 0.055`.
 pub fn srgb_encode(c: f64) -> f64 {
-    let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
+    let c = clamp_unit(c);
     if c <= 0.003_130_8 {
         12.92 * c
     } else {
@@ -49,7 +49,7 @@ pub fn srgb_encode(c: f64) -> f64 {
 /// The inverse of [`srgb_encode`] (IEC 61966-2-1), from an encoded value in [0, 1] back to
 /// linear: `c / 12.92` for `c <= 0.04045`, else `((c + 0.055) / 1.055)^2.4`.
 pub fn srgb_decode(c: f64) -> f64 {
-    let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
+    let c = clamp_unit(c);
     if c <= 0.040_45 {
         c / 12.92
     } else {
@@ -62,7 +62,7 @@ pub fn srgb_decode(c: f64) -> f64 {
 pub fn to_srgb8(film: &Film) -> Vec<u8> {
     film.pixels
         .iter()
-        .flat_map(|&p| film.normalization.apply(p).to_array().map(|c| quantize(srgb_encode(c))))
+        .flat_map(|&p| rgb8_encoded(p, film.normalization, srgb_encode))
         .collect()
 }
 
@@ -108,6 +108,7 @@ pub fn encode(film: &Film, format: Format, srgb: bool) -> Result<Vec<u8>, String
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::film::quantize;
     use glam::DVec3;
 
     #[test]

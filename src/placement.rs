@@ -5,6 +5,7 @@
 //! Points are returned for the unit shape (unit sphere, segment [0, 1], unit square
 //! [0, 1]^2); `area_light` maps them onto the light's shape.
 
+use crate::math::other_leg;
 use crate::sampling::Stream;
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
@@ -43,6 +44,11 @@ impl Placement {
 /// `1 / golden ratio`.
 const INV_PHI: f64 = 0.618_033_988_749_894_9;
 
+/// Point `i` of the golden-ratio sequence shifted by `offset`: `frac(offset + i / phi)`.
+fn golden(offset: f64, i: usize) -> f64 {
+    (offset + i as f64 * INV_PHI).fract()
+}
+
 /// `n` pairs `(u, v)` in [0, 1)^2 for the strategy (the chapter's recipe is applied by
 /// the sphere mapping, not here).
 fn unit_pairs(placement: Placement, n: usize, rng: &mut Stream) -> Vec<DVec2> {
@@ -65,7 +71,7 @@ fn unit_pairs(placement: Placement, n: usize, rng: &mut Stream) -> Vec<DVec2> {
         Placement::Fibonacci => {
             let offset = rng.next_f64();
             (0..n)
-                .map(|i| DVec2::new((i as f64 + 0.5) / n as f64, (offset + i as f64 * INV_PHI).fract()))
+                .map(|i| DVec2::new((i as f64 + 0.5) / n as f64, golden(offset, i)))
                 .collect()
         }
     }
@@ -88,7 +94,7 @@ pub fn on_sphere(placement: Placement, n: usize, rng: &mut Stream) -> Vec<DVec3>
                 _ => {
                     // z uniform in [-1, 1] (Archimedes: equal z bands have equal areas).
                     let z = 1.0 - 2.0 * uv.x;
-                    let r = (1.0 - z * z).max(0.0).sqrt();
+                    let r = other_leg(z);
                     DVec3::new(r * cos_phi, r * sin_phi, z)
                 }
             }
@@ -101,7 +107,7 @@ pub fn on_segment(placement: Placement, n: usize, rng: &mut Stream) -> Vec<f64> 
     match placement {
         Placement::Fibonacci => {
             let offset = rng.next_f64();
-            (0..n).map(|i| (offset + i as f64 * INV_PHI).fract()).collect()
+            (0..n).map(|i| golden(offset, i)).collect()
         }
         _ => unit_pairs(placement, n, rng).into_iter().map(|uv| uv.x).collect(),
     }
@@ -153,6 +159,19 @@ mod tests {
         slices.sort();
         assert_eq!(bands, (0..16).collect::<Vec<_>>());
         assert_eq!(slices, (0..16).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn golden_ratio_sequence_by_hand() {
+        // frac(0.25 + 0 / phi) = 0.25; frac(0.5 + 1 / phi) = 0.118033988749895;
+        // frac(0.5 + 2 / phi) = frac(1.736067977499790) = 0.736067977499790.
+        assert_eq!(golden(0.25, 0), 0.25);
+        assert!((golden(0.5, 1) - 0.118_033_988_749_895).abs() < 1e-15);
+        assert!((golden(0.5, 2) - 0.736_067_977_499_790).abs() < 1e-14);
+        // The segment's points are the sequence itself, from the stream's one offset.
+        let offset = rng(4).next_f64();
+        let t = on_segment(Placement::Fibonacci, 3, &mut rng(4));
+        assert_eq!(t, (0..3).map(|i| golden(offset, i)).collect::<Vec<_>>());
     }
 
     #[test]

@@ -425,6 +425,7 @@ fn render_rows_with<T: Send + Clone, const K: usize, P: PixelTracer<K>>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampling::unit_interval;
 
     #[test]
     fn grid_fractions_are_divisions_to_the_bit() {
@@ -443,7 +444,7 @@ mod tests {
                 let jitter = match i {
                     0 => 0.0,
                     1 => 1.0 - f64::EPSILON / 2.0,
-                    _ => (bits >> 11) as f64 * 2f64.powi(-53),
+                    _ => unit_interval(bits),
                 };
                 let t = f64::from(i % n) + jitter;
                 assert_eq!(

@@ -76,7 +76,7 @@ fn key_words(seed: u64, purpose: Purpose) -> [u32; 8] {
 
 /// The number in [0, 1) of a random `u64`'s 53 high bits.
 #[inline(always)]
-fn unit_interval(bits: u64) -> f64 {
+pub fn unit_interval(bits: u64) -> f64 {
     (bits >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 

@@ -60,6 +60,16 @@ impl Attenuation {
     pub fn factor(&self, d: f64) -> f64 {
         attenuation(self.constant, self.linear, self.quadratic, d)
     }
+
+    /// The largest `A` at any distance: `1 / C_const`, its value at `d = 0` (the
+    /// coefficients are not negative), unbounded (infinite) when `C_const = 0`.
+    pub fn largest(&self) -> f64 {
+        if self.constant > 0.0 {
+            1.0 / self.constant
+        } else {
+            f64::INFINITY
+        }
+    }
 }
 
 /// Spotlight angular factor (chapter 7.4b), with `o` the spot's unit orientation and `d`
@@ -68,11 +78,26 @@ impl Attenuation {
 /// `o.d >= cos(theta/2)`, and 0 outside. `cos_half` is `cos(theta/2)`. A cone of zero
 /// opening (`cos_half = 1`) lights nothing.
 pub fn spot_factor(o_dot_d: f64, cos_half: f64, c_min: f64, c_max: f64) -> f64 {
-    if o_dot_d < cos_half || cos_half >= 1.0 {
+    if outside_spot_cone(o_dot_d, cos_half) {
         return 0.0;
     }
     let t = (o_dot_d - 1.0) / (cos_half - 1.0);
     (1.0 - t) * c_max + t * c_min
+}
+
+/// The largest [`spot_factor`] in the cone: `max(C_max, C_min)`, at the axis or at the
+/// edge (the factor is linear in `t` between them).
+#[inline]
+pub fn largest_spot_factor(c_min: f64, c_max: f64) -> f64 {
+    c_max.max(c_min)
+}
+
+/// Whether the unit direction `d` from a spotlight to a point is outside its cone
+/// (chapter 7.4b): `o.d < cos(theta/2)`, from `o.d` and `cos(theta/2)`; a cone of zero
+/// opening (`cos(theta/2) = 1`) holds no direction.
+#[inline]
+pub fn outside_spot_cone(o_dot_d: f64, cos_half: f64) -> bool {
+    o_dot_d < cos_half || cos_half >= 1.0
 }
 
 /// Lambert's cosine (slides): `max(N.L, 0)`, from `N.L`.
@@ -383,6 +408,16 @@ mod tests {
         close(attenuation(1.0, 0.5, 0.25, 2.0), 1.0 / 3.0);
         // No attenuation: A = 1 at any distance.
         close(attenuation(1.0, 0.0, 0.0, 1234.5), 1.0);
+        // The largest A, at d = 0: 1 / C_const = 1 / 0.5 = 2; unbounded without C_const.
+        let a = Attenuation {
+            constant: 0.5,
+            linear: 0.25,
+            quadratic: 0.125,
+        };
+        assert_eq!(a.largest(), 2.0);
+        assert_eq!(a.largest(), a.factor(0.0));
+        let unbounded = Attenuation { constant: 0.0, ..a };
+        assert_eq!(unbounded.largest(), f64::INFINITY);
     }
 
     #[test]
@@ -399,6 +434,13 @@ mod tests {
         close(spot_factor(0.49, 0.5, 0.2, 1.0), 0.0);
         // Zero opening: dark even on the axis.
         close(spot_factor(1.0, 1.0, 0.0, 1.0), 0.0);
+        // The cone itself: the edge is inside, below it outside, nothing in a zero opening.
+        assert!(!outside_spot_cone(0.5, 0.5));
+        assert!(outside_spot_cone(0.49, 0.5));
+        assert!(outside_spot_cone(1.0, 1.0));
+        // The largest factor: C_max on the axis, or C_min at the edge when it is larger.
+        assert_eq!(largest_spot_factor(0.2, 1.0), 1.0);
+        assert_eq!(largest_spot_factor(0.8, 0.5), 0.8);
     }
 
     #[test]

@@ -14,6 +14,7 @@
 //! Images are read through the `image` crate (PNG, JPEG, BMP, TGA, PNM, EXR); every error names
 //! the file.
 
+use crate::film::level_value;
 use glam::DVec3;
 use std::path::Path;
 
@@ -118,7 +119,7 @@ impl Texture {
             height,
             texels: rgb
                 .chunks_exact(3)
-                .map(|c| DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64) / 255.0)
+                .map(|c| DVec3::new(level_value(c[0]), level_value(c[1]), level_value(c[2])))
                 .collect(),
         }
     }

@@ -11,8 +11,9 @@ use crate::camera::Camera;
 use crate::caustics::{self, PhotonMap};
 use crate::light::Light;
 use crate::material::Material;
-use crate::math::Ray;
+use crate::math::{Ray, other_leg};
 use crate::scene::{Object, SampleGrid, Scene};
+use crate::shading::transparent_filter;
 use crate::shape::{Shape, SurfaceHit, misses_bounding_sphere};
 use crate::skips::{Skip, Skips};
 use along::BallsAlong;
@@ -63,10 +64,7 @@ pub(crate) fn cones_apart((a, cos_a): (DVec3, f64), (b, cos_b): (DVec3, f64)) ->
     if cos_a <= 0.0 || cos_b <= 0.0 {
         return false;
     }
-    let (sin_a, sin_b) = (
-        (1.0 - cos_a * cos_a).max(0.0).sqrt(),
-        (1.0 - cos_b * cos_b).max(0.0).sqrt(),
-    );
+    let (sin_a, sin_b) = (other_leg(cos_a), other_leg(cos_b));
     a.dot(b) < cos_a * cos_b - sin_a * sin_b - 1e-9
 }
 
@@ -345,6 +343,14 @@ impl<'s> World<'s> {
 
     pub fn material_of(&self, object: usize) -> &Material {
         &self.scene.materials[self.scene.objects[object].material()]
+    }
+
+    /// The colour `S_g` a transparent object filters a shadow ray's light by, under the
+    /// scene's conventions ([`transparent_filter`]).
+    #[inline]
+    pub fn filter_color(&self, object: usize) -> DVec3 {
+        let mat = self.material_of(object);
+        transparent_filter(self.scene.settings.conventions.shadow_filter, mat.kt, mat.color)
     }
 
     /// The points of area light `index` (an [`AreaLight`](crate::area_light::AreaLight))

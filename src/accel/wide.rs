@@ -460,6 +460,7 @@ impl SlotTest for F64Slots {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampling::unit_interval;
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
 
@@ -587,7 +588,7 @@ mod tests {
     #[test]
     fn both_tests_enter_every_box_the_ray_meets_and_little_more() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
-        let mut uniform = move || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let mut uniform = move || unit_interval(rng.next_u64());
         let coords = [
             -2.0,
             -1.0,

@@ -18,10 +18,10 @@
 //! of a `per_sample` area light are taken as its `fixed` points would be.
 
 use crate::light::{Attenuation, Light};
-use crate::math::{Frame, Ray};
+use crate::math::{Frame, Ray, other_leg};
 use crate::sampling::Stream;
 use crate::scene::Scene;
-use crate::shading::spot_factor;
+use crate::shading::{largest_spot_factor, spot_factor};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -135,12 +135,12 @@ impl Emitters {
                 let dist = to_center.length();
                 let (axis, cos_max) = if dist > radius {
                     let sin = radius / dist;
-                    (to_center / dist, (1.0 - sin * sin).sqrt())
+                    (to_center / dist, other_leg(sin))
                 } else {
                     (DVec3::Z, -1.0)
                 };
                 let omega = 2.0 * PI * (1.0 - cos_max);
-                let peak = spot.map_or(1.0, |s| s.c_max.max(s.c_min));
+                let peak = spot.map_or(1.0, |s| largest_spot_factor(s.c_min, s.c_max));
                 let reach = dist.max(radius);
                 // The flux the target intercepts, at most: what sets the emitter's share.
                 weights.push(color.element_sum() * peak * omega * attenuation.factor(reach) * reach * reach);
@@ -273,7 +273,7 @@ impl Emitters {
 /// since `d omega = d cos(theta) d phi`).
 pub fn in_cone(cos_max: f64, u: f64, v: f64) -> DVec3 {
     let cos = 1.0 - u * (1.0 - cos_max);
-    let sin = (1.0 - cos * cos).max(0.0).sqrt();
+    let sin = other_leg(cos);
     let phi = 2.0 * PI * v;
     DVec3::new(sin * libm::cos(phi), sin * libm::sin(phi), cos)
 }

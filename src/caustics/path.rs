@@ -20,8 +20,7 @@
 use super::emit::Start;
 use super::map::Photon;
 use crate::accel::Accel;
-use crate::conventions::InternalReflection;
-use crate::math::{Ray, offset_origin, reflect, refract};
+use crate::math::{Ray, facing_normal, reflect, refract};
 use crate::sampling::Stream;
 use crate::scene::Scene;
 use crate::shading::transmission_weight;
@@ -45,8 +44,7 @@ pub fn trace(scene: &Scene, accel: &Accel, start: Start, bounces: u32, rng: &mut
         let mat = &scene.materials[scene.objects[object].material()];
         let (point, err) = shape.hit_point(&ray, hit.t);
         travelled += hit.t;
-        let entering = ray.dir.dot(hit.normal) < 0.0;
-        let n = if entering { hit.normal } else { -hit.normal };
+        let (entering, n) = facing_normal(ray.dir, hit.normal);
         if turned && mat.receives_photons() {
             out.push(Photon::new(point, ray.dir, flux * start.spread.factor(travelled)));
         }
@@ -62,11 +60,7 @@ pub fn trace(scene: &Scene, accel: &Accel, start: Start, bounces: u32, rng: &mut
                     refracted = Some(t.normalize());
                     kt = mat.kt;
                 }
-                None => {
-                    if conventions.total_internal_reflection == InternalReflection::Reflected {
-                        kr += mat.kt;
-                    }
-                }
+                None => kr = conventions.total_internal_reflection.reflected_weight(kr, mat.kt),
             }
         }
         let k = kr + kt;
@@ -88,6 +82,6 @@ pub fn trace(scene: &Scene, accel: &Accel, start: Start, bounces: u32, rng: &mut
                 reflect(ray.dir, n).normalize()
             }
         };
-        ray = Ray::new(offset_origin(point, hit.normal, err, dir), dir);
+        ray = Ray::leaving(point, hit.normal, err, dir);
     }
 }

@@ -38,15 +38,12 @@ pub fn flip_heat_map(values: &[f32], width: u32, height: u32) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::film::level_value;
+    use crate::output::srgb_decode;
 
     /// An sRGB-encoded 8-bit level as linear light (IEC 61966-2-1).
     fn linear(level: u8) -> f64 {
-        let c = level as f64 / 255.0;
-        if c <= 0.04045 {
-            c / 12.92
-        } else {
-            libm::pow((c + 0.055) / 1.055, 2.4)
-        }
+        srgb_decode(level_value(level))
     }
 
     /// CIELAB (D65 white) of linear sRGB, Hunt-adjusted: `a` and `b` scaled by `0.01 L`.

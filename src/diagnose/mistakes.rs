@@ -13,9 +13,9 @@
 
 use crate::conventions::{Conventions, ShadowFilter};
 use crate::material::Material;
-use crate::math::{Ray, mirror, refract};
+use crate::math::{Ray, mirror, refract, refraction_radicand};
 use crate::scene::{Scene, Specular};
-use crate::shading::{phong, positive_part, pow, transparent_filter};
+use crate::shading::{outside_spot_cone, phong, positive_part, pow, transparent_filter};
 use crate::shape::{NormalInterpolation, Shape, SmoothTriangle, SurfaceHit};
 use crate::trace::Formulas;
 use crate::trace::formulas::AmbientContext;
@@ -266,7 +266,7 @@ fn refraction_cosine_sign(v: DVec3, n_normal: DVec3, eta: f64) -> Option<DVec3> 
 /// is always refracted.
 fn refract_always(v: DVec3, n_normal: DVec3, eta: f64) -> Option<DVec3> {
     let cos_i = (-v).dot(n_normal);
-    let radicand = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+    let radicand = refraction_radicand(eta, cos_i);
     Some(eta * v + (eta * cos_i - radicand.abs().sqrt()) * n_normal)
 }
 
@@ -302,7 +302,7 @@ fn never_faces_away(_n_dot_l: f64) -> bool {
 
 /// A spotlight falling off as the cosine, `C_theta = C_max (o.d)`, inside the cone.
 fn cosine_spot(o_dot_d: f64, cos_half: f64, _c_min: f64, c_max: f64) -> f64 {
-    if o_dot_d < cos_half || cos_half >= 1.0 {
+    if outside_spot_cone(o_dot_d, cos_half) {
         return 0.0;
     }
     c_max * o_dot_d

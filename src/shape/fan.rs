@@ -146,6 +146,7 @@ fn chunk_verdicts<S: FanShape>(shape: &S, origin: S::Origin, chunk: &Chunk, out:
 mod tests {
     use super::*;
     use crate::math::Ray;
+    use crate::sampling::unit_interval;
     use crate::shape::{Aabb, Cone, Cuboid, Cylinder, Torus};
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
@@ -170,7 +171,7 @@ mod tests {
     /// decided verdict is `occludes`'s answer, and the oracle's where it has one.
     fn check_fans(shape: &Shape, center: DVec3, size: f64, seed: u64, oracle: Oracle) -> Counts {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let mut u = move || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53) * 2.0 - 1.0;
+        let mut u = move || unit_interval(rng.next_u64()) * 2.0 - 1.0;
         let mut counts = Counts::default();
         for f in 0..120 {
             let mut point = |half: f64| center + half * DVec3::new(u(), u(), u());

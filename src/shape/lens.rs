@@ -14,7 +14,7 @@
 //! [`super::sphere::sphere_roots`], the side as the open tube) and the nearest hit kept.
 
 use super::sphere::sphere_roots;
-use super::spherical_cap::sphere_offset;
+use super::spherical_cap::{cap_height, sphere_offset};
 use super::{Aabb, Cylinder, SurfaceHit, gamma, l1, nearer};
 use crate::math::Ray;
 use glam::DVec3;
@@ -76,13 +76,7 @@ impl Lens {
                 ));
             }
         }
-        let hollow = |c: f64| {
-            if c < 0.0 {
-                c.abs() - sphere_offset(radius, c)
-            } else {
-                0.0
-            }
-        };
+        let hollow = |c: f64| Lens::hollow(radius, c);
         let left = thickness - hollow(curvature1) - hollow(curvature2);
         (left < 0.0).then(|| {
             (
@@ -100,15 +94,16 @@ impl Lens {
         self.caps
     }
 
-    /// The height `|C| - sqrt(C^2 - R^2)` of a cap of curvature `c`.
-    fn cap_height(&self, c: f64) -> f64 {
-        c.abs() - sphere_offset(self.radius, c)
+    /// How deep a cap of rim radius `radius` and curvature `c` hollows the lens: a concave
+    /// cap's height `|C| - sqrt(C^2 - R^2)` ([`cap_height`]), 0 for a convex one.
+    pub fn hollow(radius: f64, c: f64) -> f64 {
+        if c < 0.0 { cap_height(radius, c) } else { 0.0 }
     }
 
     /// The extent along the axis from `P1`: from the apex of a convex cap 1 (below 0) to
     /// that of a convex cap 2 (beyond `e`).
     fn extent(&self) -> (f64, f64) {
-        let bulge = |c: f64| if c > 0.0 { self.cap_height(c) } else { 0.0 };
+        let bulge = |c: f64| if c > 0.0 { cap_height(self.radius, c) } else { 0.0 };
         (-bulge(self.curvature1), self.thickness + bulge(self.curvature2))
     }
 
@@ -194,7 +189,7 @@ impl Lens {
         let (r1, r2) = (self.curvature1, -self.curvature2);
         let (lo, hi) = self.extent();
         // The hollows of concave caps take from the thickness on the axis.
-        let hollow = |c: f64| if c < 0.0 { self.cap_height(c) } else { 0.0 };
+        let hollow = |c: f64| Lens::hollow(self.radius, c);
         let d = hi - lo - hollow(self.curvature1) - hollow(self.curvature2);
         1.0 / ((n - 1.0) * (1.0 / r1 - 1.0 / r2 + (n - 1.0) * d / (n * r1 * r2)))
     }
@@ -219,7 +214,9 @@ mod tests {
         assert_eq!(l.extent(), (-1.0, 3.0));
         let b = l.bounds().unwrap();
         assert_eq!((b.min, b.max), (DVec3::new(-3., -3., -1.), DVec3::new(3., 3., 3.)));
-        // Concave at P1, curvature -5: its hollow is 1 deep; an edge of 0.5 is too short.
+        // Concave at P1, curvature -5: its hollow is 5 - sqrt(25 - 9) = 1 deep (a convex
+        // cap hollows nothing); an edge of 0.5 is too short.
+        assert_eq!((Lens::hollow(3.0, -5.0), Lens::hollow(3.0, 5.0)), (1.0, 0.0));
         assert!(Lens::check(0.5, 3.0, -5.0, 5.0).is_some());
         assert_eq!(Lens::check(1.0, 3.0, -5.0, 5.0), None);
         assert_eq!(Lens::check(0.0, 3.0, 5.0, 5.0), None);

@@ -41,7 +41,7 @@ pub use torus::{QuarticMethod, Torus};
 pub use transformed::{Transform, Transformed};
 pub use triangle::Triangle;
 
-use crate::math::Ray;
+use crate::math::{Ray, half_diagonal};
 use glam::DVec3;
 
 /// A surface hit: ray parameter and the outward unit normal there.
@@ -196,7 +196,6 @@ impl Shape {
     /// A ball containing the whole shape (center, radius), as small as is simple to say;
     /// `None` for unbounded shapes. Shadow rays that miss it miss the shape.
     pub fn bounding_sphere(&self) -> Option<(DVec3, f64)> {
-        let half_diagonal = |a: DVec3, b: DVec3| 0.5 * (a + b).length().max((a - b).length());
         Some(match self {
             Shape::Plane(_) => return None,
             Shape::Rectangle(r) => (r.corner + 0.5 * (r.edge1 + r.edge2), half_diagonal(r.edge1, r.edge2)),
@@ -340,6 +339,14 @@ pub(crate) fn first_root((t0, t1): (f64, f64), t_min: f64, t_max: f64) -> f64 {
     if (t0 > t_min) & (t0 < t_max) { t0 } else { later }
 }
 
+/// A ball's radius padded so that rounding never rejects a ray that meets it, seen from a
+/// point `offset` away from its centre: `r (1 + 1e-9) + 1e-9 |offset|_1` (the 1-norm, at
+/// least the length, pads without a square root).
+#[inline(always)]
+pub(crate) fn padded_radius(radius: f64, offset: DVec3) -> f64 {
+    radius * (1.0 + 1e-9) + 1e-9 * l1(offset)
+}
+
 /// Whether the ray misses the ball (`center`, `radius`) within `(t_min, t_max)` by a clear
 /// margin (relative 1e-9 of the radius and of the distance): then it misses every shape
 /// inside the ball, whatever that shape's own routine would compute, so the routine need not
@@ -349,7 +356,7 @@ pub(crate) fn first_root((t0, t1): (f64, f64), t_min: f64, t_max: f64) -> f64 {
 pub(crate) fn misses_bounding_sphere(ray: &Ray, t_min: f64, t_max: f64, (center, radius): (DVec3, f64)) -> bool {
     let f = ray.origin - center;
     let b = f.dot(ray.dir);
-    let reach = radius * (1.0 + 1e-9) + 1e-9 * l1(f);
+    let reach = padded_radius(radius, f);
     let perp = f - b * ray.dir;
     // Every comparison made, no branch (see `fan`).
     (perp.length_squared() > reach * reach) | (-b + reach < t_min) | (-b - reach > t_max)
@@ -414,11 +421,12 @@ pub(crate) mod test_util {
     /// `count` seeded rays from points of the cube of half-side `2 size` around `center`
     /// (some inside the shape) towards points of the cube of half-side `1.2 size`.
     pub fn random_rays(seed: u64, center: DVec3, size: f64, count: usize) -> Vec<Ray> {
+        use crate::sampling::unit_interval;
         use rand_chacha::ChaCha8Rng;
         use rand_core::{Rng, SeedableRng};
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut point = |half: f64| {
-            let mut u = || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53) * 2.0 - 1.0;
+            let mut u = || unit_interval(rng.next_u64()) * 2.0 - 1.0;
             center + half * DVec3::new(u(), u(), u())
         };
         (0..count)
@@ -465,6 +473,7 @@ pub(crate) mod test_util {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampling::unit_interval;
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
 
@@ -540,6 +549,14 @@ mod tests {
     }
 
     #[test]
+    fn a_ball_is_padded_by_a_relative_1e_9_of_its_radius_and_distance() {
+        // Radius 2 seen from (3, -4, 0) away: 2 (1 + 1e-9) + 1e-9 (3 + 4) = 2 + 9e-9.
+        let r = padded_radius(2.0, DVec3::new(3.0, -4.0, 0.0));
+        assert!((r - (2.0 + 9e-9)).abs() < 1e-15, "{r}");
+        assert_eq!(padded_radius(0.0, DVec3::ZERO), 0.0);
+    }
+
+    #[test]
     fn balls_by_hand() {
         // Cone of height 2.5 and radius 1: the ball through the rim and the apex has its
         // center at z0 = (6.25 - 1) / 5 = 1.05 and radius 2.5 - 1.05 = 1.45; the inscribed
@@ -570,7 +587,7 @@ mod tests {
     #[test]
     fn bounding_spheres_hold_every_hit_and_inner_balls_are_inside() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
-        let mut unit = move || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let mut unit = move || unit_interval(rng.next_u64());
         for shape in shapes() {
             let (center, radius) = shape.bounding_sphere().unwrap();
             let mut direction = || {

@@ -65,9 +65,10 @@ impl SphericalCap {
         (self.sphere_center, self.curvature.abs())
     }
 
-    /// The cap's height `h = |C| - sqrt(C^2 - R^2)`: from the disk's plane to its apex.
+    /// The cap's height `h = |C| - sqrt(C^2 - R^2)`: from the disk's plane to its apex
+    /// ([`cap_height`]).
     pub fn height(&self) -> f64 {
-        self.curvature.abs() - sphere_offset(self.radius, self.curvature)
+        cap_height(self.radius, self.curvature)
     }
 
     /// Whether the point `p` of the sphere is on the cap's side of the disk's plane.
@@ -107,6 +108,12 @@ impl SphericalCap {
     pub fn bounding_sphere(&self) -> (DVec3, f64) {
         (self.center, self.radius)
     }
+}
+
+/// The height `h = |C| - sqrt(C^2 - R^2)` of a cap of rim radius `R` cut from a sphere of
+/// signed curvature radius `C` (`|C| >= R`): from the rim's plane to the apex.
+pub fn cap_height(radius: f64, curvature: f64) -> f64 {
+    curvature.abs() - sphere_offset(radius, curvature)
 }
 
 /// `sqrt(C^2 - R^2)`: the distance from the disk's plane to the sphere's center (0 when

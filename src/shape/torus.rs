@@ -561,10 +561,11 @@ mod tests {
         // through the hole, grazing the tube, and along the equatorial plane: `occludes`
         // (with its shortcuts) answers exactly as the quartic does, and every shortcut acts,
         // the finer ones on rays the fan verdicts' shortcuts leave to the quartic.
+        use crate::sampling::unit_interval;
         use rand_chacha::ChaCha8Rng;
         use rand_core::{Rng, SeedableRng};
         let mut rng = ChaCha8Rng::seed_from_u64(11);
-        let mut u = move |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let mut u = move |lo: f64, hi: f64| lo + (hi - lo) * unit_interval(rng.next_u64());
         let torus = Torus::new(DVec3::new(4., 3., 2.), DVec3::new(0.2, -0.1, 1.0), 1.5, 0.5);
         let (mut hits, mut cleared, mut entered, mut risen) = (0, 0, 0, 0);
         let (mut sampled, mut finely_cleared, mut solved) = (0, 0, 0);

@@ -261,6 +261,7 @@ mod tests {
     use super::super::Shape;
     use super::super::test_util::*;
     use super::*;
+    use crate::sampling::unit_interval;
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
 
@@ -339,7 +340,7 @@ mod tests {
             .map(|k| Triangle::in_mesh(&v, [0, 1 + k, 1 + (k + 1) % 4]).unwrap())
             .collect();
         let mut rng = ChaCha8Rng::seed_from_u64(3);
-        let mut u = move || (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let mut u = move || unit_interval(rng.next_u64());
         let mut hits_by_count = [0; 5];
         for k in 0..200_000 {
             // The center, or a point of one of the four shared edges (center to a corner,

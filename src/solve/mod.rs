@@ -432,10 +432,11 @@ mod tests {
         // outside [0, 10], some clustered, some double), scaled by a random factor, on
         // [0, 10] and on a random sub-interval: every root visited, and the visits stopped
         // after the k-th, give the eager isolator's roots to the bit.
+        use crate::sampling::unit_interval;
         use rand_chacha::ChaCha8Rng;
         use rand_core::{Rng, SeedableRng};
         let mut draw = ChaCha8Rng::seed_from_u64(4);
-        let mut uniform = move || (draw.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let mut uniform = move || unit_interval(draw.next_u64());
         let mut roots_seen = 0;
         for case in 0..20_000 {
             let degree = 1 + case % 4;

@@ -21,7 +21,7 @@ pub mod reference;
 
 use crate::math::{Frame, Ray};
 use crate::sampling::{Purpose, Stream};
-use crate::shape::{QuarticMethod, Shape, Transform};
+use crate::shape::{Lens, QuarticMethod, Shape, Transform};
 use dd::{Dd, Dd3};
 use glam::DVec3;
 use reference::Spec;
@@ -215,13 +215,7 @@ fn random_spec(shape: &str, s: f64, spread: f64, g: &mut Gen) -> Spec {
             let curvatures = [curvature(), curvature()];
             // The concave caps' depths, then an edge of up to 1.5 sizes beyond them; a
             // quarter of the biconvex lenses have none.
-            let hollow = |c: f64| {
-                if c < 0.0 {
-                    c.abs() - ((c - r) * (c + r)).max(0.0).sqrt()
-                } else {
-                    0.0
-                }
-            };
+            let hollow = |c: f64| Lens::hollow(r, c);
             let convex = curvatures[0] > 0.0 && curvatures[1] > 0.0;
             let e = if convex && g.0.next_f64() < 0.25 {
                 0.0

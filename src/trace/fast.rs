@@ -20,14 +20,12 @@
 //! [`Reference`]: super::Reference
 
 use super::{LightShare, NoRecord, RayCounts, RayKind, Recorder, SampleKey, Surface, caustic_share, point_light_terms};
-use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, aperture_share};
 use crate::material::Material;
-use crate::math::{Ray, offset_origin, reflect, refract};
+use crate::math::{Ray, reflect, refract};
 use crate::scene::ShadingModel;
-use crate::shading::{
-    ambient, beneath_notice, faces_away, local_weight, no_light, shadow_filter, transmission_weight, transparent_filter,
-};
+use crate::shading::{ambient, beneath_notice, faces_away, local_weight, no_light, shadow_filter, transmission_weight};
+use crate::shape::padded_radius;
 use crate::skips::Skip;
 use crate::world::{Candidate, World};
 use glam::DVec3;
@@ -287,9 +285,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
                     Some(t) => refracted = Some(t.normalize()),
                     None => {
                         // Total internal reflection: the transmitted energy is reflected, or lost.
-                        if conventions.total_internal_reflection == InternalReflection::Reflected {
-                            kr += mat.kt;
-                        }
+                        kr = conventions.total_internal_reflection.reflected_weight(kr, mat.kt);
                         self.count_members(deeper, |c| c.total_internal_reflections += 1);
                         rec.total_internal_reflection();
                     }
@@ -609,7 +605,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
         self.counts.shadow += 1;
         let world = self.world;
         let objects = &world.scene.objects;
-        let ray = Ray::new(offset_origin(point, outward, err, inc.to_light), inc.to_light);
+        let ray = Ray::leaving(point, outward, err, inc.to_light);
         let t_max = inc.distance;
         rec.shadow_ray(&ray, t_max);
         let skips = world.skips;
@@ -702,11 +698,7 @@ impl<'w, 's, const K: usize> Tracer<'w, 's, K> {
     fn crossed_filter<R: Recorder>(&mut self, rec: &mut R) -> DVec3 {
         rec.shadow_crossed(&self.crossed);
         let world = self.world;
-        let rule = world.scene.settings.conventions.shadow_filter;
-        shadow_filter(self.crossed.iter().map(|&i| {
-            let mat = world.material_of(i);
-            transparent_filter(rule, mat.kt, mat.color)
-        }))
+        shadow_filter(self.crossed.iter().map(|&i| world.filter_color(i)))
     }
 }
 
@@ -724,7 +716,6 @@ fn below_horizon(point: DVec3, n: DVec3, center: DVec3, radius: f64) -> bool {
 fn segment_meets_sphere(ray: &Ray, t_max: f64, center: DVec3, radius: f64) -> bool {
     let to_center = center - ray.origin;
     let t = to_center.dot(ray.dir).clamp(0.0, t_max);
-    // 1e-9 of the 1-norm (>= the length) pads without a square root.
-    let reach = radius * (1.0 + 1e-9) + 1e-9 * to_center.abs().element_sum();
+    let reach = padded_radius(radius, to_center);
     (ray.origin + t * ray.dir - center).length_squared() <= reach * reach
 }

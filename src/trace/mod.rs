@@ -20,7 +20,7 @@
 use crate::caustics::Estimate;
 use crate::light::Incidence;
 use crate::material::{Material, Reflectance};
-use crate::math::{Ray, offset_origin};
+use crate::math::{Ray, facing_normal};
 use crate::scene::{ShadingModel, Specular};
 use crate::shading::{blinn, caustic, diffuse, phong, specular};
 use crate::shape::SurfaceHit;
@@ -79,11 +79,17 @@ pub(crate) fn point_light_terms_with(
 ) -> (DVec3, DVec3) {
     let spec = spec_term(model.specular, at.n, to_light, at.eye, mat.shininess);
     let r = at.reflectance(mat);
-    let kd = if model.diffuse { r.kd } else { 0.0 };
     (
-        diffuse(light, kd, r.diffuse, n_dot_l),
+        diffuse(light, diffuse_coefficient(model, &r), r.diffuse, n_dot_l),
         specular(light, r.ks, r.tint, spec),
     )
+}
+
+/// The `k_d` a point light's diffuse term is computed with: the reflectance's, or 0 under
+/// a shading model without the diffuse term.
+#[inline(always)]
+pub(crate) fn diffuse_coefficient(model: ShadingModel, r: &Reflectance) -> f64 {
+    if model.diffuse { r.kd } else { 0.0 }
 }
 
 /// The caustic share at a hit of a camera path, `E k_d S` ([`caustic`]) for the irradiance
@@ -248,7 +254,7 @@ impl Surface {
     #[inline]
     pub(crate) fn hit(world: &World, ray: &Ray, object: usize, hit: &SurfaceHit) -> Surface {
         let (point, err) = world.objects()[object].shape.hit_point(ray, hit.t);
-        let entering = ray.dir.dot(hit.normal) < 0.0;
+        let (entering, n) = facing_normal(ray.dir, hit.normal);
         // A family's members share the scene's textures (their keys hold them), so the
         // world's material says whether the point needs coordinates.
         let uv = if world.has_textures && world.material_of(object).images().is_some() {
@@ -258,7 +264,7 @@ impl Surface {
         };
         Surface {
             point,
-            n: if entering { hit.normal } else { -hit.normal },
+            n,
             outward: hit.normal,
             err,
             eye: -ray.dir,
@@ -276,8 +282,8 @@ impl Surface {
     }
 
     /// A ray leaving this point along `dir` (a shadow, reflected or refracted ray): from the
-    /// point, offset past its rounding error to the side `dir` goes ([`offset_origin`]).
+    /// point, offset past its rounding error to the side `dir` goes ([`Ray::leaving`]).
     pub(crate) fn ray_along(&self, dir: DVec3) -> Ray {
-        Ray::new(offset_origin(self.point, self.outward, self.err, dir), dir)
+        Ray::leaving(self.point, self.outward, self.err, dir)
     }
 }

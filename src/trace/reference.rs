@@ -24,7 +24,6 @@
 
 use super::formulas::{AmbientContext, Chapter, FormulaTable};
 use super::{SampleKey, Surface, caustic_share, point_light_terms_with};
-use crate::conventions::InternalReflection;
 use crate::light::{Incidence, Light, aperture_share, point_incidence};
 use crate::math::Ray;
 use crate::shading::{ambient, beneath_notice, faces_away, local_weight, no_light, shadow_filter, transmission_weight};
@@ -91,11 +90,7 @@ impl<'w, 's, F: FormulaTable> Reference<'w, 's, F> {
                 ) {
                     Some(t) => refracted = Some(t.normalize()),
                     // Total internal reflection: the transmitted energy is reflected, or lost.
-                    None => {
-                        if conventions.total_internal_reflection == InternalReflection::Reflected {
-                            kr += mat.kt;
-                        }
-                    }
+                    None => kr = conventions.total_internal_reflection.reflected_weight(kr, mat.kt),
                 }
             }
             if kr > 0.0 {

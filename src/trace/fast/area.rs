@@ -45,6 +45,7 @@ use crate::shading::{
 };
 use crate::shape::Verdict;
 use crate::skips::Skip;
+use crate::trace::diffuse_coefficient;
 use crate::world::Candidate;
 use glam::DVec3;
 use multiversion::multiversion;
@@ -348,7 +349,7 @@ impl ShareFactors {
     fn new(point_color: DVec3, refl: &Reflectance, model: ShadingModel) -> Self {
         ShareFactors {
             point: point_color.to_array(),
-            kd: if model.diffuse { refl.kd } else { 0.0 },
+            kd: diffuse_coefficient(model, refl),
             color: refl.diffuse.to_array(),
             ks: refl.ks,
             tint: refl.tint.to_array(),
@@ -674,7 +675,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
     fn member_points(&self, j: usize, index: usize, area: &AreaLight, len: usize) -> (usize, DVec3) {
         match self.members[j].area_count {
             Some((light, count)) if light == index && (count as usize) < len => {
-                (count as usize, area.color / count as f64)
+                (count as usize, area.point_color_of(count))
             }
             _ => (len, area.point_color()),
         }
@@ -799,6 +800,7 @@ type MemberKey = (usize, usize, [u64; 3]);
 mod tests {
     use super::*;
     use crate::light::point_incidence;
+    use crate::sampling::unit_interval;
     use crate::shading::{blinn, phong, specular_tint};
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
@@ -823,7 +825,7 @@ mod tests {
     #[test]
     fn lanes_are_the_point_light_formulas_bit_for_bit() {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
-        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * unit_interval(rng.next_u64());
         let mut points = Vec::new();
         for _ in 0..257 {
             points.push(DVec3::new(uniform(-5.0, 5.0), uniform(-5.0, 5.0), uniform(0.0, 12.0)));
@@ -989,7 +991,7 @@ mod tests {
     #[test]
     fn lane_sum_is_shares_summed_in_point_order() {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
-        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * unit_interval(rng.next_u64());
         let len = 2 * SUM_BLOCK + 37;
         let points: Vec<DVec3> = (0..len)
             .map(|_| DVec3::new(uniform(-5.0, 5.0), uniform(-5.0, 5.0), uniform(0.0, 12.0)))

@@ -2,11 +2,11 @@
 //! of its N points from one shading point, tested object by object. Each candidate object
 //! that may block one of them ([`crate::world::World::shadow_candidates`]) is met by every
 //! point it has not blocked yet, opaque objects first, then the transparent ones in
-//! ascending order, their filters multiplied in ([`transparent_filter`], [`filter_through`]): the objects, order
-//! and products of [`crate::trace::Reference`]'s `shadow_filter` for each point. Before the
-//! exact test, the candidate's cones of directions sort the points into sure hits, sure
-//! misses and the undecided ([`verdicts`]), and a candidate whose cone misses the light's
-//! whole cone is passed over.
+//! ascending order, their filters multiplied in ([`crate::world::World::filter_color`],
+//! [`filter_through`]): the objects, order and products of [`crate::trace::Reference`]'s
+//! `shadow_filter` for each point. Before the exact test, the candidate's cones of
+//! directions sort the points into sure hits, sure misses and the undecided ([`verdicts`]),
+//! and a candidate whose cone misses the light's whole cone is passed over.
 //!
 //! The open points of each verdict are listed without a branch per point: with AVX-512,
 //! from every point's marks, sixteen points a vector packed by a compress instruction
@@ -16,7 +16,7 @@
 
 use super::{AreaScratch, Facing, Lanes};
 use crate::math::Ray;
-use crate::shading::{filter_through, transparent_filter};
+use crate::shading::filter_through;
 use crate::shape::{Fan, Shape, Verdict, fan_verdicts, occludes_undecided};
 use crate::skips::Skip;
 use crate::trace::Surface;
@@ -203,8 +203,7 @@ impl<const K: usize> Tracer<'_, '_, K> {
                     s.open.truncate(kept);
                 }
             } else {
-                let mat = world.material_of(c.object);
-                let color = transparent_filter(world.scene.settings.conventions.shadow_filter, mat.kt, mat.color);
+                let color = world.filter_color(c.object);
                 s.tinted |= hits > 0;
                 // Each channel compared, no branch (a product is rarely 0).
                 let mut zero_product = false;
@@ -386,6 +385,7 @@ mod tests {
     use super::super::tests::lanes_of;
     use super::*;
     use crate::area_light::PointSet;
+    use crate::sampling::unit_interval;
     use crate::shading::Attenuation;
     use rand_chacha::ChaCha8Rng;
     use rand_core::{Rng, SeedableRng};
@@ -495,7 +495,7 @@ mod tests {
     #[test]
     fn cones_apart_means_every_verdict_misses() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
-        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * unit_interval(rng.next_u64());
         let (mut apart, mut near) = (0, 0);
         for _ in 0..2000 {
             let p = DVec3::new(uniform(-6.0, 6.0), uniform(-6.0, 6.0), uniform(0.0, 4.0));
