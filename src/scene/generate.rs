@@ -5,6 +5,7 @@
 //! table's seed and `(table, k)`.
 
 use super::{NameKey, Object};
+use crate::math::other_leg;
 use crate::sampling::{Purpose, Stream};
 use crate::shape::{Cone, Shape, Sphere, Torus, Triangle};
 use glam::DVec3;
@@ -233,7 +234,7 @@ fn gather_in_place<T>(items: &mut [T], order: &[u32]) {
 fn direction(u: &mut dyn FnMut() -> f64) -> DVec3 {
     let z = 2.0 * u() - 1.0;
     let phi = std::f64::consts::TAU * u();
-    let rho = (1.0 - z * z).max(0.0).sqrt();
+    let rho = other_leg(z);
     DVec3::new(rho * libm::cos(phi), rho * libm::sin(phi), z)
 }
 
