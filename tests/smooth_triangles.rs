@@ -310,7 +310,7 @@ fn a_model_with_vertex_normals_is_smooth() {
     let mixed = write_in(&dir, "mixed.txt", &lab("").replace("two.obj", "mixed.obj"));
     let e = scene::load(Path::new(&mixed)).unwrap_err().to_string();
     assert!(
-        e.contains("mixed.obj:5:8: 1 of the face's 3 vertices have a normal: give it to all of them or none"),
+        e.contains("mixed.obj:5:8: 1 of the face's 3 vertices has a normal: give it to all of them or none"),
         "{e}"
     );
 }

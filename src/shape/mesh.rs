@@ -715,8 +715,9 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                     if count != 0 && count != corners.len() {
                         // On the first vertex that differs from the face's first.
                         let odd = gives.iter().position(|g| g[k] != gives[0][k]).unwrap_or(0);
+                        let have = if count == 1 { "has" } else { "have" };
                         let m = format!(
-                            "{count} of the face's {} vertices have {what}: give it to all of them or none",
+                            "{count} of the face's {} vertices {have} {what}: give it to all of them or none",
                             corners.len()
                         );
                         return Err(refused_on((m, corners[odd])));
@@ -1254,7 +1255,7 @@ mod tests {
             ),
             (
                 "vn 0 0 1\nf 1 2 3//1",
-                "m.obj:5:7: 1 of the face's 3 vertices have a normal: give it to all of them or none".to_string(),
+                "m.obj:5:7: 1 of the face's 3 vertices has a normal: give it to all of them or none".to_string(),
             ),
             (
                 " l 1 2",
