@@ -63,7 +63,7 @@ impl Triangle {
     }
 
     /// Why the points make no triangle, if they do not: two of them equal, or all three
-    /// (nearly) on one line (the sine of the angle at `p0` below 1e-12, the rectangle's
+    /// (nearly) on one line (the sine of the angle at `p0` at most 1e-12, the rectangle's
     /// rule for parallel edges).
     pub fn degenerate(p0: DVec3, p1: DVec3, p2: DVec3) -> Option<&'static str> {
         let (e1, e2) = (p1 - p0, p2 - p0);
