@@ -169,7 +169,8 @@ impl Statement {
                 } else if index > 0 {
                     format!("{what} index {index}, but the file has {total}")
                 } else {
-                    format!("{what} index {index}, but only {before} come before this face")
+                    let come = if before == 1 { "comes" } else { "come" };
+                    format!("{what} index {index}, but only {before} {come} before this face")
                 }
             }
             Statement::RelativeIndex { element, index } => format!(
@@ -1239,6 +1240,11 @@ mod tests {
             (
                 "f 1 2 -4",
                 "m.obj:4:7: f: vertex index -4, but only 3 come before this face".to_string(),
+            ),
+            // One before: said in the singular.
+            (
+                "vt 0 0\nf 1/1 2/1 3/-2",
+                "m.obj:5:13: f: texture index -2, but only 1 comes before this face".to_string(),
             ),
             (
                 "f 0 1 2",
