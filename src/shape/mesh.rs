@@ -151,8 +151,8 @@ impl Statement {
         }
     }
 
-    /// What is wrong with it (or, for a relative index, what it means), with the statement's
-    /// allowed form.
+    /// What is wrong with it (or, for a relative index, what it means); a face short of
+    /// vertices with a face's form (`f v1 v2 v3 ...`), a line element with what is read.
     fn why(self) -> String {
         match self {
             Statement::LineElement => "a line element (l) is no surface; only faces (f) are read".to_string(),
@@ -193,8 +193,8 @@ pub struct StatementAt {
 }
 
 impl StatementAt {
-    /// `FILE:LINE:COLUMN: KEYWORD: MESSAGE`, the message naming the statement's allowed form
-    /// ([`ObjError::in_file`] of the statement refused).
+    /// `FILE:LINE:COLUMN: KEYWORD: MESSAGE`, the message saying what is wrong with the
+    /// statement ([`ObjError::in_file`] of the statement refused).
     pub fn in_file(&self, file: &impl std::fmt::Display) -> String {
         ObjError::from(*self).in_file(file)
     }
