@@ -8,7 +8,8 @@ use std::borrow::Cow;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Shell {
     /// sh, bash, zsh: a word is taken as it is when it holds only letters, digits and
-    /// `-_./,:=+@%`, else between single quotes, a `'` in it written `'\''`.
+    /// `-_./,:=+@%` and does not start with `=` (which zsh expands), else between single
+    /// quotes, a `'` in it written `'\''`.
     Posix,
     /// Windows' cmd and PowerShell: a word is taken as it is when it holds only letters,
     /// digits and `-_./\:=+`, else between double quotes (a Windows path holds no `"`).
@@ -27,7 +28,10 @@ impl Shell {
             Shell::Posix => "-_./,:=+@%",
             Shell::Windows => "-_./\\:=+",
         };
-        if !word.is_empty() && word.chars().all(|c| c.is_alphanumeric() || specials.contains(c)) {
+        let plain = !word.is_empty()
+            && (self != Shell::Posix || !word.starts_with('='))
+            && word.chars().all(|c| c.is_alphanumeric() || specials.contains(c));
+        if plain {
             return Cow::Borrowed(word);
         }
         Cow::Owned(match self {
@@ -62,6 +66,8 @@ mod tests {
         assert_eq!(Posix.word("$HOME/a;b"), "'$HOME/a;b'");
         assert_eq!(Posix.word("Jo's lab/x.png"), r"'Jo'\''s lab/x.png'");
         assert_eq!(Posix.word(r"a\b"), r"'a\b'");
+        assert_eq!(Posix.word("=cmd"), "'=cmd'");
+        assert_eq!(Posix.word("a=b"), "a=b");
     }
 
     #[test]

@@ -635,6 +635,14 @@ fn counts_of_one_are_said_in_the_singular() {
     assert!(stderr.contains(": 1 object, 1 light; 4 x 3 pixels"), "{stderr}");
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("intersection core: linear over 1 object, "), "{stdout}");
+    let lab = dir.join("one.txt");
+    let o = lumiere(&["-v", "convert", scene, "-o", lab.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("one.txt: simrenderer scene of 1 object and 1 light, from "),
+        "{stderr}"
+    );
 }
 
 /// Every `.rs` file under `dir`, recursively.

@@ -115,9 +115,13 @@ fn tidy(path: &Path) -> PathBuf {
     path.components().filter(|c| *c != Component::CurDir).collect()
 }
 
-/// A path as one word of the command line ([`crate::shell::word`]).
+/// A path as one word of the command line, quoted for a POSIX shell whatever the host
+/// ([`crate::shell::Shell::Posix`]): the command goes into the manifests, which are the
+/// same bytes on every machine.
 fn shell_word(path: &Path) -> String {
-    crate::shell::word(&path.display().to_string()).into_owned()
+    crate::shell::Shell::Posix
+        .word(&path.display().to_string())
+        .into_owned()
 }
 
 impl Run {
