@@ -41,10 +41,9 @@ pub mod mistakes;
 pub mod report;
 
 use crate::edges::{footprint, is_edge};
-use crate::film::{Normalization, level_value, rgb8_encoded, unrounded_level};
+use crate::film::{Normalization, level_value, rgb8_encoded, srgb_decode, srgb_encode, unrounded_level};
 use crate::layers::{PixelLayers, pixel_layers};
 use crate::limits::MAX_DEPTH;
-use crate::output::{srgb_decode, srgb_encode};
 use crate::render::{camera_ray, render_pixels_with};
 use crate::scene::Scene;
 use crate::trace::{Formulas, Reference, SampleKey, Tracer};

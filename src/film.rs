@@ -1,6 +1,7 @@
 //! The image being made: per-pixel radiance, its 8-bit quantisation (clamp to [0, 1], no
 //! gamma, as the course's renderer writes; or each colour first divided by its largest
-//! channel, SIMRenderer's `division_factor`), and atomic PNG output.
+//! channel, SIMRenderer's `division_factor`), the sRGB transfer function for images
+//! encoded on request, and atomic PNG output.
 
 use glam::DVec3;
 use std::fs;
@@ -189,6 +190,28 @@ fn temp_path(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
 }
 
+/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1]:
+/// `12.92 c` for `c <= 0.0031308`, else `1.055 c^(1/2.4) - 0.055`.
+pub fn srgb_encode(c: f64) -> f64 {
+    let c = clamp_unit(c);
+    if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * libm::pow(c, 1.0 / 2.4) - 0.055
+    }
+}
+
+/// The inverse of [`srgb_encode`] (IEC 61966-2-1), from an encoded value in [0, 1] back to
+/// linear: `c / 12.92` for `c <= 0.04045`, else `((c + 0.055) / 1.055)^2.4`.
+pub fn srgb_decode(c: f64) -> f64 {
+    let c = clamp_unit(c);
+    if c <= 0.040_45 {
+        c / 12.92
+    } else {
+        libm::pow((c + 0.055) / 1.055, 2.4)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -258,5 +281,22 @@ mod tests {
         assert_eq!(fs::read(&ok).unwrap(), b"hello");
         assert_eq!(fs::read_dir(&dir).unwrap().count(), 1);
         fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn srgb_by_hand() {
+        // Decoding undoes encoding: 0.5 encodes to 1.055 * 0.5^(1/2.4) - 0.055 = 0.735357.
+        assert!((srgb_encode(0.5) - 0.735_356_983).abs() < 1e-9);
+        for x in [0.0, 0.002, 0.0031308, 0.2, 0.5, 1.0] {
+            assert!((srgb_decode(srgb_encode(x)) - x).abs() < 1e-12, "{x}");
+        }
+        assert_eq!(srgb_encode(0.0), 0.0);
+        // 1.055 - 0.055 = 1 up to one rounding: 0.9999999999999999, which quantises to 255.
+        assert!((srgb_encode(1.0) - 1.0).abs() < 1e-15);
+        assert_eq!(quantize(srgb_encode(1.0)), 255);
+        // Linear segment: 0.002 * 12.92 = 0.02584.
+        assert!((srgb_encode(0.002) - 0.02584).abs() < 1e-15);
+        // 0.5: 1.055 * 0.5^(1/2.4) - 0.055 = 1.055 * 0.749154 - 0.055 = 0.735357.
+        assert!((srgb_encode(0.5) - 0.735_357).abs() < 1e-6);
     }
 }

@@ -46,8 +46,8 @@
 //!   light's colour); transparent objects do not tint it
 //!   (`SAbstractShader.shadeWithInterferenceLight`, `SShadowRay`).
 
+use crate::film::srgb_encode;
 use crate::limits;
-use crate::output::srgb_encode;
 use crate::shading::Attenuation;
 use crate::texture::{repeat, texel_index};
 use glam::DVec3;

@@ -39,7 +39,7 @@ pub fn flip_heat_map(values: &[f32], width: u32, height: u32) -> Vec<u8> {
 mod tests {
     use super::*;
     use crate::film::level_value;
-    use crate::output::srgb_decode;
+    use crate::film::srgb_decode;
 
     /// An sRGB-encoded 8-bit level as linear light (IEC 61966-2-1).
     fn linear(level: u8) -> f64 {
