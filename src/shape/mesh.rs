@@ -737,7 +737,7 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
         }
     }
     if faces.is_empty() {
-        let skipped_as = |f: fn(&Statement) -> bool| skipped.iter().any(|s| f(&s.statement));
+        let skipped_as = |f: fn(&Statement) -> bool| skipped.iter().find(|s| f(&s.statement));
         let short = skipped_as(|s| matches!(s, Statement::ShortFace(_)));
         let bad = skipped_as(|s| {
             matches!(
@@ -748,13 +748,23 @@ fn check(text: &str, max_triangles: usize, tolerated: Tolerated) -> Result<Check
                 }
             )
         });
-        let which = match (short, bad) {
+        let which = match (short.is_some(), bad.is_some()) {
             (false, false) => "",
             (true, false) => " of 3 vertices or more",
             (false, true) => " whose vertex indices are in range",
             (true, true) => " of 3 vertices or more whose vertex indices are in range",
         };
-        return Err(whole(format!("the file has no faces (f){which}")));
+        let message = format!("the file has no faces (f){which}");
+        // Faces were skipped: placed on the first, which says why.
+        let first_skipped = [short, bad].into_iter().flatten().min_by_key(|s| (s.line, s.column));
+        return Err(match first_skipped {
+            Some(s) => at(
+                s.line,
+                s.column,
+                format!("{message}; the first face skipped: {}", s.statement.why()),
+            ),
+            None => whole(message),
+        });
     }
     Ok(Checked {
         faces,
@@ -1036,10 +1046,11 @@ mod tests {
             ]
         );
         // A file whose faces are all skipped has none to draw.
-        let e = Mesh::parse("v 0 0 0\nv 1 0 0\nf 1 2\n", 100, both).unwrap_err();
+        let e = Mesh::parse("v 0 0 0\nv 1 0 0\nl 1 2\n  f 1 2\nf 2\n", 100, both).unwrap_err();
         assert_eq!(
             e.in_file(&"m.obj"),
-            "m.obj: the file has no faces (f) of 3 vertices or more"
+            "m.obj:4:3: the file has no faces (f) of 3 vertices or more; the first face skipped: \
+             a face needs at least 3 vertices (f v1 v2 v3 ...), got 2"
         );
     }
 
@@ -1130,7 +1141,8 @@ mod tests {
         let e = Mesh::parse("v 0 0 0\nv 1 0 0\nf 1 2 3\n", 100, tolerant).unwrap_err();
         assert_eq!(
             e.in_file(&"m.obj"),
-            "m.obj: the file has no faces (f) whose vertex indices are in range"
+            "m.obj:3:7: the file has no faces (f) whose vertex indices are in range; the first face \
+             skipped: vertex index 3, but the file has 2"
         );
         // In range, a relative index is recorded and read as OBJ reads it.
         let m = Mesh::parse("v 9 9 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n", 100, Tolerated::NONE).unwrap();
