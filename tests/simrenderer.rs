@@ -500,6 +500,14 @@ fn lenient_goes_on_as_simrenderer_does_and_says_what_it_did() {
             "lab.txt:20:1: scene.primitive: no material is named \"none\" (a primitive without material_name takes the material named \"none\"); it gets SIMRenderer's grey default material (ambient 0.2, diffuse 0.6, specular 0.7)",
         ]
     );
+    // A file whose every block is dropped is an empty scene, said as such (not as a file
+    // holding no block).
+    let dropped = lenient("model\nfile no-such-lumiere-model.obj\nend\n");
+    assert_eq!(
+        warnings(&dropped)[1],
+        "lab.txt:1:1: scene: every block of the file is dropped (the warnings above say why): an empty scene, rendered black, 500 x 500"
+    );
+    assert_eq!(dropped.scene.objects.len(), 0);
     // Under --lenient, a transparent material's n of 0 is 1, said at the n line.
     let glass = lenient("material\nname glass\nn 0\nkt 0.5\nend\n");
     assert_eq!(

@@ -85,8 +85,12 @@ pub fn parse(text: &str, file: &str, options: &Options) -> Result<Parsed, SceneE
             column: 1,
             field: "scene".to_string(),
         };
-        let m = "the file holds no block (camera, viewport, raytracer, material, primitive, model or light): an empty scene, which SIMRenderer renders black, 500 x 500".to_string();
-        reader.warn(&start, m);
+        let m = if raw.blocks == 0 {
+            "the file holds no block (camera, viewport, raytracer, material, primitive, model or light): an empty scene, which SIMRenderer renders black, 500 x 500"
+        } else {
+            "every block of the file is dropped (the warnings above say why): an empty scene, rendered black, 500 x 500"
+        };
+        reader.warn(&start, m.to_string());
     }
     reader.build(raw, options.conventions)
 }
@@ -102,6 +106,8 @@ struct At {
 /// What the file's blocks say, before the materials are bound.
 #[derive(Default)]
 struct Raw {
+    /// How many top-level blocks the file holds, kept or dropped.
+    blocks: usize,
     camera: Option<CameraBlock>,
     viewport: Option<ViewportBlock>,
     raytracer: Option<RaytracerBlock>,
@@ -111,7 +117,8 @@ struct Raw {
 }
 
 impl Raw {
-    /// No block at all: an empty file, or one of comments and blank lines.
+    /// Nothing kept: no block in the file (an empty file, or one of comments and blank
+    /// lines), or every block dropped under `--lenient`.
     fn is_empty(&self) -> bool {
         self.camera.is_none()
             && self.viewport.is_none()
@@ -363,6 +370,7 @@ impl<'a> Reader<'a> {
                 }
                 return Ok(raw);
             }
+            raw.blocks += 1;
             let block = l.keyword.clone();
             match keyword {
                 Some("camera") => {
