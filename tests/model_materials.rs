@@ -8,6 +8,8 @@
 //! [1, 3]; the first before any `usemtl`, the second `usemtl red`, the third `usemtl absent`.
 
 use crate::common::{lumiere, lumiere_ok, temp_dir, write_in};
+use lumiere::scene::SceneError;
+use lumiere::scene::simrenderer::{self, Parsed};
 use lumiere::shape::Shape;
 use std::path::Path;
 
@@ -31,6 +33,20 @@ fn lab(x: f64, extra: &str) -> String {
          directional_light\ncolor 1 1 1\norientation 0 0 -1\nend\n\
          model\nfile parts.obj\n{extra}end\n"
     )
+}
+
+/// The SIMRenderer file `lab`, read strictly or under `--lenient`.
+fn load_lab(lab: &str, lenient: bool) -> Result<Parsed, SceneError> {
+    let options = simrenderer::Options {
+        lenient,
+        ..Default::default()
+    };
+    simrenderer::load(Path::new(lab), &options)
+}
+
+/// The warnings of a read file, as printed.
+fn warnings_of(parsed: &Parsed) -> Vec<String> {
+    parsed.warnings.iter().map(|w| w.to_string()).collect()
 }
 
 /// The middle pixel of the render of the scene file `scene` (written in `dir`).
@@ -303,11 +319,7 @@ fn a_flat_face_is_skipped_under_lenient() {
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("parts.obj:5:1: the face makes no triangle"), "{stderr}");
-    let options = lumiere::scene::simrenderer::Options {
-        lenient: true,
-        ..Default::default()
-    };
-    let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options).unwrap();
+    let parsed = load_lab(&red, true).unwrap();
     assert_eq!(parsed.scene.objects.len(), 1);
     let Shape::Triangle(t) = &parsed.scene.objects[0].shape else {
         panic!("{:?}", parsed.scene.objects[0].shape)
@@ -337,31 +349,27 @@ fn line_elements_and_short_faces_are_skipped_as_simrenderer_skips_them() {
         .replace("usemtl absent\n", "")
         .replace("usemtl red\n", "l 1 2 3\nusemtl red\n  l 2 5\n");
     let red = write_in(&dir, "red.txt", &lab(0.0, ""));
-    let options = |lenient| lumiere::scene::simrenderer::Options {
-        lenient,
-        ..Default::default()
-    };
     let line_warning = format!(
         "{red}:21:6: model.file: {obj}:11:1: l: a line element (l) is no surface; only faces (f) are read; \
          the file's 2 line element(s) are skipped, as SIMRenderer's model reader skips them"
     );
     // Line elements: the model's 3 squares (6 triangles), one warning, in strict mode.
     write_in(&dir, "parts.obj", &with_lines);
-    let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options(false)).unwrap();
+    let parsed = load_lab(&red, false).unwrap();
     assert_eq!(parsed.scene.objects.len(), 6);
-    let warnings: Vec<String> = parsed.warnings.iter().map(|w| w.to_string()).collect();
+    let warnings = warnings_of(&parsed);
     assert_eq!(warnings, std::slice::from_ref(&line_warning));
     // A 2-vertex face on line 14: refused in strict mode on its line and column, naming the form.
     write_in(&dir, "parts.obj", &with_lines.replace("  l 2 5\n", "  l 2 5\nf 2 5\n"));
-    let e = lumiere::scene::simrenderer::load(Path::new(&red), &options(false)).unwrap_err();
+    let e = load_lab(&red, false).unwrap_err();
     assert_eq!(
         e.to_string(),
         format!("{red}:21:6: model.file: {obj}:14:1: f: a face needs at least 3 vertices (f v1 v2 v3 ...), got 2")
     );
     // Under --lenient: skipped, the other faces kept; the red square renders as without it.
-    let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options(true)).unwrap();
+    let parsed = load_lab(&red, true).unwrap();
     assert_eq!(parsed.scene.objects.len(), 6);
-    let warnings: Vec<String> = parsed.warnings.iter().map(|w| w.to_string()).collect();
+    let warnings = warnings_of(&parsed);
     assert_eq!(
         warnings,
         [
@@ -391,11 +399,7 @@ fn a_face_with_an_index_out_of_range_is_skipped_under_lenient() {
     let past = squares.replace("f 2 5 6 3\n", "f 2 5 6 3\nf 2 5 9\n");
     write_in(&dir, "parts.obj", &past);
     let red = write_in(&dir, "red.txt", &lab(0.0, ""));
-    let options = |lenient| lumiere::scene::simrenderer::Options {
-        lenient,
-        ..Default::default()
-    };
-    let e = lumiere::scene::simrenderer::load(Path::new(&red), &options(false)).unwrap_err();
+    let e = load_lab(&red, false).unwrap_err();
     assert_eq!(
         e.to_string(),
         format!("{red}:21:6: model.file: {obj}:13:7: f: vertex index 9, but the file has 8")
@@ -405,9 +409,9 @@ fn a_face_with_an_index_out_of_range_is_skipped_under_lenient() {
          with a vertex index out of range are skipped and its others kept, as SIMRenderer's model reader \
          skips a face whose vertex index passes the file's count"
     );
-    let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options(true)).unwrap();
+    let parsed = load_lab(&red, true).unwrap();
     assert_eq!(parsed.scene.objects.len(), 6);
-    let warnings: Vec<String> = parsed.warnings.iter().map(|w| w.to_string()).collect();
+    let warnings = warnings_of(&parsed);
     assert_eq!(warnings, std::slice::from_ref(&vertex_warning));
     assert_eq!(middle(&dir, &red, &["--lenient"]), [223, 96, 0]);
     // The red square's face with texture index 2 of 1 (the `vt` on line 15): kept, flat.
@@ -416,12 +420,12 @@ fn a_face_with_an_index_out_of_range_is_skipped_under_lenient() {
         "parts.obj",
         &format!("{}vt 0 0\n", past.replace("f 2 5 6 3\n", "f 2/1 5/1 6/1 3/2\n")),
     );
-    let e = lumiere::scene::simrenderer::load(Path::new(&red), &options(false)).unwrap_err();
+    let e = load_lab(&red, false).unwrap_err();
     assert_eq!(
         e.to_string(),
         format!("{red}:21:6: model.file: {obj}:12:17: f: texture index 2, but the file has 1")
     );
-    let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options(true)).unwrap();
+    let parsed = load_lab(&red, true).unwrap();
     assert_eq!(parsed.scene.objects.len(), 6);
     assert!(
         parsed
@@ -432,7 +436,7 @@ fn a_face_with_an_index_out_of_range_is_skipped_under_lenient() {
         "{:?}",
         parsed.scene.objects
     );
-    let warnings: Vec<String> = parsed.warnings.iter().map(|w| w.to_string()).collect();
+    let warnings = warnings_of(&parsed);
     assert_eq!(
         warnings,
         [
@@ -470,12 +474,8 @@ fn a_negative_index_is_read_as_obj_reads_it_with_a_warning() {
          differs from lumiere's, which reads the file's 2 face(s) with a negative index as OBJ defines them"
     );
     for lenient in [false, true] {
-        let options = lumiere::scene::simrenderer::Options {
-            lenient,
-            ..Default::default()
-        };
-        let parsed = lumiere::scene::simrenderer::load(Path::new(&red), &options).unwrap();
-        let warnings: Vec<String> = parsed.warnings.iter().map(|w| w.to_string()).collect();
+        let parsed = load_lab(&red, lenient).unwrap();
+        let warnings = warnings_of(&parsed);
         assert_eq!(warnings, std::slice::from_ref(&warning), "lenient {lenient}");
         let Shape::Triangle(t) = &parsed.scene.objects[0].shape else {
             panic!("{:?}", parsed.scene.objects[0].shape)
