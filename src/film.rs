@@ -115,10 +115,12 @@ impl Film {
     }
 }
 
-/// FNV-1a 64-bit hash of 8-bit pixel data, the "pixel hash" of manifests and snapshots:
-/// independent of the PNG encoder, so a student can compare decoded pixels.
-pub fn pixel_hash(rgb: &[u8]) -> u64 {
-    rgb.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+/// FNV-1a 64-bit hash of `bytes`: over 8-bit RGB pixels, the "pixel hash" of manifests
+/// and snapshots (independent of the PNG encoder, so a student can compare decoded
+/// pixels); over a scene file's text or a texture's texels, their identity in provenance,
+/// shard headers and scene hashes.
+pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
         (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
     })
 }
@@ -266,8 +268,8 @@ mod tests {
     #[test]
     fn fnv1a_reference_values() {
         // Published FNV-1a 64 test vectors: "" and "a".
-        assert_eq!(pixel_hash(b""), 0xcbf2_9ce4_8422_2325);
-        assert_eq!(pixel_hash(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
     }
 
     #[test]

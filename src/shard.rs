@@ -17,7 +17,7 @@
 //! `LUMIERE-SHARD-1` file (the same layout without the checksum) is refused: it must be
 //! rendered again.
 
-use crate::film::{Film, Normalization, pixel_hash};
+use crate::film::{Film, Normalization, fnv1a64};
 use crate::limits;
 use crate::scene::Scene;
 use glam::DVec3;
@@ -136,7 +136,7 @@ impl ShardHeader {
 
 /// The identity of a scene for merging.
 pub fn scene_hash(scene: &Scene) -> String {
-    format!("{:016x}", pixel_hash(&serde_json::to_vec(scene).unwrap_or_default()))
+    format!("{:016x}", fnv1a64(&serde_json::to_vec(scene).unwrap_or_default()))
 }
 
 /// Encodes the rows `spec.rows(height)` of a render, checksum included.

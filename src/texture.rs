@@ -136,15 +136,13 @@ impl Texture {
 
     /// FNV-1a 64 over the texels' bits: the identity of the image in a scene's hash.
     fn hash(&self) -> u64 {
-        let mut h: u64 = 0xcbf29ce484222325;
-        for t in &self.texels {
-            for c in t.to_array() {
-                for b in c.to_bits().to_le_bytes() {
-                    h = (h ^ b as u64).wrapping_mul(0x100000001b3);
-                }
-            }
-        }
-        h
+        let bytes: Vec<u8> = self
+            .texels
+            .iter()
+            .flat_map(|t| t.to_array())
+            .flat_map(|c| c.to_bits().to_le_bytes())
+            .collect();
+        crate::film::fnv1a64(&bytes)
     }
 }
 

@@ -72,7 +72,7 @@ fn generate_writes_images_manifest_sheet_and_gallery() {
     assert_eq!(first["caption"], "Avec un angle d'ouverture θ = 70°");
     assert_eq!(first["scene"], "scenes/figures/spotlight/01-theta-70.toml");
     let scene_bytes = std::fs::read(repo("scenes/figures/spotlight/01-theta-70.toml")).unwrap();
-    let scene_hash = format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(&scene_bytes));
+    let scene_hash = format!("fnv1a64:{:016x}", lumiere::film::fnv1a64(&scene_bytes));
     assert_eq!(first["scene_hash"], scene_hash.as_str());
     assert_eq!(first["parameters"]["lights[1].angle"], 70);
     assert_eq!(first["seed"], 42);
@@ -439,7 +439,7 @@ fn a_figure_file_renders_as_any_scene_into_the_committed_figure() {
     let manifest = json_file(&repo("figures/lighting/manifest.json"));
     assert_eq!(
         manifest["images"][2]["pixel_hash"],
-        format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(&rendered.2)).as_str()
+        format!("fnv1a64:{:016x}", lumiere::film::fnv1a64(&rendered.2)).as_str()
     );
     assert_eq!(
         manifest["images"][2]["scene"],
@@ -455,7 +455,7 @@ fn committed_figures_carry_their_provenance() {
             let texts = provenance::text_chunks(&png).unwrap();
             let get = |k: &str| texts.iter().find(|(key, _)| key == k).map(|(_, v)| v.as_str());
             let scene = std::fs::read(repo(&f.scene_file)).unwrap();
-            let hash = format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(&scene));
+            let hash = format!("fnv1a64:{:016x}", lumiere::film::fnv1a64(&scene));
             assert_eq!(get("Scene"), Some(f.scene_file.as_str()));
             assert_eq!(get("Scene hash"), Some(hash.as_str()), "{}", f.scene_file);
             assert_eq!(get("Seed"), Some("42"));

@@ -262,7 +262,7 @@ fn ctrl_c_during_figures_leaves_each_set_wholly_old_or_wholly_new() {
             .unwrap()
             .to_rgb8();
         assert_eq!((png.width(), png.height()), (200, 150));
-        let hash = format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(png.as_raw()));
+        let hash = format!("fnv1a64:{:016x}", lumiere::film::fnv1a64(png.as_raw()));
         assert_eq!(entry["pixel_hash"], hash.as_str());
     }
     // Nothing else beside the sets, the gallery and the times of the set written: no

@@ -76,7 +76,7 @@ fn assert_complete_set(dir: &Path, width: u32, height: u32) {
         let file = entry["file"].as_str().unwrap();
         let png = image::load_from_memory(&set[file]).unwrap().to_rgb8();
         assert_eq!((png.width(), png.height()), (width, height), "{file}");
-        let hash = format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(png.as_raw()));
+        let hash = format!("fnv1a64:{:016x}", lumiere::film::fnv1a64(png.as_raw()));
         assert_eq!(entry["pixel_hash"], hash.as_str(), "{file}");
     }
     // The images, the contact sheet and the manifest; nothing else.

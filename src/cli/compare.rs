@@ -322,7 +322,7 @@ fn find_figure_scene(image: &Path, named: &str, hash: Option<&str>) -> Option<St
         .collect();
     let same_bytes = |path: &PathBuf| {
         hash.is_some_and(|h| {
-            std::fs::read(path).is_ok_and(|bytes| h == format!("fnv1a64:{:016x}", lumiere::film::pixel_hash(&bytes)))
+            std::fs::read(path).is_ok_and(|bytes| h == format!("fnv1a64:{:016x}", lumiere::film::fnv1a64(&bytes)))
         })
     };
     let found = files.iter().find(|f| same_bytes(f)).or(files.first())?;

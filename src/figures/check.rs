@@ -9,7 +9,7 @@
 
 use super::{BuiltSet, CONTACT_SHEET, FigureSet, FiguresError, Reuse, Run, build_set, provenance};
 use crate::compare::{DifferingBox, compare_rgb8, differing_box, heat_map};
-use crate::film::pixel_hash;
+use crate::film::fnv1a64;
 use crate::review::{self, HEAT_SCALE, PageItem, ReviewError, Rgb8};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -343,7 +343,7 @@ pub fn check_set(set: &FigureSet, run: &Run, reuse: &mut Reuse, review_dir: &Pat
                     let decoded = decoded.to_rgb8();
                     // Only the figures have their pixel hash in the manifest.
                     if figure.is_some() {
-                        let found_hash = format!("fnv1a64:{:016x}", pixel_hash(decoded.as_raw()));
+                        let found_hash = format!("fnv1a64:{:016x}", fnv1a64(decoded.as_raw()));
                         let recorded = hashes.iter().find(|(f, _)| f == name).map(|(_, h)| h.clone());
                         if recorded.as_ref() != Some(&found_hash) {
                             problems.push(Problem {

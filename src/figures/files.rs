@@ -240,7 +240,7 @@ fn load_set(dir: &Path, folder: &Path) -> Result<FigureSet, RegistryError> {
             stem: entry.stem.clone(),
             caption: entry.caption.clone(),
             scene,
-            scene_hash: crate::film::pixel_hash(scene_text.as_bytes()),
+            scene_hash: crate::film::fnv1a64(scene_text.as_bytes()),
             scene_file: file,
             measures,
             saturation_intended: entry.saturation_intended,

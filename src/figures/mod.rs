@@ -17,7 +17,7 @@ pub mod sheet;
 
 pub use files::{DEFAULT_DIR, Figure, FigureSet, RegistryError};
 
-use crate::film::{WriteError, pixel_hash, write_atomic, write_beside};
+use crate::film::{WriteError, fnv1a64, write_atomic, write_beside};
 use crate::render::render_rows;
 use crate::scene::{self, Scene};
 use crate::trace::RayCounts;
@@ -498,7 +498,7 @@ fn entry(r: &RenderedFigure, scale: f64, family: Vec<String>, same_as: Option<St
         "depth": s.depth,
         "conventions": conventions_of(&scene),
         "renderer": format!("lumiere {}", crate::VERSION),
-        "pixel_hash": format!("fnv1a64:{:016x}", pixel_hash(r.image.as_raw())),
+        "pixel_hash": format!("fnv1a64:{:016x}", fnv1a64(r.image.as_raw())),
         "rays": {
             "camera": c.camera,
             "shadow": c.shadow,
